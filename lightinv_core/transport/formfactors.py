@@ -1,0 +1,143 @@
+"""Form factors F_ij by cosine-weighted stratified ray casting.
+
+F_ij is the fraction of the light leaving patch i (uniform, Lambertian) that
+arrives at patch j. Row i is estimated from ``rays_per_patch`` rays leaving
+patch i: F_ij ~ (rays hitting j) / rays_per_patch. Rows are traced in batches
+on a thread pool (Embree releases the GIL), each batch with its own random
+stream derived from (seed, batch index), so the result is bit-for-bit the same
+for a given seed whatever the thread scheduling.
+"""
+
+from __future__ import annotations
+
+import os
+from collections import deque
+from collections.abc import Callable, Iterator
+from concurrent.futures import ThreadPoolExecutor
+from dataclasses import dataclass
+
+import numpy as np
+import scipy.sparse as sp
+
+from lightinv_core.errors import CancelledError, LightInvError
+from lightinv_core.scene.patches import Patches
+from lightinv_core.transport.raycast import RayCaster, sample_rays
+
+RAYS_PER_BATCH = 1 << 17
+DEFAULT_RAYS = 1024
+
+ProgressFn = Callable[[float], None]
+CancelFn = Callable[[], bool]
+
+
+def default_workers() -> int:
+    """Worker threads for ray casting: one per core available to this process."""
+    try:
+        return max(1, len(os.sched_getaffinity(0)))
+    except AttributeError:  # pragma: no cover - non-Linux
+        return max(1, os.cpu_count() or 1)
+
+
+@dataclass(frozen=True)
+class RowHits:
+    """The rays of one batch of rows: ``hits[r, q]`` is the patch hit by ray q of
+    row ``rows[r]``, or -1 (lost)."""
+
+    rows: np.ndarray
+    hits: np.ndarray
+
+
+def _check_rays(rays_per_patch: int) -> int:
+    r = int(rays_per_patch)
+    if r < 1 or r != rays_per_patch:
+        raise LightInvError(f"rays per patch must be a positive whole number, got {rays_per_patch!r}")
+    return r
+
+
+def trace_rows(patches: Patches, rays_per_patch: int = DEFAULT_RAYS, seed: int = 0,
+               rows: np.ndarray | None = None, workers: int | None = None,
+               progress: ProgressFn | None = None, cancel: CancelFn | None = None,
+               caster: RayCaster | None = None) -> Iterator[RowHits]:
+    """Trace ``rays_per_patch`` rays from each patch in ``rows`` (default all), in order.
+
+    Yields one ``RowHits`` per batch of about ``RAYS_PER_BATCH`` rays. ``progress``
+    gets the fraction of rows done; if ``cancel()`` turns True the pool is shut
+    down and ``CancelledError`` raised. At most ``2 * workers`` batches are held
+    in memory at once.
+    """
+    count = _check_rays(rays_per_patch)
+    rows = np.arange(patches.n) if rows is None else np.asarray(rows, dtype=np.int64)
+    caster = caster or RayCaster(patches)
+    per_batch = max(1, RAYS_PER_BATCH // count)
+    starts = range(0, len(rows), per_batch)
+    workers = workers or default_workers()
+
+    def run(k: int, start: int) -> RowHits:
+        chunk = rows[start:start + per_batch]
+        rng = np.random.default_rng([seed, k])
+        o, d = sample_rays(patches, chunk, count, rng, caster.offset)
+        return RowHits(chunk, caster.hit_patches(o, d).reshape(len(chunk), count))
+
+    done = 0
+    with ThreadPoolExecutor(max_workers=workers, thread_name_prefix="lightinv-rays") as pool:
+        pending: deque = deque()
+        jobs = iter(enumerate(starts))
+        try:
+            for k, start in jobs:
+                pending.append(pool.submit(run, k, start))
+                if len(pending) >= 2 * workers:
+                    break
+            while pending:
+                if cancel is not None and cancel():
+                    raise CancelledError("form-factor computation cancelled")
+                result = pending.popleft().result()
+                nxt = next(jobs, None)
+                if nxt is not None:
+                    pending.append(pool.submit(run, *nxt))
+                done += len(result.rows)
+                if progress is not None:
+                    progress(done / max(1, len(rows)))
+                yield result
+        finally:
+            for f in pending:
+                f.cancel()
+
+
+def form_factor_matrix(patches: Patches, rays_per_patch: int = DEFAULT_RAYS, seed: int = 0,
+                       workers: int | None = None, progress: ProgressFn | None = None,
+                       cancel: CancelFn | None = None) -> sp.csr_matrix:
+    """The sparse form-factor matrix F (n x n, float64, row i = patch i's view).
+
+    Memory grows with the number of distinct (i, j) pairs hit, at most
+    n * rays_per_patch; use the low-rank operator for large scenes instead of F.
+    """
+    n = patches.n
+    rows_out, cols_out, vals_out = [], [], []
+    for batch in trace_rows(patches, rays_per_patch, seed, workers=workers,
+                            progress=progress, cancel=cancel):
+        local = np.repeat(np.arange(len(batch.rows)), batch.hits.shape[1])
+        flat = batch.hits.ravel()
+        ok = flat >= 0
+        keys = local[ok].astype(np.int64) * n + flat[ok]
+        uniq, counts = np.unique(keys, return_counts=True)
+        r, c = np.divmod(uniq, n)
+        rows_out.append(batch.rows[r])
+        cols_out.append(c)
+        vals_out.append(counts / batch.hits.shape[1])
+    rows = np.concatenate(rows_out) if rows_out else np.zeros(0, np.int64)
+    cols = np.concatenate(cols_out) if cols_out else np.zeros(0, np.int64)
+    vals = np.concatenate(vals_out) if vals_out else np.zeros(0)
+    return sp.csr_matrix((vals, (rows, cols)), shape=(n, n))
+
+
+def lost_fraction(F: sp.spmatrix, patches: Patches) -> float:
+    """Area-weighted fraction of the light leaving the patches that hits nothing
+    (or a back face): 0 for a closed room, the escaping share for an open model."""
+    sums = np.asarray(F.sum(axis=1)).ravel()
+    return float(np.dot(patches.area, 1.0 - sums) / patches.area.sum())
+
+
+def reciprocal_column(F: sp.spmatrix, patches: Patches, j: int) -> np.ndarray:
+    """Column j of F from row j by reciprocity: F_ij = A_j F_ji / A_i."""
+    row = np.asarray(F.getrow(j).todense()).ravel()
+    return patches.area[j] * row / patches.area

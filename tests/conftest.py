@@ -1,0 +1,21 @@
+"""Shared fixtures: small built-in scenes and their form factors, computed once per session."""
+
+from __future__ import annotations
+
+import pytest
+
+from lightinv_core.scene.builtin import builtin_scene
+from lightinv_core.scene.patches import mesh_patches
+from lightinv_core.transport.formfactors import form_factor_matrix
+
+
+@pytest.fixture(scope="session")
+def cornell_patches():
+    """The cornell box at its default resolution (~1,100 patches)."""
+    return mesh_patches(builtin_scene("cornell"))
+
+
+@pytest.fixture(scope="session")
+def cornell_F(cornell_patches):
+    """Form factors of the cornell box with 1,024 rays per patch."""
+    return form_factor_matrix(cornell_patches, 1024, seed=1)

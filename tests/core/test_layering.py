@@ -1,0 +1,43 @@
+"""The engine never imports the GUI stack (Qt, VTK, pyvista) or the app."""
+
+from __future__ import annotations
+
+import ast
+import pkgutil
+import subprocess
+import sys
+from pathlib import Path
+
+import lightinv_core
+
+FORBIDDEN = ("PySide6", "shiboken6", "vtk", "vtkmodules", "pyvista", "pyvistaqt", "app")
+CORE = Path(lightinv_core.__file__).parent
+
+
+def _imported_roots(path: Path) -> set[str]:
+    tree = ast.parse(path.read_text(), str(path))
+    roots = set()
+    for node in ast.walk(tree):
+        if isinstance(node, ast.Import):
+            roots |= {a.name.split(".")[0] for a in node.names}
+        elif isinstance(node, ast.ImportFrom) and node.level == 0 and node.module:
+            roots.add(node.module.split(".")[0])
+    return roots
+
+
+def test_no_core_module_imports_the_gui_stack():
+    bad = {str(p.relative_to(CORE)): sorted(_imported_roots(p) & set(FORBIDDEN))
+           for p in CORE.rglob("*.py")}
+    assert {k: v for k, v in bad.items() if v} == {}
+
+
+def test_importing_every_core_module_loads_no_gui_module():
+    names = [m.name for m in pkgutil.walk_packages([str(CORE)], "lightinv_core.")]
+    code = (
+        "import importlib, sys\n"
+        f"for m in {names!r}: importlib.import_module(m)\n"
+        f"bad = [m for m in sys.modules if m.split('.')[0] in {FORBIDDEN!r}]\n"
+        "print(','.join(bad))\n"
+    )
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
+    assert out.stdout.strip() == ""
