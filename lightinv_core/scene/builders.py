@@ -6,6 +6,7 @@ boxes face outwards.
 
 from __future__ import annotations
 
+import itertools
 from dataclasses import dataclass
 
 import numpy as np
@@ -33,8 +34,9 @@ class Insert:
     grid: tuple[int, int] | None = None
 
 
-def split_rect(name: str, group: str, reflectance: float, rect: Rect,
-               inserts: list[Insert] = ()) -> tuple[list[Surface], list[EmitterZone]]:
+def split_rect(
+    name: str, group: str, reflectance: float, rect: Rect, inserts: list[Insert] = ()
+) -> tuple[list[Surface], list[EmitterZone]]:
     """Split ``rect`` into the inserts and the remaining cells around them.
 
     Each insert becomes one rectangular surface (so an emitter zone is a single
@@ -63,16 +65,19 @@ def split_rect(name: str, group: str, reflectance: float, rect: Rect,
         if ins.zone_kind is not None:
             zones.append(EmitterZone(ins.name, ins.zone_kind, ins.name))
     k = 0
-    for a, b in zip(us[:-1], us[1:], strict=True):
-        for c, d in zip(vs[:-1], vs[1:], strict=True):
+    for a, b in itertools.pairwise(us):
+        for c, d in itertools.pairwise(vs):
             if b - a < 1e-9 or d - c < 1e-9:
                 continue
             um, vm = 0.5 * (a + b), 0.5 * (c + d)
             if any(i.u0 <= um <= i.u1 and i.v0 <= vm <= i.v1 for i in inserts):
                 continue
             cell_name = name if k == 0 else f"{name}.{k}"
-            surfaces.append(Surface(cell_name, group, reflectance,
-                                    rect=rect.sub(a / su, c / sv, b / su, d / sv)))
+            surfaces.append(
+                Surface(
+                    cell_name, group, reflectance, rect=rect.sub(a / su, c / sv, b / su, d / sv)
+                )
+            )
             k += 1
     return surfaces, zones
 
@@ -95,8 +100,9 @@ def room_faces(x0: float, y0: float, z0: float, x1: float, y1: float, z1: float)
     }
 
 
-def box_faces(x0: float, y0: float, z0: float, x1: float, y1: float, z1: float,
-              skip: tuple[str, ...] = ()) -> dict[str, Rect]:
+def box_faces(
+    x0: float, y0: float, z0: float, x1: float, y1: float, z1: float, skip: tuple[str, ...] = ()
+) -> dict[str, Rect]:
     """The outward-facing faces of a solid axis-aligned box (keys as ``room_faces``,
     with ``top`` and ``bottom``), leaving out the faces named in ``skip``."""
     dx, dy, dz = x1 - x0, y1 - y0, z1 - z0
@@ -111,8 +117,15 @@ def box_faces(x0: float, y0: float, z0: float, x1: float, y1: float, z1: float,
     return {k: v for k, v in faces.items() if k not in skip}
 
 
-def box_surfaces(name: str, group: str, reflectance: float, lo, hi,
-                 skip: tuple[str, ...] = (), top_group: str | None = None) -> list[Surface]:
+def box_surfaces(
+    name: str,
+    group: str,
+    reflectance: float,
+    lo,
+    hi,
+    skip: tuple[str, ...] = (),
+    top_group: str | None = None,
+) -> list[Surface]:
     """Surfaces of a solid box from corner ``lo`` to ``hi``; the top face may get its own group."""
     out = []
     for face, rect in box_faces(*lo, *hi, skip=skip).items():
@@ -121,8 +134,12 @@ def box_surfaces(name: str, group: str, reflectance: float, lo, hi,
     return out
 
 
-def footprint_holes(prefix: str, boxes: list[tuple[np.ndarray, np.ndarray]],
-                    origin_xy: tuple[float, float], flip_y_from: float | None = None) -> list[Insert]:
+def footprint_holes(
+    prefix: str,
+    boxes: list[tuple[np.ndarray, np.ndarray]],
+    origin_xy: tuple[float, float],
+    flip_y_from: float | None = None,
+) -> list[Insert]:
     """Holes in a floor (or ceiling) under the footprints of boxes touching it.
 
     ``origin_xy`` is the floor rectangle's origin; for a ceiling whose v axis

@@ -10,6 +10,7 @@ Reflectances are typical interior values: floors 0.3, walls 0.6, ceilings 0.8.
 
 from __future__ import annotations
 
+import itertools
 from collections.abc import Callable
 
 import numpy as np
@@ -44,18 +45,26 @@ def cornell(resolution: float | None = None) -> Scene:
     short = (np.array([0.3, 0.35, 0.0]), np.array([0.9, 0.95, 0.6]))
     tall = (np.array([1.1, 1.0, 0.0]), np.array([1.7, 1.6, 1.2]))
     light = Insert("light", 0.75, 0.75, 1.25, 1.25, group="light", zone_kind="luminaire")
-    surfaces, zones = _room(faces, {
-        "floor": ("floor", 0.75, footprint_holes("floor.hole", [short, tall], (0, 0))),
-        "ceiling": ("ceiling", 0.75, [light]),
-        "north": ("back_wall", 0.75, []),
-        "south": ("front_wall", 0.75, []),
-        "west": ("red_wall", 0.2, []),
-        "east": ("green_wall", 0.3, []),
-    })
+    surfaces, zones = _room(
+        faces,
+        {
+            "floor": ("floor", 0.75, footprint_holes("floor.hole", [short, tall], (0, 0))),
+            "ceiling": ("ceiling", 0.75, [light]),
+            "north": ("back_wall", 0.75, []),
+            "south": ("front_wall", 0.75, []),
+            "west": ("red_wall", 0.2, []),
+            "east": ("green_wall", 0.3, []),
+        },
+    )
     for name, (lo, hi) in (("short_block", short), ("tall_block", tall)):
         surfaces += box_surfaces(name, "blocks", 0.75, lo, hi, skip=("bottom",))
-    return Scene("cornell", tuple(surfaces), tuple(zones), res,
-                 "Closed 2 x 2 x 2 m box, red and green side walls, two blocks, ceiling light zone.")
+    return Scene(
+        "cornell",
+        tuple(surfaces),
+        tuple(zones),
+        res,
+        "Closed 2 x 2 x 2 m box, red and green side walls, two blocks, ceiling light zone.",
+    )
 
 
 def office(resolution: float | None = None) -> Scene:
@@ -69,23 +78,32 @@ def office(resolution: float | None = None) -> Scene:
         Insert("lum_west", 1.0, 1.0, 3.0, 7.0, group="ceiling", zone_kind="luminaire"),
         Insert("lum_east", 9.0, 1.0, 11.0, 7.0, group="ceiling", zone_kind="luminaire"),
     ]
-    surfaces, zones = _room(faces, {
-        "floor": ("floor", FLOOR, []),
-        "ceiling": ("ceiling", CEILING, ceiling),
-        "north": ("walls", WALL, []),
-        "south": ("walls", WALL, []),
-        "west": ("walls", WALL, []),
-        "east": ("walls", WALL, []),
-    })
+    surfaces, zones = _room(
+        faces,
+        {
+            "floor": ("floor", FLOOR, []),
+            "ceiling": ("ceiling", CEILING, ceiling),
+            "north": ("walls", WALL, []),
+            "south": ("walls", WALL, []),
+            "west": ("walls", WALL, []),
+            "east": ("walls", WALL, []),
+        },
+    )
     for row, yc in enumerate((2.5, 5.5)):
         for col, xc in enumerate((1.9, 4.6, 7.4, 10.1)):
             lo = np.array([xc - 0.8, yc - 0.4, 0.71])
             hi = np.array([xc + 0.8, yc + 0.4, 0.75])
-            surfaces += box_surfaces(f"desk{row}{col}", "desk_frames", 0.5, lo, hi,
-                                     top_group="desks")
-    return Scene("office", tuple(surfaces), tuple(zones), res,
-                 "Open office 12 x 8 x 3 m, 8 desks with work surfaces at 0.75 m, a 4 x 2 m "
-                 "roof skylight zone and two 2 x 6 m ceiling luminaire zones.")
+            surfaces += box_surfaces(
+                f"desk{row}{col}", "desk_frames", 0.5, lo, hi, top_group="desks"
+            )
+    return Scene(
+        "office",
+        tuple(surfaces),
+        tuple(zones),
+        res,
+        "Open office 12 x 8 x 3 m, 8 desks with work surfaces at 0.75 m, a 4 x 2 m "
+        "roof skylight zone and two 2 x 6 m ceiling luminaire zones.",
+    )
 
 
 PATIO_RES = 0.245
@@ -111,32 +129,44 @@ def patio(resolution: float | None = None) -> Scene:
             if p not in (3.6, 16.0):
                 cols.append((np.array([q, p, 0.0]), np.array([q + 0.4, p + 0.4, 4.0])))
     gap = 0.01  # beams stop 1 cm short of the columns so every face stays a front face
-    for a, b in zip(pos[:-1], pos[1:], strict=True):
+    for a, b in itertools.pairwise(pos):
         for q in (3.6, 16.0):
             beams.append((np.array([a + 0.4 + gap, q, 3.4]), np.array([b - gap, q + 0.4, 4.0])))
             beams.append((np.array([q, a + 0.4 + gap, 3.4]), np.array([q + 0.4, b - gap, 4.0])))
     courtyard_hole = Insert("ceiling.courtyard", 4.0, 4.0, 16.0, 16.0, group=None)
-    surfaces, zones = _room(lower, {
-        "floor": ("floor", FLOOR, footprint_holes("floor.hole", cols, (0, 0))),
-        "ceiling": ("ceiling", CEILING,
-                    [courtyard_hole, *footprint_holes("ceiling.hole", cols + beams, (0, 0), 20.0)]),
-        "north": ("walls", WALL, []),
-        "south": ("walls", WALL, []),
-        "west": ("walls", WALL, []),
-        "east": ("walls", WALL, []),
-    })
+    surfaces, zones = _room(
+        lower,
+        {
+            "floor": ("floor", FLOOR, footprint_holes("floor.hole", cols, (0, 0))),
+            "ceiling": (
+                "ceiling",
+                CEILING,
+                [courtyard_hole, *footprint_holes("ceiling.hole", cols + beams, (0, 0), 20.0)],
+            ),
+            "north": ("walls", WALL, []),
+            "south": ("walls", WALL, []),
+            "west": ("walls", WALL, []),
+            "east": ("walls", WALL, []),
+        },
+    )
     for key in ("north", "south", "west", "east"):
         surfaces.append(Surface(f"courtyard_wall.{key}", "walls", WALL, rect=upper[key]))
-    surfaces.append(Surface("courtyard_roof", "roof", CEILING, rect=upper["ceiling"],
-                            grid=(ng, ng)))
+    surfaces.append(
+        Surface("courtyard_roof", "roof", CEILING, rect=upper["ceiling"], grid=(ng, ng))
+    )
     zones.append(EmitterZone("ceiling", "skylight", "courtyard_roof"))
     for k, (lo, hi) in enumerate(cols):
         surfaces += box_surfaces(f"column{k}", "columns", WALL, lo, hi, skip=("bottom", "top"))
     for k, (lo, hi) in enumerate(beams):
         surfaces += box_surfaces(f"arch{k}", "arches", WALL, lo, hi, skip=("top",))
-    return Scene("patio", tuple(surfaces), tuple(zones), res,
-                 "Hall 20 x 20 x 4 m around a 12 x 12 x 8 m covered courtyard; the courtyard "
-                 f"roof is one {ng} x {ng} emitter grid; 16 columns and arcade beams.")
+    return Scene(
+        "patio",
+        tuple(surfaces),
+        tuple(zones),
+        res,
+        "Hall 20 x 20 x 4 m around a 12 x 12 x 8 m covered courtyard; the courtyard "
+        f"roof is one {ng} x {ng} emitter grid; 16 columns and arcade beams.",
+    )
 
 
 def corridor(resolution: float | None = None) -> Scene:
@@ -153,22 +183,34 @@ def corridor(resolution: float | None = None) -> Scene:
     for k, xc in enumerate((8.0, 18.0, 28.0), start=1):
         # Ceiling v runs along -y from y = 4: v in [1, 3] is y in [1, 3], v in [0.2, 0.8]
         # is y in [3.2, 3.8] (by the north wall).
-        ceiling.append(Insert(f"S{k}", xc - 3, 1.0, xc + 3, 3.0, group="roof", zone_kind="skylight"))
-        ceiling.append(Insert(f"A{k}", xc - 1.5, 0.2, xc + 1.5, 0.8, group="ceiling",
-                              zone_kind="luminaire"))
-        panels.append(Insert(f"panel{k}", xc - 1.5, 1.0, xc + 1.5, 2.5, group="panels",
-                             reflectance=0.7))
-    surfaces, zones = _room(faces, {
-        "floor": ("floor", FLOOR, []),
-        "ceiling": ("ceiling", CEILING, ceiling),
-        "north": ("walls", WALL, panels),
-        "south": ("walls", WALL, []),
-        "west": ("walls", WALL, []),
-        "east": ("walls", WALL, []),
-    })
-    return Scene("corridor", tuple(surfaces), tuple(zones), res,
-                 "Corridor 36 x 4 x 3.5 m with roof skylight zones S1-S3, ceiling luminaire "
-                 "zones A1-A3 and three wall panels.")
+        ceiling.append(
+            Insert(f"S{k}", xc - 3, 1.0, xc + 3, 3.0, group="roof", zone_kind="skylight")
+        )
+        ceiling.append(
+            Insert(f"A{k}", xc - 1.5, 0.2, xc + 1.5, 0.8, group="ceiling", zone_kind="luminaire")
+        )
+        panels.append(
+            Insert(f"panel{k}", xc - 1.5, 1.0, xc + 1.5, 2.5, group="panels", reflectance=0.7)
+        )
+    surfaces, zones = _room(
+        faces,
+        {
+            "floor": ("floor", FLOOR, []),
+            "ceiling": ("ceiling", CEILING, ceiling),
+            "north": ("walls", WALL, panels),
+            "south": ("walls", WALL, []),
+            "west": ("walls", WALL, []),
+            "east": ("walls", WALL, []),
+        },
+    )
+    return Scene(
+        "corridor",
+        tuple(surfaces),
+        tuple(zones),
+        res,
+        "Corridor 36 x 4 x 3.5 m with roof skylight zones S1-S3, ceiling luminaire "
+        "zones A1-A3 and three wall panels.",
+    )
 
 
 BUILTIN_SCENES: dict[str, Callable[..., Scene]] = {

@@ -112,7 +112,9 @@ class Surface:
         if self.grid is not None and (
             self.rect is None or len(self.grid) != 2 or min(self.grid) < 1
         ):
-            raise SceneError(f"surface {self.name!r}: a fixed grid needs a rectangle and counts >= 1")
+            raise SceneError(
+                f"surface {self.name!r}: a fixed grid needs a rectangle and counts >= 1"
+            )
         if not self.name or not self.group:
             raise SceneError("a surface needs a non-empty name and group")
         object.__setattr__(
@@ -134,7 +136,9 @@ class Surface:
         if self.rect is not None:
             return self.rect.area
         t = self.triangles
-        return float(0.5 * np.linalg.norm(np.cross(t[:, 1] - t[:, 0], t[:, 2] - t[:, 0]), axis=1).sum())
+        return float(
+            0.5 * np.linalg.norm(np.cross(t[:, 1] - t[:, 0], t[:, 2] - t[:, 0]), axis=1).sum()
+        )
 
 
 @dataclass(frozen=True, eq=False)

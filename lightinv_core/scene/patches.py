@@ -86,12 +86,19 @@ class Patches:
         quads = np.flatnonzero(~self.is_triangle)
         tris = np.flatnonzero(self.is_triangle)
         o, e1, e2 = self.origin, self.edge1, self.edge2
-        qv = np.stack([o[quads], o[quads] + e1[quads], o[quads] + e1[quads] + e2[quads],
-                       o[quads] + e2[quads]], axis=1).reshape(-1, 3)
+        qv = np.stack(
+            [
+                o[quads],
+                o[quads] + e1[quads],
+                o[quads] + e1[quads] + e2[quads],
+                o[quads] + e2[quads],
+            ],
+            axis=1,
+        ).reshape(-1, 3)
         tv = np.stack([o[tris], o[tris] + e1[tris], o[tris] + e2[tris]], axis=1).reshape(-1, 3)
         nq = len(quads)
         base = 4 * np.arange(nq, dtype=np.int64)[:, None]
-        qf = np.concatenate([base + [0, 1, 2], base + [0, 2, 3]], axis=0)
+        qf = np.concatenate([base + np.array([0, 1, 2]), base + np.array([0, 2, 3])], axis=0)
         qp = np.concatenate([quads, quads])
         tf = 4 * nq + 3 * np.arange(len(tris), dtype=np.int64)[:, None] + [0, 1, 2]
         vertices = np.ascontiguousarray(np.concatenate([qv, tv]), dtype=np.float32)
@@ -140,8 +147,14 @@ def _mesh_rect(surface: Surface, resolution: float):
     i, j = i.ravel(), j.ravel()
     origin = r.origin + i[:, None] * e1 + j[:, None] * e2
     m = len(i)
-    return (origin, np.tile(e1, (m, 1)), np.tile(e2, (m, 1)), np.zeros(m, bool),
-            np.stack([i, j], 1), (nu, nv))
+    return (
+        origin,
+        np.tile(e1, (m, 1)),
+        np.tile(e2, (m, 1)),
+        np.zeros(m, bool),
+        np.stack([i, j], 1),
+        (nu, nv),
+    )
 
 
 def _subdivide_triangle(a, b, c, m: int):
@@ -217,12 +230,20 @@ def mesh_patches(scene: Scene) -> Patches:
     surface_id = np.concatenate(cols["sid"]).astype(np.int32)
     rho = np.array([s.reflectance for s in scene.surfaces])[surface_id]
     return Patches(
-        origin=origin, edge1=e1, edge2=e2, is_triangle=is_tri, area=area, centroid=centroid,
-        normal=cross / norm[:, None], rho=rho, surface_id=surface_id,
+        origin=origin,
+        edge1=e1,
+        edge2=e2,
+        is_triangle=is_tri,
+        area=area,
+        centroid=centroid,
+        normal=cross / norm[:, None],
+        rho=rho,
+        surface_id=surface_id,
         group_id=np.concatenate(cols["gid"]).astype(np.int32),
         zone_id=np.concatenate(cols["zid"]).astype(np.int32),
         grid_ij=np.concatenate(cols["ij"]).astype(np.int32),
-        surface_names=tuple(s.name for s in scene.surfaces), group_names=groups,
-        zone_names=tuple(z.name for z in scene.zones), grid_shape=grid_shape,
+        surface_names=tuple(s.name for s in scene.surfaces),
+        group_names=groups,
+        zone_names=tuple(z.name for z in scene.zones),
+        grid_shape=grid_shape,
     )
-

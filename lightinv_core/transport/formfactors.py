@@ -50,14 +50,22 @@ class RowHits:
 def _check_rays(rays_per_patch: int) -> int:
     r = int(rays_per_patch)
     if r < 1 or r != rays_per_patch:
-        raise LightInvError(f"rays per patch must be a positive whole number, got {rays_per_patch!r}")
+        raise LightInvError(
+            f"rays per patch must be a positive whole number, got {rays_per_patch!r}"
+        )
     return r
 
 
-def trace_rows(patches: Patches, rays_per_patch: int = DEFAULT_RAYS, seed: int = 0,
-               rows: np.ndarray | None = None, workers: int | None = None,
-               progress: ProgressFn | None = None, cancel: CancelFn | None = None,
-               caster: RayCaster | None = None) -> Iterator[RowHits]:
+def trace_rows(
+    patches: Patches,
+    rays_per_patch: int = DEFAULT_RAYS,
+    seed: int = 0,
+    rows: np.ndarray | None = None,
+    workers: int | None = None,
+    progress: ProgressFn | None = None,
+    cancel: CancelFn | None = None,
+    caster: RayCaster | None = None,
+) -> Iterator[RowHits]:
     """Trace ``rays_per_patch`` rays from each patch in ``rows`` (default all), in order.
 
     Yields one ``RowHits`` per batch of about ``RAYS_PER_BATCH`` rays. ``progress``
@@ -73,7 +81,7 @@ def trace_rows(patches: Patches, rays_per_patch: int = DEFAULT_RAYS, seed: int =
     workers = workers or default_workers()
 
     def run(k: int, start: int) -> RowHits:
-        chunk = rows[start:start + per_batch]
+        chunk = rows[start : start + per_batch]
         rng = np.random.default_rng([seed, k])
         o, d = sample_rays(patches, chunk, count, rng, caster.offset)
         return RowHits(chunk, caster.hit_patches(o, d).reshape(len(chunk), count))
@@ -103,9 +111,14 @@ def trace_rows(patches: Patches, rays_per_patch: int = DEFAULT_RAYS, seed: int =
                 f.cancel()
 
 
-def form_factor_matrix(patches: Patches, rays_per_patch: int = DEFAULT_RAYS, seed: int = 0,
-                       workers: int | None = None, progress: ProgressFn | None = None,
-                       cancel: CancelFn | None = None) -> sp.csr_matrix:
+def form_factor_matrix(
+    patches: Patches,
+    rays_per_patch: int = DEFAULT_RAYS,
+    seed: int = 0,
+    workers: int | None = None,
+    progress: ProgressFn | None = None,
+    cancel: CancelFn | None = None,
+) -> sp.csr_matrix:
     """The sparse form-factor matrix F (n x n, float64, row i = patch i's view).
 
     Memory grows with the number of distinct (i, j) pairs hit, at most
@@ -113,8 +126,9 @@ def form_factor_matrix(patches: Patches, rays_per_patch: int = DEFAULT_RAYS, see
     """
     n = patches.n
     rows_out, cols_out, vals_out = [], [], []
-    for batch in trace_rows(patches, rays_per_patch, seed, workers=workers,
-                            progress=progress, cancel=cancel):
+    for batch in trace_rows(
+        patches, rays_per_patch, seed, workers=workers, progress=progress, cancel=cancel
+    ):
         local = np.repeat(np.arange(len(batch.rows)), batch.hits.shape[1])
         flat = batch.hits.ravel()
         ok = flat >= 0

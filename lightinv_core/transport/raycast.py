@@ -49,13 +49,15 @@ class RayCaster:
         return np.where(front, hit, -1)
 
 
-def _stratified_unit_square(rng: np.random.Generator, rows: int, count: int) -> np.ndarray:
-    """(rows, count, 2) points in [0, 1)², one per stratum, shuffled per row.
+def _stratified_unit_square(
+    rng: np.random.Generator, rows: int, count: int, shuffle: bool
+) -> np.ndarray:
+    """(rows, count, 2) points in [0, 1)², one per stratum, optionally shuffled per row.
 
     A jittered k x k grid when ``count`` is a perfect square, otherwise a Latin
     hypercube; both keep the estimator unbiased and cut its variance.
     """
-    k = int(round(np.sqrt(count)))
+    k = round(np.sqrt(count))
     if k * k == count:
         i, j = np.divmod(np.arange(count), k)
         cells = np.stack([i, j], axis=-1).astype(np.float64)
@@ -64,23 +66,27 @@ def _stratified_unit_square(rng: np.random.Generator, rows: int, count: int) -> 
         a = rng.permuted(np.tile(np.arange(count), (rows, 1)), axis=1)
         b = rng.permuted(np.tile(np.arange(count), (rows, 1)), axis=1)
         pts = (np.stack([a, b], axis=-1) + rng.random((rows, count, 2))) / count
+    if not shuffle:
+        return pts
     order = rng.permuted(np.tile(np.arange(count), (rows, 1)), axis=1)
     return np.take_along_axis(pts, order[..., None], axis=1)
 
 
-def sample_rays(patches: Patches, rows: np.ndarray, count: int, rng: np.random.Generator,
-                offset: float) -> tuple[np.ndarray, np.ndarray]:
+def sample_rays(
+    patches: Patches, rows: np.ndarray, count: int, rng: np.random.Generator, offset: float
+) -> tuple[np.ndarray, np.ndarray]:
     """Cosine-weighted rays leaving the front of each patch in ``rows``.
 
     Positions are uniform over the patch and directions cosine-weighted about
-    its normal, both stratified and independently shuffled, so the fraction of
+    its normal, both stratified; the direction strata are shuffled against the
+    position strata (one random pairing per patch), so the fraction of
     a patch's rays that hit patch j estimates the form factor F_ij.
 
     Returns ``(origins, directions)``, each (len(rows) * count, 3) float32,
     grouped by row.
     """
     b = len(rows)
-    pos = _stratified_unit_square(rng, b, count)
+    pos = _stratified_unit_square(rng, b, count, shuffle=False)
     s, t = pos[..., 0], pos[..., 1]
     tri = patches.is_triangle[rows][:, None]
     fold = tri & (s + t > 1.0)
@@ -91,12 +97,15 @@ def sample_rays(patches: Patches, rows: np.ndarray, count: int, rng: np.random.G
     p = patches.origin[rows][:, None] + s[..., None] * e1[:, None] + t[..., None] * e2[:, None]
     p += offset * n[:, None]
 
-    dirs = _stratified_unit_square(rng, b, count)
+    dirs = _stratified_unit_square(rng, b, count, shuffle=True)
     r = np.sqrt(dirs[..., 0])
     phi = 2.0 * np.pi * dirs[..., 1]
     cz = np.sqrt(np.maximum(0.0, 1.0 - dirs[..., 0]))
     t1 = e1 / np.linalg.norm(e1, axis=1)[:, None]
     t2 = np.cross(n, t1)
-    d = ((r * np.cos(phi))[..., None] * t1[:, None] + (r * np.sin(phi))[..., None] * t2[:, None]
-         + cz[..., None] * n[:, None])
+    d = (
+        (r * np.cos(phi))[..., None] * t1[:, None]
+        + (r * np.sin(phi))[..., None] * t2[:, None]
+        + cz[..., None] * n[:, None]
+    )
     return (p.reshape(-1, 3).astype(np.float32), d.reshape(-1, 3).astype(np.float32))

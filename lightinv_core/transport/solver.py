@@ -52,8 +52,9 @@ def solve_dense(F: sp.spmatrix | np.ndarray, rho: np.ndarray, E: np.ndarray) -> 
     """Exact solve of (I - R F) B = E by LU, for n up to ``DENSE_LIMIT``."""
     n = F.shape[0]
     if n > DENSE_LIMIT:
-        raise LightInvError(f"dense solve limited to {DENSE_LIMIT} patches (got {n}); "
-                            "use solve_iterative")
+        raise LightInvError(
+            f"dense solve limited to {DENSE_LIMIT} patches (got {n}); use solve_iterative"
+        )
     E = _check_E(E, n)
     Fd = F.toarray() if sp.issparse(F) else np.asarray(F, dtype=float)
     A = np.eye(n) - rho[:, None] * Fd
@@ -61,8 +62,9 @@ def solve_dense(F: sp.spmatrix | np.ndarray, rho: np.ndarray, E: np.ndarray) -> 
     return Radiosity(E, B, Fd @ B)
 
 
-def solve_iterative(F: sp.spmatrix, rho: np.ndarray, E: np.ndarray, tol: float = 1e-10,
-                    max_iter: int = 10_000) -> Radiosity:
+def solve_iterative(
+    F: sp.spmatrix, rho: np.ndarray, E: np.ndarray, tol: float = 1e-10, max_iter: int = 10_000
+) -> Radiosity:
     """Jacobi iteration B <- E + R F B until the update is below ``tol`` relative.
 
     Converges for any n since every row of R F sums to at most max(rho) < 1;
@@ -112,5 +114,9 @@ def energy_balance(patches: Patches, sol: Radiosity) -> dict[str, float]:
     absorbed = float(np.dot((1.0 - patches.rho) * sol.H, patches.area))
     leaving = float(np.dot(sol.B, patches.area))
     arriving = float(np.dot(sol.H, patches.area))
-    return {"emitted_lm": emitted, "absorbed_lm": absorbed, "lost_lm": leaving - arriving,
-            "imbalance": (emitted - absorbed) / emitted if emitted > 0 else 0.0}
+    return {
+        "emitted_lm": emitted,
+        "absorbed_lm": absorbed,
+        "lost_lm": leaving - arriving,
+        "imbalance": (emitted - absorbed) / emitted if emitted > 0 else 0.0,
+    }

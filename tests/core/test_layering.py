@@ -26,8 +26,10 @@ def _imported_roots(path: Path) -> set[str]:
 
 
 def test_no_core_module_imports_the_gui_stack():
-    bad = {str(p.relative_to(CORE)): sorted(_imported_roots(p) & set(FORBIDDEN))
-           for p in CORE.rglob("*.py")}
+    bad = {
+        str(p.relative_to(CORE)): sorted(_imported_roots(p) & set(FORBIDDEN))
+        for p in CORE.rglob("*.py")
+    }
     assert {k: v for k, v in bad.items() if v} == {}
 
 

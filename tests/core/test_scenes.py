@@ -21,8 +21,9 @@ def test_default_patch_counts(name):
     assert abs(n - TARGETS[name]) <= 0.11 * TARGETS[name], n
 
 
-@pytest.mark.parametrize("name,res", [("cornell", 0.3), ("office", 0.6), ("patio", 1.0),
-                                      ("corridor", 0.8)])
+@pytest.mark.parametrize(
+    "name,res", [("cornell", 0.3), ("office", 0.6), ("patio", 1.0), ("corridor", 0.8)]
+)
 def test_builtin_scenes_are_closed_and_consistent(name, res):
     scene = builtin_scene(name, res)
     p = mesh_patches(scene)
@@ -42,7 +43,10 @@ def test_scene_groups_and_zones():
     office = builtin_scene("office")
     assert {"floor", "walls", "ceiling", "roof", "desks"} <= set(office.groups)
     assert {z.name: z.kind for z in office.zones} == {
-        "skylight": "skylight", "lum_west": "luminaire", "lum_east": "luminaire"}
+        "skylight": "skylight",
+        "lum_west": "luminaire",
+        "lum_east": "luminaire",
+    }
     corridor = builtin_scene("corridor")
     assert {z.name for z in corridor.zones} == {"S1", "S2", "S3", "A1", "A2", "A3"}
     assert "panels" in corridor.groups

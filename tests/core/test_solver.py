@@ -21,8 +21,9 @@ from lightinv_core.transport.solver import (
 @pytest.mark.parametrize("rho", [0.3, 0.5, 0.8])
 def test_furnace_closed_box_uniform_emission(rho):
     faces = room_faces(0, 0, 0, 3, 2, 1.5)
-    scene = Scene("furnace", tuple(Surface(k, k, rho, rect=r) for k, r in faces.items()),
-                  resolution=0.25)
+    scene = Scene(
+        "furnace", tuple(Surface(k, k, rho, rect=r) for k, r in faces.items()), resolution=0.25
+    )
     p = mesh_patches(scene)
     F = form_factor_matrix(p, 256, seed=3)
     E = np.full(p.n, 100.0)

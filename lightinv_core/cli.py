@@ -1,0 +1,222 @@
+"""``lightinv-cli``: the headless command line.
+
+Every subcommand prints human-readable text, or one JSON object with ``--json``.
+User errors (bad names, bad files, bad numbers) exit with status 2 and a one-line
+message on stderr, never a traceback.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import resource
+import sys
+import time
+from collections.abc import Sequence
+
+from lightinv_core.errors import CancelledError, LightInvError
+from lightinv_core.scene.builtin import BUILTIN_SCENES, builtin_scene
+from lightinv_core.scene.loading import load_scene
+from lightinv_core.scene.patches import count_patches, mesh_patches
+from lightinv_core.transport.formfactors import DEFAULT_RAYS, form_factor_matrix, lost_fraction
+from lightinv_core.transport.photometry import group_illuminance, write_patch_csv
+from lightinv_core.transport.solver import energy_balance, group_emission, solve
+
+
+def peak_rss_mb() -> float:
+    """Peak resident memory of this process so far, in MB."""
+    return resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024.0
+
+
+def _emit(text: str) -> tuple[str, float]:
+    group, sep, value = text.partition("=")
+    try:
+        if not sep or not group:
+            raise ValueError
+        return group, float(value)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"expected GROUP=LUMENS, got {text!r}") from None
+
+
+def _positive(text: str) -> float:
+    try:
+        v = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"expected a number, got {text!r}") from None
+    if not v > 0:
+        raise argparse.ArgumentTypeError(f"expected a positive number, got {text!r}")
+    return v
+
+
+def _out(args, payload: dict, text: str) -> None:
+    print(json.dumps(payload, indent=2) if args.json else text)
+
+
+def cmd_scenes(args) -> int:
+    """List the built-in scenes with their default patch counts."""
+    scenes = []
+    for name in BUILTIN_SCENES:
+        s = builtin_scene(name)
+        scenes.append(
+            {
+                "name": name,
+                "patches": count_patches(s),
+                "resolution": s.resolution,
+                "description": s.description,
+            }
+        )
+    lines = [f"{s['name']:<10} {s['patches']:>7,} patches  {s['description']}" for s in scenes]
+    _out(args, {"scenes": scenes}, "\n".join(lines))
+    return 0
+
+
+def cmd_scene_info(args) -> int:
+    """Patch count, area, groups and emitter zones of a scene."""
+    scene = load_scene(args.scene, args.resolution, args.materials)
+    p = mesh_patches(scene)
+    groups = [
+        {
+            "name": g,
+            "patches": int((p.group_id == k).sum()),
+            "area_m2": float(p.area[p.group_id == k].sum()),
+        }
+        for k, g in enumerate(p.group_names)
+    ]
+    zones = []
+    for z in scene.zones:
+        r = scene.zone_rect(z.name)
+        zones.append(
+            {
+                "name": z.name,
+                "kind": z.kind,
+                "size_m": list(r.size),
+                "grid": list(p.grid_shape[z.surface]),
+                "origin": r.origin.tolist(),
+                "u_axis": (r.u / r.size[0]).tolist(),
+                "v_axis": (r.v / r.size[1]).tolist(),
+                "normal": r.normal.tolist(),
+            }
+        )
+    info = {
+        "name": scene.name,
+        "patches": p.n,
+        "area_m2": float(p.area.sum()),
+        "resolution": scene.resolution,
+        "groups": groups,
+        "zones": zones,
+        "warnings": list(scene.info.get("warnings", [])),
+    }
+    lines = [
+        f"{scene.name}: {p.n:,} patches, {info['area_m2']:.1f} m² "
+        f"(resolution {scene.resolution} m)",
+        "groups:",
+    ]
+    lines += [
+        f"  {g['name']:<14} {g['patches']:>7,} patches {g['area_m2']:9.2f} m²" for g in groups
+    ]
+    lines.append("emitter zones:" if zones else "emitter zones: none")
+    lines += [
+        f"  {z['name']:<10} {z['kind']:<9} {z['size_m'][0]:.2f} x {z['size_m'][1]:.2f} m, "
+        f"grid {z['grid'][0]} x {z['grid'][1]}"
+        for z in zones
+    ]
+    lines += [f"warning: {w}" for w in info["warnings"]]
+    _out(args, info, "\n".join(lines))
+    return 0
+
+
+def cmd_simulate(args) -> int:
+    """Forward simulation: groups emit given fluxes; report illuminance per group."""
+    if not args.emit:
+        raise LightInvError("nothing emits: give at least one --emit GROUP=LUMENS")
+    scene = load_scene(args.scene, args.resolution, args.materials)
+    p = mesh_patches(scene)
+    E = group_emission(p, dict(args.emit))
+    t0 = time.perf_counter()
+    F = form_factor_matrix(p, args.rays, seed=args.seed)
+    t1 = time.perf_counter()
+    sol = solve(F, p.rho, E)
+    t2 = time.perf_counter()
+    if args.patches_csv:
+        write_patch_csv(args.patches_csv, p, sol.E, sol.B, sol.H)
+    stats = group_illuminance(p, sol.H)
+    bal = energy_balance(p, sol)
+    result = {
+        "scene": scene.name,
+        "patches": p.n,
+        "method": "reference",
+        "rays_per_patch": args.rays,
+        "formfactor_seconds": t1 - t0,
+        "solve_seconds": t2 - t1,
+        "lost_fraction": lost_fraction(F, p),
+        "energy": bal,
+        "groups": stats,
+        "peak_rss_mb": peak_rss_mb(),
+    }
+    lines = [
+        f"{scene.name}: {p.n:,} patches, form factors {t1 - t0:.2f} s "
+        f"({args.rays} rays/patch), solve {t2 - t1:.2f} s",
+        f"emitted {bal['emitted_lm']:.0f} lm, absorbed {bal['absorbed_lm']:.0f} lm "
+        f"(imbalance {100 * bal['imbalance']:+.2f}%)",
+        f"{'group':<14} {'min lux':>10} {'avg lux':>10} {'max lux':>10}",
+    ]
+    lines += [
+        f"{s['group']:<14} {s['min_lux']:10.1f} {s['avg_lux']:10.1f} {s['max_lux']:10.1f}"
+        for s in stats
+    ]
+    if args.patches_csv:
+        lines.append(f"patch values written to {args.patches_csv}")
+    _out(args, result, "\n".join(lines))
+    return 0
+
+
+def build_parser() -> argparse.ArgumentParser:
+    """The argument parser of ``lightinv-cli``."""
+    ap = argparse.ArgumentParser(prog="lightinv-cli", description=__doc__.splitlines()[0])
+    sub = ap.add_subparsers(dest="command", required=True)
+
+    def add(name: str, fn, help_text: str) -> argparse.ArgumentParser:
+        p = sub.add_parser(name, help=help_text, description=help_text)
+        p.add_argument("--json", action="store_true", help="print one JSON object")
+        p.set_defaults(func=fn)
+        return p
+
+    add("scenes", cmd_scenes, "list the built-in scenes")
+
+    def scene_args(p: argparse.ArgumentParser) -> None:
+        p.add_argument("scene", help="built-in scene name or path to an .obj file")
+        p.add_argument("--resolution", type=_positive, help="target patch size in metres")
+        p.add_argument("--materials", help="OBJ only: materials JSON (reflectance per group)")
+
+    scene_args(add("scene-info", cmd_scene_info, "patches, groups and zones of a scene"))
+    sim = add("simulate", cmd_simulate, "forward radiosity simulation")
+    scene_args(sim)
+    sim.add_argument(
+        "--emit",
+        type=_emit,
+        action="append",
+        default=[],
+        metavar="GROUP=LUMENS",
+        help="a group emitting this luminous flux (lm), uniformly over its area",
+    )
+    sim.add_argument("--rays", type=int, default=DEFAULT_RAYS, help="rays per patch")
+    sim.add_argument("--seed", type=int, default=0, help="random seed of the form factors")
+    sim.add_argument("--patches-csv", metavar="FILE", help="write one CSV row per patch")
+    return ap
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    """Run the command line; returns the process exit status."""
+    args = build_parser().parse_args(argv)
+    try:
+        return args.func(args)
+    except (LightInvError, OSError) as exc:
+        print(f"lightinv-cli: error: {exc}", file=sys.stderr)
+        return 2
+    except (KeyboardInterrupt, CancelledError):
+        print("lightinv-cli: cancelled", file=sys.stderr)
+        return 130
+
+
+if __name__ == "__main__":
+    sys.exit(main())
