@@ -15,6 +15,7 @@ import time
 from collections.abc import Sequence
 
 from lightinv_core.errors import CancelledError, LightInvError
+from lightinv_core.io.operator_cache import get_operator
 from lightinv_core.scene.builtin import BUILTIN_SCENES, builtin_scene
 from lightinv_core.scene.loading import load_scene
 from lightinv_core.scene.patches import count_patches, mesh_patches
@@ -132,6 +133,11 @@ def cmd_simulate(args) -> int:
     scene = load_scene(args.scene, args.resolution, args.materials)
     p = mesh_patches(scene)
     E = group_emission(p, dict(args.emit))
+    method = args.method
+    if method == "auto":
+        method = "lrr" if p.n > AUTO_LRR_PATCHES else "reference"
+    if method == "lrr":
+        return _simulate_lrr(args, scene, p, E)
     t0 = time.perf_counter()
     F = form_factor_matrix(p, args.rays, seed=args.seed)
     t1 = time.perf_counter()
@@ -170,6 +176,123 @@ def cmd_simulate(args) -> int:
     return 0
 
 
+AUTO_LRR_PATCHES = 3000
+
+
+def _progress_printer(label: str):
+    """A progress callback that redraws a percentage on stderr when it is a terminal."""
+    if not sys.stderr.isatty():
+        return None
+    last = [-1]
+
+    def report(frac: float) -> None:
+        pct = int(100 * frac)
+        if pct != last[0]:
+            last[0] = pct
+            print(f"\r{label}: {pct:3d}%", end="" if pct < 100 else "\n", file=sys.stderr)
+
+    return report
+
+
+def _warn(msg: str) -> None:
+    print(f"lightinv-cli: {msg}", file=sys.stderr)
+
+
+def _operator(args, patches):
+    return get_operator(
+        patches,
+        rank=args.rank,
+        tol=args.tol,
+        rays=args.rays,
+        seed=args.seed,
+        use_cache=not args.no_cache,
+        progress=_progress_printer("precompute"),
+        warn=_warn,
+    )
+
+
+def _simulate_lrr(args, scene, p, E) -> int:
+    t0 = time.perf_counter()
+    got = _operator(args, p)
+    t1 = time.perf_counter()
+    H = got.operator.illuminance(E)
+    t2 = time.perf_counter()
+    B = E + p.rho * H
+    if args.patches_csv:
+        write_patch_csv(args.patches_csv, p, E, B, H)
+    stats = group_illuminance(p, H)
+    in_zones = float(E[got.operator.zone_patches] @ p.area[got.operator.zone_patches])
+    emitted = float(E @ p.area)
+    info = got.operator.info
+    result = {
+        "scene": scene.name,
+        "patches": p.n,
+        "method": "lrr",
+        "k": got.operator.k,
+        "from_cache": got.from_cache,
+        "cache_path": str(got.path) if got.path else None,
+        "precompute_seconds": t1 - t0,
+        "solve_seconds": t2 - t1,
+        "estimated_rel_error": info["estimated_rel_error"],
+        "emitted_lm": emitted,
+        "emitted_outside_zones_lm": emitted - in_zones,
+        "groups": stats,
+        "peak_rss_mb": peak_rss_mb(),
+    }
+    lines = [
+        f"{scene.name}: {p.n:,} patches, operator k = {got.operator.k} "
+        f"({'cache' if got.from_cache else 'built'} in {t1 - t0:.2f} s), "
+        f"evaluation {1e3 * (t2 - t1):.2f} ms",
+        f"{'group':<14} {'min lux':>10} {'avg lux':>10} {'max lux':>10}",
+    ]
+    lines += [
+        f"{s['group']:<14} {s['min_lux']:10.1f} {s['avg_lux']:10.1f} {s['max_lux']:10.1f}"
+        for s in stats
+    ]
+    if emitted - in_zones > 1e-9 * max(emitted, 1.0):
+        lines.append(
+            "note: light emitted outside the emitter zones goes through the plain "
+            "low-rank operator, which blurs it over clusters (see docs/operator.md)"
+        )
+    _out(args, result, "\n".join(lines))
+    return 0
+
+
+def cmd_precompute(args) -> int:
+    """Build (or load from the cache) the radiosity operator of a scene."""
+    scene = load_scene(args.scene, args.resolution, args.materials)
+    p = mesh_patches(scene)
+    got = _operator(args, p)
+    info = got.operator.info
+    result = {
+        "scene": scene.name,
+        "n": p.n,
+        "k": got.operator.k,
+        "nz": info["nz"],
+        "seconds": got.seconds,
+        "from_cache": got.from_cache,
+        "cache_path": str(got.path) if got.path else None,
+        "estimated_rel_error": info["estimated_rel_error"],
+        "estimated_max_rel_error": info["estimated_max_rel_error"],
+        "tol_met": info["tol_met"],
+        "build_seconds": info["build_seconds"],
+        "operator_mb": got.operator.nbytes() / 2**20,
+        "peak_rss_mb": peak_rss_mb(),
+    }
+    lines = [
+        f"{scene.name}: n = {p.n:,} patches, k = {got.operator.k}, {info['nz']:,} zone patches",
+        f"{'loaded from cache' if got.from_cache else 'built'} in {got.seconds:.2f} s"
+        f" ({result['operator_mb']:.0f} MB)",
+        f"estimated relative error of C: {100 * info['estimated_rel_error']:.2f}% "
+        f"(max {100 * info['estimated_max_rel_error']:.2f}%)",
+        f"cache: {result['cache_path'] or 'disabled'}",
+    ]
+    if not info["tol_met"]:
+        lines.append("warning: the target accuracy was not reached at the largest rank tried")
+    _out(args, result, "\n".join(lines))
+    return 0
+
+
 def build_parser() -> argparse.ArgumentParser:
     """The argument parser of ``lightinv-cli``."""
     ap = argparse.ArgumentParser(prog="lightinv-cli", description=__doc__.splitlines()[0])
@@ -199,9 +322,28 @@ def build_parser() -> argparse.ArgumentParser:
         metavar="GROUP=LUMENS",
         help="a group emitting this luminous flux (lm), uniformly over its area",
     )
-    sim.add_argument("--rays", type=int, default=DEFAULT_RAYS, help="rays per patch")
-    sim.add_argument("--seed", type=int, default=0, help="random seed of the form factors")
     sim.add_argument("--patches-csv", metavar="FILE", help="write one CSV row per patch")
+    sim.add_argument(
+        "--method",
+        choices=("auto", "reference", "lrr"),
+        default="auto",
+        help=f"solver: reference (exact, sparse F) or lrr (the low-rank operator); "
+        f"auto uses lrr above {AUTO_LRR_PATCHES} patches",
+    )
+    pre = add("precompute", cmd_precompute, "build or load the radiosity operator of a scene")
+    scene_args(pre)
+    for p in (sim, pre):
+        p.add_argument("--rays", type=int, default=DEFAULT_RAYS, help="rays per patch")
+        p.add_argument("--seed", type=int, default=0, help="random seed of the form factors")
+        group = p.add_mutually_exclusive_group()
+        group.add_argument("--rank", type=int, help="fix the low-rank operator's rank k")
+        group.add_argument(
+            "--tol",
+            type=float,
+            default=0.01,
+            help="target relative error of C that chooses k (default 0.01)",
+        )
+        p.add_argument("--no-cache", action="store_true", help="neither read nor write the cache")
     return ap
 
 

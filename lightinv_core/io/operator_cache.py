@@ -1,0 +1,201 @@
+"""On-disk cache of built radiosity operators: one file per (geometry, settings) key.
+
+File layout: a fixed magic line, an 8-byte header length, a JSON header (key,
+array table, build info, SHA-256 and size of the payload), then the raw array
+bytes. Loading checks the magic, the version, the key and the checksum; any
+mismatch means the file is stale or corrupt, and it is rebuilt, never used.
+Writes go to a temporary file renamed into place, so a crash never leaves a
+half-written cache behind.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import json
+import os
+from collections.abc import Callable
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+from lightinv_core.errors import LightInvError
+from lightinv_core.io.atomic import atomic_writer
+from lightinv_core.operator.build import OPERATOR_VERSION, build_operator
+from lightinv_core.operator.lowrank import LowRank
+from lightinv_core.operator.radiosity import RadiosityOperator
+from lightinv_core.scene.patches import Patches
+
+MAGIC = b"LIGHTINV-OPERATOR 1\n"
+SUFFIX = ".lrr"
+
+
+class CacheError(LightInvError):
+    """A cache file is missing, stale or corrupt (the caller rebuilds)."""
+
+
+def cache_dir() -> Path:
+    """``$LIGHTINV_CACHE_DIR`` or the user's cache folder (platformdirs) / operators."""
+    env = os.environ.get("LIGHTINV_CACHE_DIR")
+    if env:
+        return Path(env)
+    from platformdirs import user_cache_dir
+
+    return Path(user_cache_dir("lightinv")) / "operators"
+
+
+def operator_key(patches: Patches, rank: int | None, tol: float, rays: int, seed: int) -> str:
+    """Hash of everything the operator depends on: geometry, materials, zones, settings."""
+    h = hashlib.sha256(patches.digest().encode())
+    h.update(np.ascontiguousarray(patches.zone_id).tobytes())
+    settings = {
+        "version": OPERATOR_VERSION,
+        "rank": rank,
+        "tol": None if rank else tol,
+        "rays": rays,
+        "seed": seed,
+    }
+    h.update(json.dumps(settings, sort_keys=True).encode())
+    return h.hexdigest()
+
+
+def _arrays(op: RadiosityOperator) -> dict[str, np.ndarray]:
+    lr = op.lowrank
+    return {
+        "Y": lr.Y,
+        "labels": lr.labels,
+        "area": lr.area,
+        "rho": lr.rho,
+        "cluster_area": lr.cluster_area,
+        "zone_patches": op.zone_patches,
+        "Phi": op.Phi,
+    }
+
+
+def _raw(a: np.ndarray) -> memoryview:
+    """The array's bytes in its own memory order (C or Fortran), without copying."""
+    return memoryview(a.T if a.flags.f_contiguous and not a.flags.c_contiguous else a).cast("B")
+
+
+def save_operator(op: RadiosityOperator, path: str | Path, key: str) -> None:
+    """Write ``op`` atomically to ``path`` under ``key``."""
+    arrays = _arrays(op)
+    table, offset, sha = [], 0, hashlib.sha256()
+    for name, a in arrays.items():
+        raw = _raw(a)
+        sha.update(raw)
+        order = "F" if a.flags.f_contiguous and not a.flags.c_contiguous else "C"
+        table.append(
+            {
+                "name": name,
+                "dtype": a.dtype.str,
+                "shape": list(a.shape),
+                "order": order,
+                "offset": offset,
+                "nbytes": raw.nbytes,
+            }
+        )
+        offset += raw.nbytes
+    header = json.dumps(
+        {
+            "key": key,
+            "version": OPERATOR_VERSION,
+            "digest": op.digest,
+            "arrays": table,
+            "info": op.info,
+            "payload_bytes": offset,
+            "payload_sha256": sha.hexdigest(),
+        }
+    ).encode()
+    with atomic_writer(path, "wb") as fh:
+        fh.write(MAGIC)
+        fh.write(len(header).to_bytes(8, "little"))
+        fh.write(header)
+        for a in arrays.values():
+            fh.write(_raw(a))
+
+
+def load_operator(path: str | Path, key: str) -> RadiosityOperator:
+    """Read and verify an operator; CacheError if missing, stale or corrupt."""
+    path = Path(path)
+    try:
+        with open(path, "rb") as fh:
+            if fh.read(len(MAGIC)) != MAGIC:
+                raise CacheError(f"{path.name}: not an operator cache file (bad magic)")
+            size = int.from_bytes(fh.read(8), "little")
+            if not 0 < size < 1 << 24:
+                raise CacheError(f"{path.name}: header length {size} is corrupt")
+            header = json.loads(fh.read(size))
+            if header.get("key") != key or header.get("version") != OPERATOR_VERSION:
+                raise CacheError(f"{path.name}: built for other settings or version (stale)")
+            payload = np.empty(int(header["payload_bytes"]), np.uint8)
+            got = fh.readinto(memoryview(payload))
+            if got != payload.nbytes or fh.read(1):
+                raise CacheError(f"{path.name}: truncated or padded payload")
+    except FileNotFoundError:
+        raise CacheError(f"{path.name}: no cache yet") from None
+    except (OSError, ValueError, KeyError, TypeError) as exc:
+        raise CacheError(f"{path.name}: unreadable ({exc})") from None
+    if hashlib.sha256(payload).hexdigest() != header["payload_sha256"]:
+        raise CacheError(f"{path.name}: checksum mismatch (corrupt)")
+    arrays = {}
+    for t in header["arrays"]:
+        buf = payload[t["offset"] : t["offset"] + t["nbytes"]]
+        arrays[t["name"]] = buf.view(np.dtype(t["dtype"])).reshape(t["shape"], order=t["order"])
+    lowrank = LowRank(
+        arrays["Y"], arrays["labels"], arrays["area"], arrays["rho"], arrays["cluster_area"]
+    )
+    return RadiosityOperator(
+        lowrank, arrays["zone_patches"], arrays["Phi"], header["digest"], header["info"]
+    )
+
+
+@dataclass(frozen=True)
+class CachedOperator:
+    """An operator with where it came from."""
+
+    operator: RadiosityOperator
+    from_cache: bool
+    path: Path | None
+    seconds: float
+
+
+def get_operator(
+    patches: Patches,
+    rank: int | None = None,
+    tol: float = 0.01,
+    rays: int = 1024,
+    seed: int = 0,
+    use_cache: bool = True,
+    progress: Callable[[float], None] | None = None,
+    cancel: Callable[[], bool] | None = None,
+    warn: Callable[[str], None] | None = None,
+) -> CachedOperator:
+    """Load the operator from the cache, or build it (and cache it).
+
+    A stale or corrupt cache file is reported through ``warn`` and rebuilt.
+    """
+    import time
+
+    t0 = time.perf_counter()
+    key = operator_key(patches, rank, tol, rays, seed)
+    path = cache_dir() / f"{key[:32]}{SUFFIX}" if use_cache else None
+    if path is not None and path.exists():
+        try:
+            op = load_operator(path, key)
+            if op.digest != patches.digest():
+                raise CacheError(f"{path.name}: geometry digest differs (stale)")
+            return CachedOperator(op, True, path, time.perf_counter() - t0)
+        except CacheError as exc:
+            if warn is not None:
+                warn(f"operator cache {exc}; rebuilding")
+    op = build_operator(
+        patches, rank=rank, tol=tol, rays=rays, seed=seed, progress=progress, cancel=cancel
+    )
+    if path is not None:
+        try:
+            save_operator(op, path, key)
+        except OSError as exc:
+            if warn is not None:
+                warn(f"could not write the operator cache {path}: {exc}")
+    return CachedOperator(op, False, path, time.perf_counter() - t0)

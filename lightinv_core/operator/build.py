@@ -1,0 +1,145 @@
+"""Building a ``RadiosityOperator`` to a target accuracy, with progress and cancel.
+
+Steps: trace the form factors F once (sparse, O(n * rays) memory), compute
+reference solutions for a few sampled emission vectors and the exact bounces
+of the zone basis, then build the low-rank part at k = n/64 clusters and
+double k until the measured relative error of C is within ``tol`` (or use the
+given ``rank``). Nothing of size n x n is ever formed.
+"""
+
+from __future__ import annotations
+
+import time
+from collections.abc import Callable
+
+import numpy as np
+
+from lightinv_core.errors import CancelledError, LightInvError
+from lightinv_core.operator.accuracy import reference_reflected, relative_errors, sample_emissions
+from lightinv_core.operator.clustering import cluster_patches
+from lightinv_core.operator.lowrank import assemble, cluster_form_factors
+from lightinv_core.operator.radiosity import RadiosityOperator
+from lightinv_core.operator.zone_basis import exact_bounces, zone_basis
+from lightinv_core.scene.patches import Patches
+from lightinv_core.transport.formfactors import DEFAULT_RAYS, form_factor_matrix
+
+OPERATOR_VERSION = 1
+DEFAULT_TOL = 0.01
+ERROR_SAMPLES = 6
+START_DIVISOR = 64
+MAX_DIVISOR = 4
+
+
+def available_memory_bytes() -> int:
+    """MemAvailable from /proc/meminfo (bytes), or a large number where unknown."""
+    try:
+        with open("/proc/meminfo") as fh:
+            for line in fh:
+                if line.startswith("MemAvailable:"):
+                    return int(line.split()[1]) * 1024
+    except OSError:
+        pass
+    return 1 << 50
+
+
+def estimate_build_bytes(patches: Patches, rays: int, k: int) -> int:
+    """Upper estimate of the peak memory of a build (bytes): sparse F, the n x k
+    low-rank factors, the n x nz zone basis and its float64 scratch."""
+    n = patches.n
+    nz = int((patches.zone_id >= 0).sum())
+    f_bytes = 16 * n * min(rays, n)  # COO assembly of F: row, col, value
+    lowrank = 3 * 4 * n * k
+    zone = (4 + 8 + 8) * n * nz
+    return int(f_bytes + lowrank + zone)
+
+
+def check_memory(patches: Patches, rays: int, k: int) -> None:
+    """Refuse a build that would not fit in available memory, naming the numbers."""
+    need = estimate_build_bytes(patches, rays, k)
+    have = available_memory_bytes()
+    if need > 0.8 * have:
+        raise LightInvError(
+            f"building the operator for {patches.n:,} patches with {rays} rays and rank {k} "
+            f"needs about {need / 2**30:.1f} GiB but {have / 2**30:.1f} GiB is available; "
+            "use a coarser --resolution, fewer --rays or a lower --rank"
+        )
+
+
+def build_operator(
+    patches: Patches,
+    rank: int | None = None,
+    tol: float = DEFAULT_TOL,
+    rays: int = DEFAULT_RAYS,
+    seed: int = 0,
+    progress: Callable[[float], None] | None = None,
+    cancel: Callable[[], bool] | None = None,
+) -> RadiosityOperator:
+    """Trace, factor and measure the radiosity operator of ``patches``.
+
+    ``rank`` fixes k (clusters); otherwise k starts at n/64 and doubles (up to
+    n/4) until the mean relative error of C on sampled emissions is <= ``tol``.
+    ``progress(fraction)`` is called along the way; ``cancel()`` returning True
+    stops the build with ``CancelledError``.
+    """
+    n = patches.n
+    if rank is not None and not (1 <= int(rank) <= n):
+        raise LightInvError(f"rank must be between 1 and the patch count {n}, got {rank}")
+    if rank is None and not (0 < tol < 1):
+        raise LightInvError(f"tolerance must be between 0 and 1 (e.g. 0.01 for 1%), got {tol}")
+    k = int(rank) if rank is not None else max(1, n // START_DIVISOR)
+    k_max = int(rank) if rank is not None else max(k, n // MAX_DIVISOR)
+    check_memory(patches, rays, k)
+    report = progress or (lambda f: None)
+
+    def step(frac: float) -> None:
+        if cancel is not None and cancel():
+            raise CancelledError("operator build cancelled")
+        report(frac)
+
+    t0 = time.perf_counter()
+    F = form_factor_matrix(
+        patches, rays, seed=seed, progress=lambda f: step(0.7 * f), cancel=cancel
+    )
+    t_ff = time.perf_counter() - t0
+    zone_patches = np.flatnonzero(patches.zone_id >= 0)
+    E = sample_emissions(patches, ERROR_SAMPLES, seed + 1)
+    C_ref = reference_reflected(F, patches.rho, E)
+    step(0.75)
+    exact, last = exact_bounces(F, patches.rho, zone_patches)
+    step(0.85)
+    tries = []
+    while True:
+        labels, k_actual = cluster_patches(patches, k)
+        lowrank = assemble(
+            cluster_form_factors(F, labels, k_actual), labels, patches.area, patches.rho
+        )
+        Phi = zone_basis(exact, last, lowrank)
+        op = RadiosityOperator(lowrank, zone_patches, Phi, patches.digest())
+        err = relative_errors(patches.rho[:, None] * op.illuminance(E), C_ref)
+        tries.append(
+            {"k": k_actual, "mean_rel_error": float(err.mean()), "max_rel_error": float(err.max())}
+        )
+        done = rank is not None or err.mean() <= tol or k >= k_max
+        step(0.85 + 0.15 * (1.0 if done else min(0.9, len(tries) / 4)))
+        if done:
+            break
+        k = min(2 * k, k_max)
+        check_memory(patches, rays, k)
+    op.info = {
+        "version": OPERATOR_VERSION,
+        "n": n,
+        "k": op.k,
+        "nz": len(zone_patches),
+        "rays": rays,
+        "seed": seed,
+        "rank": rank,
+        "tol": tol,
+        "estimated_rel_error": tries[-1]["mean_rel_error"],
+        "estimated_max_rel_error": tries[-1]["max_rel_error"],
+        "tol_met": rank is not None or tries[-1]["mean_rel_error"] <= tol,
+        "tries": tries,
+        "formfactor_seconds": t_ff,
+        "build_seconds": time.perf_counter() - t0,
+        "formfactor_nnz": int(F.nnz),
+    }
+    return op

@@ -1,0 +1,191 @@
+"""The low-rank radiosity operator: accuracy against the reference, equality of the fast
+paths, rank choice, progress/cancel, cache integrity and the CLI."""
+
+from __future__ import annotations
+
+import itertools
+import json
+
+import numpy as np
+import pytest
+
+from lightinv_core import cli
+from lightinv_core.errors import CancelledError, LightInvError
+from lightinv_core.io import operator_cache as oc
+from lightinv_core.operator import build as build_mod
+from lightinv_core.operator.accuracy import sample_emissions
+from lightinv_core.operator.build import build_operator
+from lightinv_core.scene.builtin import builtin_scene
+from lightinv_core.scene.patches import mesh_patches
+from lightinv_core.sources.zones import random_rectangles, rectangle_emission, zone_grid
+from lightinv_core.transport.formfactors import form_factor_matrix
+from lightinv_core.transport.solver import group_emission, solve_dense
+
+RES = 0.5  # office at 0.5 m: ~1,400 patches
+
+
+@pytest.fixture(scope="module")
+def office():
+    return mesh_patches(builtin_scene("office", RES))
+
+
+@pytest.fixture(scope="module")
+def office_op(office):
+    return build_operator(office, tol=0.01, rays=1024, seed=0)
+
+
+@pytest.fixture(scope="module")
+def office_F(office):
+    return form_factor_matrix(office, 1024, seed=0)
+
+
+def _candidates(p, count, seed):
+    rng = np.random.default_rng(seed)
+    grids = [zone_grid(p, z) for z in p.zone_names]
+    out = []
+    for _ in range(count):
+        g = grids[rng.integers(len(grids))]
+        out.append(rectangle_emission(g, *random_rectangles(g, rng, 1)[0], 1000.0))
+    return out
+
+
+def _dense(p, idx, val):
+    E = np.zeros(p.n)
+    np.add.at(E, idx, val)
+    return E
+
+
+def test_accuracy_against_the_reference_solver(office, office_op, office_F):
+    assert office_op.info["estimated_rel_error"] <= 0.01
+    E = sample_emissions(office, 8, seed=99)  # independent of the build's samples
+    for q in range(E.shape[1]):
+        ref = solve_dense(office_F, office.rho, E[:, q])
+        C = office.rho * office_op.illuminance(E[:, q])
+        assert np.linalg.norm(C - ref.C) / np.linalg.norm(ref.C) < 0.01
+
+
+def test_fast_paths_equal_the_full_path(office, office_op):
+    op = office_op
+    cands = _candidates(office, 6, seed=1)
+    rows = np.arange(0, office.n, 7)
+    part = op.restrict(rows)
+    idx = np.unique(np.concatenate([c[0] for c in cands]))
+    V = np.stack([_dense(office, *c)[idx] for c in cands], axis=1)
+    batch_H = op.zone_illuminance(idx, V)
+    batch_part = part.zone_illuminance(idx, V)
+    obj = cands[0]
+    target = op.match_target(*obj)
+    C_obj = office.rho * op.illuminance(_dense(office, *obj))
+    batch_err = target.error(idx, V)
+    batch_power = op.total_power(idx, V)
+    for m, (ci, cv) in enumerate(cands):
+        H = op.illuminance(_dense(office, ci, cv))
+        C = office.rho * H
+        scale = np.abs(H).max()
+        np.testing.assert_allclose(op.zone_illuminance(ci, cv), H, atol=1e-5 * scale)
+        np.testing.assert_allclose(batch_H[:, m], H, atol=1e-5 * scale)
+        np.testing.assert_allclose(op.reflected(ci, cv, rows), C[rows], atol=1e-5 * scale)
+        np.testing.assert_allclose(part.zone_illuminance(ci, cv), H[rows], atol=1e-5 * scale)
+        np.testing.assert_allclose(batch_part[:, m], H[rows], atol=1e-5 * scale)
+        power = float(np.dot(C, office.area))
+        assert op.total_power(ci, cv) == pytest.approx(power, rel=1e-5)
+        assert batch_power[m] == pytest.approx(power, rel=1e-5)
+        err = float(np.linalg.norm(C - C_obj))
+        tol = 1e-4 * np.linalg.norm(C_obj)
+        assert abs(target.error(ci, cv) - err) < tol
+        assert abs(batch_err[m] - err) < tol
+        assert abs(op.match_error(ci, cv, *obj) - err) < tol
+    assert target.relative_error(*obj) < 1e-3
+
+
+def test_emission_outside_zones_uses_the_coarser_low_rank_path(office, office_op, office_F):
+    E = group_emission(office, {"floor": 10000.0})
+    ref = solve_dense(office_F, office.rho, E)
+    C = office.rho * office_op.illuminance(E)
+    assert np.linalg.norm(C - ref.C) / np.linalg.norm(ref.C) < 0.1
+    with pytest.raises(LightInvError, match="outside the emitter zones"):
+        office_op.zone_illuminance(office.group_index("floor")[:3], np.ones(3))
+
+
+def test_rank_override_and_bad_settings(office):
+    op = build_operator(office, rank=150, rays=64)
+    assert op.info["rank"] == 150 and 100 <= op.k <= 150
+    with pytest.raises(LightInvError, match="rank"):
+        build_operator(office, rank=0, rays=16)
+    with pytest.raises(LightInvError, match="tolerance"):
+        build_operator(office, tol=2.0, rays=16)
+
+
+def test_progress_and_cancel(office):
+    seen = []
+    build_operator(office, rank=100, rays=64, progress=seen.append)
+    assert seen[-1] == pytest.approx(1.0)
+    assert all(a <= b + 1e-12 for a, b in itertools.pairwise(seen))
+    with pytest.raises(CancelledError):
+        build_operator(office, rank=100, rays=64, cancel=lambda: True)
+
+
+def test_memory_guard_names_the_numbers(office, monkeypatch):
+    monkeypatch.setattr(build_mod, "available_memory_bytes", lambda: 1 << 20)
+    with pytest.raises(LightInvError, match=r"GiB.*--resolution"):
+        build_operator(office, rays=64)
+
+
+def test_cache_round_trip_corruption_and_staleness(office, tmp_path, monkeypatch):
+    monkeypatch.setenv("LIGHTINV_CACHE_DIR", str(tmp_path))
+    warnings = []
+    first = oc.get_operator(office, rank=120, rays=64, warn=warnings.append)
+    assert not first.from_cache and first.path.exists()
+    second = oc.get_operator(office, rank=120, rays=64, warn=warnings.append)
+    assert second.from_cache and second.path == first.path and not warnings
+    np.testing.assert_array_equal(second.operator.Phi, first.operator.Phi)
+    np.testing.assert_array_equal(second.operator.lowrank.Y, first.operator.lowrank.Y)
+    assert second.operator.Phi.flags.f_contiguous
+    assert second.operator.info == json.loads(json.dumps(first.operator.info))
+    # Flip one payload byte: detected by the checksum, rebuilt, rewritten.
+    raw = bytearray(first.path.read_bytes())
+    raw[-100] ^= 0xFF
+    first.path.write_bytes(bytes(raw))
+    third = oc.get_operator(office, rank=120, rays=64, warn=warnings.append)
+    assert not third.from_cache and "checksum" in warnings[-1]
+    assert oc.get_operator(office, rank=120, rays=64).from_cache
+    # Truncated file.
+    first.path.write_bytes(first.path.read_bytes()[:-10])
+    fourth = oc.get_operator(office, rank=120, rays=64, warn=warnings.append)
+    assert not fourth.from_cache and "truncated" in warnings[-1]
+    # Other settings live in another file; no temporary files are left behind.
+    other = oc.get_operator(office, rank=120, rays=32)
+    assert other.path != first.path
+    assert sorted(p.suffix for p in tmp_path.iterdir()) == [".lrr", ".lrr"]
+    with pytest.raises(oc.CacheError, match="stale"):
+        oc.load_operator(first.path, "another key")
+
+
+def test_cli_precompute_and_lrr_simulation(tmp_path, monkeypatch, capsys):
+    monkeypatch.setenv("LIGHTINV_CACHE_DIR", str(tmp_path))
+    args = ["precompute", "office", "--resolution", str(RES), "--json"]
+    assert cli.main(args) == 0
+    out = json.loads(capsys.readouterr().out)
+    for key in (
+        "n",
+        "k",
+        "seconds",
+        "from_cache",
+        "cache_path",
+        "estimated_rel_error",
+        "peak_rss_mb",
+    ):
+        assert key in out
+    assert out["from_cache"] is False and out["estimated_rel_error"] <= 0.01
+    assert cli.main(args) == 0
+    again = json.loads(capsys.readouterr().out)
+    assert again["from_cache"] is True and again["seconds"] < 2.0
+    sim = ["simulate", "office", "--resolution", str(RES), "--emit", "roof=48000", "--json"]
+    assert cli.main([*sim, "--method", "lrr"]) == 0
+    lrr = json.loads(capsys.readouterr().out)
+    assert cli.main([*sim, "--method", "reference"]) == 0
+    ref = json.loads(capsys.readouterr().out)
+    assert lrr["from_cache"] is True and lrr["emitted_outside_zones_lm"] == pytest.approx(0.0)
+    for a, b in zip(lrr["groups"], ref["groups"], strict=True):
+        assert a["group"] == b["group"]
+        assert a["avg_lux"] == pytest.approx(b["avg_lux"], rel=0.02)
