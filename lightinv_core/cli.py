@@ -71,9 +71,15 @@ def cmd_scenes(args) -> int:
     return 0
 
 
+def _scene(args):
+    return load_scene(
+        args.scene, args.resolution, args.materials, args.scale, args.up, args.skip_degenerate
+    )
+
+
 def cmd_scene_info(args) -> int:
     """Patch count, area, groups and emitter zones of a scene."""
-    scene = load_scene(args.scene, args.resolution, args.materials)
+    scene = _scene(args)
     p = mesh_patches(scene)
     groups = [
         {
@@ -130,7 +136,7 @@ def cmd_simulate(args) -> int:
     """Forward simulation: groups emit given fluxes; report illuminance per group."""
     if not args.emit:
         raise LightInvError("nothing emits: give at least one --emit GROUP=LUMENS")
-    scene = load_scene(args.scene, args.resolution, args.materials)
+    scene = _scene(args)
     p = mesh_patches(scene)
     E = group_emission(p, dict(args.emit))
     method = args.method
@@ -260,7 +266,7 @@ def _simulate_lrr(args, scene, p, E) -> int:
 
 def cmd_precompute(args) -> int:
     """Build (or load from the cache) the radiosity operator of a scene."""
-    scene = load_scene(args.scene, args.resolution, args.materials)
+    scene = _scene(args)
     p = mesh_patches(scene)
     got = _operator(args, p)
     info = got.operator.info
@@ -310,6 +316,18 @@ def build_parser() -> argparse.ArgumentParser:
         p.add_argument("scene", help="built-in scene name or path to an .obj file")
         p.add_argument("--resolution", type=_positive, help="target patch size in metres")
         p.add_argument("--materials", help="OBJ only: materials JSON (reflectance per group)")
+        p.add_argument(
+            "--scale",
+            type=_positive,
+            default=1.0,
+            help="OBJ only: metres per model unit (0.001 for millimetres)",
+        )
+        p.add_argument("--up", choices=("z", "y"), default="z", help="OBJ only: up axis")
+        p.add_argument(
+            "--skip-degenerate",
+            action="store_true",
+            help="OBJ only: drop zero-area faces (with a warning) instead of failing",
+        )
 
     scene_args(add("scene-info", cmd_scene_info, "patches, groups and zones of a scene"))
     sim = add("simulate", cmd_simulate, "forward radiosity simulation")
