@@ -4,6 +4,7 @@ OBJ coordinates times ``scale`` give metres; a y-up model is turned z-up. Faces 
 their vertex order (counter-clockwise seen from the front). Every problem with the
 OBJ file or the materials mapping is an ``ObjImportError`` naming the file and line;
 problems with MTL files are only warnings (their materials get the default reflectance).
+Finding the MTL files and choosing each face's reflectance is ``obj_import``'s job.
 """
 
 from __future__ import annotations
@@ -22,6 +23,7 @@ import numpy as np
 
 from lightinv_core.errors import ObjImportError, SceneError
 from lightinv_core.scene.model import ZONE_KINDS, check_reflectance
+from lightinv_core.scene.obj_geometry import z_up
 
 UP_AXES = ("z", "y")
 # Statements LightInv does not need and skips silently (texture coordinates, normals,
@@ -224,8 +226,7 @@ def _face(tokens: list[str], nverts: int, where: str) -> tuple[int, ...]:
 def _to_metres(coords, vlines: list[int], scale: float, up: str, fname: str) -> np.ndarray:
     with np.errstate(all="ignore"):
         v = np.array(coords, dtype=float).reshape(-1, 3) * scale
-    if up == "y":
-        v = np.column_stack([v[:, 0], -v[:, 2], v[:, 1]])
+    v = z_up(v, up)
     big = np.flatnonzero(~(np.abs(v) <= MAX_COORD).all(axis=1))
     if len(big):
         raise ObjImportError(
@@ -242,28 +243,6 @@ def _unknown_warning(unknown: Counter[str], fname: str) -> str:
         f"{fname}: ignored {sum(unknown.values())} unsupported statement(s) ({kinds}{more}); "
         "LightInv reads only vertices and polygon faces"
     )
-
-
-def load_mtllibs(refs: list[tuple[str, int]], folder: Path, fname: str, warnings: list[str]):
-    """Kd luminance (0.2126 R + 0.7152 G + 0.0722 B) per material from the ``mtllib`` files.
-
-    File names are resolved relative to ``folder``; a missing or unreadable file is a
-    warning. A later definition of a material replaces an earlier one.
-    """
-    lum: dict[str, float] = {}
-    for rest, no in refs:
-        # A name with spaces is one file if it exists as such, else a list of files.
-        names = [rest] if os.path.isfile(folder / rest) else rest.split()
-        for name in names:
-            try:
-                text = read_text(folder / name, "material library")
-            except ObjImportError as exc:
-                warnings.append(
-                    f"{fname} line {no}: {exc}; its materials get the default reflectance"
-                )
-                continue
-            lum.update(parse_mtl(text, Path(name).name, warnings))
-    return lum
 
 
 def parse_mtl(text: str, fname: str, warnings: list[str]) -> dict[str, float]:
@@ -359,60 +338,6 @@ def _rho(value, where: str) -> float:
         raise ObjImportError(str(exc)) from None
     except OverflowError:
         raise ObjImportError(f"{where}: reflectance {shown} is outside [0, 1); {hint}") from None
-
-
-class Reflectances:
-    """Reflectance of a (group, material): mapping by group, by material, MTL Kd, default."""
-
-    def __init__(self, mats: MaterialMap, kd: dict[str, float]):
-        self.mats, self.kd = mats, kd
-        self.capped: dict[str, float] = {}
-        self.defaulted: set[str] = set()
-        self.groups: set[str] = set()
-        self.materials: set[str | None] = set()
-
-    def __call__(self, group: str, material: str | None) -> float:
-        self.groups.add(group)
-        self.materials.add(material)
-        if group in self.mats.groups:
-            return self.mats.groups[group]
-        if material in self.mats.materials:
-            return self.mats.materials[material]
-        if material in self.kd:
-            lum = self.kd[material]
-            if lum > KD_CAP:
-                self.capped[material] = lum
-            return min(lum, KD_CAP)
-        if material is not None:
-            self.defaulted.add(material)
-        return self.mats.default
-
-    def warnings(self) -> list[str]:
-        """One warning per capped material, defaulted materials and unused mapping names."""
-        out = [
-            f"material {clip(m)}: MTL Kd luminance {lum:.3g} capped at {KD_CAP} (exporters "
-            "write Kd 1 1 1 for white, and a reflectance of 1 makes radiosity diverge); give "
-            "its reflectance in the materials mapping to silence this"
-            for m, lum in self.capped.items()
-        ]
-        if self.defaulted:
-            out.append(
-                f"no reflectance for material(s) {_names(self.defaulted)} (not in the materials "
-                f"mapping or an MTL file); they use the default {self.mats.default:g}"
-            )
-        for key, seen in (("groups", self.groups), ("materials", self.materials)):
-            unused = set(getattr(self.mats, key)) - seen
-            if unused:
-                out.append(
-                    f"{self.mats.source}: {key} {_names(unused)} do not occur in the OBJ file "
-                    "and are ignored; check the spelling"
-                )
-        return out
-
-
-def _names(names) -> str:
-    shown = sorted(names)
-    return ", ".join(clip(n) for n in shown[:LISTED]) + (", ..." if len(shown) > LISTED else "")
 
 
 def zone_spec(group: str, line: int, fname: str) -> tuple[str, str] | None:

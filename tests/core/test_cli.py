@@ -1,0 +1,172 @@
+"""``lightinv-cli`` end to end, through ``cli.main``: output, files and exit statuses."""
+
+from __future__ import annotations
+
+import csv
+import json
+from pathlib import Path
+
+import pytest
+
+from lightinv_core import cli
+
+MODELS = Path(__file__).resolve().parents[2] / "resources" / "models"
+ROOM = str(MODELS / "meeting_room.obj")
+ROOM_MATERIALS = str(MODELS / "meeting_room-materials.json")
+CSV_HEADER = ["id", "group", "cx", "cy", "cz", "nx", "ny", "nz", "area", "rho", "E", "B", "lux"]
+
+
+@pytest.fixture(autouse=True)
+def cache_dir(tmp_path, monkeypatch):
+    """Keep any operator the command line builds out of the user's cache."""
+    monkeypatch.setenv("LIGHTINV_CACHE_DIR", str(tmp_path / "cache"))
+
+
+def run_json(capsys, *argv: str) -> dict:
+    assert cli.main([*argv, "--json"]) == 0
+    out, err = capsys.readouterr()
+    assert err == ""
+    return json.loads(out)
+
+
+def check_groups(stats: list[dict]) -> None:
+    for s in stats:
+        assert 0 <= s["min_lux"] <= s["avg_lux"] <= s["max_lux"], s
+
+
+def test_scenes_lists_the_four_builtin_scenes(capsys):
+    scenes = run_json(capsys, "scenes")["scenes"]
+    assert [s["name"] for s in scenes] == ["cornell", "office", "patio", "corridor"]
+    for s in scenes:
+        assert isinstance(s["patches"], int) and s["patches"] > 0
+        assert s["resolution"] > 0 and s["description"]
+
+
+def test_scene_info_of_a_builtin_scene(capsys):
+    info = run_json(capsys, "scene-info", "office", "--resolution", "0.5")
+    assert {"name", "patches", "area_m2", "groups", "zones"} <= set(info)
+    assert info["name"] == "office" and info["resolution"] == 0.5
+    assert info["patches"] == sum(g["patches"] for g in info["groups"])
+    assert info["area_m2"] == pytest.approx(sum(g["area_m2"] for g in info["groups"]))
+    assert "skylight" in {z["kind"] for z in info["zones"]}
+
+
+def test_scene_info_of_the_example_obj(capsys):
+    info = run_json(capsys, "scene-info", ROOM, "--materials", ROOM_MATERIALS)
+    assert info["name"] == "meeting_room"
+    assert info["warnings"] == []
+    groups = {g["name"]: g for g in info["groups"]}
+    assert list(groups) == ["floor", "walls", "ceiling", "table", "skylight", "downlights"]
+    assert groups["floor"]["area_m2"] == pytest.approx(24.0)
+    assert groups["walls"]["area_m2"] == pytest.approx(2 * (6 + 4) * 2.8)
+    # 24 m² of ceiling: the two zones and the five rectangles around them.
+    assert groups["ceiling"]["area_m2"] == pytest.approx(24.0 - 2.0 - 1.0)
+    assert info["patches"] == sum(g["patches"] for g in info["groups"])
+    zones = {z["name"]: z for z in info["zones"]}
+    assert {n: z["kind"] for n, z in zones.items()} == {
+        "skylight": "skylight",
+        "downlights": "luminaire",
+    }
+    assert zones["skylight"]["size_m"] == pytest.approx([2.0, 1.0])
+    assert zones["downlights"]["size_m"] == pytest.approx([2.0, 0.5])
+    for z in zones.values():
+        assert z["normal"] == pytest.approx([0.0, 0.0, -1.0])  # facing down into the room
+        assert z["origin"][2] == pytest.approx(2.8)
+
+
+def test_scene_info_text_output(capsys):
+    assert cli.main(["scene-info", ROOM, "--resolution", "0.5"]) == 0
+    out = capsys.readouterr().out
+    assert out.startswith("meeting_room: ")
+    assert "skylight   skylight  2.00 x 1.00 m" in out
+    assert "downlights luminaire 2.00 x 0.50 m" in out
+
+
+def test_simulate_cornell_with_patch_csv(capsys, tmp_path):
+    path = tmp_path / "patches.csv"
+    result = run_json(
+        capsys, "simulate", "cornell", "--emit", "light=1000", "--patches-csv", str(path)
+    )
+    assert result["method"] == "reference"
+    assert result["energy"]["emitted_lm"] == pytest.approx(1000.0)
+    assert result["lost_fraction"] < 1e-4
+    check_groups(result["groups"])
+    assert {s["group"] for s in result["groups"]} >= {"floor", "light", "ceiling"}
+    with path.open(newline="") as fh:
+        rows = list(csv.reader(fh))
+    assert rows[0] == CSV_HEADER
+    assert len(rows) - 1 == result["patches"]
+    assert [int(r[0]) for r in rows[1:]] == list(range(result["patches"]))
+
+
+def test_simulate_the_example_obj_with_its_skylight(capsys):
+    result = run_json(
+        capsys,
+        "simulate",
+        ROOM,
+        "--materials",
+        ROOM_MATERIALS,
+        "--resolution",
+        "0.5",
+        "--emit",
+        "skylight=5000",
+    )
+    assert result["scene"] == "meeting_room"
+    assert result["energy"]["emitted_lm"] == pytest.approx(5000.0)
+    assert result["lost_fraction"] < 1e-4  # the room is closed
+    assert abs(result["energy"]["imbalance"]) < 0.02
+    stats = {s["group"]: s for s in result["groups"]}
+    assert set(stats) == {"floor", "walls", "ceiling", "table", "skylight", "downlights"}
+    check_groups(result["groups"])
+    assert stats["table"]["avg_lux"] > 0 and stats["floor"]["avg_lux"] > 0
+
+
+def broken_obj(tmp_path) -> str:
+    path = tmp_path / "broken.obj"
+    path.write_text("v 0 0 0\nv 1 0 nan\nv 0 1 0\nf 1 2 3\n")
+    return str(path)
+
+
+@pytest.mark.parametrize(
+    ("argv", "message"),
+    [
+        (["scene-info", "nowhere"], "'nowhere' is neither a built-in scene"),
+        (["simulate", "cornell", "--emit", "nosuch=100"], "no group 'nosuch'"),
+        (["simulate", "cornell"], "nothing emits"),
+        (["scene-info", "BROKEN"], "broken.obj line 2: vertex coordinate 'nan' is not finite"),
+        (["scene-info", "MISSING"], "missing.obj' does not exist; check the path"),
+    ],
+)
+def test_user_errors_exit_2_with_one_line(capsys, tmp_path, argv, message):
+    files = {"BROKEN": broken_obj(tmp_path), "MISSING": str(tmp_path / "missing.obj")}
+    argv = [files.get(a, a) for a in argv]
+    assert cli.main(argv) == 2
+    out, err = capsys.readouterr()
+    assert out == ""
+    lines = err.strip().splitlines()
+    assert len(lines) == 1, err
+    assert lines[0].startswith("lightinv-cli: error: ")
+    assert message in lines[0]
+
+
+@pytest.mark.parametrize(
+    ("argv", "message"),
+    [
+        (["simulate", "cornell", "--emit", "light"], "expected GROUP=LUMENS, got 'light'"),
+        (["simulate", "cornell", "--emit", "light=abc"], "expected GROUP=LUMENS"),
+        (["scene-info", "office", "--resolution", "-0.5"], "expected a positive number"),
+        (["scene-info", "office", "--resolution", "0"], "expected a positive number"),
+    ],
+)
+def test_bad_arguments_exit_2_without_traceback(capsys, argv, message):
+    with pytest.raises(SystemExit) as exc:
+        cli.main(argv)
+    assert exc.value.code == 2
+    out, err = capsys.readouterr()
+    assert out == ""
+    assert "Traceback" not in err
+    # One line, like every other user error, naming the subcommand and the argument.
+    lines = err.strip().splitlines()
+    assert len(lines) == 1
+    assert lines[0].startswith(f"lightinv-cli: error: lightinv-cli {argv[0]}: argument ")
+    assert message in lines[0]
