@@ -1,0 +1,276 @@
+"""The inverse design problem as data: sources, geometric rules, lighting intentions, goals.
+
+Units: source rectangles in metres in their zone's (u, v) coordinates; luminous
+flux in lm, efficacy in lm/W, exitance in lm/m², illuminance in lux.
+
+A source's emission:
+- luminaire: exitance = flux / area (``flux`` given, possibly a variable), or a
+  fixed ``exitance`` (a luminous panel: flux = exitance * area);
+- skylight: exitance = filter * transmittance * exterior diffuse illuminance.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+from lightinv_core.errors import LightInvError
+
+CORNERS = ("u0", "v0", "u1", "v1")
+VARIABLES = (*CORNERS, "flux", "filter")
+
+
+class DesignError(LightInvError):
+    """The design specification is invalid (bad value, unknown name, contradictory rules)."""
+
+
+def _finite(value, where: str, lo: float | None = None, hi: float | None = None) -> float:
+    try:
+        v = float(value)
+    except (TypeError, ValueError):
+        raise DesignError(f"{where}: {value!r} is not a number") from None
+    if not math.isfinite(v):
+        raise DesignError(f"{where}: {value!r} is not a finite number")
+    if (lo is not None and v < lo) or (hi is not None and v > hi):
+        rng = f"[{lo if lo is not None else '-inf'}, {hi if hi is not None else 'inf'}]"
+        raise DesignError(f"{where}: {v} is outside {rng}")
+    return v
+
+
+@dataclass(frozen=True)
+class Source:
+    """A rectangular luminaire or skylight in an emitter zone.
+
+    ``rect`` is (u0, v0, u1, v1), two diagonal corners in metres. ``free`` names
+    the variables the optimizer may change (a subset of ``VARIABLES``); a
+    source with no free variables is fixed. ``flux_range`` bounds a free flux.
+    """
+
+    name: str
+    zone: str
+    kind: str
+    rect: tuple[float, float, float, float]
+    free: tuple[str, ...] = ()
+    flux: float | None = None
+    exitance: float | None = None
+    flux_range: tuple[float, float] = (0.0, 20000.0)
+    efficacy: float = 100.0
+    filter: float = 1.0
+
+    def __post_init__(self) -> None:
+        where = f"source {self.name!r}"
+        if self.kind not in ("luminaire", "skylight"):
+            raise DesignError(f"{where}: kind must be 'luminaire' or 'skylight'")
+        if len(self.rect) != 4:
+            raise DesignError(f"{where}: rect needs four numbers u0, v0, u1, v1 (m)")
+        object.__setattr__(self, "rect", tuple(_finite(x, f"{where} rect") for x in self.rect))
+        bad = [v for v in self.free if v not in VARIABLES]
+        if bad:
+            raise DesignError(f"{where}: unknown variables {bad}; choose from {VARIABLES}")
+        if self.kind == "luminaire":
+            if (self.flux is None) == (self.exitance is None):
+                raise DesignError(f"{where}: a luminaire needs either flux (lm) or exitance")
+            if "filter" in self.free:
+                raise DesignError(f"{where}: only skylights have a filter variable")
+            if "flux" in self.free and self.flux is None:
+                raise DesignError(f"{where}: a free flux needs a starting flux")
+            lo, hi = self.flux_range
+            if not 0 <= lo < hi:
+                raise DesignError(f"{where}: flux range must satisfy 0 <= min < max")
+            _finite(self.efficacy, f"{where} efficacy (lm/W)", lo=1e-6)
+        else:
+            if "flux" in self.free or self.flux is not None:
+                raise DesignError(f"{where}: skylights have a filter, not a flux")
+            _finite(self.filter, f"{where} filter", 0.0, 1.0)
+
+    @property
+    def u_range(self) -> tuple[float, float]:
+        """(min, max) of the rectangle along u."""
+        return min(self.rect[0], self.rect[2]), max(self.rect[0], self.rect[2])
+
+    @property
+    def v_range(self) -> tuple[float, float]:
+        """(min, max) of the rectangle along v."""
+        return min(self.rect[1], self.rect[3]), max(self.rect[1], self.rect[3])
+
+    @property
+    def size(self) -> tuple[float, float]:
+        """Extent (m) along u and v."""
+        (a, b), (c, d) = self.u_range, self.v_range
+        return b - a, d - c
+
+    @property
+    def area(self) -> float:
+        """Area, m²."""
+        w, h = self.size
+        return w * h
+
+
+@dataclass(frozen=True)
+class Rule:
+    """A geometric rule (no radiosity needed; paper eq. 4).
+
+    kinds and their fields:
+    - ``area``: ``sources``, ``min`` and/or ``max`` (m²) for each source;
+    - ``aspect``: ``sources``, ``max`` (long side / short side);
+    - ``mirror``: ``sources`` = (derived, original), ``axis`` "u" or "v": the
+      derived source is the original's rectangle flipped along that axis of its
+      zone (same or another zone of the same size) — it has no variables;
+    - ``centred``: ``sources``: each rectangle is centred in its zone (the
+      second corner is the first mirrored through the zone centre);
+    - ``spacing``: ``sources`` (two, same zone), ``min`` (m) gap between them;
+    - ``align``: ``sources`` (two or more), ``axis`` "u" or "v": they lie on one
+      line parallel to that axis (their centres share the other coordinate,
+      within 1 cm).
+    """
+
+    kind: str
+    sources: tuple[str, ...]
+    min: float | None = None
+    max: float | None = None
+    axis: str | None = None
+
+    KINDS = ("area", "aspect", "mirror", "centred", "spacing", "align")
+
+    def __post_init__(self) -> None:
+        where = f"rule {self.kind!r} on {list(self.sources)}"
+        if self.kind not in self.KINDS:
+            raise DesignError(f"rule kind {self.kind!r} is not one of {self.KINDS}")
+        object.__setattr__(self, "sources", tuple(self.sources))
+        if not self.sources:
+            raise DesignError(f"{where}: name at least one source")
+        need = {"mirror": 2, "spacing": 2}.get(self.kind)
+        if need and len(self.sources) != need:
+            raise DesignError(f"{where}: needs exactly {need} sources")
+        if self.kind == "align" and len(self.sources) < 2:
+            raise DesignError(f"{where}: needs at least two sources")
+        if self.kind in ("mirror", "align") and self.axis not in ("u", "v"):
+            raise DesignError(f"{where}: axis must be 'u' or 'v'")
+        for key in ("min", "max"):
+            v = getattr(self, key)
+            if v is not None:
+                object.__setattr__(self, key, _finite(v, f"{where} {key}", lo=0.0))
+        if self.kind == "area" and self.min is None and self.max is None:
+            raise DesignError(f"{where}: give min and/or max area (m²)")
+        if self.min is not None and self.max is not None and self.min > self.max:
+            raise DesignError(f"{where}: min {self.min} is larger than max {self.max}")
+        if self.kind == "aspect" and (self.max is None or self.max < 1):
+            raise DesignError(f"{where}: max aspect ratio must be at least 1")
+        if self.kind == "spacing" and self.min is None:
+            raise DesignError(f"{where}: give the min gap (m)")
+
+
+@dataclass(frozen=True)
+class Intention:
+    """A lighting intention on a patch set: a group's patches or picked patch ids.
+
+    ``quantity`` is "lux" (illuminance) or "C" (reflected exitance, lm/m²).
+    ``min``/``max`` bound every patch; ``average`` is a lower bound on the
+    area-weighted mean and ``uniformity`` on U0 = min / mean (EN 12464-1 style:
+    desks 500 lux, U0 >= 0.6). ``weight`` scales its penalty.
+    """
+
+    name: str
+    group: str | None = None
+    patches: tuple[int, ...] | None = None
+    quantity: str = "lux"
+    min: float | None = None
+    max: float | None = None
+    average: float | None = None
+    uniformity: float | None = None
+    weight: float = 100.0
+
+    def __post_init__(self) -> None:
+        where = f"intention {self.name!r}"
+        if (self.group is None) == (self.patches is None):
+            raise DesignError(f"{where}: give either a group or a list of patches")
+        if self.patches is not None:
+            if len(self.patches) == 0:
+                raise DesignError(f"{where}: the patch list is empty")
+            object.__setattr__(self, "patches", tuple(int(i) for i in self.patches))
+        if self.quantity not in ("lux", "C"):
+            raise DesignError(f"{where}: quantity must be 'lux' or 'C'")
+        for key in ("min", "max", "average"):
+            v = getattr(self, key)
+            if v is not None:
+                object.__setattr__(self, key, _finite(v, f"{where} {key}", lo=0.0))
+        if self.uniformity is not None:
+            object.__setattr__(
+                self, "uniformity", _finite(self.uniformity, f"{where} uniformity", 0.0, 1.0)
+            )
+        if all(getattr(self, k) is None for k in ("min", "max", "average", "uniformity")):
+            raise DesignError(f"{where}: give at least one of min, max, average, uniformity")
+        if self.min is not None and self.max is not None and self.min > self.max:
+            raise DesignError(f"{where}: min {self.min} is above max {self.max}")
+        if self.average is not None and self.max is not None and self.average > self.max:
+            raise DesignError(f"{where}: average {self.average} is above max {self.max}")
+        _finite(self.weight, f"{where} weight", lo=0.0)
+
+
+GOALS = ("min_electric_power", "max_light_power", "match")
+
+
+@dataclass(frozen=True)
+class Goal:
+    """What to optimise.
+
+    - ``min_electric_power``: sum of luminaire flux / efficacy (W);
+    - ``max_light_power``: total reflected light power sum_i C_i A_i (lm), of
+      the sources whose kind is in ``kinds`` (all when empty);
+    - ``match``: relative distance e(E) = ||C(E) - C_obj|| / ||C_obj|| (paper
+      eq. 11) to the light of the project's ``target_sources``.
+    """
+
+    kind: str
+    kinds: tuple[str, ...] = ()
+
+    def __post_init__(self) -> None:
+        if self.kind not in GOALS:
+            raise DesignError(f"goal {self.kind!r} is not one of {GOALS}")
+        object.__setattr__(self, "kinds", tuple(self.kinds))
+
+
+@dataclass(frozen=True)
+class Daylight:
+    """Exterior diffuse illuminance (lux) and glazing transmittance of the skylights."""
+
+    exterior_lux: float = 10000.0
+    transmittance: float = 0.6
+
+
+@dataclass(frozen=True)
+class Design:
+    """A complete inverse problem on one scene."""
+
+    sources: tuple[Source, ...]
+    goals: tuple[Goal, ...]
+    rules: tuple[Rule, ...] = ()
+    intentions: tuple[Intention, ...] = ()
+    target_sources: tuple[Source, ...] = ()
+    daylight: Daylight = field(default_factory=Daylight)
+    penalty_power: int = 2
+
+    def __post_init__(self) -> None:
+        for name in ("sources", "goals", "rules", "intentions", "target_sources"):
+            object.__setattr__(self, name, tuple(getattr(self, name)))
+        names = [s.name for s in self.sources]
+        if len(set(names)) != len(names):
+            raise DesignError("source names must be unique")
+        if not self.goals:
+            raise DesignError("give at least one goal")
+        known = set(names)
+        for r in self.rules:
+            missing = [s for s in r.sources if s not in known]
+            if missing:
+                raise DesignError(f"rule {r.kind!r} names unknown sources {missing}")
+        if any(g.kind == "match" for g in self.goals) and not self.target_sources:
+            raise DesignError("a match goal needs target_sources (the light to reproduce)")
+        if self.penalty_power < 1 or self.penalty_power % 2:
+            raise DesignError("penalty power must be an even positive integer (paper eq. 3)")
+
+    def source(self, name: str) -> Source:
+        """The source called ``name``."""
+        for s in self.sources:
+            if s.name == name:
+                return s
+        raise DesignError(f"no source {name!r}")

@@ -1,0 +1,202 @@
+"""Variable Neighbourhood Search over source parameters (paper Algorithm 1).
+
+Neighbourhood N(v, r): change v randomly chosen variables at once, each by a
+uniform step in +-r of its range (clipped to its bounds). Neighbourhoods are
+tried from small to large (r = 0.1 .. 1, and v = 1 .. min(nvar, 3) within each
+r); each local search draws ``trials`` neighbours and evaluates them as ONE
+batch (geometric rules first, then one radiosity GEMM). If the best neighbour
+improves f + P the search moves there and restarts at the first neighbourhood,
+otherwise it goes on to the next; after the last it starts over.
+
+One addition to Algorithm 1's acceptance test f(x') + P(x') < f(x) + P(x):
+feasibility is never given up. A feasible trial (P = 0) beats an infeasible
+incumbent, and an infeasible trial never replaces a feasible incumbent, so a
+run that reaches the feasible region ends with P = 0 (with a quadratic
+penalty, f + P alone settles just outside an active bound).
+
+Stopping: evaluations, wall time, a target value of the primary goal (reached
+with P = 0), stall (evaluations without improvement), or ``cancel()``; a
+cancelled run returns its best solution. Everything random comes from
+``np.random.default_rng(seed)``: the same seed gives the same result.
+"""
+
+from __future__ import annotations
+
+import time
+from collections.abc import Callable
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from lightinv_core.design.model import DesignError
+from lightinv_core.design.problem import DesignProblem, Level
+
+R_VALUES = (0.1, 0.2, 0.3, 0.4, 0.5, 0.6, 0.7, 0.8, 0.9, 1.0)
+START_TRIES = 20_000
+
+
+@dataclass(frozen=True)
+class StopRule:
+    """When to stop; ``None`` disables a criterion. ``target`` is in the primary goal's
+    units (W, lm, or the match error e) and counts only with P = 0."""
+
+    max_evals: int | None = 20_000
+    time_limit: float | None = None
+    target: float | None = None
+    stall: int | None = None
+
+
+@dataclass(frozen=True)
+class Progress:
+    """An immutable snapshot for progress callbacks (GUI plots, CLI)."""
+
+    iteration: int
+    evaluations: int
+    elapsed: float
+    best_value: float
+    best_penalty: float
+    best_goal: float
+    level: int
+
+
+@dataclass
+class VNSResult:
+    """Best x found, its scores, and the convergence history
+    (evaluations, best value, best penalty, best primary goal) at each improvement."""
+
+    x: np.ndarray
+    value: float
+    penalty: float
+    goal: float
+    evaluations: int
+    iterations: int
+    seconds: float
+    status: str
+    history: list[tuple[int, float, float, float]] = field(default_factory=list)
+
+
+def neighbourhoods(nvar: int, r_values=R_VALUES, max_v: int = 3) -> list[tuple[int, float]]:
+    """The (v, r) grid in the order it is explored."""
+    return [(v, r) for r in r_values for v in range(1, min(nvar, max_v) + 1)]
+
+
+def random_start(problem: DesignProblem, rng: np.random.Generator) -> np.ndarray:
+    """A random x meeting every geometric rule (DesignError if none is found: the rules
+    cannot be met together, e.g. a minimum area larger than the zone)."""
+    lo, hi = problem.vars.lo, problem.vars.hi
+    from lightinv_core.design.geometry import rule_violations
+
+    for _ in range(START_TRIES // 500):
+        X = lo + rng.random((500, len(lo))) * (hi - lo)
+        rect, _, _ = problem.vars.decode(X)
+        ok = np.flatnonzero(
+            ~np.any(rule_violations(problem.design, rect, problem.zone_size) > 0, axis=1)
+        )
+        if len(ok):
+            return X[ok[0]]
+    raise DesignError(
+        f"no random layout out of {START_TRIES:,} meets the geometric rules; "
+        "check area, aspect and spacing bounds against the zone sizes"
+    )
+
+
+def _goal(problem: DesignProblem, ev, j: int) -> float:
+    return float(ev.goals[problem.primary][j])
+
+
+def vns(
+    problem: DesignProblem,
+    x0: np.ndarray | None = None,
+    seed: int = 0,
+    stop: StopRule | None = None,
+    level: Level | None = None,
+    trials: int = 32,
+    progress: Callable[[Progress], None] | None = None,
+    cancel: Callable[[], bool] | None = None,
+) -> VNSResult:
+    """Minimise f + P over the problem's variables; returns the best solution found."""
+    stop = stop or StopRule()
+    rng = np.random.default_rng(seed)
+    level = level or problem.level(1)
+    nvar = problem.vars.n
+    if nvar == 0:
+        raise DesignError("nothing to optimise: no source has a free variable")
+    lo, hi = problem.vars.lo, problem.vars.hi
+    span = hi - lo
+    x = (
+        np.clip(np.asarray(x0, dtype=float), lo, hi)
+        if x0 is not None
+        else random_start(problem, rng)
+    )
+    t0 = time.perf_counter()
+    ev = problem.evaluate(x[None], level)
+    if not ev.ok[0]:
+        x = random_start(problem, rng)
+        ev = problem.evaluate(x[None], level)
+    best = (float(ev.value[0]), float(ev.penalty[0]), _goal(problem, ev, 0))
+    evals, iters, last_gain = ev.evaluated, 0, ev.evaluated
+    history = [(evals, *best)]
+    hoods = neighbourhoods(nvar)
+    status = "max_evals"
+
+    def stopped() -> str | None:
+        if cancel is not None and cancel():
+            return "cancelled"
+        if stop.max_evals is not None and evals >= stop.max_evals:
+            return "max_evals"
+        if stop.time_limit is not None and time.perf_counter() - t0 >= stop.time_limit:
+            return "time_limit"
+        if stop.target is not None and best[1] == 0.0 and _reached(problem, best[2], stop.target):
+            return "target"
+        if stop.stall is not None and evals - last_gain >= stop.stall:
+            return "stall"
+        return None
+
+    k = 0
+    while (why := stopped()) is None:
+        v, r = hoods[k]
+        X = np.repeat(x[None], trials, axis=0)
+        pick = np.argsort(rng.random((trials, nvar)), axis=1)[:, :v]
+        step = rng.uniform(-r, r, (trials, v)) * span[pick]
+        rows = np.repeat(np.arange(trials), v)
+        X[rows, pick.ravel()] += step.ravel()
+        X = np.clip(X, lo, hi)
+        ev = problem.evaluate(X, level)
+        evals += ev.evaluated
+        iters += 1
+        # Feasible trials (P = 0) rank before infeasible ones; within each, by f + P.
+        rank = np.where(ev.penalty == 0.0, ev.value, np.inf)
+        j = int(np.argmin(rank)) if np.isfinite(rank).any() else int(np.argmin(ev.value))
+        if _better(ev.value[j], ev.penalty[j], best[0], best[1]):
+            x = X[j]
+            best = (float(ev.value[j]), float(ev.penalty[j]), _goal(problem, ev, j))
+            history.append((evals, *best))
+            last_gain = evals
+            k = 0
+        else:
+            k = (k + 1) % len(hoods)
+        if progress is not None:
+            progress(
+                Progress(
+                    iters, evals, time.perf_counter() - t0, best[0], best[1], best[2], level.divisor
+                )
+            )
+    status = why
+    return VNSResult(
+        x, best[0], best[1], best[2], evals, iters, time.perf_counter() - t0, status, history
+    )
+
+
+def _better(value: float, penalty: float, best_value: float, best_penalty: float) -> bool:
+    """Paper Algorithm 1's test f + P < best, except that feasibility is never given up:
+    a feasible trial beats an infeasible incumbent, an infeasible one never beats a
+    feasible incumbent."""
+    if (penalty == 0.0) != (best_penalty == 0.0):
+        return penalty == 0.0
+    return value < best_value
+
+
+def _reached(problem: DesignProblem, goal: float, target: float) -> bool:
+    if problem.primary == "max_light_power":
+        return goal >= target
+    return goal <= target
