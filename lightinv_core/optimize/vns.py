@@ -2,7 +2,7 @@
 
 Neighbourhood N(v, r): change v randomly chosen variables at once, each by a
 uniform step in +-r of its range (clipped to its bounds). Neighbourhoods are
-tried from small to large (r = 0.1 .. 1, and v = 1 .. min(nvar, 3) within each
+tried from small to large (r = 0.1 .. 1, and v = 1 .. min(nvar, MAX_V) within each
 r); each local search draws ``trials`` neighbours and evaluates them as ONE
 batch (geometric rules first, then one radiosity GEMM). If the best neighbour
 improves f + P the search moves there and restarts at the first neighbourhood,
@@ -33,6 +33,10 @@ from lightinv_core.design.problem import DesignProblem, Level
 
 R_VALUES = (0.1, 0.2, 0.3, 0.4, 0.5, 0.6, 0.7, 0.8, 0.9, 1.0)
 START_TRIES = 20_000
+MAX_V = 4
+"""Most variables changed at once. The paper allows v up to nvar; measured on
+experiments 1 and 5, v <= 4 converges as reliably and faster (larger moves are
+almost always rejected)."""
 
 
 @dataclass(frozen=True)
@@ -75,9 +79,12 @@ class VNSResult:
     history: list[tuple[int, float, float, float]] = field(default_factory=list)
 
 
-def neighbourhoods(nvar: int, r_values=R_VALUES, max_v: int = 3) -> list[tuple[int, float]]:
+def neighbourhoods(
+    nvar: int, r_values=R_VALUES, max_v: int | None = MAX_V
+) -> list[tuple[int, float]]:
     """The (v, r) grid in the order it is explored."""
-    return [(v, r) for r in r_values for v in range(1, min(nvar, max_v) + 1)]
+    top = nvar if max_v is None else min(nvar, max_v)
+    return [(v, r) for r in r_values for v in range(1, top + 1)]
 
 
 def random_start(problem: DesignProblem, rng: np.random.Generator) -> np.ndarray:
