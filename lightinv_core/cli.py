@@ -299,6 +299,100 @@ def cmd_precompute(args) -> int:
     return 0
 
 
+def _source_summary(src) -> dict:
+    u0, v0, u1, v1 = src.rect
+    out = {"name": src.name, "zone": src.zone, "kind": src.kind,
+           "corners": [min(u0, u1), min(v0, v1), max(u0, u1), max(v0, v1)], "area_m2": src.area}
+    if src.kind == "skylight":
+        out["filter"] = src.filter
+    else:
+        flux = src.flux if src.flux is not None else src.exitance * src.area
+        out.update(flux_lm=flux, electric_w=flux / src.efficacy)
+    return out
+
+
+def _solution_summary(sol) -> dict:
+    return {"objectives": dict(sol.objectives), "penalty": sol.penalty,
+            "feasible": sol.feasible, "sources": [_source_summary(s) for s in sol.sources],
+            "violations": [{"name": v.name, "constraint": v.constraint, "amount": v.amount,
+                            "value": v.value, "bound": v.bound, "units": v.units}
+                           for v in sol.violations]}
+
+
+def cmd_solve(args) -> int:
+    """Optimise a project file; optionally save it with the results."""
+    from dataclasses import replace
+
+    from lightinv_core.io.project import load_project, save_project
+    from lightinv_core.optimize.run import prepare, solve
+
+    project = load_project(args.project)
+    if args.resolution is not None:
+        project = replace(project, scene=replace(project.scene, resolution=args.resolution))
+    prepared = prepare(project, progress=_progress_printer("precompute"), warn=_warn)
+    result = solve(project, prepared, seed=args.seed, max_evals=args.max_evals,
+                   time_limit=args.time_limit, progress=_vns_printer())
+    out = {"project": project.name, "status": result.status, "method": project.optimizer.method,
+           "evaluations": result.evaluations, "seconds": result.seconds,
+           "precompute_seconds": result.precompute_seconds, "operator_from_cache":
+           prepared.from_cache, "patches": prepared.patches.n}
+    best = result.best
+    if best is not None:
+        primary = project.design.goals[0].kind
+        out.update(objective=best.objectives.get(primary), objective_kind=primary,
+                   **_solution_summary(best))
+        if "match" in best.objectives:
+            out["error"] = best.objectives["match"]
+    if result.pareto is not None:
+        out["pareto"] = [_solution_summary(s) for s in result.pareto.solutions]
+        out["candidates"] = len(result.pareto.candidates)
+    if args.output:
+        sols = (best,) if best is not None and result.pareto is None else ()
+        save_project(replace(project, solutions=sols, pareto=result.pareto), args.output)
+        out["saved"] = args.output
+    _out(args, out, _solve_text(out))
+    return 0 if result.status != "cancelled" else 130
+
+
+def _solve_text(out: dict) -> str:
+    lines = [f"{out['project']}: {out['status']} ({out['method']}, {out['evaluations']:,} "
+             f"evaluations in {out['seconds']:.2f} s; operator {out['precompute_seconds']:.2f} s)"]
+    if out.get("objective") is not None:
+        lines.append(f"{out['objective_kind']}: {out['objective']:.6g}   penalty {out['penalty']:.3g}")
+    for s in out.get("sources", []):
+        c = ", ".join(f"{x:.3f}" for x in s["corners"])
+        extra = (f"filter {s['filter']:.3f}" if s["kind"] == "skylight"
+                 else f"{s['flux_lm']:.0f} lm, {s['electric_w']:.1f} W")
+        lines.append(f"  {s['name']:<10} {s['zone']:<10} ({c}) m  {s['area_m2']:.2f} m²  {extra}")
+    for v in out.get("violations", []):
+        lines.append(f"  violated: {v['name']} {v['constraint']} by {100 * v['amount']:.1f}% "
+                     f"({v['value']:.4g} vs {v['bound']:.4g} {v['units']})")
+    if "pareto" in out:
+        lines.append(f"Pareto front: {len(out['pareto'])} non-dominated of {out['candidates']} runs")
+        for s in out["pareto"]:
+            o = s["objectives"]
+            lines.append(f"  {o.get('min_electric_power', 0):9.1f} W   "
+                         f"{o.get('max_light_power', 0):12.0f} lm")
+    if "saved" in out:
+        lines.append(f"saved to {out['saved']}")
+    return "\n".join(lines)
+
+
+def _vns_printer():
+    """A progress callback printing the best value on stderr (terminals only, 5 Hz)."""
+    if not sys.stderr.isatty():
+        return None
+    last = [0.0]
+
+    def report(p) -> None:
+        if p.elapsed - last[0] >= 0.2:
+            last[0] = p.elapsed
+            print(f"\rlevel n/{p.level}: {p.evaluations:,} evaluations, best {p.best_goal:.6g}, "
+                  f"penalty {p.best_penalty:.3g}   ", end="", file=sys.stderr)
+
+    return report
+
+
 class _Parser(argparse.ArgumentParser):
     """Usage errors as one line on stderr and exit status 2, like every other user error."""
 
@@ -355,6 +449,13 @@ def build_parser() -> argparse.ArgumentParser:
         help=f"solver: reference (exact, sparse F) or lrr (the low-rank operator); "
         f"auto uses lrr above {AUTO_LRR_PATCHES} patches",
     )
+    sol = add("solve", cmd_solve, "optimise a project file (inverse design)")
+    sol.add_argument("project", help="project file (JSON, schema 1)")
+    sol.add_argument("--seed", type=int, help="random seed (default: the project's)")
+    sol.add_argument("--max-evals", type=int, help="radiosity evaluations at most")
+    sol.add_argument("--time-limit", type=_positive, help="seconds of optimisation at most")
+    sol.add_argument("--resolution", type=_positive, help="override the scene's patch size (m)")
+    sol.add_argument("-o", "--output", help="save the project with its results to this file")
     pre = add("precompute", cmd_precompute, "build or load the radiosity operator of a scene")
     scene_args(pre)
     for p in (sim, pre):

@@ -12,6 +12,7 @@ A source's emission:
 from __future__ import annotations
 
 import math
+import numbers
 from dataclasses import dataclass, field
 
 from lightinv_core.errors import LightInvError
@@ -67,8 +68,22 @@ class Source:
         bad = [v for v in self.free if v not in VARIABLES]
         if bad:
             raise DesignError(f"{where}: unknown variables {bad}; choose from {VARIABLES}")
+        if len(self.flux_range) != 2:
+            raise DesignError(f"{where}: flux_range needs two numbers (min, max) in lm")
+        object.__setattr__(
+            self,
+            "flux_range",
+            tuple(_finite(x, f"{where} flux_range", lo=0.0) for x in self.flux_range),
+        )
+        for key in ("flux", "exitance"):
+            if getattr(self, key) is not None:
+                object.__setattr__(self, key, _finite(getattr(self, key), f"{where} {key}", lo=0.0))
         if self.kind == "luminaire":
-            if (self.flux is None) == (self.exitance is None):
+            if self.flux is not None and self.exitance is not None:
+                raise DesignError(
+                    f"{where}: give a luminaire's flux (lm) or its exitance (lm/m²), not both"
+                )
+            if self.flux is None and self.exitance is None:
                 raise DesignError(f"{where}: a luminaire needs either flux (lm) or exitance")
             if "filter" in self.free:
                 raise DesignError(f"{where}: only skylights have a filter variable")
@@ -79,8 +94,11 @@ class Source:
                 raise DesignError(f"{where}: flux range must satisfy 0 <= min < max")
             _finite(self.efficacy, f"{where} efficacy (lm/W)", lo=1e-6)
         else:
-            if "flux" in self.free or self.flux is not None:
-                raise DesignError(f"{where}: skylights have a filter, not a flux")
+            if "flux" in self.free or self.flux is not None or self.exitance is not None:
+                raise DesignError(
+                    f"{where}: skylights have a filter, not a flux or exitance "
+                    "(their exitance is filter x transmittance x exterior lux)"
+                )
             _finite(self.filter, f"{where} filter", 0.0, 1.0)
 
     @property
@@ -114,8 +132,10 @@ class Rule:
     - ``area``: ``sources``, ``min`` and/or ``max`` (m²) for each source;
     - ``aspect``: ``sources``, ``max`` (long side / short side);
     - ``mirror``: ``sources`` = (derived, original), ``axis`` "u" or "v": the
-      derived source is the original's rectangle flipped along that axis of its
-      zone (same or another zone of the same size) — it has no variables;
+      derived source is the original's rectangle flipped along that axis (in
+      the same or another zone; coordinates scale with the zones' sizes along
+      the axis when they differ) and copies its flux or filter — it has no
+      variables;
     - ``centred``: ``sources``: each rectangle is centred in its zone (the
       second corner is the first mirrored through the zone centre);
     - ``spacing``: ``sources`` (two, same zone), ``min`` (m) gap between them;
@@ -133,7 +153,14 @@ class Rule:
     KINDS = ("area", "aspect", "mirror", "centred", "spacing", "align")
 
     def __post_init__(self) -> None:
+        if isinstance(self.sources, str):
+            raise DesignError(
+                f"rule {self.kind!r}: sources must be a list of names, "
+                f"not the string {self.sources!r}"
+            )
         where = f"rule {self.kind!r} on {list(self.sources)}"
+        if len(set(self.sources)) != len(tuple(self.sources)):
+            raise DesignError(f"{where}: a source is named twice")
         if self.kind not in self.KINDS:
             raise DesignError(f"rule kind {self.kind!r} is not one of {self.KINDS}")
         object.__setattr__(self, "sources", tuple(self.sources))
@@ -162,7 +189,8 @@ class Rule:
 
 @dataclass(frozen=True)
 class Intention:
-    """A lighting intention on a patch set: a group's patches or picked patch ids.
+    """A lighting intention on a patch set: a group's patches (``group="*"`` means
+    every patch of the scene) or picked patch ids.
 
     ``quantity`` is "lux" (illuminance) or "C" (reflected exitance, lm/m²).
     ``min``/``max`` bound every patch; ``average`` is a lower bound on the
@@ -185,9 +213,15 @@ class Intention:
         if (self.group is None) == (self.patches is None):
             raise DesignError(f"{where}: give either a group or a list of patches")
         if self.patches is not None:
-            if len(self.patches) == 0:
-                raise DesignError(f"{where}: the patch list is empty")
-            object.__setattr__(self, "patches", tuple(int(i) for i in self.patches))
+            if isinstance(self.patches, str) or len(self.patches) == 0:
+                raise DesignError(f"{where}: patches must be a non-empty list of patch ids")
+            ids = []
+            for i in self.patches:
+                whole = isinstance(i, numbers.Real) and not isinstance(i, bool)
+                if not whole or not math.isfinite(i) or not float(i).is_integer():
+                    raise DesignError(f"{where}: patch id {i!r} is not a whole number")
+                ids.append(int(i))
+            object.__setattr__(self, "patches", tuple(ids))
         if self.quantity not in ("lux", "C"):
             raise DesignError(f"{where}: quantity must be 'lux' or 'C'")
         for key in ("min", "max", "average"):
@@ -227,7 +261,14 @@ class Goal:
     def __post_init__(self) -> None:
         if self.kind not in GOALS:
             raise DesignError(f"goal {self.kind!r} is not one of {GOALS}")
+        if isinstance(self.kinds, str):
+            raise DesignError(f"goal {self.kind!r}: kinds must be a list")
         object.__setattr__(self, "kinds", tuple(self.kinds))
+        bad = [k for k in self.kinds if k not in ("luminaire", "skylight")]
+        if bad:
+            raise DesignError(f"goal {self.kind!r}: kinds {bad} must be 'luminaire' or 'skylight'")
+        if self.kinds and self.kind != "max_light_power":
+            raise DesignError(f"goal {self.kind!r}: only max_light_power counts source kinds")
 
 
 @dataclass(frozen=True)
@@ -236,6 +277,14 @@ class Daylight:
 
     exterior_lux: float = 10000.0
     transmittance: float = 0.6
+
+    def __post_init__(self) -> None:
+        object.__setattr__(
+            self, "exterior_lux", _finite(self.exterior_lux, "daylight exterior_lux", lo=0.0)
+        )
+        object.__setattr__(
+            self, "transmittance", _finite(self.transmittance, "daylight transmittance", 0.0, 1.0)
+        )
 
 
 @dataclass(frozen=True)
@@ -254,8 +303,17 @@ class Design:
         for name in ("sources", "goals", "rules", "intentions", "target_sources"):
             object.__setattr__(self, name, tuple(getattr(self, name)))
         names = [s.name for s in self.sources]
-        if len(set(names)) != len(names):
-            raise DesignError("source names must be unique")
+        for what, items in (
+            ("source", names),
+            ("target source", [s.name for s in self.target_sources]),
+            ("intention", [i.name for i in self.intentions]),
+            ("goal", [g.kind for g in self.goals]),
+        ):
+            if len(set(items)) != len(items):
+                raise DesignError(
+                    f"{what} names must be unique (repeated: "
+                    f"{sorted({x for x in items if items.count(x) > 1})})"
+                )
         if not self.goals:
             raise DesignError("give at least one goal")
         known = set(names)

@@ -105,7 +105,7 @@ def epsilon_constraint(
     warm-starting each run from the previous best; returns the non-dominated front."""
     stop = stop or StopRule(max_evals=20000)
     if epsilons is None:
-        lo, hi = light_power_range(design, scene, patches, op, seed, divisors=divisors)
+        lo, hi = light_power_range(design, scene, patches, op, seed, stop=stop, divisors=divisors)
         epsilons = list(np.linspace(lo, hi, count))
     mop = replace(design, goals=(Goal(POWER), _light_goal(design)))
     solutions, x = [], None

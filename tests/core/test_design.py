@@ -8,6 +8,7 @@ import pytest
 from lightinv_core.design.geometry import rule_names, rule_violations
 from lightinv_core.design.model import (
     CORNERS,
+    Daylight,
     Design,
     DesignError,
     Goal,
@@ -202,3 +203,30 @@ def test_invalid_designs_are_refused_clearly(office):
         problem(office, (Source("s", "roof", "skylight", (0, 0, 1, 1)),))
     with pytest.raises(SceneError, match="no group 'tables'"):
         problem(office, (sky(),), intentions=(Intention("t", group="tables", min=1),))
+
+
+@pytest.mark.parametrize(
+    ("build", "message"),
+    [
+        (lambda: Intention("x", patches=[1.5], min=1), "not a whole number"),
+        (lambda: Intention("x", patches=["3"], min=1), "not a whole number"),
+        (lambda: Intention("x", patches=[True], min=1), "not a whole number"),
+        (lambda: Rule("area", "S1", max=1), "must be a list"),
+        (lambda: Rule("spacing", ("a", "a"), min=1), "named twice"),
+        (lambda: Goal("max_light_power", ("skylights",)), "must be 'luminaire' or 'skylight'"),
+        (lambda: Goal("match", ("skylight",)), "only max_light_power"),
+        (lambda: Daylight(exterior_lux=-1.0), "exterior_lux"),
+        (lambda: Daylight(transmittance=1.5), "transmittance"),
+        (lambda: lum(exitance=10.0), "not both"),
+        (lambda: sky(exitance=10.0), "not a flux or exitance"),
+        (lambda: lum(flux=float("nan")), "finite"),
+        (lambda: lum(flux_range=(0, 1, 2)), "two numbers"),
+        (
+            lambda: Design((sky(), sky("t")), (Goal("max_light_power"), Goal("max_light_power"))),
+            "goal names must be unique",
+        ),
+    ],
+)
+def test_model_values_are_validated(build, message):
+    with pytest.raises(DesignError, match=message):
+        build()
