@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import os
+
 import pytest
 
 from lightinv_core.scene.builtin import builtin_scene
@@ -19,3 +21,15 @@ def cornell_patches():
 def cornell_F(cornell_patches):
     """Form factors of the cornell box with 1,024 rays per patch."""
     return form_factor_matrix(cornell_patches, 1024, seed=1)
+
+
+@pytest.fixture(scope="session", autouse=True)
+def private_operator_cache(tmp_path_factory):
+    """Operators built by the tests go to a temporary cache, never the user's."""
+    old = os.environ.get("LIGHTINV_CACHE_DIR")
+    os.environ["LIGHTINV_CACHE_DIR"] = str(tmp_path_factory.mktemp("operator-cache"))
+    yield
+    if old is None:
+        os.environ.pop("LIGHTINV_CACHE_DIR", None)
+    else:
+        os.environ["LIGHTINV_CACHE_DIR"] = old
