@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # LightInv set-up and the two jobs, for a fresh Debian/Ubuntu machine with Python 3.11+.
 #
-#   ./dev.sh demo   install everything, then run the main job on the built-in demo (office)
+#   ./dev.sh demo   install everything, then open the GUI on the built-in demo project (office);
+#                   without a display, its headless equivalent: optimise the demo project
 #   ./dev.sh test   install everything, then lint and run the whole test suite
 #   ./dev.sh setup  install everything only
 #
@@ -16,7 +17,7 @@ APT_PACKAGES=(
   libxkbcommon-x11-0 libxcb-cursor0 libxcb-icccm4 libxcb-keysyms1 libxcb-image0
   libxcb-randr0 libxcb-render-util0 libxcb-shape0 libxcb-xfixes0 libxcb-xkb1
   libxcb-sync1 libxcb-shm0 libx11-xcb1 libxcursor1 libxrender1 libfontconfig1
-  libdbus-1-3 fonts-dejavu-core
+  libdbus-1-3 fonts-dejavu-core poppler-utils
 )
 PYTHON=${PYTHON:-python3}
 
@@ -62,8 +63,12 @@ case "${1:-}" in
   setup) setup ;;
   demo)
     setup
-    say "simulating the office demo: the 4 x 2 m roof skylight letting in 48,000 lm"
-    exec .venv/bin/lightinv-cli simulate office --emit roof=48000
+    if [ -n "${DISPLAY:-}" ] || [ -n "${WAYLAND_DISPLAY:-}" ]; then
+      say "opening the LightInv window on the office demo project"
+      exec .venv/bin/lightinv resources/projects/office-demo.json
+    fi
+    say "no display: optimising the office demo project headless (lightinv-cli solve)"
+    exec .venv/bin/lightinv-cli solve resources/projects/office-demo.json
     ;;
   test)
     setup

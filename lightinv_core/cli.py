@@ -301,8 +301,13 @@ def cmd_precompute(args) -> int:
 
 def _source_summary(src) -> dict:
     u0, v0, u1, v1 = src.rect
-    out = {"name": src.name, "zone": src.zone, "kind": src.kind,
-           "corners": [min(u0, u1), min(v0, v1), max(u0, u1), max(v0, v1)], "area_m2": src.area}
+    out = {
+        "name": src.name,
+        "zone": src.zone,
+        "kind": src.kind,
+        "corners": [min(u0, u1), min(v0, v1), max(u0, u1), max(v0, v1)],
+        "area_m2": src.area,
+    }
     if src.kind == "skylight":
         out["filter"] = src.filter
     else:
@@ -312,11 +317,23 @@ def _source_summary(src) -> dict:
 
 
 def _solution_summary(sol) -> dict:
-    return {"objectives": dict(sol.objectives), "penalty": sol.penalty,
-            "feasible": sol.feasible, "sources": [_source_summary(s) for s in sol.sources],
-            "violations": [{"name": v.name, "constraint": v.constraint, "amount": v.amount,
-                            "value": v.value, "bound": v.bound, "units": v.units}
-                           for v in sol.violations]}
+    return {
+        "objectives": dict(sol.objectives),
+        "penalty": sol.penalty,
+        "feasible": sol.feasible,
+        "sources": [_source_summary(s) for s in sol.sources],
+        "violations": [
+            {
+                "name": v.name,
+                "constraint": v.constraint,
+                "amount": v.amount,
+                "value": v.value,
+                "bound": v.bound,
+                "units": v.units,
+            }
+            for v in sol.violations
+        ],
+    }
 
 
 def cmd_solve(args) -> int:
@@ -330,17 +347,32 @@ def cmd_solve(args) -> int:
     if args.resolution is not None:
         project = replace(project, scene=replace(project.scene, resolution=args.resolution))
     prepared = prepare(project, progress=_progress_printer("precompute"), warn=_warn)
-    result = solve(project, prepared, seed=args.seed, max_evals=args.max_evals,
-                   time_limit=args.time_limit, progress=_vns_printer())
-    out = {"project": project.name, "status": result.status, "method": project.optimizer.method,
-           "evaluations": result.evaluations, "seconds": result.seconds,
-           "precompute_seconds": result.precompute_seconds, "operator_from_cache":
-           prepared.from_cache, "patches": prepared.patches.n}
+    result = solve(
+        project,
+        prepared,
+        seed=args.seed,
+        max_evals=args.max_evals,
+        time_limit=args.time_limit,
+        progress=_vns_printer(),
+    )
+    out = {
+        "project": project.name,
+        "status": result.status,
+        "method": project.optimizer.method,
+        "evaluations": result.evaluations,
+        "seconds": result.seconds,
+        "precompute_seconds": result.precompute_seconds,
+        "operator_from_cache": prepared.from_cache,
+        "patches": prepared.patches.n,
+    }
     best = result.best
     if best is not None:
         primary = project.design.goals[0].kind
-        out.update(objective=best.objectives.get(primary), objective_kind=primary,
-                   **_solution_summary(best))
+        out.update(
+            objective=best.objectives.get(primary),
+            objective_kind=primary,
+            **_solution_summary(best),
+        )
         if "match" in best.objectives:
             out["error"] = best.objectives["match"]
     if result.pareto is not None:
@@ -355,24 +387,37 @@ def cmd_solve(args) -> int:
 
 
 def _solve_text(out: dict) -> str:
-    lines = [f"{out['project']}: {out['status']} ({out['method']}, {out['evaluations']:,} "
-             f"evaluations in {out['seconds']:.2f} s; operator {out['precompute_seconds']:.2f} s)"]
+    lines = [
+        f"{out['project']}: {out['status']} ({out['method']}, {out['evaluations']:,} "
+        f"evaluations in {out['seconds']:.2f} s; operator {out['precompute_seconds']:.2f} s)"
+    ]
     if out.get("objective") is not None:
-        lines.append(f"{out['objective_kind']}: {out['objective']:.6g}   penalty {out['penalty']:.3g}")
+        lines.append(
+            f"{out['objective_kind']}: {out['objective']:.6g}   penalty {out['penalty']:.3g}"
+        )
     for s in out.get("sources", []):
         c = ", ".join(f"{x:.3f}" for x in s["corners"])
-        extra = (f"filter {s['filter']:.3f}" if s["kind"] == "skylight"
-                 else f"{s['flux_lm']:.0f} lm, {s['electric_w']:.1f} W")
+        extra = (
+            f"filter {s['filter']:.3f}"
+            if s["kind"] == "skylight"
+            else f"{s['flux_lm']:.0f} lm, {s['electric_w']:.1f} W"
+        )
         lines.append(f"  {s['name']:<10} {s['zone']:<10} ({c}) m  {s['area_m2']:.2f} m²  {extra}")
     for v in out.get("violations", []):
-        lines.append(f"  violated: {v['name']} {v['constraint']} by {100 * v['amount']:.1f}% "
-                     f"({v['value']:.4g} vs {v['bound']:.4g} {v['units']})")
+        lines.append(
+            f"  violated: {v['name']} {v['constraint']} by {100 * v['amount']:.1f}% "
+            f"({v['value']:.4g} vs {v['bound']:.4g} {v['units']})"
+        )
     if "pareto" in out:
-        lines.append(f"Pareto front: {len(out['pareto'])} non-dominated of {out['candidates']} runs")
+        lines.append(
+            f"Pareto front: {len(out['pareto'])} non-dominated of {out['candidates']} runs"
+        )
         for s in out["pareto"]:
             o = s["objectives"]
-            lines.append(f"  {o.get('min_electric_power', 0):9.1f} W   "
-                         f"{o.get('max_light_power', 0):12.0f} lm")
+            lines.append(
+                f"  {o.get('min_electric_power', 0):9.1f} W   "
+                f"{o.get('max_light_power', 0):12.0f} lm"
+            )
     if "saved" in out:
         lines.append(f"saved to {out['saved']}")
     return "\n".join(lines)
@@ -387,10 +432,45 @@ def _vns_printer():
     def report(p) -> None:
         if p.elapsed - last[0] >= 0.2:
             last[0] = p.elapsed
-            print(f"\rlevel n/{p.level}: {p.evaluations:,} evaluations, best {p.best_goal:.6g}, "
-                  f"penalty {p.best_penalty:.3g}   ", end="", file=sys.stderr)
+            print(
+                f"\rlevel n/{p.level}: {p.evaluations:,} evaluations, best {p.best_goal:.6g}, "
+                f"penalty {p.best_penalty:.3g}   ",
+                end="",
+                file=sys.stderr,
+            )
 
     return report
+
+
+def cmd_report(args) -> int:
+    """Write a PDF report of a project's solution."""
+    from lightinv_core.io.project import load_project
+    from lightinv_core.optimize.run import prepare
+    from lightinv_core.report import write_report
+
+    project = load_project(args.project)
+    prepared = prepare(project, progress=_progress_printer("precompute"), warn=_warn)
+    info = write_report(
+        project, prepared, args.output, png_dir=args.png_dir, progress=_progress_printer("report")
+    )
+    out = {
+        "project": project.name,
+        "report": str(info.path),
+        "pages": list(info.pages),
+        "png_files": [str(p) for p in info.png_files],
+        "solution": info.solution,
+        "feasible": info.feasible,
+        "seconds": info.seconds,
+        "operator_from_cache": prepared.from_cache,
+    }
+    state = "feasible" if info.feasible else "infeasible"
+    text = (
+        f"{info.path}: {len(info.pages)} pages ({info.solution}, {state}) in {info.seconds:.1f} s"
+    )
+    if info.png_files:
+        text += f"\n{len(info.png_files)} PNG pages in {args.png_dir}"
+    _out(args, out, text)
+    return 0
 
 
 class _Parser(argparse.ArgumentParser):
@@ -456,6 +536,10 @@ def build_parser() -> argparse.ArgumentParser:
     sol.add_argument("--time-limit", type=_positive, help="seconds of optimisation at most")
     sol.add_argument("--resolution", type=_positive, help="override the scene's patch size (m)")
     sol.add_argument("-o", "--output", help="save the project with its results to this file")
+    rep = add("report", cmd_report, "write a PDF report of a project's solution")
+    rep.add_argument("project", help="project file holding results (lightinv-cli solve ... -o)")
+    rep.add_argument("-o", "--output", required=True, help="PDF file to write")
+    rep.add_argument("--png-dir", help="also save every page as a PNG in this folder")
     pre = add("precompute", cmd_precompute, "build or load the radiosity operator of a scene")
     scene_args(pre)
     for p in (sim, pre):

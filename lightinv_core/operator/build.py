@@ -23,7 +23,9 @@ from lightinv_core.operator.zone_basis import exact_bounces, zone_basis
 from lightinv_core.scene.patches import Patches
 from lightinv_core.transport.formfactors import DEFAULT_RAYS, form_factor_matrix
 
-OPERATOR_VERSION = 1
+OPERATOR_VERSION = 2
+"""Bump whenever the operator a given (geometry, settings) produces changes, so older
+cache files are seen as stale and rebuilt (2: exact-k clustering)."""
 DEFAULT_TOL = 0.01
 ERROR_SAMPLES = 6
 START_DIVISOR = 64

@@ -132,15 +132,22 @@ class RadiosityOperator:
     def total_power(self, idx: np.ndarray, values: np.ndarray) -> np.ndarray | float:
         """Total reflected light power sum_i C_i A_i (lm), O(p) for p emitting patches."""
         if self._power is None:
-            self._power = (self.area * self.rho) @ self.Phi.astype(np.float64)
+            w = self.area * self.rho
+            self._power = sum(
+                w[a:b] @ self.Phi[a:b].astype(np.float64) for a, b in _row_blocks(self.n)
+            )
         return self._power[self.zone_columns(idx)] @ np.asarray(values, dtype=np.float64)
 
     @property
     def gram(self) -> np.ndarray:
         """Gamma = Phi^T R² Phi (nz x nz, float64): ||C||² = e^T Gamma e for zone emission e."""
         if self._gram is None:
-            P = self.Phi.astype(np.float64)
-            self._gram = P.T @ (self.rho[:, None] ** 2 * P)
+            # Row blocks keep the float64 scratch small (not a float64 copy of Phi).
+            G = np.zeros((self.Phi.shape[1],) * 2)
+            for a, b in _row_blocks(self.n):
+                P = self.Phi[a:b].astype(np.float64)
+                G += P.T @ (self.rho[a:b, None] ** 2 * P)
+            self._gram = G
         return self._gram
 
     @property
@@ -167,6 +174,11 @@ class RadiosityOperator:
     def nbytes(self) -> int:
         """Memory held by the operator's arrays, bytes."""
         return int(self.Phi.nbytes + self.lowrank.Y.nbytes)
+
+
+def _row_blocks(n: int, size: int = 4096):
+    """(start, stop) pairs covering range(n) in blocks of ``size`` rows."""
+    return [(a, min(n, a + size)) for a in range(0, n, size)]
 
 
 @dataclass(eq=False)

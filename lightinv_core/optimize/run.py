@@ -46,33 +46,53 @@ class RunResult:
     history: list
 
 
-def prepare(project: Project, progress: Callable[[float], None] | None = None,
-            cancel: Callable[[], bool] | None = None,
-            warn: Callable[[str], None] | None = None) -> Prepared:
+def prepare(
+    project: Project,
+    progress: Callable[[float], None] | None = None,
+    cancel: Callable[[], bool] | None = None,
+    warn: Callable[[str], None] | None = None,
+) -> Prepared:
     """Load the scene and build (or load from the cache) its radiosity operator."""
     t0 = time.perf_counter()
     base = project.path.parent if project.path is not None else None
     scene = project.scene.load(base)
     patches = mesh_patches(scene)
     s = project.operator
-    got = get_operator(patches, rank=s.rank, tol=s.tol, rays=s.rays, seed=s.seed,
-                       progress=progress, cancel=cancel, warn=warn)
+    got = get_operator(
+        patches,
+        rank=s.rank,
+        tol=s.tol,
+        rays=s.rays,
+        seed=s.seed,
+        progress=progress,
+        cancel=cancel,
+        warn=warn,
+    )
     return Prepared(scene, patches, got.operator, got.from_cache, time.perf_counter() - t0)
 
 
-def stop_rule(project: Project, max_evals: int | None = None,
-              time_limit: float | None = None) -> StopRule:
+def stop_rule(
+    project: Project, max_evals: int | None = None, time_limit: float | None = None
+) -> StopRule:
     """The project's stopping rule, with command-line overrides."""
     o = project.optimizer
-    return StopRule(max_evals=max_evals if max_evals is not None else o.max_evals,
-                    time_limit=time_limit if time_limit is not None else o.time_limit,
-                    target=o.target, stall=o.stall)
+    return StopRule(
+        max_evals=max_evals if max_evals is not None else o.max_evals,
+        time_limit=time_limit if time_limit is not None else o.time_limit,
+        target=o.target,
+        stall=o.stall,
+    )
 
 
-def solve(project: Project, prepared: Prepared, seed: int | None = None,
-          max_evals: int | None = None, time_limit: float | None = None,
-          progress: Callable[[Progress], None] | None = None,
-          cancel: Callable[[], bool] | None = None) -> RunResult:
+def solve(
+    project: Project,
+    prepared: Prepared,
+    seed: int | None = None,
+    max_evals: int | None = None,
+    time_limit: float | None = None,
+    progress: Callable[[Progress], None] | None = None,
+    cancel: Callable[[], bool] | None = None,
+) -> RunResult:
     """Run the project's optimizer (vns, multilevel, epsilon or two_step)."""
     o = project.optimizer
     seed = o.seed if seed is None else seed
@@ -80,28 +100,62 @@ def solve(project: Project, prepared: Prepared, seed: int | None = None,
     args = (project.design, prepared.scene, prepared.patches, prepared.operator)
     t0 = time.perf_counter()
     if o.method in ("epsilon", "two_step"):
-        front = (epsilon_constraint(*args, epsilons=list(o.epsilons) if o.epsilons else None,
-                                    count=o.epsilon_count, seed=seed, stop=stop,
-                                    divisors=tuple(o.divisors), cancel=cancel)
-                 if o.method == "epsilon" else
-                 two_step(*args, runs=o.runs, seed=seed, stop=stop, divisors=tuple(o.divisors),
-                          cancel=cancel))
+        front = (
+            epsilon_constraint(
+                *args,
+                epsilons=list(o.epsilons) if o.epsilons else None,
+                count=o.epsilon_count,
+                seed=seed,
+                stop=stop,
+                divisors=tuple(o.divisors),
+                cancel=cancel,
+            )
+            if o.method == "epsilon"
+            else two_step(
+                *args, runs=o.runs, seed=seed, stop=stop, divisors=tuple(o.divisors), cancel=cancel
+            )
+        )
         cancelled = cancel is not None and cancel()
         evals = sum(int(s.info.get("evaluations", 0)) for s in front.candidates)
         status = "cancelled" if cancelled else ("feasible" if front.solutions else "infeasible")
-        return RunResult(status, front.solutions[0] if front.solutions else None, front, evals,
-                         time.perf_counter() - t0, prepared.seconds, [])
+        return RunResult(
+            status,
+            front.solutions[0] if front.solutions else None,
+            front,
+            evals,
+            time.perf_counter() - t0,
+            prepared.seconds,
+            [],
+        )
     problem = DesignProblem(*args)
     if o.method == "multilevel":
         level_stop = StopRule(max_evals=o.level_max_evals, target=o.level_target, stall=o.stall)
-        res, _ = multilevel(problem, tuple(o.divisors), seed=seed, stop=stop,
-                            level_stop=level_stop, trials=o.trials, progress=progress,
-                            cancel=cancel)
+        res, _ = multilevel(
+            problem,
+            tuple(o.divisors),
+            seed=seed,
+            stop=stop,
+            level_stop=level_stop,
+            trials=o.trials,
+            progress=progress,
+            cancel=cancel,
+        )
     else:
         res = vns(problem, seed=seed, stop=stop, trials=o.trials, progress=progress, cancel=cancel)
     seconds = time.perf_counter() - t0
-    best = problem.solution(res.x, {"seed": seed, "evaluations": res.evaluations,
-                                    "seconds": seconds, "status": res.status})
+    # The convergence history travels with the solution (project file, report):
+    # rows of (evaluations, best f + P, best P, best primary goal).
+    history = [[int(e), float(v), float(p), float(g)] for e, v, p, g in res.history]
+    best = problem.solution(
+        res.x,
+        {
+            "seed": seed,
+            "evaluations": res.evaluations,
+            "seconds": seconds,
+            "status": res.status,
+            "history": history,
+        },
+    )
     if res.status == "cancelled":
         status = "cancelled"
     else:

@@ -1,0 +1,1 @@
+"""LightInv desktop application: a thin PySide6 + pyvista shell over ``lightinv_core``."""

@@ -1,0 +1,60 @@
+"""``lightinv`` / ``python -m app``: start the desktop application.
+
+lightinv                      the built-in demo project (office)
+lightinv PROJECT.json         a project file
+lightinv --scene patio        a new project on a built-in scene
+"""
+
+from __future__ import annotations
+
+import argparse
+import sys
+from pathlib import Path
+
+DEMO = Path(__file__).resolve().parent.parent / "resources" / "projects" / "office-demo.json"
+
+
+def parse_args(argv: list[str]) -> argparse.Namespace:
+    ap = argparse.ArgumentParser(prog="lightinv", description="LightInv inverse lighting design")
+    ap.add_argument("project", nargs="?", help="project file to open (default: the office demo)")
+    ap.add_argument("--scene", help="start a new project on this built-in scene")
+    ap.add_argument("--resolution", type=float, help="patch size (m) for --scene")
+    ap.add_argument(
+        "--screenshot",
+        metavar="PNG",
+        help="open, wait for the operator, save a window screenshot and quit",
+    )
+    return ap.parse_args(argv)
+
+
+def main(argv: list[str] | None = None) -> int:
+    args = parse_args(sys.argv[1:] if argv is None else argv)
+    from PySide6 import QtCore, QtWidgets
+
+    from app.main_window import MainWindow
+
+    app = QtWidgets.QApplication.instance() or QtWidgets.QApplication(sys.argv[:1])
+    app.setApplicationName("LightInv")
+    window = MainWindow()
+    if args.scene:
+        ok = window.new_project(args.scene, args.resolution)
+    else:
+        ok = window.open_path(args.project or DEMO)
+    if not ok:
+        return 2
+    window.show()
+    if args.screenshot:
+
+        def shoot() -> None:
+            if window.worker is not None:
+                QtCore.QTimer.singleShot(200, shoot)
+                return
+            window.grab().save(args.screenshot)
+            window.close()
+
+        QtCore.QTimer.singleShot(500, shoot)
+    return app.exec()
+
+
+if __name__ == "__main__":
+    sys.exit(main())

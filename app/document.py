@@ -1,0 +1,225 @@
+"""The open project as the GUI sees it: a Qt object holding the core's data, with signals.
+
+Widgets never keep state of their own: they read the document and call its
+setters; the document emits a signal and every view refreshes (napari's model/view
+split). All heavy numbers come from ``lightinv_core``; the only computation here is
+``lighting()``, one small GEMM through the operator's zone basis.
+"""
+
+from __future__ import annotations
+
+import time
+from dataclasses import replace
+from pathlib import Path
+
+import numpy as np
+from PySide6 import QtCore
+
+from lightinv_core.design.model import Design, Goal, Intention, Source
+from lightinv_core.design.problem import DesignProblem
+from lightinv_core.io.project import (
+    OperatorSettings,
+    Project,
+    SceneSpec,
+    load_project,
+    save_project,
+)
+from lightinv_core.operator.radiosity import RadiosityOperator
+from lightinv_core.scene.model import Scene
+from lightinv_core.scene.patches import Patches, mesh_patches
+from lightinv_core.sources.zones import zone_grid
+
+
+def blank_project(scene_name: str, resolution: float | None = None) -> Project:
+    """A new project on a built-in scene: no sources yet, goal least electric power."""
+    return Project(
+        name=f"New {scene_name} project",
+        scene=SceneSpec(builtin=scene_name, resolution=resolution),
+        design=Design((), (Goal("min_electric_power"),)),
+    )
+
+
+class Document(QtCore.QObject):
+    """The project, its scene, patches and operator, the selection and the lighting."""
+
+    sceneChanged = QtCore.Signal()
+    operatorChanged = QtCore.Signal()
+    designChanged = QtCore.Signal()
+    selectionChanged = QtCore.Signal()
+    lightingChanged = QtCore.Signal()
+    pathChanged = QtCore.Signal()
+
+    def __init__(self, parent: QtCore.QObject | None = None):
+        super().__init__(parent)
+        self.project: Project | None = None
+        self.scene: Scene | None = None
+        self.patches: Patches | None = None
+        self.operator: RadiosityOperator | None = None
+        self.selection = np.zeros(0, np.int64)
+        self.current_source: str | None = None
+        self.path: Path | None = None
+        self.dirty = False
+        self._problem: DesignProblem | None = None
+        self._lux: np.ndarray | None = None
+        self.last_eval_ms = float("nan")
+
+    # -- loading ------------------------------------------------------------------------------
+    def set_project(self, project: Project, path: Path | None = None) -> None:
+        """Make ``project`` the open one (loads its scene and meshes it)."""
+        base = path.parent if path is not None else None
+        scene = project.scene.load(base)
+        patches = mesh_patches(scene)
+        self.project, self.scene, self.patches = project, scene, patches
+        self.operator, self._problem, self._lux = None, None, None
+        self.selection = np.zeros(0, np.int64)
+        self.current_source = project.design.sources[0].name if project.design.sources else None
+        self.path, self.dirty = path, False
+        self.sceneChanged.emit()
+        self.designChanged.emit()
+        self.selectionChanged.emit()
+        self.pathChanged.emit()
+
+    def open(self, path: str | Path) -> None:
+        """Open a project file (ProjectError on a bad file; nothing changes then)."""
+        path = Path(path)
+        self.set_project(load_project(path), path)
+
+    def new_from_scene(self, name: str, resolution: float | None = None) -> None:
+        """A new, unsaved project on a built-in scene."""
+        self.set_project(blank_project(name, resolution))
+
+    def save(self, path: str | Path | None = None) -> Path:
+        """Save atomically to ``path`` (default: where it came from)."""
+        path = Path(path) if path is not None else self.path
+        if path is None:
+            raise ValueError("no file name yet: use Save As")
+        save_project(self.project, path)
+        self.path, self.dirty = path, False
+        self.pathChanged.emit()
+        return path
+
+    def set_operator(self, operator: RadiosityOperator) -> None:
+        """Attach a built (or cached) operator; lighting becomes available."""
+        self.operator = operator
+        self._problem = None
+        self.operatorChanged.emit()
+        self._relight()
+
+    @property
+    def operator_settings(self) -> OperatorSettings:
+        """How the operator is built for this project."""
+        return self.project.operator
+
+    # -- design edits ---------------------------------------------------------------------------
+    @property
+    def design(self) -> Design:
+        """The project's design."""
+        return self.project.design
+
+    def _set_design(self, design: Design) -> None:
+        self.project = replace(self.project, design=design)
+        self._problem = None
+        self.dirty = True
+        self.designChanged.emit()
+        self._relight()
+
+    def zone_kind(self, zone: str) -> str:
+        """ "skylight" or "luminaire" for an emitter zone of the scene."""
+        return self.scene.zone(zone).kind
+
+    def zone_size(self, zone: str) -> tuple[float, float]:
+        """(width, height) in metres of an emitter zone."""
+        return zone_grid(self.patches, zone).size
+
+    def add_source(self, zone: str, name: str | None = None) -> Source:
+        """A new source centred in ``zone``: a 1 x 1 m (or smaller) rectangle with a
+        typical flux (3,000 lm luminaire) or filter 1 (skylight)."""
+        kind = self.zone_kind(zone)
+        w, h = self.zone_size(zone)
+        sw, sh = min(1.0, w), min(1.0, h)
+        rect = ((w - sw) / 2, (h - sh) / 2, (w + sw) / 2, (h + sh) / 2)
+        taken = {s.name for s in self.design.sources}
+        if name is None:
+            stem = "L" if kind == "luminaire" else "S"
+            name = next(f"{stem}{i}" for i in range(1, 10_000) if f"{stem}{i}" not in taken)
+        free = ("u0", "v0", "u1", "v1")
+        src = (
+            Source(name, zone, kind, rect, free=free, flux=3000.0)
+            if kind == "luminaire"
+            else Source(name, zone, kind, rect, free=free)
+        )
+        self.current_source = name
+        self._set_design(replace(self.design, sources=(*self.design.sources, src)))
+        return src
+
+    def update_source(self, name: str, **fields) -> None:
+        """Change fields of a source (rect, flux, filter, ...); validated by the model."""
+        new = tuple(replace(s, **fields) if s.name == name else s for s in self.design.sources)
+        self._set_design(replace(self.design, sources=new))
+
+    def move_source(self, name: str, du: float, dv: float) -> None:
+        """Shift a source by (du, dv) metres, kept inside its zone."""
+        s = self.design.source(name)
+        w, h = self.zone_size(s.zone)
+        (a, b), (c, d) = s.u_range, s.v_range
+        du = float(np.clip(du, -a, w - b))
+        dv = float(np.clip(dv, -c, h - d))
+        self.update_source(name, rect=(a + du, c + dv, b + du, d + dv))
+
+    def remove_source(self, name: str) -> None:
+        """Delete a source and the rules that name it."""
+        d = self.design
+        rules = tuple(r for r in d.rules if name not in r.sources)
+        sources = tuple(s for s in d.sources if s.name != name)
+        if self.current_source == name:
+            self.current_source = sources[0].name if sources else None
+        self._set_design(replace(d, sources=sources, rules=rules))
+
+    def add_intention(self, intention: Intention) -> None:
+        """Append a lighting intention."""
+        self._set_design(replace(self.design, intentions=(*self.design.intentions, intention)))
+
+    def remove_intention(self, name: str) -> None:
+        """Delete a lighting intention."""
+        its = tuple(i for i in self.design.intentions if i.name != name)
+        self._set_design(replace(self.design, intentions=its))
+
+    def set_selection(self, patch_ids) -> None:
+        """Replace the picked patches."""
+        self.selection = np.unique(np.asarray(patch_ids, dtype=np.int64))
+        self.selectionChanged.emit()
+
+    def set_current_source(self, name: str | None) -> None:
+        """Which source the source panel edits and the viewport drags."""
+        self.current_source = name
+        self.designChanged.emit()
+
+    # -- lighting -----------------------------------------------------------------------------
+    def problem(self) -> DesignProblem | None:
+        """The design bound to the operator (None before the operator exists)."""
+        if self.operator is None:
+            return None
+        if self._problem is None:
+            self._problem = DesignProblem(self.design, self.scene, self.patches, self.operator)
+        return self._problem
+
+    def lighting(self) -> np.ndarray | None:
+        """Illuminance (lux) of every patch for the current sources, or None."""
+        return self._lux
+
+    def _relight(self) -> None:
+        problem = self.problem()
+        if problem is None:
+            return
+        t0 = time.perf_counter()
+        if self.design.sources:
+            # The design as written, with the tied rules (mirror, centred) applied.
+            rect, flux, filt = problem.vars.decode(problem.vars.initial()[None])
+            V = problem.emission.matrix(rect, flux, filt)
+            cols = np.flatnonzero(V[:, 0])
+            lux = self.operator.Phi[:, cols] @ V[cols, 0]
+        else:
+            lux = np.zeros(self.patches.n, np.float32)
+        self._lux = lux
+        self.last_eval_ms = 1e3 * (time.perf_counter() - t0)
+        self.lightingChanged.emit()

@@ -1,0 +1,248 @@
+"""Side panels: the scene/design tree, the source editor and the intention dialog.
+
+Each widget reads the document when it changes (signals blocked while it fills
+its fields) and writes back only through the document's setters.
+"""
+
+from __future__ import annotations
+
+from PySide6 import QtCore, QtWidgets
+
+from app.document import Document
+from lightinv_core.design.model import DesignError, Intention
+from lightinv_core.errors import LightInvError
+
+
+class DesignTree(QtWidgets.QTreeWidget):
+    """Surfaces (groups), emitter zones, sources, lighting intentions and goals."""
+
+    groupActivated = QtCore.Signal(str)
+
+    def __init__(self, doc: Document, parent: QtWidgets.QWidget | None = None):
+        super().__init__(parent)
+        self.doc = doc
+        self.setHeaderLabels(["item", "details"])
+        self.setColumnWidth(0, 170)
+        for sig in (doc.sceneChanged, doc.designChanged, doc.operatorChanged):
+            sig.connect(self.refresh)
+        self.itemClicked.connect(self._clicked)
+        self.itemDoubleClicked.connect(self._double_clicked)
+
+    def refresh(self) -> None:
+        self.clear()
+        d, p = self.doc, self.doc.patches
+        if p is None:
+            return
+        groups = QtWidgets.QTreeWidgetItem(self, ["Surfaces", f"{p.n:,} patches"])
+        for k, g in enumerate(p.group_names):
+            n = int((p.group_id == k).sum())
+            QtWidgets.QTreeWidgetItem(groups, [g, f"{n:,} patches"]).setData(0, 256, ("group", g))
+        zones = QtWidgets.QTreeWidgetItem(self, ["Emitter zones", str(len(d.scene.zones))])
+        for z in d.scene.zones:
+            w, h = d.zone_size(z.name)
+            QtWidgets.QTreeWidgetItem(zones, [z.name, f"{z.kind}, {w:.2f} x {h:.2f} m"]).setData(
+                0, 256, ("zone", z.name)
+            )
+        srcs = QtWidgets.QTreeWidgetItem(self, ["Sources", str(len(d.design.sources))])
+        for s in d.design.sources:
+            item = QtWidgets.QTreeWidgetItem(
+                srcs, [s.name, f"{s.kind} in {s.zone}, {s.area:.2f} m²"]
+            )
+            item.setData(0, 256, ("source", s.name))
+            if s.name == d.current_source:
+                item.setSelected(True)
+        its = QtWidgets.QTreeWidgetItem(
+            self, ["Lighting intentions", str(len(d.design.intentions))]
+        )
+        for it in d.design.intentions:
+            bounds = ", ".join(
+                f"{k} {getattr(it, k):g}"
+                for k in ("min", "max", "average", "uniformity")
+                if getattr(it, k) is not None
+            )
+            target = it.group if it.group is not None else f"{len(it.patches)} picked patches"
+            QtWidgets.QTreeWidgetItem(its, [it.name, f"{target}: {bounds} {it.quantity}"]).setData(
+                0, 256, ("intention", it.name)
+            )
+        goals = QtWidgets.QTreeWidgetItem(self, ["Goals", ""])
+        for g in d.design.goals:
+            QtWidgets.QTreeWidgetItem(goals, [g.kind, ", ".join(g.kinds)])
+        self.expandAll()
+
+    def _clicked(self, item, _col) -> None:
+        data = item.data(0, 256)
+        if data and data[0] == "source":
+            self.doc.set_current_source(data[1])
+
+    def _double_clicked(self, item, _col) -> None:
+        data = item.data(0, 256)
+        if data and data[0] == "group":
+            self.groupActivated.emit(data[1])
+
+
+class SourcePanel(QtWidgets.QGroupBox):
+    """Edits the current source numerically; adding and removing sources."""
+
+    def __init__(self, doc: Document, parent: QtWidgets.QWidget | None = None):
+        super().__init__("Source", parent)
+        self.doc = doc
+        form = QtWidgets.QFormLayout(self)
+        self.zone = QtWidgets.QComboBox()
+        self.add_button = QtWidgets.QPushButton("Add source in zone")
+        self.remove_button = QtWidgets.QPushButton("Remove source")
+        row = QtWidgets.QHBoxLayout()
+        row.addWidget(self.zone)
+        row.addWidget(self.add_button)
+        form.addRow("Zone", row)
+        self.name = QtWidgets.QLabel("-")
+        form.addRow("Current", self.name)
+        self.corners = []
+        for label in ("u0", "v0", "u1", "v1"):
+            box = QtWidgets.QDoubleSpinBox(decimals=3, singleStep=0.05, suffix=" m")
+            box.setRange(0.0, 1000.0)
+            box.setKeyboardTracking(False)
+            box.valueChanged.connect(self._rect_edited)
+            self.corners.append(box)
+            form.addRow(label, box)
+        self.strength = QtWidgets.QDoubleSpinBox(decimals=3, singleStep=100.0)
+        self.strength.setRange(0.0, 1e7)
+        self.strength.setKeyboardTracking(False)
+        self.strength.valueChanged.connect(self._strength_edited)
+        self.strength_label = QtWidgets.QLabel("flux")
+        form.addRow(self.strength_label, self.strength)
+        form.addRow(self.remove_button)
+        self.add_button.clicked.connect(self._add)
+        self.remove_button.clicked.connect(self._remove)
+        doc.sceneChanged.connect(self._fill_zones)
+        doc.designChanged.connect(self.refresh)
+
+    def _fill_zones(self) -> None:
+        self.zone.clear()
+        for z in self.doc.scene.zones:
+            self.zone.addItem(f"{z.name} ({z.kind})", z.name)
+
+    def refresh(self) -> None:
+        name = self.doc.current_source
+        boxes = [*self.corners, self.strength]
+        for b in boxes:
+            b.blockSignals(True)
+        try:
+            if name is None or name not in {s.name for s in self.doc.design.sources}:
+                self.name.setText("no source: add one in a zone")
+                for b in boxes:
+                    b.setEnabled(False)
+                return
+            s = self.doc.design.source(name)
+            self.name.setText(f"{s.name} ({s.kind} in {s.zone})")
+            w, h = self.doc.zone_size(s.zone)
+            for box, value, top in zip(self.corners, s.rect, (w, h, w, h), strict=True):
+                box.setEnabled(True)
+                box.setMaximum(top)
+                box.setValue(value)
+            self.strength.setEnabled(True)
+            if s.kind == "skylight":
+                self.strength_label.setText("filter (0-1)")
+                self.strength.setRange(0.0, 1.0)
+                self.strength.setSingleStep(0.05)
+                self.strength.setSuffix("")
+                self.strength.setValue(s.filter)
+            elif s.flux is not None:
+                self.strength_label.setText("flux")
+                self.strength.setRange(0.0, 1e7)
+                self.strength.setSingleStep(100.0)
+                self.strength.setSuffix(" lm")
+                self.strength.setValue(s.flux)
+            else:
+                self.strength_label.setText("exitance")
+                self.strength.setRange(0.0, 1e7)
+                self.strength.setSuffix(" lm/m²")
+                self.strength.setValue(s.exitance)
+        finally:
+            for b in boxes:
+                b.blockSignals(False)
+
+    def _apply(self, **fields) -> None:
+        try:
+            self.doc.update_source(self.doc.current_source, **fields)
+        except LightInvError as exc:
+            QtWidgets.QMessageBox.warning(self, "LightInv", str(exc))
+            self.refresh()
+
+    def _rect_edited(self) -> None:
+        self._apply(rect=tuple(b.value() for b in self.corners))
+
+    def _strength_edited(self) -> None:
+        s = self.doc.design.source(self.doc.current_source)
+        key = "filter" if s.kind == "skylight" else ("flux" if s.flux is not None else "exitance")
+        self._apply(**{key: self.strength.value()})
+
+    def _add(self) -> None:
+        zone = self.zone.currentData()
+        if zone is not None:
+            self.doc.add_source(zone)
+
+    def _remove(self) -> None:
+        if self.doc.current_source is not None:
+            self.doc.remove_source(self.doc.current_source)
+
+
+class IntentionDialog(QtWidgets.QDialog):
+    """Name, quantity and bounds of a new lighting intention on a group or the selection."""
+
+    def __init__(self, target: str, parent: QtWidgets.QWidget | None = None):
+        super().__init__(parent)
+        self.setWindowTitle(f"Lighting intention on {target}")
+        form = QtWidgets.QFormLayout(self)
+        self.name = QtWidgets.QLineEdit(target)
+        form.addRow("Name", self.name)
+        self.quantity = QtWidgets.QComboBox()
+        self.quantity.addItem("illuminance (lux)", "lux")
+        self.quantity.addItem("reflected exitance C (lm/m²)", "C")
+        form.addRow("Quantity", self.quantity)
+        self.fields = {}
+        for key, label in (
+            ("min", "Minimum"),
+            ("max", "Maximum"),
+            ("average", "Average at least"),
+            ("uniformity", "Uniformity U0 at least"),
+        ):
+            check = QtWidgets.QCheckBox()
+            box = QtWidgets.QDoubleSpinBox(decimals=2 if key == "uniformity" else 1)
+            box.setRange(0.0, 1.0 if key == "uniformity" else 1e6)
+            box.setValue({"min": 300.0, "max": 1000.0, "average": 500.0, "uniformity": 0.6}[key])
+            box.setEnabled(False)
+            check.toggled.connect(box.setEnabled)
+            row = QtWidgets.QHBoxLayout()
+            row.addWidget(check)
+            row.addWidget(box)
+            form.addRow(label, row)
+            self.fields[key] = (check, box)
+        self.fields["average"][0].setChecked(True)
+        self.fields["uniformity"][0].setChecked(True)
+        buttons = QtWidgets.QDialogButtonBox(
+            QtWidgets.QDialogButtonBox.Ok | QtWidgets.QDialogButtonBox.Cancel
+        )
+        buttons.accepted.connect(self.accept)
+        buttons.rejected.connect(self.reject)
+        form.addRow(buttons)
+
+    def set_values(self, **values) -> None:
+        """Pre-fill bounds (tests, scripted use): key=None unticks a bound."""
+        for key, value in values.items():
+            check, box = self.fields[key]
+            check.setChecked(value is not None)
+            if value is not None:
+                box.setValue(value)
+
+    def intention(self, group: str | None = None, patches=None) -> Intention:
+        """The intention described (DesignError if inconsistent, e.g. min above max)."""
+        bounds = {k: box.value() for k, (check, box) in self.fields.items() if check.isChecked()}
+        if not bounds:
+            raise DesignError("tick at least one bound")
+        return Intention(
+            self.name.text().strip() or "intention",
+            group=group,
+            patches=None if patches is None else tuple(int(i) for i in patches),
+            quantity=self.quantity.currentData(),
+            **bounds,
+        )

@@ -1,0 +1,316 @@
+"""The 3D viewport: patches coloured by lighting, zone and source outlines, picking, dragging.
+
+One pyvista ``QtInteractor``. The scene mesh is built once per scene; a lighting
+change only rewrites ``mesh.cell_data`` in place and re-renders (no new actors).
+VTK cells are triangles; ``tri_patch`` maps them to patch ids, in this one place.
+Rooms face inwards, so back-face culling lets the camera look in from outside
+(the ceiling seen from above is its back and disappears).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pyvista as pv
+import vtk
+from PySide6 import QtCore, QtWidgets
+from pyvistaqt import QtInteractor
+
+from lightinv_core.scene.patches import Patches
+from lightinv_core.sources.zones import zone_grid
+
+CAMERAS = {
+    "iso": ((1.0, -1.3, 1.2), (0, 0, 1)),
+    "top": ((0.0, 0.0, 1.0), (0, 1, 0)),
+    "front": ((0.0, -1.0, 0.25), (0, 0, 1)),
+}
+OUTLINE_LIFT = 0.01  # m: outlines float 1 cm off their surface (no z-fighting)
+
+
+class ZoneFrame:
+    """An emitter zone's origin, unit u/v axes and size, for 2D <-> 3D conversions."""
+
+    def __init__(self, patches: Patches, name: str):
+        g = zone_grid(patches, name)
+        first = g.patch[0, 0]
+        self.name = name
+        self.origin = patches.origin[first]
+        self.u = patches.edge1[first] / np.linalg.norm(patches.edge1[first])
+        self.v = patches.edge2[first] / np.linalg.norm(patches.edge2[first])
+        self.normal = patches.normal[first]
+        self.size = g.size
+
+    def to_world(self, u: float, v: float) -> np.ndarray:
+        """3D point of zone coordinates (m), lifted off the surface."""
+        return self.origin + u * self.u + v * self.v + OUTLINE_LIFT * self.normal
+
+    def from_ray(self, p0: np.ndarray, p1: np.ndarray) -> tuple[float, float] | None:
+        """Zone coordinates where the ray p0 -> p1 meets the zone's plane (None if parallel)."""
+        d = p1 - p0
+        den = float(np.dot(d, self.normal))
+        if abs(den) < 1e-12:
+            return None
+        t = float(np.dot(self.origin - p0, self.normal)) / den
+        q = p0 + t * d - self.origin
+        return float(np.dot(q, self.u)), float(np.dot(q, self.v))
+
+    def rectangle(self, u0: float, v0: float, u1: float, v1: float) -> np.ndarray:
+        """Closed polyline (5, 3) of a rectangle in zone coordinates."""
+        return np.array(
+            [self.to_world(a, b) for a, b in ((u0, v0), (u1, v0), (u1, v1), (u0, v1), (u0, v0))]
+        )
+
+
+def _polylines(loops: list[np.ndarray]) -> pv.PolyData:
+    pts = np.concatenate(loops)
+    lines, start = [], 0
+    for loop in loops:
+        lines += [len(loop), *range(start, start + len(loop))]
+        start += len(loop)
+    return pv.PolyData(pts, lines=np.array(lines))
+
+
+class Viewport(QtWidgets.QWidget):
+    """The lighting view of one scene; emits picks and drags, holds no design state."""
+
+    picked = QtCore.Signal(object, bool)  # patch ids (np.ndarray), add to selection
+    sourceDragged = QtCore.Signal(float, float)  # du, dv in metres
+
+    def __init__(self, parent: QtWidgets.QWidget | None = None):
+        super().__init__(parent)
+        layout = QtWidgets.QVBoxLayout(self)
+        layout.setContentsMargins(0, 0, 0, 0)
+        self.plotter = QtInteractor(self)
+        layout.addWidget(self.plotter.interactor)
+        self.plotter.set_background("white")
+        self.mesh: pv.PolyData | None = None
+        self.tri_patch: np.ndarray | None = None
+        self.frames: dict[str, ZoneFrame] = {}
+        self.cmap = "inferno"
+        self.clim: tuple[float, float] | None = None  # None: automatic
+        self.units = "lux"
+        self.mode = "navigate"  # navigate | select | move
+        self.drag_zone: str | None = None
+        self._press: QtCore.QPoint | None = None
+        self._last_uv: tuple[float, float] | None = None
+        self.plotter.interactor.installEventFilter(self)
+
+    # -- scene ----------------------------------------------------------------------------
+    def set_scene(self, patches: Patches, zones: list[str]) -> None:
+        """Build the mesh of ``patches`` (replacing any previous scene)."""
+        vertices, faces, tri_patch = patches.triangle_mesh()
+        cells = np.hstack([np.full((len(faces), 1), 3), faces]).ravel()
+        self.mesh = pv.PolyData(vertices.astype(float), cells)
+        self.mesh.cell_data["value"] = np.zeros(len(faces), np.float32)
+        self.tri_patch = tri_patch
+        self.frames = {z: ZoneFrame(patches, z) for z in zones}
+        self.plotter.clear()
+        self.plotter.add_mesh(
+            self.mesh,
+            name="scene",
+            scalars="value",
+            cmap=self.cmap,
+            show_scalar_bar=True,
+            lighting=False,
+            culling="back",
+            scalar_bar_args={
+                "title": self.units,
+                "vertical": True,
+                "position_x": 0.9,
+                "position_y": 0.15,
+                "width": 0.06,
+                "height": 0.7,
+                "color": "black",
+                "fmt": "%.0f",
+            },
+        )
+        self.set_zone_outlines()
+        self.camera("iso")
+
+    def set_values(self, per_patch: np.ndarray | None, units: str = "lux") -> None:
+        """Colour the patches (in place, no new actor); None paints them grey (no lighting)."""
+        if self.mesh is None:
+            return
+        values = (
+            np.zeros(len(self.tri_patch), np.float32)
+            if per_patch is None
+            else np.asarray(per_patch, dtype=np.float32)[self.tri_patch]
+        )
+        self.mesh.cell_data["value"][:] = values
+        lo, hi = self.clim if self.clim is not None else (0.0, float(max(values.max(), 1e-6)))
+        self.plotter.actors["scene"].mapper.scalar_range = (lo, hi)
+        if units != self.units:
+            self.units = units
+            for bar in self.plotter.scalar_bars.values():
+                bar.SetTitle(units)
+        self.plotter.render()
+
+    def set_colormap(self, cmap: str) -> None:
+        """Change the colour map (rebuilds the scene actor's lookup table)."""
+        self.cmap = cmap
+        actor = self.plotter.actors.get("scene")
+        if actor is not None:
+            lut = pv.LookupTable(cmap)
+            lut.scalar_range = actor.mapper.scalar_range
+            actor.mapper.lookup_table = lut
+            for bar in self.plotter.scalar_bars.values():
+                bar.SetLookupTable(lut)
+            self.plotter.render()
+
+    def set_zone_outlines(self) -> None:
+        """Dashed-looking thin outlines of every emitter zone."""
+        if not self.frames:
+            return
+        loops = [f.rectangle(0, 0, *f.size) for f in self.frames.values()]
+        self.plotter.add_mesh(
+            _polylines(loops),
+            name="zones",
+            color="#3070ff",
+            line_width=2,
+            lighting=False,
+            reset_camera=False,
+        )
+
+    def set_sources(self, sources, current: str | None) -> None:
+        """Outlines of the design's sources; the current one thicker and green."""
+        for name in ("sources", "current"):
+            self.plotter.remove_actor(name, render=False)
+        loops, cur = [], []
+        for s in sources:
+            f = self.frames.get(s.zone)
+            if f is None:
+                continue
+            (a, b), (c, d) = s.u_range, s.v_range
+            (cur if s.name == current else loops).append(f.rectangle(a, c, b, d))
+        if loops:
+            self.plotter.add_mesh(
+                _polylines(loops),
+                name="sources",
+                color="#00a0a0",
+                line_width=3,
+                lighting=False,
+                reset_camera=False,
+            )
+        if cur:
+            self.plotter.add_mesh(
+                _polylines(cur),
+                name="current",
+                color="#00d000",
+                line_width=5,
+                lighting=False,
+                reset_camera=False,
+            )
+        self.plotter.render()
+
+    def set_selection(self, patch_ids: np.ndarray) -> None:
+        """Highlight the picked patches."""
+        self.plotter.remove_actor("selection", render=False)
+        if self.mesh is not None and len(patch_ids):
+            cells = np.flatnonzero(np.isin(self.tri_patch, patch_ids))
+            sub = self.mesh.extract_cells(cells)
+            self.plotter.add_mesh(
+                sub,
+                name="selection",
+                color="#00ff66",
+                opacity=0.55,
+                lighting=False,
+                reset_camera=False,
+                show_scalar_bar=False,
+                culling="back",
+            )
+        self.plotter.render()
+
+    def camera(self, preset: str) -> None:
+        """Camera presets: iso, top (roof culled), front."""
+        direction, up = CAMERAS[preset]
+        if self.mesh is None:
+            return
+        c = np.array(self.mesh.center)
+        r = float(np.linalg.norm(np.array(self.mesh.bounds[1::2]) - self.mesh.bounds[::2]))
+        d = np.asarray(direction, float)
+        self.plotter.camera_position = [tuple(c + 1.6 * r * d / np.linalg.norm(d)), tuple(c), up]
+        self.plotter.reset_camera()  # keeps the direction, fits the whole scene
+        self.plotter.render()
+
+    # -- picking ------------------------------------------------------------------------------
+    def _display(self, pos: QtCore.QPoint) -> tuple[int, int]:
+        """Qt widget coordinates -> VTK display coordinates (origin bottom-left)."""
+        ratio = self.plotter.interactor.devicePixelRatioF()
+        h = self.plotter.interactor.height() * ratio
+        return int(pos.x() * ratio), int(h - 1 - pos.y() * ratio)
+
+    def pick_area(self, x0: int, y0: int, x1: int, y1: int) -> np.ndarray:
+        """Patch ids visible in a display rectangle (hardware selection: hidden ones excluded)."""
+        if self.mesh is None:
+            return np.zeros(0, np.int64)
+        sel = vtk.vtkHardwareSelector()
+        sel.SetRenderer(self.plotter.renderer)
+        sel.SetFieldAssociation(vtk.vtkDataObject.FIELD_ASSOCIATION_CELLS)
+        sel.SetArea(min(x0, x1), min(y0, y1), max(x0, x1), max(y0, y1))
+        result = sel.Select()
+        scene_actor = self.plotter.actors.get("scene")
+        ids = []
+        for i in range(result.GetNumberOfNodes()):
+            node = result.GetNode(i)
+            prop = node.GetProperties().Get(vtk.vtkSelectionNode.PROP())
+            if prop is scene_actor and node.GetSelectionList() is not None:
+                arr = node.GetSelectionList()
+                ids.append(np.array([arr.GetValue(j) for j in range(arr.GetNumberOfTuples())]))
+        if not ids:
+            return np.zeros(0, np.int64)
+        cells = np.concatenate(ids).astype(np.int64)
+        return np.unique(self.tri_patch[cells])
+
+    def pick_at(self, x: int, y: int) -> np.ndarray:
+        """The patch under a display point (empty if none)."""
+        return self.pick_area(x, y, x, y)
+
+    def ray(self, x: int, y: int) -> tuple[np.ndarray, np.ndarray]:
+        """World points on the camera ray through a display point (near, far)."""
+        ren = self.plotter.renderer
+        out = []
+        for z in (0.0, 1.0):
+            ren.SetDisplayPoint(x, y, z)
+            ren.DisplayToWorld()
+            w = np.array(ren.GetWorldPoint())
+            out.append(w[:3] / w[3])
+        return out[0], out[1]
+
+    def zone_point(self, zone: str, x: int, y: int) -> tuple[float, float] | None:
+        """Zone coordinates under a display point."""
+        frame = self.frames.get(zone)
+        return None if frame is None else frame.from_ray(*self.ray(x, y))
+
+    def eventFilter(self, obj, event) -> bool:
+        """In select and move modes, mouse drags pick or move instead of orbiting."""
+        if self.mode == "navigate" or obj is not self.plotter.interactor:
+            return False
+        et = event.type()
+        if et == QtCore.QEvent.Type.MouseButtonPress and event.button() == QtCore.Qt.LeftButton:
+            self._press = event.position().toPoint()
+            if self.mode == "move" and self.drag_zone:
+                self._last_uv = self.zone_point(self.drag_zone, *self._display(self._press))
+            return True
+        if et == QtCore.QEvent.Type.MouseMove and self._press is not None:
+            if self.mode == "move" and self.drag_zone and self._last_uv is not None:
+                uv = self.zone_point(self.drag_zone, *self._display(event.position().toPoint()))
+                if uv is not None:
+                    self.sourceDragged.emit(uv[0] - self._last_uv[0], uv[1] - self._last_uv[1])
+                    self._last_uv = uv
+            return True
+        if et == QtCore.QEvent.Type.MouseButtonRelease and self._press is not None:
+            start, end = self._press, event.position().toPoint()
+            self._press, self._last_uv = None, None
+            if self.mode == "select":
+                add = bool(event.modifiers() & QtCore.Qt.ShiftModifier)
+                self.picked.emit(self.pick_area(*self._display(start), *self._display(end)), add)
+            return True
+        return False
+
+    def screenshot(self, path: str | None = None) -> np.ndarray:
+        """The rendered 3D view as an (h, w, 3) image, saved to ``path`` if given."""
+        self.plotter.render()
+        return self.plotter.screenshot(path, return_img=True)
+
+    def close_plotter(self) -> None:
+        """Release VTK's window (call before the widget is destroyed)."""
+        self.plotter.close()

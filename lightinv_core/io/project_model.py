@@ -1,0 +1,268 @@
+"""The project data classes and the field names of their JSON form.
+
+``Project`` holds everything saved in a project file: the ``SceneSpec`` it is on, the
+design, the ``OperatorSettings`` and ``OptimizerSettings`` of a run, and saved results.
+The settings classes check their own fields (raising ``ProjectError``). The ``*_FIELDS``
+tables list the keys each JSON object may have; ``project_read`` and ``project_write``
+share them.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field, fields
+from pathlib import Path
+from typing import Any
+
+from lightinv_core.design.model import Design, Source
+from lightinv_core.design.solution import ParetoFront, Solution
+from lightinv_core.io.project_checks import (
+    _boolean,
+    _check_fields,
+    _choice,
+    _count,
+    _fail,
+    _integer,
+    _list,
+    _number,
+    _optional,
+    _path_string,
+)
+from lightinv_core.scene.builtin import BUILTIN_SCENES
+from lightinv_core.scene.loading import load_scene
+from lightinv_core.scene.model import MIN_RESOLUTION, Scene
+from lightinv_core.scene.obj_parse import UP_AXES
+
+SCHEMA = 1
+METHODS = ("vns", "multilevel", "epsilon", "two_step")
+SOURCE_KINDS = ("luminaire", "skylight")
+
+
+def resolve_path(p: str | None, base_dir: Path | None) -> str | None:
+    """``p`` made absolute against ``base_dir`` when it is relative (None stays None)."""
+    if p is None:
+        return None
+    q = Path(p).expanduser()
+    if base_dir is not None and not q.is_absolute():
+        q = Path(base_dir) / q
+    return str(q)
+
+
+def _obj_path(v: Any, path: str) -> str:
+    s = _path_string(v, path)
+    if not s.lower().endswith(".obj"):
+        _fail(path, f"expected the path of an .obj file, got {s!r}")
+    return s
+
+
+@dataclass(frozen=True)
+class SceneSpec:
+    """The scene a project is on: a built-in scene or an OBJ file (exactly one).
+
+    ``resolution`` is the target patch size in metres (None: the scene's default,
+    0.25 m for OBJ files). ``materials`` (a reflectance JSON file), ``scale`` (metres
+    per model unit), ``up`` ("z" or "y") and ``skip_degenerate`` apply to OBJ files only.
+    Relative ``obj``/``materials`` paths are resolved against ``base_dir`` in ``load``.
+    """
+
+    builtin: str | None = None
+    obj: str | None = None
+    resolution: float | None = None
+    materials: str | None = None
+    scale: float = 1.0
+    up: str = "z"
+    skip_degenerate: bool = False
+
+    def __post_init__(self) -> None:
+        _check_fields(
+            self,
+            {
+                "builtin": _optional(lambda v, p: _choice(v, p, tuple(BUILTIN_SCENES))),
+                "obj": _optional(_obj_path),
+                "resolution": _optional(lambda v, p: _number(v, p, lo=MIN_RESOLUTION)),
+                "materials": _optional(_path_string),
+                "scale": lambda v, p: _number(v, p, gt=0.0),
+                "up": lambda v, p: _choice(v, p, UP_AXES),
+                "skip_degenerate": _boolean,
+            },
+        )
+        if (self.builtin is None) == (self.obj is None):
+            _fail(
+                "",
+                'give exactly one of "builtin" (a built-in scene name) '
+                'or "obj" (the path of an .obj file)',
+            )
+        if self.builtin is not None:
+            for name, default in (("materials", None), ("scale", 1.0), ("up", "z")):
+                if getattr(self, name) != default:
+                    _fail(name, "only an OBJ scene takes this; a built-in scene has its own")
+            if self.skip_degenerate:
+                _fail("skip_degenerate", "only an OBJ scene takes this")
+
+    def load(self, base_dir: Path | None = None) -> Scene:
+        """Build the scene (relative paths resolved against ``base_dir``)."""
+        if self.builtin is not None:
+            return load_scene(self.builtin, self.resolution)
+        return load_scene(
+            resolve_path(self.obj, base_dir),
+            self.resolution,
+            materials=resolve_path(self.materials, base_dir),
+            scale=self.scale,
+            up=self.up,
+            skip_degenerate=self.skip_degenerate,
+        )
+
+
+@dataclass(frozen=True)
+class OperatorSettings:
+    """How the radiosity operator is built: relative accuracy ``tol`` (used when ``rank``
+    is None), or a fixed ``rank`` (clusters); ``rays`` per patch for the form factors and
+    the ray ``seed``."""
+
+    tol: float = 0.01
+    rank: int | None = None
+    rays: int = 1024
+    seed: int = 0
+
+    def __post_init__(self) -> None:
+        _check_fields(
+            self,
+            {
+                "tol": lambda v, p: _number(v, p, gt=0.0, lt=1.0),
+                "rank": _optional(lambda v, p: _integer(v, p, lo=1)),
+                "rays": lambda v, p: _integer(v, p, lo=1),
+                "seed": lambda v, p: _integer(v, p, lo=0),
+            },
+        )
+
+
+@dataclass(frozen=True)
+class OptimizerSettings:
+    """How the optimiser runs (see docs/project-file.md for every field).
+
+    ``method``: "vns" (one VNS on all patches), "multilevel" (VNS on ``divisors``
+    levels), "epsilon" (epsilon-constraint sweep) or "two_step" (paper 5.5). Stopping:
+    ``max_evals``, ``time_limit`` (s), ``target`` (primary goal's units, counts only
+    when feasible), ``stall`` (evaluations without improvement); None disables each.
+    """
+
+    method: str = "vns"
+    seed: int = 0
+    max_evals: int | None = 20000
+    time_limit: float | None = None
+    target: float | None = None
+    stall: int | None = None
+    trials: int = 32
+    divisors: tuple[int, ...] = (64, 16, 1)
+    level_max_evals: int | None = None
+    level_target: float | None = None
+    runs: int = 10
+    epsilons: tuple[float, ...] | None = None
+    epsilon_count: int = 12
+
+    def __post_init__(self) -> None:
+        count, value = _count, _number
+        _check_fields(
+            self,
+            {
+                "method": lambda v, p: _choice(v, p, METHODS),
+                "seed": lambda v, p: _integer(v, p, lo=0),
+                "max_evals": _optional(count),
+                "time_limit": _optional(lambda v, p: _number(v, p, gt=0.0)),
+                "target": _optional(value),
+                "stall": _optional(count),
+                "trials": count,
+                "divisors": lambda v, p: _list(v, p, count, "divisors (integers >= 1)", 1),
+                "level_max_evals": _optional(count),
+                "level_target": _optional(value),
+                "runs": count,
+                "epsilons": _optional(
+                    lambda v, p: _list(v, p, lambda x, q: _number(x, q, lo=0.0), "lm values", 1)
+                ),
+                "epsilon_count": count,
+            },
+        )
+
+
+# -- the project ----------------------------------------------------------------------------
+
+
+@dataclass(frozen=True)
+class Project:
+    """Everything saved in a project file. ``path`` is where it was loaded from (not
+    saved, not compared)."""
+
+    name: str
+    scene: SceneSpec
+    design: Design
+    operator: OperatorSettings = field(default_factory=OperatorSettings)
+    optimizer: OptimizerSettings = field(default_factory=OptimizerSettings)
+    description: str = ""
+    solutions: tuple[Solution, ...] = ()
+    pareto: ParetoFront | None = None
+    path: Path | None = field(default=None, compare=False)
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "solutions", tuple(self.solutions))
+
+
+# -- JSON field tables ----------------------------------------------------------------------
+
+TOP_FIELDS = (
+    "schema",
+    "name",
+    "description",
+    "scene",
+    "operator",
+    "daylight",
+    "penalty_power",
+    "sources",
+    "target_sources",
+    "rules",
+    "intentions",
+    "goals",
+    "optimizer",
+    "results",
+)
+SCENE_FIELDS = tuple(f.name for f in fields(SceneSpec))
+OPERATOR_FIELDS = tuple(f.name for f in fields(OperatorSettings))
+OPTIMIZER_FIELDS = tuple(f.name for f in fields(OptimizerSettings))
+DAYLIGHT_FIELDS = ("exterior_lux", "transmittance")
+SOURCE_FIELDS = (
+    "name",
+    "zone",
+    "kind",
+    "rect",
+    "free",
+    "flux",
+    "exitance",
+    "flux_range",
+    "efficacy",
+    "filter",
+)
+SOURCE_DEFAULTS = {f.name: f.default for f in fields(Source)}
+LUMINAIRE_ONLY = ("flux", "exitance", "flux_range", "efficacy")
+RULE_FIELDS = ("kind", "sources", "min", "max", "axis")
+RULE_TAKES = {
+    "area": ("min", "max"),
+    "aspect": ("max",),
+    "mirror": ("axis",),
+    "centred": (),
+    "spacing": ("min",),
+    "align": ("axis",),
+}
+INTENTION_FIELDS = (
+    "name",
+    "group",
+    "patches",
+    "quantity",
+    "min",
+    "max",
+    "average",
+    "uniformity",
+    "weight",
+)
+GOAL_FIELDS = ("kind", "kinds")
+RESULTS_FIELDS = ("solutions", "pareto")
+SOLUTION_FIELDS = ("sources", "objectives", "penalty", "violations", "x", "info")
+VIOLATION_FIELDS = ("name", "constraint", "amount", "value", "bound", "units")
+PARETO_FIELDS = ("objectives", "method", "solutions", "candidates")

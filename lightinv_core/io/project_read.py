@@ -1,0 +1,393 @@
+"""Reading a project: parsed JSON data -> a checked ``Project``.
+
+``read_project`` builds the design (sources, rules, intentions, goals, daylight), the
+settings and the saved results from the data of a project file, checking every value
+with ``project_checks`` and raising a ``ProjectError`` at the JSON path of the first
+problem. ``object_pairs_hook`` is the ``json.loads`` hook that lets it report keys given
+twice.
+"""
+
+from __future__ import annotations
+
+from dataclasses import replace
+from functools import partial
+from pathlib import Path
+from typing import Any
+
+from lightinv_core.design.model import (
+    GOALS,
+    VARIABLES,
+    Daylight,
+    Design,
+    Goal,
+    Intention,
+    Rule,
+    Source,
+)
+from lightinv_core.design.solution import ParetoFront, Solution, Violation
+from lightinv_core.io.project_checks import (
+    NONFINITE,
+    _choice,
+    _describe,
+    _fail,
+    _integer,
+    _is_int,
+    _is_number,
+    _join,
+    _list,
+    _number,
+    _numbers,
+    _object,
+    _string,
+    _unique,
+    _within,
+)
+from lightinv_core.io.project_model import (
+    DAYLIGHT_FIELDS,
+    GOAL_FIELDS,
+    INTENTION_FIELDS,
+    LUMINAIRE_ONLY,
+    OPERATOR_FIELDS,
+    OPTIMIZER_FIELDS,
+    PARETO_FIELDS,
+    RESULTS_FIELDS,
+    RULE_FIELDS,
+    RULE_TAKES,
+    SCENE_FIELDS,
+    SCHEMA,
+    SOLUTION_FIELDS,
+    SOURCE_FIELDS,
+    SOURCE_KINDS,
+    TOP_FIELDS,
+    VIOLATION_FIELDS,
+    OperatorSettings,
+    OptimizerSettings,
+    Project,
+    SceneSpec,
+    resolve_path,
+)
+
+# -- JSON parsing ---------------------------------------------------------------------------
+
+
+class _JSONObject(dict):
+    """A parsed JSON object that remembers keys given more than once."""
+
+    duplicates: tuple[str, ...] = ()
+
+
+def object_pairs_hook(pairs: list[tuple[str, Any]]) -> dict:
+    """Build a JSON object, noting its repeated keys for ``_object``."""
+    out = _JSONObject(pairs)
+    if len(out) != len(pairs):
+        seen: set[str] = set()
+        out.duplicates = tuple(k for k, _ in pairs if k in seen or seen.add(k))
+    return out
+
+
+# -- the design -----------------------------------------------------------------------------
+
+
+def _source(v: Any, path: str) -> Source:
+    d = _object(v, path, SOURCE_FIELDS, ("name", "zone", "kind", "rect"))
+    at = partial(_join, path)
+    kind = _choice(d["kind"], at("kind"), SOURCE_KINDS)
+    kw: dict[str, Any] = {
+        "name": _string(d["name"], at("name")),
+        "zone": _string(d["zone"], at("zone")),
+        "kind": kind,
+        "rect": _numbers(d["rect"], at("rect"), 4),
+    }
+    if "free" in d:
+        names = _list(d["free"], at("free"), lambda x, p: _choice(x, p, VARIABLES), "variables")
+        kw["free"] = _unique(names, at("free"))
+    for key in ("flux", "exitance"):
+        if d.get(key) is not None:
+            kw[key] = _number(d[key], at(key), lo=0.0)
+    if "flux_range" in d:
+        kw["flux_range"] = _numbers(d["flux_range"], at("flux_range"), 2, lo=0.0)
+    if "efficacy" in d:
+        kw["efficacy"] = _number(d["efficacy"], at("efficacy"), gt=0.0)
+    if "filter" in d:
+        kw["filter"] = _number(d["filter"], at("filter"), lo=0.0, hi=1.0)
+    if kind == "skylight":
+        for key in LUMINAIRE_ONLY:
+            if key in kw:
+                _fail(
+                    at(key),
+                    "only luminaires have this; a skylight's exitance is "
+                    "filter x transmittance x exterior illuminance",
+                )
+    elif "filter" in kw:
+        _fail(at("filter"), "only skylights have a filter")
+    with _within(path):
+        return Source(**kw)
+
+
+def _sources(v: Any, path: str) -> tuple[Source, ...]:
+    out = _list(v, path, _source, "sources")
+    seen: dict[str, int] = {}
+    for i, s in enumerate(out):
+        if s.name in seen:
+            _fail(
+                _join(_join(path, i), "name"),
+                f"{s.name!r} is already used by {path}[{seen[s.name]}]",
+            )
+        seen[s.name] = i
+    return out
+
+
+def _rule(v: Any, path: str, names: tuple[str, ...]) -> Rule:
+    d = _object(v, path, RULE_FIELDS, ("kind", "sources"))
+    at = partial(_join, path)
+    kind = _choice(d["kind"], at("kind"), Rule.KINDS)
+    sources = _unique(_list(d["sources"], at("sources"), _string, "source names", 1), at("sources"))
+    for i, s in enumerate(sources):
+        if s not in names:
+            known = ", ".join(names) or "none"
+            _fail(_join(at("sources"), i), f"no source {s!r} (sources: {known})")
+    takes = RULE_TAKES[kind]
+    kw: dict[str, Any] = {}
+    for key in ("min", "max", "axis"):
+        if d.get(key) is None:
+            continue
+        if key not in takes:
+            also = ", ".join(("sources", *takes))
+            _fail(at(key), f"{kind} rules do not take {key!r} (they take: {also})")
+        kw[key] = (
+            _choice(d[key], at(key), ("u", "v")) if key == "axis" else _number(d[key], at(key), 0.0)
+        )
+    with _within(path):
+        return Rule(kind, sources, **kw)
+
+
+def _rules(v: Any, path: str, names: tuple[str, ...]) -> tuple[Rule, ...]:
+    rules = _list(v, path, lambda x, p: _rule(x, p, names), "rules")
+    mirrored: dict[str, int] = {}
+    for i, r in enumerate(rules):
+        if r.kind == "mirror":
+            derived = r.sources[0]
+            if derived in mirrored:
+                _fail(
+                    _join(_join(path, i), "sources[0]"),
+                    f"{derived!r} already mirrors another source ({path}[{mirrored[derived]}])",
+                )
+            mirrored[derived] = i
+    return rules
+
+
+def _patch_id(v: Any, path: str) -> int:
+    return _integer(v, path, lo=0)
+
+
+def _intention(v: Any, path: str) -> Intention:
+    d = _object(v, path, INTENTION_FIELDS, ("name",))
+    at = partial(_join, path)
+    kw: dict[str, Any] = {"name": _string(d["name"], at("name"))}
+    if d.get("group") is not None:
+        kw["group"] = _string(d["group"], at("group"))
+    if d.get("patches") is not None:
+        kw["patches"] = _list(d["patches"], at("patches"), _patch_id, "patch ids", 1)
+    if "quantity" in d:
+        kw["quantity"] = _choice(d["quantity"], at("quantity"), ("lux", "C"))
+    for key in ("min", "max", "average"):
+        if d.get(key) is not None:
+            kw[key] = _number(d[key], at(key), lo=0.0)
+    if d.get("uniformity") is not None:
+        kw["uniformity"] = _number(d["uniformity"], at("uniformity"), lo=0.0, hi=1.0)
+    if "weight" in d:
+        kw["weight"] = _number(d["weight"], at("weight"), lo=0.0)
+    with _within(path):
+        return Intention(**kw)
+
+
+def _intentions(v: Any, path: str) -> tuple[Intention, ...]:
+    out = _list(v, path, _intention, "intentions")
+    seen: dict[str, int] = {}
+    for i, it in enumerate(out):
+        if it.name in seen:
+            where = f"{path}[{seen[it.name]}]"
+            _fail(_join(_join(path, i), "name"), f"{it.name!r} is already used by {where}")
+        seen[it.name] = i
+    return out
+
+
+def _goal(v: Any, path: str) -> Goal:
+    d = _object(v, path, GOAL_FIELDS, ("kind",))
+    kind = _choice(d["kind"], _join(path, "kind"), GOALS)
+    kinds: tuple[str, ...] = ()
+    if "kinds" in d:
+        at = _join(path, "kinds")
+        kinds = _unique(
+            _list(d["kinds"], at, lambda x, p: _choice(x, p, SOURCE_KINDS), "kinds"), at
+        )
+        if kinds and kind != "max_light_power":
+            _fail(at, "only a max_light_power goal takes source kinds")
+    with _within(path):
+        return Goal(kind, kinds)
+
+
+def _goals(v: Any, path: str) -> tuple[Goal, ...]:
+    goals = _list(v, path, _goal, "goals", 1)
+    seen: dict[str, int] = {}
+    for i, g in enumerate(goals):
+        if g.kind in seen:
+            _fail(
+                _join(_join(path, i), "kind"),
+                f"{g.kind!r} is already a goal ({path}[{seen[g.kind]}])",
+            )
+        seen[g.kind] = i
+    return goals
+
+
+def _daylight(v: Any, path: str) -> Daylight:
+    d = _object(v, path, DAYLIGHT_FIELDS)
+    kw = {}
+    if "exterior_lux" in d:
+        kw["exterior_lux"] = _number(d["exterior_lux"], _join(path, "exterior_lux"), lo=0.0)
+    if "transmittance" in d:
+        at = _join(path, "transmittance")
+        kw["transmittance"] = _number(d["transmittance"], at, lo=0.0, hi=1.0)
+    return Daylight(**kw)
+
+
+def _design(d: dict) -> Design:
+    sources = _sources(d["sources"], "sources")
+    targets = _sources(d.get("target_sources", []), "target_sources")
+    names = tuple(s.name for s in sources)
+    rules = _rules(d.get("rules", []), "rules", names)
+    intentions = _intentions(d.get("intentions", []), "intentions")
+    goals = _goals(d["goals"], "goals")
+    for i, g in enumerate(goals):
+        if g.kind == "match" and not targets:
+            _fail(f"goals[{i}]", "a match goal needs target_sources (the light to reproduce)")
+    daylight = _daylight(d["daylight"], "daylight") if "daylight" in d else Daylight()
+    power = 2
+    if "penalty_power" in d:
+        power = _integer(d["penalty_power"], "penalty_power", lo=2)
+        if power % 2:
+            _fail("penalty_power", f"expected an even integer >= 2, got {power}")
+    with _within(""):
+        return Design(sources, goals, rules, intentions, targets, daylight, power)
+
+
+def _settings(cls: type, v: Any, path: str, known: tuple[str, ...]):
+    d = _object(v, path, known)
+    with _within(path):
+        return cls(**d)
+
+
+# -- results --------------------------------------------------------------------------------
+
+
+def _result_number(v: Any, path: str) -> float:
+    return _number(v, path, finite=False)
+
+
+def _info_value(v: Any, path: str) -> Any:
+    if isinstance(v, str):
+        return NONFINITE.get(v, v)
+    if v is None or isinstance(v, bool):
+        return v
+    if _is_int(v):
+        return int(v)
+    if _is_number(v):
+        return float(v)
+    if isinstance(v, list | tuple):
+        return [_info_value(x, _join(path, i)) for i, x in enumerate(v)]
+    if isinstance(v, dict):
+        for k in v:
+            if not isinstance(k, str):
+                _fail(path, f"expected string keys, got {_describe(k)}")
+        return {k: _info_value(x, _join(path, k)) for k, x in v.items()}
+    _fail(path, f"expected a JSON value, got {_describe(v)}")
+
+
+def _violation(v: Any, path: str) -> Violation:
+    d = _object(v, path, VIOLATION_FIELDS, VIOLATION_FIELDS)
+    at = partial(_join, path)
+    return Violation(
+        _string(d["name"], at("name"), empty=True),
+        _string(d["constraint"], at("constraint"), empty=True),
+        _result_number(d["amount"], at("amount")),
+        _result_number(d["value"], at("value")),
+        _result_number(d["bound"], at("bound")),
+        _string(d["units"], at("units"), empty=True),
+    )
+
+
+def _solution(v: Any, path: str) -> Solution:
+    d = _object(v, path, SOLUTION_FIELDS, ("sources", "objectives", "penalty"))
+    at = partial(_join, path)
+    sources = _sources(d["sources"], at("sources"))
+    obj = d["objectives"]
+    if not isinstance(obj, dict):
+        _fail(at("objectives"), f"expected an object, got {_describe(obj)}")
+    objectives = {}
+    for key, value in obj.items():
+        if key not in GOALS:
+            _fail(at("objectives"), f"unknown goal {key!r} (goals: {', '.join(GOALS)})")
+        objectives[key] = _result_number(value, _join(at("objectives"), key))
+    info = _info_value(d.get("info", {}), at("info"))
+    if not isinstance(info, dict):
+        _fail(at("info"), f"expected an object, got {_describe(d['info'])}")
+    return Solution(
+        sources,
+        objectives,
+        _result_number(d["penalty"], at("penalty")),
+        _list(d.get("violations", []), at("violations"), _violation, "violations"),
+        _list(d.get("x", []), at("x"), _result_number, "numbers"),
+        info,
+    )
+
+
+def _pareto(v: Any, path: str) -> ParetoFront:
+    d = _object(v, path, PARETO_FIELDS, ("objectives", "solutions"))
+    at = partial(_join, path)
+    objectives = _list(
+        d["objectives"], at("objectives"), lambda x, p: _choice(x, p, GOALS), "goal kinds"
+    )
+    return ParetoFront(
+        _unique(objectives, at("objectives")),
+        _list(d["solutions"], at("solutions"), _solution, "solutions"),
+        _string(d.get("method", ""), at("method"), empty=True),
+        _list(d.get("candidates", []), at("candidates"), _solution, "solutions"),
+    )
+
+
+# -- the project ----------------------------------------------------------------------------
+
+
+def read_project(data: Any, base_dir: Path | None) -> Project:
+    """The project described by parsed JSON ``data``; relative scene paths are made
+    absolute against ``base_dir`` when it is given."""
+    if not isinstance(data, dict):
+        _fail("", f"expected a JSON object at the top level, got {_describe(data)}")
+    if "schema" not in data:
+        _fail("", "missing required field 'schema' (is this a LightInv project file?)")
+    schema = _integer(data["schema"], "schema")
+    if schema != SCHEMA:
+        _fail(
+            "", f"unknown project schema {schema}; this version of LightInv reads schema {SCHEMA}"
+        )
+    d = _object(data, "", TOP_FIELDS, ("name", "scene", "sources", "goals"))
+    name = _string(d["name"], "name")
+    description = _string(d.get("description", ""), "description", empty=True)
+    scene = _settings(SceneSpec, d["scene"], "scene", SCENE_FIELDS)
+    if base_dir is not None and scene.obj is not None:
+        scene = replace(
+            scene,
+            obj=resolve_path(scene.obj, base_dir),
+            materials=resolve_path(scene.materials, base_dir),
+        )
+    operator = _settings(OperatorSettings, d.get("operator", {}), "operator", OPERATOR_FIELDS)
+    design = _design(d)
+    optimizer = _settings(OptimizerSettings, d.get("optimizer", {}), "optimizer", OPTIMIZER_FIELDS)
+    solutions: tuple[Solution, ...] = ()
+    pareto = None
+    if "results" in d:
+        r = _object(d["results"], "results", RESULTS_FIELDS)
+        solutions = _list(r.get("solutions", []), "results.solutions", _solution, "solutions")
+        if r.get("pareto") is not None:
+            pareto = _pareto(r["pareto"], "results.pareto")
+    return Project(name, scene, design, operator, optimizer, description, solutions, pareto)

@@ -1,0 +1,42 @@
+"""Reports of a project's solution: false-colour views, tables and plots, as a PDF.
+
+Built on matplotlib only (``Figure`` + Agg canvas, never pyplot), so it runs headless
+and next to a GUI without touching its backend. See docs/report.md.
+
+- ``write_report(project, prepared, path, ...)``: the whole PDF (``pdf.py``);
+- ``render_view(patches, values, camera, ...)``: one false-colour view (``views.py``);
+- ``source_table``, ``intention_table``, ... : the tables as data (``tables.py``);
+- ``convergence_figure``, ``pareto_figure``: the plots (``figures.py``);
+- ``solution_field``: the illuminance of a saved solution (``light.py``).
+"""
+
+from lightinv_core.report.figures import convergence_figure, pareto_figure
+from lightinv_core.report.light import choose_solution, solution_field
+from lightinv_core.report.pdf import ReportInfo, write_report
+from lightinv_core.report.tables import (
+    Table,
+    group_table,
+    intention_table,
+    rules_table,
+    source_table,
+)
+from lightinv_core.report.views import CAMERAS, Camera, Outline, render_view, source_outlines
+
+__all__ = [
+    "CAMERAS",
+    "Camera",
+    "Outline",
+    "ReportInfo",
+    "Table",
+    "choose_solution",
+    "convergence_figure",
+    "group_table",
+    "intention_table",
+    "pareto_figure",
+    "render_view",
+    "rules_table",
+    "solution_field",
+    "source_outlines",
+    "source_table",
+    "write_report",
+]

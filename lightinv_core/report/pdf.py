@@ -1,0 +1,224 @@
+"""``write_report``: a project's solution as a PDF (and optionally PNG pages).
+
+Pages, in order: title (project, scene, operator, solution status and objectives),
+the false-colour views (top, front, iso), the tables (sources and geometric rules,
+lighting intentions and illuminance per group), convergence (when the solution
+recorded a history) and the Pareto front (multi-objective projects).
+
+The PDF is written atomically: a failed or cancelled report leaves neither a PDF nor
+any of its PNG pages behind, and an older file at ``path`` is kept untouched.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import datetime
+import math
+import time
+from collections.abc import Callable
+from dataclasses import dataclass
+from pathlib import Path
+
+from matplotlib.backends.backend_pdf import PdfPages
+from matplotlib.figure import Figure
+
+from lightinv_core.errors import CancelledError
+from lightinv_core.io.atomic import atomic_writer
+from lightinv_core.io.project import Project
+from lightinv_core.report.figures import (
+    convergence_figure,
+    pareto_figure,
+    table_pages,
+    text_page,
+)
+from lightinv_core.report.light import Chosen, choose_solution, solution_field
+from lightinv_core.report.tables import (
+    Table,
+    fmt,
+    group_table,
+    intention_table,
+    objective_text,
+    rules_table,
+    source_table,
+)
+from lightinv_core.report.views import CAMERAS, render_view, source_outlines
+
+PDF_DPI = 150  # resolution of the rasterised views inside the PDF
+PNG_DPI = 100
+
+
+@dataclass(frozen=True)
+class ReportInfo:
+    """What ``write_report`` wrote: the PDF, its page names in order ("title",
+    "view-top", ..., "sources", "intentions", "convergence", "pareto"), the PNG files
+    (empty without ``png_dir``), which solution it shows and how long it took."""
+
+    path: Path
+    pages: tuple[str, ...]
+    png_files: tuple[Path, ...]
+    solution: str
+    feasible: bool
+    seconds: float
+
+
+def _scene_lines(project: Project, prepared) -> list[str]:
+    spec, patches, op = project.scene, prepared.patches, prepared.operator
+    where = f"built-in '{spec.builtin}'" if spec.builtin else f"OBJ {Path(spec.obj).name}"
+    res = f"{spec.resolution:g} m patches" if spec.resolution else "default patch size"
+    err = op.info.get("estimated_rel_error") if isinstance(op.info, dict) else None
+    err_text = (
+        f"{100 * err:.2f}% mean relative error of C (estimated)"
+        if isinstance(err, int | float) and math.isfinite(err)
+        else "error estimate not recorded"
+    )
+    zones = ", ".join(patches.zone_names) or "none"
+    return [
+        f"Scene: {where}, {res}",
+        f"{patches.n:,} patches, {patches.area.sum():,.1f} m² of surface",
+        f"Groups: {', '.join(patches.group_names)}",
+        f"Emitter zones: {zones}",
+        f"Radiosity operator: rank k = {op.k:,}, {op.info.get('rays', '?')} rays per patch",
+        f"Operator accuracy: {err_text}",
+    ]
+
+
+def _solution_lines(project: Project, chosen: Chosen) -> list[str]:
+    sol = chosen.solution
+    status = (
+        "FEASIBLE: every rule and intention met"
+        if sol.feasible
+        else f"INFEASIBLE: {len(sol.violations)} violated rule(s) or intention(s)"
+    )
+    lines = [f"Reported: {chosen.label}", f"Status: {status}", f"Penalty P = {fmt(sol.penalty)}"]
+    primary = project.design.goals[0].kind
+    for kind, value in sol.objectives.items():
+        tag = "  (optimised goal)" if kind == primary else ""
+        lines.append(objective_text(kind, value) + tag)
+    info = sol.info if isinstance(sol.info, dict) else {}
+    run = []
+    if "evaluations" in info:
+        run.append(f"{int(info['evaluations']):,} evaluations")
+    if isinstance(info.get("seconds"), int | float):
+        run.append(f"{info['seconds']:.1f} s")
+    if "seed" in info:
+        run.append(f"seed {info['seed']}")
+    if "status" in info:
+        run.append(f"stopped by {info['status']}")
+    lines.append(f"Optimiser: {project.optimizer.method}" + (f"; {', '.join(run)}" if run else ""))
+    return lines
+
+
+def _bounds_line(intentions: Table | None) -> list[str]:
+    if intentions is None:
+        return ["Lighting intentions: none"]
+    ok = intentions.flags.count("pass")
+    failed = [
+        f"{r[0]} {r[2].split()[0]}"
+        for r, f in zip(intentions.rows, intentions.flags, strict=True)
+        if f == "fail"
+    ]
+    text = f"Lighting intention bounds met: {ok} of {len(intentions.rows)}"
+    return [text + (f" (failed: {', '.join(failed)})" if failed else "")]
+
+
+def _title_page(
+    project: Project, prepared, chosen: Chosen, contents: list[str], intentions: Table | None
+) -> Figure:
+    date = datetime.datetime.now().strftime("%Y-%m-%d %H:%M")
+    source = project.path.name if project.path is not None else "(unsaved project)"
+    sections = [
+        ("Project", [f"File: {source}", f"Report made {date} by LightInv"]),
+        ("Scene and operator", _scene_lines(project, prepared)),
+        ("Solution", _solution_lines(project, chosen) + _bounds_line(intentions)),
+        ("Pages", [", ".join(contents[i : i + 6]) for i in range(0, len(contents), 6)]),
+    ]
+    return text_page(project.name, sections, project.description)
+
+
+def write_report(
+    project: Project,
+    prepared,
+    path: str | Path,
+    solution=None,
+    png_dir: str | Path | None = None,
+    progress: Callable[[float], None] | None = None,
+    cancel: Callable[[], bool] | None = None,
+) -> ReportInfo:
+    """Write a PDF report of ``solution`` (default: the project's first saved solution,
+    else the first of its Pareto front) to ``path``.
+
+    ``prepared`` is ``lightinv_core.optimize.run.prepare(project)`` (scene, patches and
+    operator). With ``png_dir`` each page is also saved as ``NN-name.png``. ``progress``
+    gets the fraction done after each page; ``cancel`` is polled between pages and a
+    True answer raises ``CancelledError`` (nothing is left on disk).
+    """
+    t0 = time.perf_counter()
+    path = Path(path)
+    chosen = choose_solution(project, solution)
+    sol = chosen.solution
+    patches, design = prepared.patches, project.design
+    H = solution_field(project, prepared, sol)
+    outlines = source_outlines(patches, sol.sources)
+    intentions = intention_table(sol, design, patches, H)
+
+    def view(name):
+        # Each view has its own colour bar, from 0 to the 99th percentile of what it
+        # shows, so a bright wall seen from one side does not darken the floor plan.
+        return lambda: render_view(patches, H, CAMERAS[name], outlines=outlines, vmin=0.0)
+
+    def tables_first():
+        return table_pages([source_table(sol, design), rules_table(sol, design, patches)])
+
+    def tables_second():
+        return table_pages([intentions, group_table(patches, H)])
+
+    primary = design.goals[0].kind
+    plan: list[tuple[str, Callable[[], Figure | list[Figure] | None]]] = [
+        ("view-top", view("top")),
+        ("view-front", view("front")),
+        ("view-iso", view("iso")),
+        ("sources", tables_first),
+        ("intentions", tables_second),
+    ]
+    history = sol.info.get("history") if isinstance(sol.info, dict) else None
+    if history:
+        plan.append(("convergence", lambda: convergence_figure(sol, primary)))
+    if project.pareto is not None and project.pareto.solutions:
+        plan.append(("pareto", lambda: pareto_figure(project.pareto, sol)))
+    names = ["title", *(n for n, _ in plan)]
+    plan.insert(0, ("title", lambda: _title_page(project, prepared, chosen, names, intentions)))
+
+    metadata = {
+        "Title": f"LightInv report: {project.name}",
+        "Creator": "LightInv",
+        "Subject": f"{chosen.label}, {'feasible' if sol.feasible else 'infeasible'}",
+    }
+    pages: list[str] = []
+    pngs: list[Path] = []
+    png_root = Path(png_dir) if png_dir is not None else None
+    try:
+        with atomic_writer(path, "wb") as fh, PdfPages(fh, metadata=metadata) as pdf:
+            for k, (name, make) in enumerate(plan):
+                if cancel is not None and cancel():
+                    raise CancelledError("the report was cancelled; no file was written")
+                made = make()
+                figs = [] if made is None else made if isinstance(made, list) else [made]
+                for j, fig in enumerate(figs):
+                    page = name if j == 0 else f"{name}-{j + 1}"
+                    pdf.savefig(fig, dpi=PDF_DPI)
+                    pages.append(page)
+                    if png_root is not None:
+                        png = png_root / f"{len(pages):02d}-{page}.png"
+                        with atomic_writer(png, "wb") as out:
+                            fig.savefig(out, format="png", dpi=PNG_DPI)
+                        pngs.append(png)
+                if progress is not None:
+                    progress((k + 1) / len(plan))
+    except BaseException:
+        for png in pngs:
+            with contextlib.suppress(OSError):
+                png.unlink()
+        raise
+    return ReportInfo(
+        path, tuple(pages), tuple(pngs), chosen.label, sol.feasible, time.perf_counter() - t0
+    )

@@ -1,0 +1,270 @@
+"""The report's tables as data: sources, geometric rules, lighting intentions, groups.
+
+Each table is a ``Table`` of already formatted strings (what the PDF shows), so the
+numbers in the report can be checked against these functions' output. Units are in
+the column headers.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from lightinv_core.design.geometry import rule_names, rule_violations
+from lightinv_core.design.model import Design, Source
+from lightinv_core.design.problem import FEASIBILITY_TOL
+from lightinv_core.design.solution import Solution
+from lightinv_core.report.light import intention_patches
+from lightinv_core.scene.patches import Patches
+from lightinv_core.sources.zones import zone_grid
+
+PASS, FAIL = "pass", "FAIL"
+
+OBJECTIVES = {
+    "min_electric_power": ("Electric power", "W"),
+    "max_light_power": ("Reflected light power", "lm"),
+    "match": ("Match error e", ""),
+}
+
+
+@dataclass(frozen=True)
+class Table:
+    """A titled table of strings; ``flags`` marks rows "pass", "fail" or "" (colouring)."""
+
+    title: str
+    columns: tuple[str, ...]
+    rows: tuple[tuple[str, ...], ...]
+    flags: tuple[str, ...] = ()
+    note: str = ""
+
+    def __post_init__(self) -> None:
+        if not self.flags:
+            object.__setattr__(self, "flags", ("",) * len(self.rows))
+
+
+def fmt(value: float | None, digits: int = 4) -> str:
+    """A number for the tables: ``digits`` significant digits below 1,000, whole numbers
+    with thousands separators above, "—" for a missing or undefined value."""
+    if value is None or math.isnan(float(value)):
+        return "—"
+    v = float(value)
+    if math.isinf(v):
+        return "inf" if v > 0 else "-inf"
+    if abs(float(f"{v:.{digits}g}")) >= 10 ** (digits - 1):
+        return f"{v:,.0f}"
+    return f"{v:.{digits}g}"
+
+
+def fmt_corners(s: Source) -> str:
+    """The rectangle's lower and upper corners in zone (u, v) metres: "(u0, v0)–(u1, v1)"."""
+    (a, b), (c, d) = s.u_range, s.v_range
+    return f"({a:.2f}, {c:.2f})–({b:.2f}, {d:.2f})"
+
+
+def objective_text(kind: str, value: float) -> str:
+    """ "Electric power: 123.4 W" and the like."""
+    name, units = OBJECTIVES.get(kind, (kind, ""))
+    return f"{name}: {fmt(value)}{' ' + units if units else ''}"
+
+
+def source_flux(s: Source, design: Design) -> float:
+    """Luminous flux (lm) a source emits: a luminaire's flux, or exitance x area (panels,
+    skylights: filter x transmittance x exterior lux x area)."""
+    if s.kind == "skylight":
+        d = design.daylight
+        return s.filter * d.transmittance * d.exterior_lux * s.area
+    return s.flux if s.flux is not None else s.exitance * s.area
+
+
+def source_electric_power(s: Source) -> float:
+    """Electric power (W): flux / efficacy for a luminaire, 0 for a skylight."""
+    if s.kind == "skylight":
+        return 0.0
+    flux = s.flux if s.flux is not None else s.exitance * s.area
+    return flux / s.efficacy
+
+
+def source_table(solution: Solution, design: Design) -> Table:
+    """One row per source: zone, corners, size and area, flux or filter, electric power."""
+    rows = []
+    total_w = 0.0
+    for s in solution.sources:
+        w, h = s.size
+        if s.kind == "skylight":
+            setting = f"filter {s.filter:.3f}"
+            power = "—"
+        else:
+            setting = f"{fmt(s.flux)} lm" if s.flux is not None else f"{fmt(s.exitance)} lm/m²"
+            watts = source_electric_power(s)
+            total_w += watts
+            power = fmt(watts)
+        rows.append(
+            (
+                s.name,
+                s.kind,
+                s.zone,
+                fmt_corners(s),
+                f"{w:.2f} x {h:.2f}",
+                f"{s.area:.2f}",
+                setting,
+                fmt(source_flux(s, design)),
+                power,
+            )
+        )
+    note = (
+        f"Total electric power {fmt(total_w)} W."
+        if any(s.kind == "luminaire" for s in solution.sources)
+        else ""
+    )
+    return Table(
+        "Sources",
+        (
+            "source",
+            "kind",
+            "zone",
+            "corners (u, v) m",
+            "size m",
+            "area m²",
+            "flux / filter",
+            "emitted lm",
+            "electric W",
+        ),
+        tuple(rows),
+        note=note,
+    )
+
+
+def rules_table(solution: Solution, design: Design, patches: Patches) -> Table | None:
+    """Every checked geometric rule (and epsilon bound) with pass/fail; None when the
+    design has no rule and the solution no epsilon bound."""
+    rows, flags = [], []
+    names = [s.name for s in design.sources]
+    by_name = {s.name: s for s in solution.sources}
+    if design.rules and all(n in by_name for n in names):
+        rect = np.array([[by_name[n].rect for n in names]], dtype=float)
+        size = np.array([zone_grid(patches, s.zone).size for s in design.sources])
+        amounts = rule_violations(design, rect, size)[0]
+        for name, amount in zip(rule_names(design), amounts, strict=True):
+            ok = amount <= 0
+            rows.append((name, "geometry", PASS if ok else f"{FAIL} ({fmt(amount, 3)})"))
+            flags.append("pass" if ok else "fail")
+        for r in design.rules:
+            if r.kind in ("mirror", "centred"):
+                rows.append((f"{r.kind} {','.join(r.sources)}", "tie", "holds (tied)"))
+                flags.append("pass")
+    else:
+        for v in solution.violations:
+            if v.constraint == "geometry":
+                rows.append((v.name, "geometry", f"{FAIL} ({fmt(v.amount, 3)})"))
+                flags.append("fail")
+    for v in solution.violations:
+        if v.constraint == "epsilon":
+            sign = "≥" if "light" in v.name else "≤"
+            rows.append(
+                (
+                    f"{v.name} {sign} {fmt(v.bound)} {v.units}",
+                    "epsilon",
+                    f"{FAIL} ({fmt(v.value)} {v.units})",
+                )
+            )
+            flags.append("fail")
+    eps = solution.info.get("epsilon") if isinstance(solution.info, dict) else None
+    if isinstance(eps, int | float) and not any(
+        v.constraint == "epsilon" for v in solution.violations
+    ):
+        rows.append((f"light power ≥ {fmt(eps)} lm", "epsilon", PASS))
+        flags.append("pass")
+    if not rows:
+        return None
+    return Table("Geometric rules", ("rule", "type", "result"), tuple(rows), tuple(flags))
+
+
+def intention_table(
+    solution: Solution, design: Design, patches: Patches, H: np.ndarray
+) -> Table | None:
+    """One row per bound of every lighting intention: required vs achieved and pass/fail.
+
+    The achieved values come from the field H (lux) computed for the report; pass/fail is
+    the solution's own verdict (its violations) when its intentions were judged (finite
+    penalty), else the verdict of the computed field, with the same 0.1% tolerance.
+    """
+    if not design.intentions:
+        return None
+    judged = math.isfinite(solution.penalty)
+    failed = {(v.name, v.constraint) for v in solution.violations}
+    rows, flags = [], []
+    for it in design.intentions:
+        idx = intention_patches(it, patches)
+        q = H[idx] * (patches.rho[idx] if it.quantity == "C" else 1.0)
+        a = patches.area[idx]
+        qmin, qmax = float(q.min()), float(q.max())
+        avg = float(np.dot(q, a) / a.sum())
+        u0 = qmin / avg if avg > 0 else float("nan")
+        units = "lux" if it.quantity == "lux" else "lm/m²"
+        where = {None: f"{len(idx)} picked", "*": "all"}.get(it.group, it.group)
+        stats = f"{fmt(qmin)} / {fmt(avg)} / {fmt(qmax)}"
+        bounds = []
+        if it.min is not None:
+            bounds.append(("min", "≥", it.min, qmin, (it.min - qmin) / max(it.min, 1e-12)))
+        if it.max is not None:
+            bounds.append(("max", "≤", it.max, qmax, (qmax - it.max) / max(it.max, 1e-12)))
+        if it.average is not None:
+            bounds.append(
+                ("average", "≥", it.average, avg, (it.average - avg) / max(it.average, 1e-12))
+            )
+        if it.uniformity is not None:
+            c = (it.uniformity - u0) / max(it.uniformity, 1e-12)
+            bounds.append(("uniformity", "≥", it.uniformity, u0, c))
+        for bound, sign, limit, value, c in bounds:
+            bad = (it.name, bound) in failed if judged else c > FEASIBILITY_TOL
+            u = "" if bound == "uniformity" else f" {units}"
+            label = "U0" if bound == "uniformity" else bound
+            rows.append(
+                (
+                    it.name,
+                    where,
+                    f"{label} {sign} {fmt(limit)}{u}",
+                    f"{fmt(value)}{u}",
+                    stats + f" {units}",
+                    fmt(u0, 3),
+                    f"{FAIL} ({100 * max(c, 0):.1f}%)" if bad else PASS,
+                )
+            )
+            flags.append("fail" if bad else "pass")
+    return Table(
+        "Lighting intentions",
+        ("intention", "patches", "required", "achieved", "min / avg / max", "U0", "result"),
+        tuple(rows),
+        tuple(flags),
+        note="Averages are area-weighted; U0 = min / average. FAIL gives how far past the "
+        "bound, relative to it; a bound met to within 0.1% passes.",
+    )
+
+
+def group_table(patches: Patches, H: np.ndarray) -> Table:
+    """Illuminance (lux) per lighting group: area, min, area-weighted average, max, U0."""
+    rows = []
+    for gid, name in enumerate(patches.group_names):
+        idx = np.flatnonzero(patches.group_id == gid)
+        if len(idx) == 0:
+            continue
+        a, h = patches.area[idx], H[idx]
+        avg = float(np.dot(h, a) / a.sum())
+        rows.append(
+            (
+                name,
+                str(len(idx)),
+                f"{a.sum():.1f}",
+                fmt(h.min()),
+                fmt(avg),
+                fmt(h.max()),
+                fmt(h.min() / avg, 3) if avg > 0 else "—",
+            )
+        )
+    return Table(
+        "Illuminance per group",
+        ("group", "patches", "area m²", "min lux", "average lux", "max lux", "U0"),
+        tuple(rows),
+    )

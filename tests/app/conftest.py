@@ -1,0 +1,31 @@
+"""GUI test fixtures: a main window with private settings, and a check that no worker
+thread outlives its test. pytest-xvfb provides the X server (VTK needs a real one)."""
+
+from __future__ import annotations
+
+import pytest
+from PySide6 import QtCore
+
+from app.main_window import MainWindow
+from app.workers import Worker
+
+
+@pytest.fixture
+def window(qtbot, tmp_path):
+    settings = QtCore.QSettings(str(tmp_path / "settings.ini"), QtCore.QSettings.IniFormat)
+    win = MainWindow(settings)
+    win.ask_before_discard = False
+    win.show()
+    yield win
+    win.close()
+
+
+@pytest.fixture(autouse=True)
+def no_thread_left_running():
+    yield
+    running = [w for w in Worker.live() if w.isRunning()]
+    assert not running, f"worker threads still running after the test: {running}"
+
+
+def wait_for_operator(qtbot, win, timeout=60_000):
+    qtbot.waitUntil(lambda: win.worker is None and win.doc.operator is not None, timeout=timeout)

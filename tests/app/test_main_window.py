@@ -1,0 +1,154 @@
+"""The real main window under Xvfb: scene, precompute, picking, intentions, sources,
+saving, cancelling — asserted on the model and on the viewport's pixels."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+from PySide6 import QtCore, QtGui, QtWidgets
+
+from app.panels import IntentionDialog
+from lightinv_core.io.project import load_project
+from tests.app.conftest import wait_for_operator
+
+
+def send_mouse(
+    widget, kind, pos: QtCore.QPointF, button=QtCore.Qt.LeftButton, modifiers=QtCore.Qt.NoModifier
+):
+    buttons = QtCore.Qt.NoButton if kind == QtCore.QEvent.Type.MouseButtonRelease else button
+    event = QtGui.QMouseEvent(kind, pos, widget.mapToGlobal(pos), button, buttons, modifiers)
+    QtWidgets.QApplication.sendEvent(widget, event)
+
+
+def to_qt(viewport, world) -> QtCore.QPointF:
+    """Widget coordinates of a world point."""
+    ren = viewport.plotter.renderer
+    ren.SetWorldPoint(*world, 1.0)
+    ren.WorldToDisplay()
+    x, y, _ = ren.GetDisplayPoint()
+    h = viewport.plotter.interactor.height()
+    return QtCore.QPointF(x, h - 1 - y)
+
+
+def image(win) -> np.ndarray:
+    return win.viewport.screenshot().astype(float)
+
+
+@pytest.fixture
+def cornell(qtbot, window):
+    assert window.new_project("cornell", 0.25)
+    wait_for_operator(qtbot, window)
+    return window
+
+
+def test_opens_a_scene_precomputes_and_shows_light(qtbot, cornell):
+    win = cornell
+    assert win.doc.patches.n > 0 and win.doc.operator is not None
+    assert "rank k" in win.status_rank.text()
+    dark = image(win)
+    win.doc.add_source("light")
+    lux = win.doc.lighting()
+    assert lux is not None and lux.max() > 0
+    lit = image(win)
+    assert lit.std() > 10  # not blank
+    assert np.abs(lit - dark).mean() > 1.0  # the light shows
+    assert "lighting" in win.status_eval.text()
+
+
+def test_pick_patches_by_clicking_and_add_an_intention(qtbot, cornell):
+    win = cornell
+    win.viewport.camera("top")
+    win.set_mode("select")
+    iw = win.viewport.plotter.interactor
+    centre = QtCore.QPointF(iw.width() / 2, iw.height() / 2)
+    send_mouse(iw, QtCore.QEvent.Type.MouseButtonPress, centre)
+    send_mouse(iw, QtCore.QEvent.Type.MouseButtonRelease, centre)
+    picked = win.doc.selection
+    assert len(picked) == 1
+    # Seen from above with the ceiling culled, the centre of the view is on the floor.
+    assert win.doc.patches.group_names[win.doc.patches.group_id[picked[0]]] == "floor"
+    # Rubber band with shift adds a block of patches.
+    a = QtCore.QPointF(iw.width() * 0.4, iw.height() * 0.4)
+    b = QtCore.QPointF(iw.width() * 0.6, iw.height() * 0.6)
+    send_mouse(iw, QtCore.QEvent.Type.MouseButtonPress, a)
+    send_mouse(iw, QtCore.QEvent.Type.MouseMove, b)
+    send_mouse(iw, QtCore.QEvent.Type.MouseButtonRelease, b, modifiers=QtCore.Qt.ShiftModifier)
+    assert len(win.doc.selection) > 5 and set(picked) <= set(win.doc.selection)
+    assin = win.viewport.plotter.actors.get("selection")
+    assert assin is not None
+    dialog = IntentionDialog("picked", win)
+    dialog.set_values(min=100.0, average=None, uniformity=None)
+    dialog.setResult(QtWidgets.QDialog.Accepted)
+    assert win.add_intention_on_selection(dialog)
+    (it,) = win.doc.design.intentions
+    assert it.min == 100.0 and set(it.patches) == set(win.doc.selection)
+    assert win.tree.findItems(it.name, QtCore.Qt.MatchRecursive)
+
+
+def test_add_and_drag_a_source_relights_the_view(qtbot, cornell):
+    win = cornell
+    win.viewport.camera("top")
+    src = win.doc.add_source("light")  # fills the 0.5 m light zone: make it smaller
+    win.doc.update_source(src.name, rect=(0.2, 0.2, 0.45, 0.45))
+    before_img = image(win)
+    before_rect = win.doc.design.source(src.name).rect
+    frame = win.viewport.frames["light"]
+    win.set_mode("move")
+    iw = win.viewport.plotter.interactor
+    start = to_qt(win.viewport, frame.to_world(0.3, 0.3))
+    end = to_qt(win.viewport, frame.to_world(0.1, 0.1))
+    send_mouse(iw, QtCore.QEvent.Type.MouseButtonPress, start)
+    send_mouse(iw, QtCore.QEvent.Type.MouseMove, end)
+    send_mouse(iw, QtCore.QEvent.Type.MouseButtonRelease, end)
+    after_rect = win.doc.design.source(src.name).rect
+    moved = np.subtract(after_rect, before_rect)
+    assert np.all(moved < -0.05)  # dragged towards the zone origin
+    assert min(after_rect) >= 0.0  # kept inside the zone
+    assert np.abs(image(win) - before_img).mean() > 0.2
+    # Numeric editing through the source panel.
+    win.source_panel.corners[2].setValue(0.4)
+    assert win.doc.design.source(src.name).rect[2] == pytest.approx(0.4)
+    assert win.windowTitle().endswith("*")
+
+
+def test_save_and_reopen_gives_the_same_project(qtbot, cornell, tmp_path):
+    win = cornell
+    win.doc.add_source("light")
+    win.doc.set_selection([1, 2, 3])
+    dialog = IntentionDialog("three", win)
+    dialog.setResult(QtWidgets.QDialog.Accepted)
+    assert win.add_intention_on_selection(dialog)
+    path = tmp_path / "p.json"
+    assert win.save_to(path)
+    saved = win.doc.project
+    assert not win.windowTitle().endswith("*")
+    assert win.open_path(path)
+    wait_for_operator(qtbot, win)
+    assert win.doc.project == saved == load_project(path)
+    assert win.recent_files()[0] == str(path.resolve())
+
+
+def test_cancel_precompute_leaves_no_operator_and_no_thread(qtbot, window):
+    window.doc.new_from_scene  # noqa: B018 - the window opens the scene itself
+    window.stop_worker()
+    assert window.new_project("office", 0.35)  # starts a precompute (not cached)
+    assert window.worker is not None
+    with qtbot.waitSignal(window.worker.cancelled, timeout=30_000):
+        window.cancel_precompute()
+    qtbot.waitUntil(lambda: window.worker is None, timeout=30_000)
+    assert window.doc.operator is None
+    assert window.act_precompute.isEnabled() and not window.act_cancel.isEnabled()
+
+
+def test_bad_project_file_shows_an_error_and_keeps_the_open_one(
+    qtbot, cornell, tmp_path, monkeypatch
+):
+    shown = []
+    monkeypatch.setattr(
+        QtWidgets.QMessageBox, "critical", lambda *a: shown.append(a[2]) or QtWidgets.QMessageBox.Ok
+    )
+    bad = tmp_path / "bad.json"
+    bad.write_text('{"schema": 9, "name": "x"}')
+    before = cornell.doc.project
+    assert not cornell.open_path(bad)
+    assert "schema 9" in shown[0] and cornell.doc.project is before
