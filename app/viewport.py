@@ -79,7 +79,9 @@ class Viewport(QtWidgets.QWidget):
         super().__init__(parent)
         layout = QtWidgets.QVBoxLayout(self)
         layout.setContentsMargins(0, 0, 0, 0)
-        self.plotter = QtInteractor(self)
+        # No multisampling: under software GL (Xvfb, VMs) 4x MSAA doubles the frame time and
+        # flat patches need no anti-aliasing.
+        self.plotter = QtInteractor(self, multi_samples=0)
         layout.addWidget(self.plotter.interactor)
         self.plotter.set_background("white")
         self.mesh: pv.PolyData | None = None
@@ -92,7 +94,26 @@ class Viewport(QtWidgets.QWidget):
         self.drag_zone: str | None = None
         self._press: QtCore.QPoint | None = None
         self._last_uv: tuple[float, float] | None = None
+        self._render_pending = False
+        self.render_count = 0
         self.plotter.interactor.installEventFilter(self)
+
+    # -- rendering ------------------------------------------------------------------------
+    def request_render(self) -> None:
+        """Render once when control returns to the event loop (edits coalesce)."""
+        if not self._render_pending:
+            self._render_pending = True
+            QtCore.QTimer.singleShot(0, self._flush_render)
+
+    def _flush_render(self) -> None:
+        if self._render_pending:
+            self.render_now()
+
+    def render_now(self) -> None:
+        """Render immediately (and drop a pending request)."""
+        self._render_pending = False
+        self.plotter.render()
+        self.render_count += 1
 
     # -- scene ----------------------------------------------------------------------------
     def set_scene(self, patches: Patches, zones: list[str]) -> None:
@@ -142,7 +163,7 @@ class Viewport(QtWidgets.QWidget):
             self.units = units
             for bar in self.plotter.scalar_bars.values():
                 bar.SetTitle(units)
-        self.plotter.render()
+        self.render_now()
 
     def set_colormap(self, cmap: str) -> None:
         """Change the colour map (rebuilds the scene actor's lookup table)."""
@@ -168,6 +189,7 @@ class Viewport(QtWidgets.QWidget):
             line_width=2,
             lighting=False,
             reset_camera=False,
+            render=False,
         )
 
     def set_sources(self, sources, current: str | None) -> None:
@@ -189,6 +211,7 @@ class Viewport(QtWidgets.QWidget):
                 line_width=3,
                 lighting=False,
                 reset_camera=False,
+                render=False,
             )
         if cur:
             self.plotter.add_mesh(
@@ -198,8 +221,9 @@ class Viewport(QtWidgets.QWidget):
                 line_width=5,
                 lighting=False,
                 reset_camera=False,
+                render=False,
             )
-        self.plotter.render()
+        self.request_render()
 
     def set_selection(self, patch_ids: np.ndarray) -> None:
         """Highlight the picked patches."""
@@ -216,8 +240,9 @@ class Viewport(QtWidgets.QWidget):
                 reset_camera=False,
                 show_scalar_bar=False,
                 culling="back",
+                render=False,
             )
-        self.plotter.render()
+        self.request_render()
 
     def camera(self, preset: str) -> None:
         """Camera presets: iso, top (roof culled), front."""
@@ -228,8 +253,8 @@ class Viewport(QtWidgets.QWidget):
         r = float(np.linalg.norm(np.array(self.mesh.bounds[1::2]) - self.mesh.bounds[::2]))
         d = np.asarray(direction, float)
         self.plotter.camera_position = [tuple(c + 1.6 * r * d / np.linalg.norm(d)), tuple(c), up]
-        self.plotter.reset_camera()  # keeps the direction, fits the whole scene
-        self.plotter.render()
+        self.plotter.reset_camera(render=False)  # keeps the direction, fits the whole scene
+        self.render_now()
 
     # -- picking ------------------------------------------------------------------------------
     def _display(self, pos: QtCore.QPoint) -> tuple[int, int]:
@@ -308,7 +333,7 @@ class Viewport(QtWidgets.QWidget):
 
     def screenshot(self, path: str | None = None) -> np.ndarray:
         """The rendered 3D view as an (h, w, 3) image, saved to ``path`` if given."""
-        self.plotter.render()
+        self.render_now()
         return self.plotter.screenshot(path, return_img=True)
 
     def close_plotter(self) -> None:
