@@ -175,6 +175,71 @@ class Document(QtCore.QObject):
             self.current_source = sources[0].name if sources else None
         self._set_design(replace(d, sources=sources, rules=rules))
 
+    def set_centred(self, name: str, centred: bool) -> None:
+        """Tie (or untie) a source to the centre of its zone."""
+        from lightinv_core.design.model import Rule
+
+        d = self.design
+        rules = tuple(r for r in d.rules if not (r.kind == "centred" and name in r.sources))
+        if centred:
+            rules += (Rule("centred", (name,)),)
+        self._set_design(replace(d, rules=rules))
+
+    def set_mirror(self, name: str, original: str | None, axis: str = "u") -> None:
+        """Make source ``name`` the mirror image of ``original`` along a zone axis (None:
+        free again). Its zone may be another one, e.g. the symmetric zone across a hall."""
+        from lightinv_core.design.model import Rule
+
+        d = self.design
+        rules = tuple(r for r in d.rules if not (r.kind == "mirror" and r.sources[0] == name))
+        if original is not None:
+            rules += (Rule("mirror", (name, original), axis=axis),)
+        self._set_design(replace(d, rules=rules))
+
+    def centred(self, name: str) -> bool:
+        """Whether a centred rule ties ``name``."""
+        return any(r.kind == "centred" and name in r.sources for r in self.design.rules)
+
+    def mirror_of(self, name: str) -> tuple[str, str] | None:
+        """(original, axis) if ``name`` mirrors another source."""
+        for r in self.design.rules:
+            if r.kind == "mirror" and r.sources[0] == name:
+                return r.sources[1], r.axis
+        return None
+
+    # -- emitter zones drawn by the user ------------------------------------------------------
+    @property
+    def user_zones(self) -> tuple:
+        """Zones the project adds to its scene (``ZoneEdit``s)."""
+        return self.project.scene.zones
+
+    def drawable_surface(self, patch: int):
+        """(surface name, Rect) under a patch if a zone may be drawn there, else None."""
+        name = self.patches.surface_names[self.patches.surface_id[patch]]
+        surface = self.scene.surface(name)
+        zone_surfaces = {z.surface for z in self.scene.zones}
+        if surface.rect is None or name in zone_surfaces or surface.grid is not None:
+            return None
+        return name, surface.rect
+
+    def set_user_zones(self, zones) -> None:
+        """Replace the drawn zones: the scene is rebuilt and re-meshed (the operator must be
+        precomputed again; sources in a removed zone are removed). SceneError on a bad zone,
+        leaving the project unchanged."""
+        spec = replace(self.project.scene, zones=tuple(zones))
+        names = {
+            z.name for z in self.scene.zones if z.name not in {u.name for u in self.user_zones}
+        } | {z.name for z in zones}
+        design = self.design
+        kept = tuple(s for s in design.sources if s.zone in names)
+        rules = tuple(r for r in design.rules if set(r.sources) <= {s.name for s in kept})
+        project = replace(
+            self.project, scene=spec, design=replace(design, sources=kept, rules=rules)
+        )
+        self.set_project(project, self.path)  # loads the scene first: an error changes nothing
+        self.dirty = True
+        self.pathChanged.emit()
+
     def add_intention(self, intention: Intention) -> None:
         """Append a lighting intention."""
         self._set_design(replace(self.design, intentions=(*self.design.intentions, intention)))
@@ -202,6 +267,13 @@ class Document(QtCore.QObject):
         if self._problem is None:
             self._problem = DesignProblem(self.design, self.scene, self.patches, self.operator)
         return self._problem
+
+    def effective_sources(self) -> tuple:
+        """The sources as lit: mirrored and centred ones placed by their rules."""
+        problem = self.problem()
+        if problem is None or not self.design.sources:
+            return self.design.sources
+        return problem.sources_at(problem.vars.initial())
 
     def lighting(self) -> np.ndarray | None:
         """Illuminance (lux) of every patch for the current sources, or None."""

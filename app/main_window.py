@@ -9,7 +9,7 @@ import numpy as np
 from PySide6 import QtCore, QtGui, QtWidgets
 
 from app.document import Document, blank_project
-from app.panels import DesignTree, IntentionDialog, SourcePanel
+from app.panels import DesignTree, IntentionDialog, SourcePanel, ZoneDialog, ZonePanel
 from app.viewport import Viewport
 from app.workers import PrecomputeWorker
 from lightinv_core.errors import LightInvError
@@ -35,6 +35,7 @@ class MainWindow(QtWidgets.QMainWindow):
         self.setCentralWidget(self.viewport)
         self.tree = DesignTree(self.doc)
         self.source_panel = SourcePanel(self.doc)
+        self.zone_panel = ZonePanel(self.doc)
         self._docks()
         self._actions()
         self._menus()
@@ -57,6 +58,7 @@ class MainWindow(QtWidgets.QMainWindow):
         box = QtWidgets.QWidget()
         lay = QtWidgets.QVBoxLayout(box)
         lay.addWidget(self.source_panel)
+        lay.addWidget(self.zone_panel)
         lay.addWidget(self._view_options())
         lay.addStretch(1)
         right.setWidget(box)
@@ -117,6 +119,7 @@ class MainWindow(QtWidgets.QMainWindow):
             ("navigate", "Navigate"),
             ("select", "Select patches"),
             ("move", "Move source"),
+            ("zone", "Draw zone"),
         ):
             act = self._action(text, lambda _=False, m=mode: self.set_mode(m), checkable=True)
             self.mode_group.addAction(act)
@@ -186,6 +189,8 @@ class MainWindow(QtWidgets.QMainWindow):
         d.pathChanged.connect(self._title)
         self.viewport.picked.connect(self._picked)
         self.viewport.sourceDragged.connect(self._dragged)
+        self.viewport.zoneDrawn.connect(self._zone_drawn)
+        self.viewport.surface_frame = self._surface_frame
         self.tree.groupActivated.connect(self.add_intention_on_group)
 
     # -- document -> views -----------------------------------------------------------------
@@ -200,13 +205,15 @@ class MainWindow(QtWidgets.QMainWindow):
         self.start_precompute()
 
     def _sources_changed(self) -> None:
-        self.viewport.set_sources(self.doc.design.sources, self.doc.current_source)
+        self.viewport.set_sources(self.doc.effective_sources(), self.doc.current_source)
         if self.doc.current_source:
             self.viewport.drag_zone = self.doc.design.source(self.doc.current_source).zone
         self._title()
 
     def _recolour(self) -> None:
         lux = self.doc.lighting()
+        if lux is not None:
+            self.viewport.set_sources(self.doc.effective_sources(), self.doc.current_source)
         t0 = time.perf_counter()
         self.viewport.clim = None if self.auto_range.isChecked() else (0.0, self.range_max.value())
         if lux is None:
@@ -251,6 +258,43 @@ class MainWindow(QtWidgets.QMainWindow):
     def _dragged(self, du: float, dv: float) -> None:
         if self.doc.current_source is not None:
             self.doc.move_source(self.doc.current_source, du, dv)
+
+    def _surface_frame(self, patch: int):
+        from app.viewport import ZoneFrame
+
+        found = self.doc.drawable_surface(patch)
+        if found is None:
+            self.statusBar().showMessage(
+                "Zones are drawn on planar rectangular surfaces that are not zones yet", 4000
+            )
+            return None
+        return ZoneFrame(None, found[0], rect=found[1])
+
+    def _zone_drawn(self, surface, u0, v0, u1, v1, dialog: ZoneDialog | None = None) -> bool:
+        """Ask for the new zone's name and kind, then rebuild the scene with it."""
+        from lightinv_core.scene.edits import ZoneEdit
+
+        if abs(u1 - u0) < 0.05 or abs(v1 - v0) < 0.05:
+            self.statusBar().showMessage("Zone too small: drag a larger rectangle", 4000)
+            return False
+        taken = {z.name for z in self.doc.scene.zones}
+        default = next(f"Z{i}" for i in range(1, 10_000) if f"Z{i}" not in taken)
+        dialog = dialog or ZoneDialog(surface, default, self)
+        if (
+            dialog.result() != QtWidgets.QDialog.Accepted
+            and dialog.exec() != QtWidgets.QDialog.Accepted
+        ):
+            return False
+        try:
+            edit = ZoneEdit(
+                dialog.name.text().strip(), dialog.kind.currentText(), surface, (u0, v0, u1, v1)
+            )
+            self.stop_worker()
+            self.doc.set_user_zones((*self.doc.user_zones, edit))
+        except LightInvError as exc:
+            QtWidgets.QMessageBox.warning(self, "LightInv", str(exc))
+            return False
+        return True
 
     def add_intention_on_selection(self, dialog: IntentionDialog | None = None) -> bool:
         """Ask for bounds and add an intention on the picked patches."""

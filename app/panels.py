@@ -110,6 +110,18 @@ class SourcePanel(QtWidgets.QGroupBox):
         self.strength.valueChanged.connect(self._strength_edited)
         self.strength_label = QtWidgets.QLabel("flux")
         form.addRow(self.strength_label, self.strength)
+        self.centred = QtWidgets.QCheckBox("centred in its zone")
+        self.centred.toggled.connect(self._centred_edited)
+        form.addRow("Rule", self.centred)
+        self.mirror = QtWidgets.QComboBox()
+        self.mirror_axis = QtWidgets.QComboBox()
+        self.mirror_axis.addItems(["u", "v"])
+        mrow = QtWidgets.QHBoxLayout()
+        mrow.addWidget(self.mirror)
+        mrow.addWidget(self.mirror_axis)
+        form.addRow("Mirror of", mrow)
+        self.mirror.currentIndexChanged.connect(self._mirror_edited)
+        self.mirror_axis.currentIndexChanged.connect(self._mirror_edited)
         form.addRow(self.remove_button)
         self.add_button.clicked.connect(self._add)
         self.remove_button.clicked.connect(self._remove)
@@ -123,7 +135,7 @@ class SourcePanel(QtWidgets.QGroupBox):
 
     def refresh(self) -> None:
         name = self.doc.current_source
-        boxes = [*self.corners, self.strength]
+        boxes = [*self.corners, self.strength, self.centred, self.mirror, self.mirror_axis]
         for b in boxes:
             b.blockSignals(True)
         try:
@@ -134,6 +146,18 @@ class SourcePanel(QtWidgets.QGroupBox):
                 return
             s = self.doc.design.source(name)
             self.name.setText(f"{s.name} ({s.kind} in {s.zone})")
+            self.centred.setEnabled(True)
+            self.centred.setChecked(self.doc.centred(name))
+            self.mirror.clear()
+            self.mirror.addItem("(none)", None)
+            for other in self.doc.design.sources:
+                if other.name != name and other.kind == s.kind:
+                    self.mirror.addItem(other.name, other.name)
+            tie = self.doc.mirror_of(name)
+            self.mirror.setEnabled(True)
+            self.mirror_axis.setEnabled(True)
+            self.mirror.setCurrentIndex(max(0, self.mirror.findData(tie[0])) if tie else 0)
+            self.mirror_axis.setCurrentText(tie[1] if tie else "u")
             w, h = self.doc.zone_size(s.zone)
             for box, value, top in zip(self.corners, s.rect, (w, h, w, h), strict=True):
                 box.setEnabled(True)
@@ -175,6 +199,26 @@ class SourcePanel(QtWidgets.QGroupBox):
         s = self.doc.design.source(self.doc.current_source)
         key = "filter" if s.kind == "skylight" else ("flux" if s.flux is not None else "exitance")
         self._apply(**{key: self.strength.value()})
+
+    def _centred_edited(self, on: bool) -> None:
+        if self.doc.current_source is not None:
+            self._guard(self.doc.set_centred, self.doc.current_source, on)
+
+    def _mirror_edited(self) -> None:
+        if self.doc.current_source is not None:
+            self._guard(
+                self.doc.set_mirror,
+                self.doc.current_source,
+                self.mirror.currentData(),
+                self.mirror_axis.currentText(),
+            )
+
+    def _guard(self, fn, *args) -> None:
+        try:
+            fn(*args)
+        except LightInvError as exc:
+            QtWidgets.QMessageBox.warning(self, "LightInv", str(exc))
+            self.refresh()
 
     def _add(self) -> None:
         zone = self.zone.currentData()
@@ -246,3 +290,109 @@ class IntentionDialog(QtWidgets.QDialog):
             quantity=self.quantity.currentData(),
             **bounds,
         )
+
+
+class ZonePanel(QtWidgets.QGroupBox):
+    """The emitter zones drawn on this project's scene: rename, retype, resize, delete."""
+
+    def __init__(self, doc: Document, parent: QtWidgets.QWidget | None = None):
+        super().__init__("Drawn zones", parent)
+        self.doc = doc
+        form = QtWidgets.QFormLayout(self)
+        self.zone = QtWidgets.QComboBox()
+        form.addRow("Zone", self.zone)
+        self.name = QtWidgets.QLineEdit()
+        form.addRow("Name", self.name)
+        self.kind = QtWidgets.QComboBox()
+        self.kind.addItems(["luminaire", "skylight"])
+        form.addRow("Kind", self.kind)
+        self.corners = []
+        for label in ("u0", "v0", "u1", "v1"):
+            box = QtWidgets.QDoubleSpinBox(decimals=3, singleStep=0.1, suffix=" m")
+            box.setRange(0.0, 1000.0)
+            self.corners.append(box)
+            form.addRow(label, box)
+        row = QtWidgets.QHBoxLayout()
+        self.apply_button = QtWidgets.QPushButton("Apply")
+        self.delete_button = QtWidgets.QPushButton("Delete zone")
+        row.addWidget(self.apply_button)
+        row.addWidget(self.delete_button)
+        form.addRow(row)
+        self.hint = QtWidgets.QLabel("Draw zone mode: drag a rectangle on a ceiling or roof.")
+        self.hint.setWordWrap(True)
+        form.addRow(self.hint)
+        self.zone.currentIndexChanged.connect(self._show)
+        self.apply_button.clicked.connect(self.apply)
+        self.delete_button.clicked.connect(self.delete)
+        doc.sceneChanged.connect(self.refresh)
+
+    def refresh(self) -> None:
+        self.zone.blockSignals(True)
+        self.zone.clear()
+        for z in self.doc.user_zones:
+            self.zone.addItem(f"{z.name} on {z.surface}", z.name)
+        self.zone.blockSignals(False)
+        has = bool(self.doc.user_zones)
+        for w in (self.name, self.kind, *self.corners, self.apply_button, self.delete_button):
+            w.setEnabled(has)
+        self._show()
+
+    def _current(self):
+        name = self.zone.currentData()
+        return next((z for z in self.doc.user_zones if z.name == name), None)
+
+    def _show(self) -> None:
+        z = self._current()
+        if z is None:
+            return
+        self.name.setText(z.name)
+        self.kind.setCurrentText(z.kind)
+        for box, value in zip(self.corners, z.rect, strict=True):
+            box.setValue(value)
+
+    def apply(self) -> None:
+        """Write the fields back (the scene is re-meshed)."""
+        from dataclasses import replace
+
+        z = self._current()
+        if z is None:
+            return
+        new = replace(
+            z,
+            name=self.name.text().strip(),
+            kind=self.kind.currentText(),
+            rect=tuple(b.value() for b in self.corners),
+        )
+        self._set([new if u.name == z.name else u for u in self.doc.user_zones])
+
+    def delete(self) -> None:
+        """Remove the zone (and any source placed in it)."""
+        z = self._current()
+        if z is not None:
+            self._set([u for u in self.doc.user_zones if u.name != z.name])
+
+    def _set(self, zones) -> None:
+        try:
+            self.doc.set_user_zones(zones)
+        except LightInvError as exc:
+            QtWidgets.QMessageBox.warning(self, "LightInv", str(exc))
+
+
+class ZoneDialog(QtWidgets.QDialog):
+    """Name and kind of a zone just drawn."""
+
+    def __init__(self, surface: str, default_name: str, parent: QtWidgets.QWidget | None = None):
+        super().__init__(parent)
+        self.setWindowTitle(f"New emitter zone on {surface}")
+        form = QtWidgets.QFormLayout(self)
+        self.name = QtWidgets.QLineEdit(default_name)
+        form.addRow("Name", self.name)
+        self.kind = QtWidgets.QComboBox()
+        self.kind.addItems(["luminaire", "skylight"])
+        form.addRow("Kind", self.kind)
+        buttons = QtWidgets.QDialogButtonBox(
+            QtWidgets.QDialogButtonBox.Ok | QtWidgets.QDialogButtonBox.Cancel
+        )
+        buttons.accepted.connect(self.accept)
+        buttons.rejected.connect(self.reject)
+        form.addRow(buttons)

@@ -27,12 +27,20 @@ OUTLINE_LIFT = 0.01  # m: outlines float 1 cm off their surface (no z-fighting)
 
 
 class ZoneFrame:
-    """An emitter zone's origin, unit u/v axes and size, for 2D <-> 3D conversions."""
+    """A rectangle's origin, unit u/v axes and size (an emitter zone, or a surface a zone
+    may be drawn on), for 2D <-> 3D conversions."""
 
-    def __init__(self, patches: Patches, name: str):
+    def __init__(self, patches: Patches | None, name: str, rect=None):
+        self.name = name
+        if rect is not None:  # a scene Rect
+            self.origin = np.asarray(rect.origin, float)
+            self.u = rect.u / np.linalg.norm(rect.u)
+            self.v = rect.v / np.linalg.norm(rect.v)
+            self.normal = rect.normal
+            self.size = rect.size
+            return
         g = zone_grid(patches, name)
         first = g.patch[0, 0]
-        self.name = name
         self.origin = patches.origin[first]
         self.u = patches.edge1[first] / np.linalg.norm(patches.edge1[first])
         self.v = patches.edge2[first] / np.linalg.norm(patches.edge2[first])
@@ -74,6 +82,7 @@ class Viewport(QtWidgets.QWidget):
 
     picked = QtCore.Signal(object, bool)  # patch ids (np.ndarray), add to selection
     sourceDragged = QtCore.Signal(float, float)  # du, dv in metres
+    zoneDrawn = QtCore.Signal(str, float, float, float, float)  # surface, u0, v0, u1, v1
 
     def __init__(self, parent: QtWidgets.QWidget | None = None):
         super().__init__(parent)
@@ -90,7 +99,9 @@ class Viewport(QtWidgets.QWidget):
         self.cmap = "inferno"
         self.clim: tuple[float, float] | None = None  # None: automatic
         self.units = "lux"
-        self.mode = "navigate"  # navigate | select | move
+        self.mode = "navigate"  # navigate | select | move | zone
+        self.surface_frame = None  # callable(patch id) -> ZoneFrame of its surface, or None
+        self._draft: tuple[ZoneFrame, tuple[float, float]] | None = None
         self.drag_zone: str | None = None
         self._press: QtCore.QPoint | None = None
         self._last_uv: tuple[float, float] | None = None
@@ -314,6 +325,8 @@ class Viewport(QtWidgets.QWidget):
             self._press = event.position().toPoint()
             if self.mode == "move" and self.drag_zone:
                 self._last_uv = self.zone_point(self.drag_zone, *self._display(self._press))
+            if self.mode == "zone":
+                self._start_draft(*self._display(self._press))
             return True
         if et == QtCore.QEvent.Type.MouseMove and self._press is not None:
             if self.mode == "move" and self.drag_zone and self._last_uv is not None:
@@ -321,6 +334,8 @@ class Viewport(QtWidgets.QWidget):
                 if uv is not None:
                     self.sourceDragged.emit(uv[0] - self._last_uv[0], uv[1] - self._last_uv[1])
                     self._last_uv = uv
+            if self.mode == "zone" and self._draft is not None:
+                self._show_draft(*self._display(event.position().toPoint()))
             return True
         if et == QtCore.QEvent.Type.MouseButtonRelease and self._press is not None:
             start, end = self._press, event.position().toPoint()
@@ -328,8 +343,50 @@ class Viewport(QtWidgets.QWidget):
             if self.mode == "select":
                 add = bool(event.modifiers() & QtCore.Qt.ShiftModifier)
                 self.picked.emit(self.pick_area(*self._display(start), *self._display(end)), add)
+            if self.mode == "zone" and self._draft is not None:
+                rect = self._show_draft(*self._display(end))
+                frame = self._draft[0]
+                self._draft = None
+                self.plotter.remove_actor("draft", render=False)
+                self.request_render()
+                if rect is not None:
+                    self.zoneDrawn.emit(frame.name, *rect)
             return True
         return False
+
+    # -- zone drawing -----------------------------------------------------------------------
+    def _start_draft(self, x: int, y: int) -> None:
+        """Begin a zone rectangle on the planar surface under the cursor."""
+        self._draft = None
+        hit = self.pick_at(x, y)
+        found = self.surface_frame(int(hit[0])) if len(hit) and self.surface_frame else None
+        if found is None:
+            return
+        frame = found
+        uv = frame.from_ray(*self.ray(x, y))
+        if uv is not None:
+            self._draft = (frame, uv)
+
+    def _show_draft(self, x: int, y: int) -> tuple[float, float, float, float] | None:
+        """Draw the rectangle being dragged; returns it (m, clipped to the surface)."""
+        frame, (u0, v0) = self._draft
+        uv = frame.from_ray(*self.ray(x, y))
+        if uv is None:
+            return None
+        w, h = frame.size
+        u1, v1 = float(np.clip(uv[0], 0, w)), float(np.clip(uv[1], 0, h))
+        u0, v0 = float(np.clip(u0, 0, w)), float(np.clip(v0, 0, h))
+        self.plotter.add_mesh(
+            _polylines([frame.rectangle(u0, v0, u1, v1)]),
+            name="draft",
+            color="#ff2020",
+            line_width=4,
+            lighting=False,
+            reset_camera=False,
+            render=False,
+        )
+        self.request_render()
+        return u0, v0, u1, v1
 
     def screenshot(self, path: str | None = None) -> np.ndarray:
         """The rendered 3D view as an (h, w, 3) image, saved to ``path`` if given."""

@@ -15,6 +15,7 @@ from typing import Any
 
 from lightinv_core.design.model import Design, Source
 from lightinv_core.design.solution import ParetoFront, Solution
+from lightinv_core.errors import SceneError
 from lightinv_core.io.project_checks import (
     _boolean,
     _check_fields,
@@ -22,14 +23,20 @@ from lightinv_core.io.project_checks import (
     _count,
     _fail,
     _integer,
+    _join,
     _list,
     _number,
+    _numbers,
+    _object,
     _optional,
     _path_string,
+    _string,
+    _unique,
 )
 from lightinv_core.scene.builtin import BUILTIN_SCENES
+from lightinv_core.scene.edits import ZoneEdit, apply_zone_edits
 from lightinv_core.scene.loading import load_scene
-from lightinv_core.scene.model import MIN_RESOLUTION, Scene
+from lightinv_core.scene.model import MIN_RESOLUTION, ZONE_KINDS, Scene
 from lightinv_core.scene.obj_parse import UP_AXES
 
 SCHEMA = 1
@@ -54,6 +61,30 @@ def _obj_path(v: Any, path: str) -> str:
     return s
 
 
+ZONE_FIELDS = ("name", "kind", "surface", "rect")
+
+
+def _zone_edit(v: Any, path: str) -> ZoneEdit:
+    """A ``ZoneEdit`` from a JSON object (or a ``ZoneEdit`` given in code)."""
+    if isinstance(v, ZoneEdit):
+        return v
+    d = _object(v, path, ZONE_FIELDS, ZONE_FIELDS)
+    name = _string(d["name"], _join(path, "name"))
+    kind = _choice(d["kind"], _join(path, "kind"), ZONE_KINDS)
+    surface = _string(d["surface"], _join(path, "surface"))
+    rect = _numbers(d["rect"], _join(path, "rect"), 4)
+    try:
+        return ZoneEdit(name, kind, surface, rect)
+    except SceneError as err:
+        _fail(_join(path, "rect"), str(err))
+
+
+def _zone_edits(v: Any, path: str) -> tuple[ZoneEdit, ...]:
+    zones = _list(v, path, _zone_edit, "zone objects")
+    _unique(tuple(z.name for z in zones), path)
+    return zones
+
+
 @dataclass(frozen=True)
 class SceneSpec:
     """The scene a project is on: a built-in scene or an OBJ file (exactly one).
@@ -62,6 +93,8 @@ class SceneSpec:
     0.25 m for OBJ files). ``materials`` (a reflectance JSON file), ``scale`` (metres
     per model unit), ``up`` ("z" or "y") and ``skip_degenerate`` apply to OBJ files only.
     Relative ``obj``/``materials`` paths are resolved against ``base_dir`` in ``load``.
+    ``zones`` are new emitter zones drawn on rectangular surfaces of the scene
+    (``ZoneEdit``), applied by ``load`` with ``apply_zone_edits``.
     """
 
     builtin: str | None = None
@@ -71,6 +104,7 @@ class SceneSpec:
     scale: float = 1.0
     up: str = "z"
     skip_degenerate: bool = False
+    zones: tuple[ZoneEdit, ...] = ()
 
     def __post_init__(self) -> None:
         _check_fields(
@@ -83,6 +117,7 @@ class SceneSpec:
                 "scale": lambda v, p: _number(v, p, gt=0.0),
                 "up": lambda v, p: _choice(v, p, UP_AXES),
                 "skip_degenerate": _boolean,
+                "zones": _zone_edits,
             },
         )
         if (self.builtin is None) == (self.obj is None):
@@ -99,17 +134,20 @@ class SceneSpec:
                 _fail("skip_degenerate", "only an OBJ scene takes this")
 
     def load(self, base_dir: Path | None = None) -> Scene:
-        """Build the scene (relative paths resolved against ``base_dir``)."""
+        """Build the scene (relative paths resolved against ``base_dir``) with the new
+        emitter ``zones`` drawn on it."""
         if self.builtin is not None:
-            return load_scene(self.builtin, self.resolution)
-        return load_scene(
-            resolve_path(self.obj, base_dir),
-            self.resolution,
-            materials=resolve_path(self.materials, base_dir),
-            scale=self.scale,
-            up=self.up,
-            skip_degenerate=self.skip_degenerate,
-        )
+            scene = load_scene(self.builtin, self.resolution)
+        else:
+            scene = load_scene(
+                resolve_path(self.obj, base_dir),
+                self.resolution,
+                materials=resolve_path(self.materials, base_dir),
+                scale=self.scale,
+                up=self.up,
+                skip_degenerate=self.skip_degenerate,
+            )
+        return apply_zone_edits(scene, self.zones) if self.zones else scene
 
 
 @dataclass(frozen=True)

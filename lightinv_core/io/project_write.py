@@ -109,13 +109,19 @@ def _solution_dict(s: Solution) -> dict:
 
 def _scene_dict(s: SceneSpec, base_dir: Path | None) -> dict:
     if s.builtin is not None:
-        return {"builtin": s.builtin, "resolution": s.resolution}
-    d: dict[str, Any] = {"obj": _relative(s.obj, base_dir), "resolution": s.resolution}
-    if s.materials is not None:
-        d["materials"] = _relative(s.materials, base_dir)
-    d.update(scale=s.scale, up=s.up)
-    if s.skip_degenerate:
-        d["skip_degenerate"] = True
+        d: dict[str, Any] = {"builtin": s.builtin, "resolution": s.resolution}
+    else:
+        d = {"obj": _relative(s.obj, base_dir), "resolution": s.resolution}
+        if s.materials is not None:
+            d["materials"] = _relative(s.materials, base_dir)
+        d.update(scale=s.scale, up=s.up)
+        if s.skip_degenerate:
+            d["skip_degenerate"] = True
+    if s.zones:
+        d["zones"] = [
+            {"name": z.name, "kind": z.kind, "surface": z.surface, "rect": list(z.rect)}
+            for z in s.zones
+        ]
     return d
 
 

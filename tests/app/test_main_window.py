@@ -152,3 +152,67 @@ def test_bad_project_file_shows_an_error_and_keeps_the_open_one(
     before = cornell.doc.project
     assert not cornell.open_path(bad)
     assert "schema 9" in shown[0] and cornell.doc.project is before
+
+
+def test_draw_a_zone_on_the_ceiling_and_place_a_source_in_it(qtbot, window):
+    from app.panels import ZoneDialog
+
+    assert window.new_project("office", 0.5)
+    wait_for_operator(qtbot, window)
+    win = window
+    win.set_mode("zone")
+    iw = win.viewport.plotter.interactor
+    # The ceiling faces down: look up at it from inside the room, below a clear strip
+    # between the skylight zone and the north wall (y 7.3 to 7.7 m, x 5.5 to 6.5 m).
+    win.viewport.plotter.camera_position = [(6.0, 7.5, 0.3), (6.0, 7.5, 3.0), (0, 1, 0)]
+    win.viewport.render_now()
+    dialog = ZoneDialog("ceiling", "Z1", win)
+    dialog.kind.setCurrentText("luminaire")
+    dialog.setResult(QtWidgets.QDialog.Accepted)
+    drawn = []
+    win.viewport.zoneDrawn.disconnect(win._zone_drawn)
+    win.viewport.zoneDrawn.connect(lambda *a: drawn.append(a))
+    start = to_qt(win.viewport, (5.5, 7.7, 3.0))
+    end = to_qt(win.viewport, (6.5, 7.3, 3.0))
+    send_mouse(iw, QtCore.QEvent.Type.MouseButtonPress, start)
+    send_mouse(iw, QtCore.QEvent.Type.MouseMove, end)
+    send_mouse(iw, QtCore.QEvent.Type.MouseButtonRelease, end)
+    ((surface, u0, v0, u1, v1),) = drawn
+    rect = win.doc.scene.surface(surface).rect
+    assert win.doc.scene.surface(surface).group == "ceiling"
+    corners = [
+        rect.point(0, 0) + a * rect.u / rect.size[0] + b * rect.v / rect.size[1]
+        for a, b in ((u0, v0), (u1, v1))
+    ]
+    np.testing.assert_allclose(sorted(c[0] for c in corners), [5.5, 6.5], atol=0.03)
+    np.testing.assert_allclose(sorted(c[1] for c in corners), [7.3, 7.7], atol=0.03)
+    assert win._zone_drawn(surface, u0, v0, u1, v1, dialog)
+    assert "Z1" in {z.name for z in win.doc.scene.zones}
+    assert win.doc.project.scene.zones[0].name == "Z1" and win.doc.dirty
+    wait_for_operator(qtbot, win)
+    win.doc.add_source("Z1")
+    assert win.doc.lighting().max() > 0
+    # Rename and delete through the zone panel.
+    win.zone_panel.name.setText("Z9")
+    win.zone_panel.apply()
+    wait_for_operator(qtbot, win)
+    assert "Z9" in {z.name for z in win.doc.scene.zones}
+    win.zone_panel.delete()
+    assert win.doc.project.scene.zones == () and win.doc.design.sources == ()
+    win.stop_worker()
+
+
+def test_mirror_and_centre_rules_from_the_source_panel(qtbot, window):
+    assert window.new_project("office", 0.5)
+    wait_for_operator(qtbot, window)
+    d = window.doc
+    a = d.add_source("lum_west")
+    b = d.add_source("lum_east")
+    d.update_source(a.name, rect=(0.2, 1.0, 0.8, 2.0))
+    d.set_current_source(b.name)
+    window.source_panel.mirror.setCurrentIndex(window.source_panel.mirror.findData(a.name))
+    assert d.mirror_of(b.name) == (a.name, "u")
+    east = {s.name: s for s in d.effective_sources()}[b.name]
+    assert east.u_range == pytest.approx((2.0 - 0.8, 2.0 - 0.2))  # the 2 m wide zone, flipped
+    window.source_panel.centred.setChecked(True)
+    assert d.centred(b.name)

@@ -15,7 +15,7 @@ from hypothesis import strategies as st
 
 from lightinv_core.design.model import Design, DesignError, Goal, Source
 from lightinv_core.design.solution import ParetoFront, Solution, Violation
-from lightinv_core.errors import LightInvError
+from lightinv_core.errors import LightInvError, SceneError
 from lightinv_core.io import project as project_module
 from lightinv_core.io.project import (
     OperatorSettings,
@@ -28,6 +28,7 @@ from lightinv_core.io.project import (
     project_to_dict,
     save_project,
 )
+from lightinv_core.scene.edits import ZoneEdit
 
 ROOT = Path(__file__).resolve().parents[2]
 MODELS = ROOT / "resources" / "models"
@@ -767,3 +768,78 @@ def test_fuzz_mutated_projects_raise_only_project_error(data):
     # Whatever loads also saves and loads back to the same data.
     out = project_to_dict(p)
     assert project_to_dict(project_from_dict(out)) == out
+
+
+# -- new emitter zones drawn on the scene ---------------------------------------------------
+
+# Corridor ceiling coordinates: u = x, v = 4 - y; S1 covers u 5..11, v 1..3.
+ZONES = [
+    {"name": "Z1", "kind": "luminaire", "surface": "ceiling", "rect": [0.5, 1, 2.5, 3]},
+    {"name": "Z2", "kind": "skylight", "surface": "ceiling", "rect": [12, 1.5, 14, 2.5]},
+]
+
+
+def _with_zones(zones=ZONES) -> dict:
+    data = valid()
+    data["scene"] = {**data["scene"], "zones": copy.deepcopy(zones)}
+    return data
+
+
+def test_scene_zones_round_trip_and_load(tmp_path):
+    data = _with_zones()
+    p = project_from_dict(copy.deepcopy(data))
+    assert p.scene.zones[0] == ZoneEdit("Z1", "luminaire", "ceiling", (0.5, 1.0, 2.5, 3.0))
+    assert project_to_dict(p) == data
+    assert "zones" not in project_to_dict(project_from_dict(valid()))["scene"]
+    save_project(p, tmp_path / "zones.json")
+    text = (tmp_path / "zones.json").read_text(encoding="utf-8")
+    assert '"rect": [0.5, 1, 2.5, 3]' in text
+    q = load_project(tmp_path / "zones.json")
+    assert q.scene == p.scene and project_to_dict(q) == data
+    scene = q.scene.load()
+    assert [z.name for z in scene.zones][-2:] == ["Z1", "Z2"]
+    assert scene.zone("Z2").kind == "skylight"
+    assert scene.zone_rect("Z1").size == pytest.approx((2.0, 2.0))
+    assert scene.area == pytest.approx(SceneSpec(builtin="corridor", resolution=0.5).load().area)
+
+
+def test_scene_zones_in_code_and_corners_in_any_order():
+    edit = ZoneEdit("Z1", "luminaire", "ceiling", (2.5, 3, 0.5, 1))
+    spec = SceneSpec(builtin="corridor", resolution=0.5, zones=[edit])
+    assert spec.zones == (ZoneEdit("Z1", "luminaire", "ceiling", (0.5, 1, 2.5, 3)),)
+    assert SceneSpec(builtin="corridor", zones=[dict(ZONES[0])]).zones[0] == spec.zones[0]
+
+
+def test_a_zone_that_does_not_fit_the_scene_fails_on_loading_the_scene():
+    bad = [{"name": "Z1", "kind": "luminaire", "surface": "ceiling", "rect": [4, 1, 7, 2]}]
+    spec = project_from_dict(_with_zones(bad)).scene  # not checked against the scene here
+    with pytest.raises(SceneError, match=r"zone 'Z1' on surface 'ceiling'.*overlaps.*'S1'"):
+        spec.load()
+
+
+ZONE_ERRORS = [
+    ("x", "scene.zones: expected a list of zone objects, got string 'x'"),
+    ([7], "scene.zones[0]: expected an object, got number 7"),
+    ([{**ZONES[0], "colour": 1}], "scene.zones[0]: unknown field 'colour' (known: name, kind,"),
+    ([{**ZONES[0], "nam": 1}], "scene.zones[0]: unknown field 'nam'"),
+    ([{"name": "Z1", "kind": "luminaire", "surface": "c"}], "scene.zones[0]: missing required"),
+    ([ZONES[0], {**ZONES[1], "kind": "lamp"}], "scene.zones[1].kind: expected one of 'skylight'"),
+    ([{**ZONES[0], "name": ""}], "scene.zones[0].name: expected a non-empty string"),
+    ([{**ZONES[0], "surface": 3}], "scene.zones[0].surface: expected a string, got number 3"),
+    ([{**ZONES[0], "rect": [1, 2, 3]}], "scene.zones[0].rect: expected 4 numbers, got 3"),
+    ([{**ZONES[0], "rect": [1, 2, "3", 4]}], "scene.zones[0].rect[2]: expected a number"),
+    ([{**ZONES[0], "rect": [1, 2, 1, 4]}], "scene.zones[0].rect: new emitter zone 'Z1' on"),
+    ([ZONES[0], ZONES[0]], "scene.zones[1]: 'Z1' is listed twice"),
+]
+
+
+@pytest.mark.parametrize(("zones", "message"), ZONE_ERRORS, ids=[m for _, m in ZONE_ERRORS])
+def test_bad_scene_zones_name_their_json_path(tmp_path, zones, message):
+    data = _with_zones(zones)
+    with pytest.raises(ProjectError) as info:
+        project_from_dict(copy.deepcopy(data))
+    assert str(info.value).startswith(message), str(info.value)
+    path = tmp_path / "zones.json"
+    path.write_text(json.dumps(data), encoding="utf-8")
+    with pytest.raises(ProjectError, match=r"^zones\.json: " + re.escape(message)):
+        load_project(path)
