@@ -193,15 +193,20 @@ class Viewport(QtWidgets.QWidget):
         if not self.frames:
             return
         loops = [f.rectangle(0, 0, *f.size) for f in self.frames.values()]
-        self.plotter.add_mesh(
-            _polylines(loops),
-            name="zones",
-            color="#3070ff",
-            line_width=2,
-            lighting=False,
-            reset_camera=False,
-            render=False,
-        )
+        self._outlines("zones", loops, "#3070ff", 2)
+
+    def _outlines(self, name: str, loops: list[np.ndarray], color: str, width: int) -> None:
+        """Polylines as one named actor (replacing the previous one), no render."""
+        if loops:
+            self.plotter.add_mesh(
+                _polylines(loops),
+                name=name,
+                color=color,
+                line_width=width,
+                lighting=False,
+                reset_camera=False,
+                render=False,
+            )
 
     def set_sources(self, sources, current: str | None) -> None:
         """Outlines of the design's sources; the current one thicker and green."""
@@ -214,26 +219,8 @@ class Viewport(QtWidgets.QWidget):
                 continue
             (a, b), (c, d) = s.u_range, s.v_range
             (cur if s.name == current else loops).append(f.rectangle(a, c, b, d))
-        if loops:
-            self.plotter.add_mesh(
-                _polylines(loops),
-                name="sources",
-                color="#00a0a0",
-                line_width=3,
-                lighting=False,
-                reset_camera=False,
-                render=False,
-            )
-        if cur:
-            self.plotter.add_mesh(
-                _polylines(cur),
-                name="current",
-                color="#00d000",
-                line_width=5,
-                lighting=False,
-                reset_camera=False,
-                render=False,
-            )
+        self._outlines("sources", loops, "#00a0a0", 3)
+        self._outlines("current", cur, "#00d000", 5)
         self.request_render()
 
     def set_selection(self, patch_ids: np.ndarray) -> None:
@@ -376,15 +363,7 @@ class Viewport(QtWidgets.QWidget):
         w, h = frame.size
         u1, v1 = float(np.clip(uv[0], 0, w)), float(np.clip(uv[1], 0, h))
         u0, v0 = float(np.clip(u0, 0, w)), float(np.clip(v0, 0, h))
-        self.plotter.add_mesh(
-            _polylines([frame.rectangle(u0, v0, u1, v1)]),
-            name="draft",
-            color="#ff2020",
-            line_width=4,
-            lighting=False,
-            reset_camera=False,
-            render=False,
-        )
+        self._outlines("draft", [frame.rectangle(u0, v0, u1, v1)], "#ff2020", 4)
         self.request_render()
         return u0, v0, u1, v1
 

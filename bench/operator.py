@@ -25,19 +25,8 @@ from lightinv_core.operator.accuracy import (
 from lightinv_core.operator.build import build_operator
 from lightinv_core.scene.builtin import builtin_scene
 from lightinv_core.scene.patches import mesh_patches
-from lightinv_core.sources.zones import random_rectangles, rectangle_emission, zone_grid
+from lightinv_core.sources.zones import random_zone_emissions
 from lightinv_core.transport.formfactors import form_factor_matrix
-
-
-def candidates(patches, count: int, seed: int) -> list[tuple[np.ndarray, np.ndarray]]:
-    """Sparse zone emissions (idx, values) of random rectangles."""
-    rng = np.random.default_rng(seed)
-    grids = [zone_grid(patches, z) for z in patches.zone_names]
-    out = []
-    for _ in range(count):
-        g = grids[rng.integers(len(grids))]
-        out.append(rectangle_emission(g, *random_rectangles(g, rng, 1)[0], 1000.0))
-    return out
 
 
 def batch_matrix(op, cands) -> tuple[np.ndarray, np.ndarray]:
@@ -81,7 +70,7 @@ def main() -> None:
     build = time.perf_counter() - t0
     rss_build = peak_rss_mb()
     n, b = patches.n, args.batch
-    cands = candidates(patches, 4 * b, seed=11)
+    cands = random_zone_emissions(patches, 4 * b, seed=11)
     single = iter(range(10**9))
 
     def one() -> tuple[np.ndarray, np.ndarray]:

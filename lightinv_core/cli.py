@@ -8,6 +8,7 @@ message on stderr, never a traceback.
 from __future__ import annotations
 
 import argparse
+import dataclasses
 import json
 import resource
 import sys
@@ -322,17 +323,7 @@ def _solution_summary(sol) -> dict:
         "penalty": sol.penalty,
         "feasible": sol.feasible,
         "sources": [_source_summary(s) for s in sol.sources],
-        "violations": [
-            {
-                "name": v.name,
-                "constraint": v.constraint,
-                "amount": v.amount,
-                "value": v.value,
-                "bound": v.bound,
-                "units": v.units,
-            }
-            for v in sol.violations
-        ],
+        "violations": [dataclasses.asdict(v) for v in sol.violations],
     }
 
 

@@ -89,3 +89,18 @@ def random_rectangles(
         u0, v0 = rng.uniform(0, su - w), rng.uniform(0, sv - h)
         out[q] = (u0, v0, u0 + w, v0 + h)
     return out
+
+
+def random_zone_emissions(
+    patches: Patches, count: int, seed: int, exitance: float = 1000.0
+) -> list[tuple[np.ndarray, np.ndarray]]:
+    """``count`` sparse emissions (idx, values), each one random rectangle (2-20% of a
+    random emitter zone) at ``exitance`` lm/m²: what the optimizer evaluates, for
+    benchmarks and tests."""
+    rng = np.random.default_rng(seed)
+    grids = [zone_grid(patches, z) for z in patches.zone_names]
+    out = []
+    for _ in range(count):
+        g = grids[rng.integers(len(grids))]
+        out.append(rectangle_emission(g, *random_rectangles(g, rng, 1)[0], exitance))
+    return out

@@ -17,7 +17,7 @@ from lightinv_core.operator.accuracy import sample_emissions
 from lightinv_core.operator.build import build_operator
 from lightinv_core.scene.builtin import builtin_scene
 from lightinv_core.scene.patches import mesh_patches
-from lightinv_core.sources.zones import random_rectangles, rectangle_emission, zone_grid
+from lightinv_core.sources.zones import random_zone_emissions
 from lightinv_core.transport.formfactors import form_factor_matrix
 from lightinv_core.transport.solver import group_emission, solve_dense
 
@@ -39,16 +39,6 @@ def office_F(office):
     return form_factor_matrix(office, 1024, seed=0)
 
 
-def _candidates(p, count, seed):
-    rng = np.random.default_rng(seed)
-    grids = [zone_grid(p, z) for z in p.zone_names]
-    out = []
-    for _ in range(count):
-        g = grids[rng.integers(len(grids))]
-        out.append(rectangle_emission(g, *random_rectangles(g, rng, 1)[0], 1000.0))
-    return out
-
-
 def _dense(p, idx, val):
     E = np.zeros(p.n)
     np.add.at(E, idx, val)
@@ -66,7 +56,7 @@ def test_accuracy_against_the_reference_solver(office, office_op, office_F):
 
 def test_fast_paths_equal_the_full_path(office, office_op):
     op = office_op
-    cands = _candidates(office, 6, seed=1)
+    cands = random_zone_emissions(office, 6, seed=1)
     rows = np.arange(0, office.n, 7)
     part = op.restrict(rows)
     idx = np.unique(np.concatenate([c[0] for c in cands]))
