@@ -11,7 +11,7 @@ from PySide6 import QtCore, QtGui, QtWidgets
 from app.document import Document, blank_project
 from app.panels import DesignTree, IntentionDialog, SourcePanel, ZoneDialog, ZonePanel
 from app.viewport import Viewport
-from app.workers import PrecomputeWorker
+from app.workers import PrecomputeWorker, ReportWorker
 from lightinv_core.errors import LightInvError
 from lightinv_core.io.project import Project, SceneSpec
 from lightinv_core.scene.builtin import BUILTIN_SCENES
@@ -105,6 +105,7 @@ class MainWindow(QtWidgets.QMainWindow):
         self.act_save_as = self._action("Save &As...", self.save_as_dialog, ks.SaveAs)
         self.act_import = self._action("&Import OBJ...", self.import_obj_dialog)
         self.act_png = self._action("Export viewport &PNG...", self.export_png_dialog)
+        self.act_report = self._action("Export &report (PDF)...", self.export_report_dialog)
         self.act_quit = self._action("&Quit", self.close, ks.Quit)
         self.act_precompute = self._action("Precompute", self.start_precompute)
         self.act_cancel = self._action("Cancel", self.cancel_precompute)
@@ -142,7 +143,7 @@ class MainWindow(QtWidgets.QMainWindow):
             file.addAction(act)
         self.recent_menu = file.addMenu("Open &recent")
         file.addSeparator()
-        for act in (self.act_save, self.act_save_as, self.act_png):
+        for act in (self.act_save, self.act_save_as, self.act_png, self.act_report):
             file.addAction(act)
         file.addSeparator()
         file.addAction(self.act_quit)
@@ -476,6 +477,52 @@ class MainWindow(QtWidgets.QMainWindow):
         )
         if path:
             self.viewport.screenshot(path)
+
+    def export_report_dialog(self) -> None:
+        path, _ = QtWidgets.QFileDialog.getSaveFileName(self, "Export report", "", "PDF (*.pdf)")
+        if path:
+            self.export_report(path)
+
+    def export_report(self, path: str | Path) -> bool:
+        """Write the PDF report of the project's saved solution in a worker (progress bar,
+        Cancel); needs the operator and a solution saved by a run."""
+        from lightinv_core.optimize.run import Prepared
+
+        d = self.doc
+        if d.operator is None or self.worker is not None:
+            QtWidgets.QMessageBox.information(
+                self, "LightInv", "Wait for the radiosity operator first."
+            )
+            return False
+        if not d.project.solutions and d.project.pareto is None:
+            QtWidgets.QMessageBox.information(
+                self,
+                "LightInv",
+                "The project has no results yet: run "
+                "'lightinv-cli solve PROJECT.json -o RESULT.json' and open RESULT.json.",
+            )
+            return False
+        prepared = Prepared(d.scene, d.patches, d.operator, True, 0.0)
+        self.worker = ReportWorker(d.project, prepared, Path(path), self)
+        self.worker.progress.connect(lambda f: self.progress.setValue(int(1000 * f)))
+        self.worker.succeeded.connect(
+            lambda info: self.statusBar().showMessage(
+                f"Report written: {info.path} ({len(info.pages)} pages)", 8000
+            )
+        )
+        self.worker.failed.connect(
+            lambda msg: QtWidgets.QMessageBox.critical(self, "LightInv: report failed", msg)
+        )
+        self.worker.cancelled.connect(
+            lambda: self.statusBar().showMessage("Report cancelled; no file written", 6000)
+        )
+        self.worker.finished.connect(self._worker_done)
+        self.progress.setValue(0)
+        self.progress.show()
+        self.act_cancel.setEnabled(True)
+        self.act_precompute.setEnabled(False)
+        self.worker.start()
+        return True
 
     def _remember(self, path: Path) -> None:
         recent = [str(path.resolve())] + [

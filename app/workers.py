@@ -38,8 +38,10 @@ class Worker(QtCore.QThread):
 
     @classmethod
     def live(cls) -> list[Worker]:
-        """Workers not yet garbage-collected (tests check none is still running)."""
-        return list(cls._live)
+        """Workers whose Qt object still exists (tests check none is still running)."""
+        from shiboken6 import isValid
+
+        return [w for w in list(cls._live) if isValid(w)]
 
     def cancel(self) -> None:
         """Ask the work to stop at its next check (within a batch of rays or a step)."""
@@ -90,3 +92,22 @@ class PrecomputeWorker(Worker):
         )
         self.progress.emit(1.0)
         return got
+
+
+class ReportWorker(Worker):
+    """Writes the PDF report of the open project (its saved solution) off the GUI thread."""
+
+    def __init__(self, project, prepared, path, parent: QtCore.QObject | None = None):
+        super().__init__(parent)
+        self.project, self.prepared, self.path = project, prepared, path
+
+    def work(self):
+        from lightinv_core.report import write_report
+
+        return write_report(
+            self.project,
+            self.prepared,
+            self.path,
+            progress=self.progress.emit,
+            cancel=self.is_cancelled,
+        )

@@ -216,3 +216,25 @@ def test_mirror_and_centre_rules_from_the_source_panel(qtbot, window):
     assert east.u_range == pytest.approx((2.0 - 0.8, 2.0 - 0.2))  # the 2 m wide zone, flipped
     window.source_panel.centred.setChecked(True)
     assert d.centred(b.name)
+
+
+def test_export_report_from_the_window(qtbot, window, tmp_path):
+    from lightinv_core.optimize.run import solve
+
+    assert window.new_project("cornell", 0.25)
+    wait_for_operator(qtbot, window)
+    d = window.doc
+    d.add_source("light")
+    from dataclasses import replace
+
+    from lightinv_core.optimize.run import Prepared
+
+    prepared = Prepared(d.scene, d.patches, d.operator, True, 0.0)
+    result = solve(d.project, prepared, max_evals=300)
+    d.project = replace(d.project, solutions=(result.best,))
+    pdf = tmp_path / "report.pdf"
+    assert window.export_report(pdf)
+    with qtbot.waitSignal(window.worker.finished, timeout=60_000):
+        pass
+    qtbot.waitUntil(lambda: window.worker is None, timeout=10_000)
+    assert pdf.exists() and pdf.read_bytes()[:4] == b"%PDF"
