@@ -20,6 +20,11 @@ def parse_args(argv: list[str]) -> argparse.Namespace:
     ap.add_argument("--scene", help="start a new project on this built-in scene")
     ap.add_argument("--resolution", type=float, help="patch size (m) for --scene")
     ap.add_argument(
+        "--self-test",
+        action="store_true",
+        help="check the installation (scene, operator, off-screen render) and exit",
+    )
+    ap.add_argument(
         "--screenshot",
         metavar="PNG",
         help="open, wait for the operator, save a window screenshot and quit",
@@ -29,6 +34,10 @@ def parse_args(argv: list[str]) -> argparse.Namespace:
 
 def main(argv: list[str] | None = None) -> int:
     args = parse_args(sys.argv[1:] if argv is None else argv)
+    if args.self_test:
+        from app.self_test import run
+
+        return run()
     from PySide6 import QtCore, QtWidgets
 
     from app.main_window import MainWindow

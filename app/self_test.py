@@ -1,0 +1,60 @@
+"""``lightinv --self-test``: check an installation (or the desktop bundle) end to end.
+
+Loads a built-in scene, builds a small radiosity operator, evaluates a source's
+light, renders it off-screen with VTK, prints a JSON summary and exits 0; any
+failure prints the error and exits 1. Needs no display (VTK falls back to EGL).
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import sys
+import tempfile
+import time
+
+
+def run() -> int:
+    """Run the checks; returns the process exit status."""
+    t0 = time.perf_counter()
+    report: dict = {"python": sys.version.split()[0], "frozen": bool(getattr(sys, "frozen", False))}
+    try:
+        if not os.environ.get("DISPLAY"):
+            os.environ.setdefault("VTK_DEFAULT_OPENGL_WINDOW", "vtkEGLRenderWindow")
+        import numpy as np
+
+        from lightinv_core.operator.build import build_operator
+        from lightinv_core.scene.builtin import builtin_scene
+        from lightinv_core.scene.patches import mesh_patches
+        from lightinv_core.sources.zones import rectangle_emission, zone_grid
+
+        patches = mesh_patches(builtin_scene("cornell", 0.3))
+        op = build_operator(patches, rank=80, rays=128)
+        idx, val = rectangle_emission(zone_grid(patches, "light"), 0.1, 0.1, 0.4, 0.4, 5000.0)
+        lux = op.zone_illuminance(idx, val)
+        report.update(patches=patches.n, k=op.k, max_lux=float(lux.max()),
+                      operator_error=op.info["estimated_rel_error"])
+        if not np.all(np.isfinite(lux)) or lux.max() <= 0:
+            raise RuntimeError("the evaluated lighting is empty or not finite")
+        import pyvista as pv
+
+        vertices, faces, tri_patch = patches.triangle_mesh()
+        cells = np.hstack([np.full((len(faces), 1), 3), faces]).ravel()
+        mesh = pv.PolyData(vertices.astype(float), cells)
+        mesh.cell_data["lux"] = lux[tri_patch]
+        plotter = pv.Plotter(off_screen=True, window_size=(320, 240))
+        plotter.add_mesh(mesh, scalars="lux", culling="back", lighting=False)
+        plotter.camera_position = "iso"
+        with tempfile.TemporaryDirectory() as tmp:
+            image = plotter.screenshot(os.path.join(tmp, "self-test.png"), return_img=True)
+        plotter.close()
+        report["render_std"] = float(image.std())
+        if image.std() < 5:
+            raise RuntimeError("the off-screen render is blank")
+    except Exception as exc:  # report every failure, it is what a self-test is for
+        report.update(ok=False, error=f"{type(exc).__name__}: {exc}")
+        print(json.dumps(report, indent=2))
+        return 1
+    report.update(ok=True, seconds=time.perf_counter() - t0)
+    print(json.dumps(report, indent=2))
+    return 0
