@@ -32,8 +32,12 @@ def run() -> int:
         op = build_operator(patches, rank=80, rays=128)
         idx, val = rectangle_emission(zone_grid(patches, "light"), 0.1, 0.1, 0.4, 0.4, 5000.0)
         lux = op.zone_illuminance(idx, val)
-        report.update(patches=patches.n, k=op.k, max_lux=float(lux.max()),
-                      operator_error=op.info["estimated_rel_error"])
+        report.update(
+            patches=patches.n,
+            k=op.k,
+            max_lux=float(lux.max()),
+            operator_error=op.info["estimated_rel_error"],
+        )
         if not np.all(np.isfinite(lux)) or lux.max() <= 0:
             raise RuntimeError("the evaluated lighting is empty or not finite")
         import pyvista as pv
