@@ -74,6 +74,8 @@ def _arrays(op: RadiosityOperator) -> dict[str, np.ndarray]:
 
 def _raw(a: np.ndarray) -> memoryview:
     """The array's bytes in its own memory order (C or Fortran), without copying."""
+    if a.size == 0:  # e.g. the zone basis of a scene without emitter zones
+        return memoryview(b"")
     return memoryview(a.T if a.flags.f_contiguous and not a.flags.c_contiguous else a).cast("B")
 
 
@@ -160,6 +162,21 @@ class CachedOperator:
     seconds: float
 
 
+OPEN_SCENE_WARNING = 0.01
+
+
+def open_scene_warning(op: RadiosityOperator) -> str | None:
+    """A warning when more than 1% of the light leaving the surfaces escapes the model
+    (an open room, or faces turned the wrong way), else None."""
+    lost = float(op.info.get("lost_fraction", 0.0))
+    if lost <= OPEN_SCENE_WARNING:
+        return None
+    return (
+        f"{100 * lost:.1f}% of the light leaving the surfaces escapes the model: the room "
+        "is open or some faces face away from it (lighting will be too dark there)"
+    )
+
+
 def get_operator(
     patches: Patches,
     rank: int | None = None,
@@ -185,6 +202,8 @@ def get_operator(
             op = load_operator(path, key)
             if op.digest != patches.digest():
                 raise CacheError(f"{path.name}: geometry digest differs (stale)")
+            if warn is not None and (msg := open_scene_warning(op)):
+                warn(msg)
             return CachedOperator(op, True, path, time.perf_counter() - t0)
         except CacheError as exc:
             if warn is not None:
@@ -192,6 +211,8 @@ def get_operator(
     op = build_operator(
         patches, rank=rank, tol=tol, rays=rays, seed=seed, progress=progress, cancel=cancel
     )
+    if warn is not None and (msg := open_scene_warning(op)):
+        warn(msg)
     if path is not None:
         try:
             save_operator(op, path, key)

@@ -21,7 +21,7 @@ from lightinv_core.operator.lowrank import assemble, cluster_form_factors
 from lightinv_core.operator.radiosity import RadiosityOperator
 from lightinv_core.operator.zone_basis import exact_bounces, zone_basis
 from lightinv_core.scene.patches import Patches
-from lightinv_core.transport.formfactors import DEFAULT_RAYS, form_factor_matrix
+from lightinv_core.transport.formfactors import DEFAULT_RAYS, form_factor_matrix, lost_fraction
 
 OPERATOR_VERSION = 2
 """Bump whenever the operator a given (geometry, settings) produces changes, so older
@@ -143,5 +143,6 @@ def build_operator(
         "formfactor_seconds": t_ff,
         "build_seconds": time.perf_counter() - t0,
         "formfactor_nnz": int(F.nnz),
+        "lost_fraction": lost_fraction(F, patches),
     }
     return op

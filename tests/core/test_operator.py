@@ -179,3 +179,30 @@ def test_cli_precompute_and_lrr_simulation(tmp_path, monkeypatch, capsys):
     for a, b in zip(lrr["groups"], ref["groups"], strict=True):
         assert a["group"] == b["group"]
         assert a["avg_lux"] == pytest.approx(b["avg_lux"], rel=0.02)
+
+
+def test_an_open_scene_is_reported(tmp_path, monkeypatch):
+    from lightinv_core.scene.model import Rect, Scene, Surface
+
+    monkeypatch.setenv("LIGHTINV_CACHE_DIR", str(tmp_path))
+    # A floor and one wall, no ceiling: most light leaves the model.
+    scene = Scene(
+        "open",
+        (
+            Surface("floor", "floor", 0.5, rect=Rect((0, 0, 0), (2, 0, 0), (0, 2, 0))),
+            Surface("wall", "wall", 0.5, rect=Rect((0, 0, 0), (0, 0, 2), (2, 0, 0))),
+        ),
+        resolution=0.5,
+    )
+    patches = mesh_patches(scene)
+    warnings = []
+    got = oc.get_operator(patches, rank=2, rays=64, warn=warnings.append)
+    assert got.operator.info["lost_fraction"] > 0.5
+    assert "escapes the model" in warnings[0]
+    oc.get_operator(patches, rank=2, rays=64, warn=warnings.append)  # from the cache too
+    assert len(warnings) == 2
+    closed = []
+    oc.get_operator(
+        mesh_patches(builtin_scene("cornell", 0.5)), rank=20, rays=64, warn=closed.append
+    )
+    assert closed == []
