@@ -256,6 +256,44 @@ class DesignProblem:
         return P
 
     # -- reporting --------------------------------------------------------------------------
+    def offending_patches(self, x: np.ndarray) -> list[tuple[str, str, np.ndarray]]:
+        """Where the light of layout x breaks the intentions, judged on all patches.
+
+        Returns (intention name, bound, patch ids) for each violated bound: for "min"
+        the patches below it, for "max" those above it, for "uniformity" those below
+        U0 times the mean, for "average" every patch of the intention (the mean is
+        short as a whole). Empty when every intention is met or a geometric rule
+        fails (then no light is computed).
+        """
+        x = np.asarray(x, dtype=float)
+        rect, flux, filt = self.vars.decode(x[None])
+        if not self.intent_sets or np.any(rule_violations(self.design, rect, self.zone_size) > 0):
+            return []
+        lv = self.level(1)
+        V = self.emission.matrix(rect, flux, filt)
+        H = self._field(lv, V, np.arange(V.shape[0]))
+        out = []
+        for it, bound, c, _, limit in self._violation_terms(H, lv):
+            if c[0] <= FEASIBILITY_TOL:
+                continue
+            i = self.design.intentions.index(it)
+            rows = lv.rows[lv.intent_pos[i]]
+            q = H[lv.intent_pos[i], 0].astype(np.float64)
+            if it.quantity == "C":
+                q = q * self.op.rho[rows]
+            if bound == "min":
+                bad = q < limit
+            elif bound == "max":
+                bad = q > limit
+            elif bound == "uniformity":
+                w = lv.intent_w[i]
+                bad = q < limit * float((q * w).sum() / w.sum())
+            else:
+                bad = np.ones(len(q), bool)
+            # At level 1 each representative is its patch; the rows are patch ids.
+            out.append((it.name, bound, np.unique(rows[bad])))
+        return out
+
     def sources_at(self, x: np.ndarray) -> tuple:
         """The design's sources with the parameters of x filled in."""
         from dataclasses import replace

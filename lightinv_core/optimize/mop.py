@@ -15,9 +15,11 @@ from lightinv_core.design.solution import ParetoFront, Solution
 from lightinv_core.operator.radiosity import RadiosityOperator
 from lightinv_core.optimize.multilevel import multilevel
 from lightinv_core.optimize.pareto import non_dominated
-from lightinv_core.optimize.vns import StopRule
+from lightinv_core.optimize.vns import Progress, StopRule
 from lightinv_core.scene.model import Scene
 from lightinv_core.scene.patches import Patches
+
+ProgressFn = Callable[[Progress], None]
 
 POWER, LIGHT = "min_electric_power", "max_light_power"
 OBJECTIVES = (POWER, LIGHT)
@@ -51,9 +53,14 @@ def _solve(
     epsilon=(),
     x0=None,
     cancel=None,
+    vns_progress: ProgressFn | None = None,
+    run: tuple[int, int] = (0, 1),
 ):
     problem = DesignProblem(design, scene, patches, op, epsilon=epsilon)
-    res, _ = multilevel(problem, divisors, seed=seed, stop=stop, x0=x0, cancel=cancel)
+    tagged = _tagged(vns_progress, *run)
+    res, _ = multilevel(
+        problem, divisors, seed=seed, stop=stop, x0=x0, cancel=cancel, progress=tagged
+    )
     sol = problem.solution(
         res.x,
         {
@@ -66,6 +73,13 @@ def _solve(
     return problem, res, sol
 
 
+def _tagged(progress: ProgressFn | None, run: int, runs: int) -> ProgressFn | None:
+    """``progress`` with each snapshot marked as run ``run`` of ``runs``."""
+    if progress is None:
+        return None
+    return lambda p: progress(replace(p, run=run, runs=runs))
+
+
 def light_power_range(
     design: Design,
     scene: Scene,
@@ -74,16 +88,29 @@ def light_power_range(
     seed: int = 0,
     stop: StopRule | None = None,
     divisors=(1,),
+    cancel: Callable[[], bool] | None = None,
+    vns_progress: ProgressFn | None = None,
+    runs: int = 2,
 ) -> tuple[float, float]:
     """(light power of the least-power feasible layout, largest feasible light power), lm:
-    the interval the epsilon sweep covers when none is given."""
+    the interval the epsilon sweep covers when none is given. Its two VNS runs report as
+    runs 0 and 1 of ``runs``."""
     stop = stop or StopRule(max_evals=5000)
     light = _light_goal(design)
+    common = (scene, patches, op, seed, stop, divisors)
     _, _, hi = _solve(
-        replace(design, goals=(light, Goal(POWER))), scene, patches, op, seed, stop, divisors
+        replace(design, goals=(light, Goal(POWER))),
+        *common,
+        cancel=cancel,
+        vns_progress=vns_progress,
+        run=(0, runs),
     )
     _, _, lo = _solve(
-        replace(design, goals=(Goal(POWER), light)), scene, patches, op, seed, stop, divisors
+        replace(design, goals=(Goal(POWER), light)),
+        *common,
+        cancel=cancel,
+        vns_progress=vns_progress,
+        run=(1, runs),
     )
     return lo.objectives[LIGHT], hi.objectives[LIGHT]
 
@@ -100,13 +127,31 @@ def epsilon_constraint(
     divisors=(1,),
     progress: Callable[[int, int, Solution], None] | None = None,
     cancel: Callable[[], bool] | None = None,
+    vns_progress: ProgressFn | None = None,
 ) -> ParetoFront:
     """Minimise electric power subject to light power >= epsilon for each epsilon (lm),
-    warm-starting each run from the previous best; returns the non-dominated front."""
+    warm-starting each run from the previous best; returns the non-dominated front.
+
+    ``progress(q, total, solution)`` follows the sweep; ``vns_progress`` gets every VNS
+    snapshot, tagged with its run (the two range runs first when ``epsilons`` is None).
+    """
     stop = stop or StopRule(max_evals=20000)
+    first = 0
     if epsilons is None:
-        lo, hi = light_power_range(design, scene, patches, op, seed, stop=stop, divisors=divisors)
+        lo, hi = light_power_range(
+            design,
+            scene,
+            patches,
+            op,
+            seed,
+            stop=stop,
+            divisors=divisors,
+            cancel=cancel,
+            vns_progress=vns_progress,
+            runs=count + 2,
+        )
         epsilons = list(np.linspace(lo, hi, count))
+        first = 2
     mop = replace(design, goals=(Goal(POWER), _light_goal(design)))
     solutions, x = [], None
     for q, eps in enumerate(epsilons):
@@ -123,6 +168,8 @@ def epsilon_constraint(
             epsilon=((LIGHT, float(eps)),),
             x0=x,
             cancel=cancel,
+            vns_progress=vns_progress,
+            run=(first + q, first + len(epsilons)),
         )
         sol.info["epsilon"] = float(eps)
         solutions.append(sol)
@@ -143,6 +190,7 @@ def two_step(
     divisors=(1,),
     progress: Callable[[int, int, Solution], None] | None = None,
     cancel: Callable[[], bool] | None = None,
+    vns_progress: ProgressFn | None = None,
 ) -> ParetoFront:
     """Step 1: skylights alone, most natural light, under their geometric rules only.
     Step 2: skylights fixed, luminaires minimise electric power under every rule and
@@ -162,7 +210,18 @@ def two_step(
     for r in range(runs):
         if cancel is not None and cancel():
             break
-        _, _, first = _solve(step1, scene, patches, op, seed + r, stop, divisors, cancel=cancel)
+        _, _, first = _solve(
+            step1,
+            scene,
+            patches,
+            op,
+            seed + r,
+            stop,
+            divisors,
+            cancel=cancel,
+            vns_progress=vns_progress,
+            run=(2 * r, 2 * runs),
+        )
         fixed = tuple(replace(s, free=()) for s in first.sources)
         step2 = Design(
             (*fixed, *lum),
@@ -172,7 +231,18 @@ def two_step(
             daylight=design.daylight,
             penalty_power=design.penalty_power,
         )
-        _, _, sol = _solve(step2, scene, patches, op, seed + r, stop, divisors, cancel=cancel)
+        _, _, sol = _solve(
+            step2,
+            scene,
+            patches,
+            op,
+            seed + r,
+            stop,
+            divisors,
+            cancel=cancel,
+            vns_progress=vns_progress,
+            run=(2 * r + 1, 2 * runs),
+        )
         sol.info["step1_light_power"] = first.objectives[LIGHT]
         solutions.append(sol)
         if progress is not None:

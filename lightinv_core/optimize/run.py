@@ -8,8 +8,9 @@ from __future__ import annotations
 
 import time
 from collections.abc import Callable
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
+from lightinv_core.design.model import DesignError
 from lightinv_core.design.problem import DesignProblem
 from lightinv_core.design.solution import ParetoFront, Solution
 from lightinv_core.io.operator_cache import get_operator
@@ -92,14 +93,22 @@ def solve(
     time_limit: float | None = None,
     progress: Callable[[Progress], None] | None = None,
     cancel: Callable[[], bool] | None = None,
+    on_solution: Callable[[Solution], None] | None = None,
 ) -> RunResult:
-    """Run the project's optimizer (vns, multilevel, epsilon or two_step)."""
+    """Run the project's optimizer (vns, multilevel, epsilon or two_step).
+
+    ``progress`` gets every VNS snapshot (for epsilon and two-step, each tagged with its
+    sub-run); ``on_solution`` gets each point of a multi-objective sweep as it is found
+    (the GUI draws the front live and autosaves it). A cancelled run returns status
+    "cancelled" with the best solution (or the front) found so far.
+    """
     o = project.optimizer
     seed = o.seed if seed is None else seed
     stop = stop_rule(project, max_evals, time_limit)
     args = (project.design, prepared.scene, prepared.patches, prepared.operator)
     t0 = time.perf_counter()
     if o.method in ("epsilon", "two_step"):
+        found = None if on_solution is None else (lambda _q, _n, sol: on_solution(sol))
         front = (
             epsilon_constraint(
                 *args,
@@ -108,11 +117,20 @@ def solve(
                 seed=seed,
                 stop=stop,
                 divisors=tuple(o.divisors),
+                progress=found,
                 cancel=cancel,
+                vns_progress=progress,
             )
             if o.method == "epsilon"
             else two_step(
-                *args, runs=o.runs, seed=seed, stop=stop, divisors=tuple(o.divisors), cancel=cancel
+                *args,
+                runs=o.runs,
+                seed=seed,
+                stop=stop,
+                divisors=tuple(o.divisors),
+                progress=found,
+                cancel=cancel,
+                vns_progress=progress,
             )
         )
         cancelled = cancel is not None and cancel()
@@ -161,3 +179,40 @@ def solve(
     else:
         status = "feasible" if best.feasible else "infeasible"
     return RunResult(status, best, None, res.evaluations, seconds, prepared.seconds, res.history)
+
+
+SINGLE_METHODS = ("vns", "multilevel")
+
+
+def solve_seeds(
+    project: Project,
+    prepared: Prepared,
+    seeds: list[int],
+    max_evals: int | None = None,
+    time_limit: float | None = None,
+    progress: Callable[[Progress], None] | None = None,
+    cancel: Callable[[], bool] | None = None,
+    on_result: Callable[[RunResult], None] | None = None,
+) -> list[RunResult]:
+    """The same single-objective problem run once per seed (paper experiment 4: how much
+    the answers vary). ``progress`` snapshots are tagged with the run index; a cancel
+    ends the current run (its best kept) and skips the rest."""
+    if project.optimizer.method not in SINGLE_METHODS:
+        raise DesignError(
+            f"runs with several seeds take a single-objective method {SINGLE_METHODS}; "
+            f"{project.optimizer.method!r} already sweeps several runs"
+        )
+    if not seeds:
+        raise DesignError("give at least one seed")
+    results: list[RunResult] = []
+    for i, seed in enumerate(seeds):
+        if results and cancel is not None and cancel():
+            break
+        tagged = None
+        if progress is not None:
+            tagged = (lambda j: lambda p: progress(replace(p, run=j, runs=len(seeds))))(i)
+        res = solve(project, prepared, seed, max_evals, time_limit, tagged, cancel)
+        results.append(res)
+        if on_result is not None:
+            on_result(res)
+    return results

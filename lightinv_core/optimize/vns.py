@@ -52,7 +52,13 @@ class StopRule:
 
 @dataclass(frozen=True)
 class Progress:
-    """An immutable snapshot for progress callbacks (GUI plots, CLI)."""
+    """An immutable snapshot for progress callbacks (GUI plots, CLI, autosave).
+
+    ``best_x`` is the best variable vector so far (the problem's own variables; a
+    multi-objective driver's sub-problems may have other variables than the design's).
+    ``run``/``runs`` say which of several VNS runs of a driver (epsilon values, two-step
+    runs, seeds) this is, counted from 0; a single run is 0 of 1.
+    """
 
     iteration: int
     evaluations: int
@@ -61,6 +67,9 @@ class Progress:
     best_penalty: float
     best_goal: float
     level: int
+    best_x: tuple[float, ...] = ()
+    run: int = 0
+    runs: int = 1
 
 
 @dataclass
@@ -185,7 +194,14 @@ def vns(
         if progress is not None:
             progress(
                 Progress(
-                    iters, evals, time.perf_counter() - t0, best[0], best[1], best[2], level.divisor
+                    iters,
+                    evals,
+                    time.perf_counter() - t0,
+                    best[0],
+                    best[1],
+                    best[2],
+                    level.divisor,
+                    tuple(float(c) for c in x),
                 )
             )
     status = why

@@ -15,9 +15,10 @@ import numpy as np
 import pytest
 
 from lightinv_core import cli
+from lightinv_core.design.model import DesignError
 from lightinv_core.io.project import OperatorSettings, load_project
 from lightinv_core.optimize.pareto import non_dominated
-from lightinv_core.optimize.run import prepare, solve
+from lightinv_core.optimize.run import prepare, solve, solve_seeds
 
 PROJECTS = Path(__file__).resolve().parents[2] / "resources" / "projects"
 FAST = OperatorSettings(rank=250, rays=256)
@@ -84,13 +85,19 @@ def test_experiment3_feasible_and_cmax_over_4_infeasible(patio):
 
 def test_experiment4_area_times_filter_is_nearly_constant(patio):
     project = coarse("experiment4", 0.7)
+    seen, snaps = [], []
+    runs = solve_seeds(project, patio, [0, 1, 2, 3], progress=snaps.append, on_result=seen.append)
+    assert runs == seen and [r.best.info["seed"] for r in runs] == [0, 1, 2, 3]
+    assert {(s.run, s.runs) for s in snaps} == {(i, 4) for i in range(4)}
     prods = []
-    for seed in range(4):
-        r = solve(project, patio, seed=seed)
+    for r in runs:
         assert r.status == "feasible"
         s = r.best.sources[0]
         prods.append(s.area * s.filter)
     assert np.std(prods) / np.mean(prods) < 0.1
+    assert len({r.best.x for r in runs}) == 4  # four different layouts, one product
+    with pytest.raises(DesignError, match="single-objective"):
+        solve_seeds(coarse("experiment5", 0.7), patio, [0, 1])
 
 
 @pytest.fixture(scope="module")

@@ -233,3 +233,72 @@ def test_multi_objective_fronts_are_non_dominated(corridor, method):
     assert non_dominated(F).all()
     assert np.all(np.diff(F[:, 0]) >= 0)  # sorted by electric power
     assert len(front.candidates) >= len(front.solutions)
+
+
+def test_progress_carries_the_best_layout(office):
+    p = match_problem(office)
+    snaps = []
+    res = vns(p, seed=2, stop=StopRule(max_evals=800), progress=snaps.append)
+    assert snaps[-1].best_x == tuple(res.x) and (snaps[-1].run, snaps[-1].runs) == (0, 1)
+    # The snapshot's x scores its best value (it is the incumbent, not the last trial).
+    # (float32 batches: the same x scores the same to ~0.1%)
+    assert p.evaluate(np.array(snaps[-1].best_x)[None]).value[0] == pytest.approx(
+        res.value, rel=2e-3
+    )
+
+
+def test_offending_patches_are_the_ones_out_of_bounds(office):
+    scene, patches, op = office
+    s = Source("s", "skylight", "skylight", (0, 0, 1, 1), free=CORNERS)
+    its = (
+        Intention("desks", group="desks", min=300.0, uniformity=0.95),
+        Intention("floor", group="floor", max=1e9),
+    )
+    p = DesignProblem(Design((s,), (Goal("max_light_power"),), (), its), scene, patches, op)
+    x = p.vars.initial()
+    lux = op.zone_illuminance(*_sparse(p, x))
+    found = {(name, bound): ids for name, bound, ids in p.offending_patches(x)}
+    assert set(found) == {("desks", "min"), ("desks", "uniformity")}
+    desks = patches.group_index("desks")
+    np.testing.assert_array_equal(found["desks", "min"], desks[lux[desks] < 300.0])
+    assert 0 < len(found["desks", "uniformity"]) < len(desks)
+    # A layout that meets every bound offends nowhere.
+    loose = Design((s,), (Goal("max_light_power"),), (), (Intention("d", group="desks", min=0.1),))
+    assert DesignProblem(loose, scene, patches, op).offending_patches(x) == []
+
+
+def test_sweeps_report_each_run_and_each_point(office):
+    scene, patches, op = office
+    sky = Source("s", "skylight", "skylight", (0, 0, 1, 1), free=CORNERS)
+    lum = Source("L", "lum_west", "luminaire", (0, 0, 1, 1), free=CORNERS, flux=2000.0)
+    d = Design(
+        (sky, lum),
+        (Goal("min_electric_power"), Goal("max_light_power")),
+        (Rule("area", ("s",), max=3.0), Rule("area", ("L",), max=1.0)),
+        (Intention("desks", group="desks", min=100.0),),
+    )
+    snaps, points = [], []
+    front = epsilon_constraint(
+        d,
+        scene,
+        patches,
+        op,
+        count=3,
+        stop=StopRule(max_evals=600),
+        progress=lambda q, n, sol: points.append((q, n)),
+        vns_progress=snaps.append,
+    )
+    assert points == [(1, 3), (2, 3), (3, 3)] and len(front.candidates) == 3
+    assert sorted({(s.run, s.runs) for s in snaps}) == [(r, 5) for r in range(5)]
+    # Cancelling during the range runs ends the sweep before any point.
+    calls = iter(range(10**6))
+    front = epsilon_constraint(
+        d,
+        scene,
+        patches,
+        op,
+        count=3,
+        stop=StopRule(max_evals=10**6),
+        cancel=lambda: next(calls) >= 20,
+    )
+    assert front.candidates == ()
