@@ -15,8 +15,9 @@ from pathlib import Path
 import numpy as np
 from PySide6 import QtCore
 
-from lightinv_core.design.model import Design, Goal, Intention, Source
+from lightinv_core.design.model import Design, DesignError, Goal, Intention, Source
 from lightinv_core.design.problem import DesignProblem
+from lightinv_core.design.solution import ParetoFront, Solution
 from lightinv_core.io.project import (
     OperatorSettings,
     Project,
@@ -48,6 +49,7 @@ class Document(QtCore.QObject):
     selectionChanged = QtCore.Signal()
     lightingChanged = QtCore.Signal()
     pathChanged = QtCore.Signal()
+    resultsChanged = QtCore.Signal()
 
     def __init__(self, parent: QtCore.QObject | None = None):
         super().__init__(parent)
@@ -62,6 +64,8 @@ class Document(QtCore.QObject):
         self._problem: DesignProblem | None = None
         self._lux: np.ndarray | None = None
         self.last_eval_ms = float("nan")
+        self.shown: Solution | None = None  # the result last loaded into the design
+        self.preview: tuple[DesignProblem, np.ndarray] | None = None  # a running best
 
     # -- loading ------------------------------------------------------------------------------
     def set_project(self, project: Project, path: Path | None = None) -> None:
@@ -71,6 +75,7 @@ class Document(QtCore.QObject):
         patches = mesh_patches(scene)
         self.project, self.scene, self.patches = project, scene, patches
         self.operator, self._problem, self._lux = None, None, None
+        self.shown, self.preview = None, None
         self.selection = np.zeros(0, np.int64)
         self.current_source = project.design.sources[0].name if project.design.sources else None
         self.path, self.dirty = path, False
@@ -78,6 +83,7 @@ class Document(QtCore.QObject):
         self.designChanged.emit()
         self.selectionChanged.emit()
         self.pathChanged.emit()
+        self.resultsChanged.emit()
 
     def open(self, path: str | Path) -> None:
         """Open a project file (ProjectError on a bad file; nothing changes then)."""
@@ -119,6 +125,7 @@ class Document(QtCore.QObject):
     def _set_design(self, design: Design) -> None:
         self.project = replace(self.project, design=design)
         self._problem = None
+        self.shown = None  # an edited design is no longer the loaded result
         self.dirty = True
         self.designChanged.emit()
         self._relight()
@@ -207,6 +214,24 @@ class Document(QtCore.QObject):
                 return r.sources[1], r.axis
         return None
 
+    def set_optimizer(self, **fields) -> None:
+        """Change run settings (method, seed, max_evals, time_limit, ...); ProjectError on
+        a bad value, leaving the project unchanged."""
+        opt = replace(self.project.optimizer, **fields)
+        if opt != self.project.optimizer:
+            self.project = replace(self.project, optimizer=opt)
+            self.dirty = True
+            self.pathChanged.emit()
+
+    def set_primary_goal(self, kind: str) -> None:
+        """Make ``kind`` the goal a single-objective run optimises (first in the list); the
+        other goals stay, as secondary objectives reported with each solution."""
+        goals = self.design.goals
+        first = next((g for g in goals if g.kind == kind), None) or Goal(kind)
+        if goals and goals[0] == first:
+            return
+        self._set_design(replace(self.design, goals=(first, *(g for g in goals if g != first))))
+
     # -- emitter zones drawn by the user ------------------------------------------------------
     @property
     def user_zones(self) -> tuple:
@@ -279,19 +304,131 @@ class Document(QtCore.QObject):
         """Illuminance (lux) of every patch for the current sources, or None."""
         return self._lux
 
+    def lux_at(self, problem: DesignProblem, x: np.ndarray) -> np.ndarray:
+        """Illuminance (lux) of every patch for layout x of ``problem`` (one sparse GEMV
+        through the zone basis; zero where no source is)."""
+        if not problem.design.sources:
+            return np.zeros(self.patches.n, np.float32)
+        rect, flux, filt = problem.vars.decode(np.asarray(x, dtype=float)[None])
+        V = problem.emission.matrix(rect, flux, filt)
+        cols = np.flatnonzero(V[:, 0])
+        return self.operator.Phi[:, cols] @ V[cols, 0]
+
+    def lux_of_sources(self, sources: tuple) -> np.ndarray | None:
+        """Illuminance (lux) of every patch lit by ``sources`` (e.g. a pinned solution's)
+        with the design's tied rules; None before the operator exists."""
+        if self.operator is None:
+            return None
+        problem = DesignProblem(
+            replace(self.design, sources=tuple(sources)), self.scene, self.patches, self.operator
+        )
+        return self.lux_at(problem, problem.vars.initial())
+
     def _relight(self) -> None:
         problem = self.problem()
         if problem is None:
             return
         t0 = time.perf_counter()
-        if self.design.sources:
-            # The design as written, with the tied rules (mirror, centred) applied.
-            rect, flux, filt = problem.vars.decode(problem.vars.initial()[None])
-            V = problem.emission.matrix(rect, flux, filt)
-            cols = np.flatnonzero(V[:, 0])
-            lux = self.operator.Phi[:, cols] @ V[cols, 0]
+        if self.preview is not None:
+            # A running optimisation's best layout, shown without touching the design.
+            self._lux = self.lux_at(*self.preview)
         else:
-            lux = np.zeros(self.patches.n, np.float32)
-        self._lux = lux
+            # The design as written, with the tied rules (mirror, centred) applied.
+            self._lux = self.lux_at(problem, problem.vars.initial())
         self.last_eval_ms = 1e3 * (time.perf_counter() - t0)
         self.lightingChanged.emit()
+
+    # -- results --------------------------------------------------------------------------
+    def set_preview(self, problem: DesignProblem | None, x: np.ndarray | None = None) -> None:
+        """Light the view with layout x of ``problem`` (a run's best so far) without
+        changing the design; None returns to the design's own lighting."""
+        self.preview = None if problem is None else (problem, np.asarray(x, dtype=float))
+        self._relight()
+
+    def preview_sources(self) -> tuple | None:
+        """The previewed layout's sources (rules applied), or None."""
+        if self.preview is None:
+            return None
+        return self.preview[0].sources_at(self.preview[1])
+
+    def apply_solution(self, solution: Solution) -> None:
+        """Load a result into the design: each source takes the result's rectangle, flux
+        and filter (which variables are free, the rules and the intentions stay), and the
+        result becomes the shown solution (violations, comparisons)."""
+        found = {s.name: s for s in solution.sources}
+        if set(found) != {s.name for s in self.design.sources}:
+            raise DesignError(
+                "this solution was found for other sources "
+                f"({', '.join(found)}); it cannot be loaded"
+            )
+        sources = tuple(
+            replace(
+                s, rect=found[s.name].rect, flux=found[s.name].flux, filter=found[s.name].filter
+            )
+            for s in self.design.sources
+        )
+        self.preview = None
+        self._set_design(replace(self.design, sources=sources))
+        self.shown = solution
+        self.resultsChanged.emit()
+
+    def set_results(self, solutions: tuple[Solution, ...], pareto: ParetoFront | None) -> None:
+        """Store a run's results in the project (pinned solutions of earlier runs are
+        kept ahead of them)."""
+        pinned = tuple(s for s in self.project.solutions if s.info.get("pinned"))
+        self.project = replace(self.project, solutions=pinned + tuple(solutions), pareto=pareto)
+        self.dirty = True
+        self.pathChanged.emit()
+        self.resultsChanged.emit()
+
+    def results(self) -> list[tuple[str, Solution]]:
+        """Every result to browse, labelled: the project's solutions (pinned first as
+        stored), then the Pareto front's candidates that are not also pinned."""
+        out = [(_label(s), s) for s in self.project.solutions]
+        pinned = {s.x for s in self.project.solutions if s.info.get("pinned")}
+        if self.project.pareto is not None:
+            cands = self.project.pareto.candidates or self.project.pareto.solutions
+            out += [(_label(s), s) for s in cands if s.x not in pinned]
+        return out
+
+    def on_front(self, solution: Solution) -> bool:
+        """Whether ``solution`` is on the project's Pareto front."""
+        front = self.project.pareto
+        return front is not None and any(s.x == solution.x for s in front.solutions)
+
+    def pin(self, solution: Solution, pinned: bool = True) -> Solution:
+        """Pin (keep across runs, offer for comparison) or unpin a result; returns the
+        stored copy. Pinned results are saved with the project."""
+        new = replace(solution, info={**solution.info, "pinned": pinned})
+        others = tuple(s for s in self.project.solutions if s.x != solution.x)
+        # An unpinned point of the front goes back to being shown through the front.
+        keep = pinned or not self._from_front(solution)
+        sols = others + ((new,) if keep else ())
+        self.project = replace(self.project, solutions=sols)
+        if self.shown is not None and self.shown.x == solution.x:
+            self.shown = new
+        self.dirty = True
+        self.pathChanged.emit()
+        self.resultsChanged.emit()
+        return new
+
+    def _from_front(self, solution: Solution) -> bool:
+        front = self.project.pareto
+        cands = () if front is None else (front.candidates or front.solutions)
+        return any(s.x == solution.x for s in cands)
+
+    def pinned(self) -> list[Solution]:
+        """The pinned results."""
+        return [s for s in self.project.solutions if s.info.get("pinned")]
+
+
+def _label(s: Solution) -> str:
+    """A short name for a result: which run found it."""
+    info = s.info
+    if "epsilon" in info:
+        return f"epsilon {info['epsilon']:,.0f} lm"
+    if "step1_light_power" in info:
+        return f"two-step seed {info.get('seed', '?')}"
+    if "seed" in info:
+        return f"seed {info['seed']}"
+    return "result"

@@ -2,14 +2,19 @@
 
 from __future__ import annotations
 
+import contextlib
 import time
 from pathlib import Path
 
 import numpy as np
 from PySide6 import QtCore, QtGui, QtWidgets
 
+from app.autosave import Autosaver, Recoverable, orphaned_autosaves
 from app.document import Document, blank_project
 from app.panels import DesignTree, IntentionDialog, SourcePanel, ZoneDialog, ZonePanel
+from app.results_panel import SolutionsPanel, ViolationsPanel
+from app.run_control import RunController
+from app.run_panel import RunPanel
 from app.viewport import Viewport
 from app.workers import PrecomputeWorker, ReportWorker
 from lightinv_core.errors import LightInvError
@@ -23,11 +28,17 @@ MAX_RECENT = 8
 class MainWindow(QtWidgets.QMainWindow):
     """One open project at a time."""
 
-    def __init__(self, settings: QtCore.QSettings | None = None):
+    def __init__(
+        self,
+        settings: QtCore.QSettings | None = None,
+        autosave_seconds: float | None = None,
+        autosave_folder: Path | None = None,
+    ):
         super().__init__()
         self.settings = settings or QtCore.QSettings("LightInv", "LightInv")
         self.doc = Document(self)
         self.worker: PrecomputeWorker | None = None
+        self.run_after_precompute = False  # lightinv --run: start once the operator is there
         self.last_render_ms = float("nan")
         self.ask_before_discard = True  # False: discard unsaved changes silently (scripts, tests)
         self.setWindowTitle("LightInv")
@@ -36,8 +47,13 @@ class MainWindow(QtWidgets.QMainWindow):
         self.tree = DesignTree(self.doc)
         self.source_panel = SourcePanel(self.doc)
         self.zone_panel = ZonePanel(self.doc)
+        self.run_panel = RunPanel(self.doc)
+        self.solutions_panel = SolutionsPanel(self.doc)
+        self.violations_panel = ViolationsPanel(self.doc)
         self._docks()
         self._actions()
+        self.runs = RunController(self)
+        self.autosaver = Autosaver(self, autosave_seconds, autosave_folder)
         self._menus()
         self._status()
         self._connect()
@@ -63,6 +79,14 @@ class MainWindow(QtWidgets.QMainWindow):
         lay.addStretch(1)
         right.setWidget(box)
         self.addDockWidget(QtCore.Qt.RightDockWidgetArea, right)
+        bottom = QtWidgets.QDockWidget("Optimisation", self)
+        bottom.setObjectName("optimisation")
+        self.tabs = QtWidgets.QTabWidget()
+        self.tabs.addTab(self.run_panel, "Run")
+        self.tabs.addTab(self.solutions_panel, "Solutions")
+        self.tabs.addTab(self.violations_panel, "Violations")
+        bottom.setWidget(self.tabs)
+        self.addDockWidget(QtCore.Qt.BottomDockWidgetArea, bottom)
 
     def _view_options(self) -> QtWidgets.QGroupBox:
         group = QtWidgets.QGroupBox("View")
@@ -110,6 +134,9 @@ class MainWindow(QtWidgets.QMainWindow):
         self.act_precompute = self._action("Precompute", self.start_precompute)
         self.act_cancel = self._action("Cancel", self.cancel_precompute)
         self.act_cancel.setEnabled(False)
+        self.act_run = self._action("&Run optimisation", lambda: self.runs.start(), "F5")
+        self.act_cancel_run = self._action("Cancel optimisation", lambda: self.runs.cancel())
+        self.act_cancel_run.setEnabled(False)
         self.act_intention = self._action(
             "Add intention on selection...", self.add_intention_on_selection
         )
@@ -154,12 +181,15 @@ class MainWindow(QtWidgets.QMainWindow):
         for act in (self.act_intention, self.act_clear, *self.mode_actions.values()):
             design.addAction(act)
         compute = bar.addMenu("&Compute")
-        compute.addAction(self.act_precompute)
-        compute.addAction(self.act_cancel)
+        for act in (self.act_precompute, self.act_cancel, self.act_run, self.act_cancel_run):
+            compute.addAction(act)
         tools = self.addToolBar("Main")
         tools.setObjectName("main toolbar")
         for act in (self.act_open, self.act_save, self.act_precompute, self.act_cancel):
             tools.addAction(act)
+        tools.addSeparator()
+        tools.addAction(self.act_run)
+        tools.addAction(self.act_cancel_run)
         tools.addSeparator()
         for act in self.mode_actions.values():
             tools.addAction(act)
@@ -193,6 +223,12 @@ class MainWindow(QtWidgets.QMainWindow):
         self.viewport.zoneDrawn.connect(self._zone_drawn)
         self.viewport.surface_frame = self._surface_frame
         self.tree.groupActivated.connect(self.add_intention_on_group)
+        self.run_panel.runRequested.connect(self.runs.start)
+        self.run_panel.cancelRequested.connect(self.runs.cancel)
+        self.solutions_panel.compareChanged.connect(self._recolour)
+        self.violations_panel.highlightChanged.connect(
+            lambda: self.viewport.set_highlight(self.violations_panel.highlighted())
+        )
 
     # -- document -> views -----------------------------------------------------------------
     def _scene_changed(self) -> None:
@@ -205,8 +241,12 @@ class MainWindow(QtWidgets.QMainWindow):
         self._sources_changed()
         self.start_precompute()
 
+    def _shown_sources(self) -> tuple:
+        preview = self.doc.preview_sources()
+        return preview if preview is not None else self.doc.effective_sources()
+
     def _sources_changed(self) -> None:
-        self.viewport.set_sources(self.doc.effective_sources(), self.doc.current_source)
+        self.viewport.set_sources(self._shown_sources(), self.doc.current_source)
         if self.doc.current_source:
             self.viewport.drag_zone = self.doc.design.source(self.doc.current_source).zone
         self._title()
@@ -214,13 +254,23 @@ class MainWindow(QtWidgets.QMainWindow):
     def _recolour(self) -> None:
         lux = self.doc.lighting()
         if lux is not None:
-            self.viewport.set_sources(self.doc.effective_sources(), self.doc.current_source)
+            self.viewport.set_sources(self._shown_sources(), self.doc.current_source)
         t0 = time.perf_counter()
         self.viewport.clim = None if self.auto_range.isChecked() else (0.0, self.range_max.value())
         if lux is None:
             self.viewport.set_values(None)
             return
-        if self.colour_by.currentData() == "B":
+        other = self.solutions_panel.compared()
+        cmap = "coolwarm" if other is not None else self.cmap.currentText()
+        if cmap != self.viewport.cmap:
+            self.viewport.set_colormap(cmap)
+        if other is not None:
+            # Difference view: the loaded layout minus a pinned one, centred on zero.
+            values = lux - self.doc.lux_of_sources(other.sources)
+            m = float(np.abs(values).max()) or 1.0
+            self.viewport.clim = (-m, m)
+            units = "lux, loaded − pinned"
+        elif self.colour_by.currentData() == "B":
             values, units = self._radiosity(lux), "lm/m²"
         else:
             values, units = lux, "lux"
@@ -375,9 +425,14 @@ class MainWindow(QtWidgets.QMainWindow):
         self.act_precompute.setEnabled(True)
         self.worker.deleteLater()
         self.worker = None
+        if self.run_after_precompute and self.doc.operator is not None:
+            self.run_after_precompute = False
+            self.runs.start()
 
     def stop_worker(self) -> None:
-        """Cancel and wait for a running worker (closing, switching projects)."""
+        """Cancel and wait for running workers (closing, switching projects); a cancelled
+        optimisation still delivers its best result first."""
+        self.runs.stop()
         if self.worker is not None:
             self.worker.cancel()
             self.worker.wait()
@@ -462,6 +517,7 @@ class MainWindow(QtWidgets.QMainWindow):
             QtWidgets.QMessageBox.critical(self, "LightInv: cannot save", str(exc))
             return False
         self._remember(saved)
+        self.autosaver.save_now()  # nothing unsaved: removes the autosave (unless running)
         self.statusBar().showMessage(f"Saved {saved}", 4000)
         return True
 
@@ -498,8 +554,7 @@ class MainWindow(QtWidgets.QMainWindow):
             QtWidgets.QMessageBox.information(
                 self,
                 "LightInv",
-                "The project has no results yet: run "
-                "'lightinv-cli solve PROJECT.json -o RESULT.json' and open RESULT.json.",
+                "The project has no results yet: press Run (Optimisation panel) first.",
             )
             return False
         prepared = Prepared(d.scene, d.patches, d.operator, True, 0.0)
@@ -546,7 +601,64 @@ class MainWindow(QtWidgets.QMainWindow):
             event.ignore()
             return
         self.stop_worker()
+        self.autosaver.timer.stop()
+        self.autosaver.discard()  # a clean exit: nothing to recover
         self.settings.setValue("geometry", self.saveGeometry())
         self.settings.setValue("windowState", self.saveState())
         self.viewport.close_plotter()
         event.accept()
+
+    # -- crash recovery -------------------------------------------------------------------------
+    def offer_recovery(self, ask=None) -> bool:
+        """Offer the autosaves of LightInv sessions that ended without closing (a crash, a
+        kill). ``ask(recoverable) -> "recover" | "discard" | "keep"`` replaces the dialog
+        (tests). Returns True if a project was recovered."""
+        ask = ask or self._ask_recovery
+        for rec in orphaned_autosaves(self.autosaver.folder):
+            answer = ask(rec)
+            if answer == "recover" and rec.project is not None and self.recover(rec):
+                return True
+            if answer == "discard":
+                rec.path.unlink(missing_ok=True)
+        return False
+
+    def _ask_recovery(self, rec: Recoverable) -> str:
+        box = QtWidgets.QMessageBox(self)
+        box.setWindowTitle("LightInv: recover unsaved work")
+        if rec.project is None:
+            box.setText(f"An autosave could not be read:\n{rec.path}\n{rec.error}")
+            delete = box.addButton("Delete it", QtWidgets.QMessageBox.DestructiveRole)
+            box.addButton("Keep it", QtWidgets.QMessageBox.RejectRole)
+            box.exec()
+            return "discard" if box.clickedButton() is delete else "keep"
+        where = str(rec.original) if rec.original else "a project never saved"
+        box.setText(
+            f"LightInv did not close normally. Recover the work autosaved at {rec.saved_at} "
+            f"({rec.note}) for {where}?"
+        )
+        recover = box.addButton("Recover", QtWidgets.QMessageBox.AcceptRole)
+        discard = box.addButton("Discard", QtWidgets.QMessageBox.DestructiveRole)
+        box.addButton("Not now", QtWidgets.QMessageBox.RejectRole)
+        box.exec()
+        clicked = box.clickedButton()
+        return "recover" if clicked is recover else ("discard" if clicked is discard else "keep")
+
+    def recover(self, rec: Recoverable) -> bool:
+        """Open an autosave as the project (unsaved; Save writes to the original file).
+        The best layout of an interrupted run is loaded into the design."""
+        if not self.load_project(rec.project, rec.original):
+            return False
+        self.doc.dirty = True
+        self.doc.pathChanged.emit()
+        running = [s for s in rec.project.solutions if s.info.get("status") == "running"]
+        if running:
+            with contextlib.suppress(LightInvError):
+                self.doc.apply_solution(running[-1])
+        rec.path.unlink(missing_ok=True)
+        self.autosaver.save_now()
+        self.statusBar().showMessage(
+            f"Recovered the work autosaved at {rec.saved_at}"
+            + (" with the interrupted run's best layout" if running else ""),
+            10_000,
+        )
+        return True

@@ -225,15 +225,22 @@ class Viewport(QtWidgets.QWidget):
 
     def set_selection(self, patch_ids: np.ndarray) -> None:
         """Highlight the picked patches."""
-        self.plotter.remove_actor("selection", render=False)
+        self._overlay("selection", patch_ids, "#00ff66", 0.55)
+
+    def set_highlight(self, patch_ids: np.ndarray) -> None:
+        """Paint ``patch_ids`` red over the lighting (patches breaking an intention)."""
+        self._overlay("offending", patch_ids, "#ff1010", 0.6)
+
+    def _overlay(self, name: str, patch_ids: np.ndarray, color: str, opacity: float) -> None:
+        """A translucent, named layer over some patches (replacing the previous one)."""
+        self.plotter.remove_actor(name, render=False)
         if self.mesh is not None and len(patch_ids):
             cells = np.flatnonzero(np.isin(self.tri_patch, patch_ids))
-            sub = self.mesh.extract_cells(cells)
             self.plotter.add_mesh(
-                sub,
-                name="selection",
-                color="#00ff66",
-                opacity=0.55,
+                self.mesh.extract_cells(cells),
+                name=name,
+                color=color,
+                opacity=opacity,
                 lighting=False,
                 reset_camera=False,
                 show_scalar_bar=False,

@@ -10,14 +10,17 @@ a silent thread death.
 from __future__ import annotations
 
 import threading
+import time
 import traceback
 import weakref
+from dataclasses import dataclass
 from typing import ClassVar
 
 from PySide6 import QtCore
 
 from lightinv_core.errors import CancelledError, LightInvError
 from lightinv_core.io.operator_cache import get_operator
+from lightinv_core.optimize.vns import Progress
 from lightinv_core.scene.patches import Patches
 
 
@@ -30,6 +33,8 @@ class Worker(QtCore.QThread):
     cancelled = QtCore.Signal()
 
     _live: ClassVar[weakref.WeakSet] = weakref.WeakSet()
+    result_survives_cancel: ClassVar[bool] = False
+    """True for work whose partial result is worth keeping (an optimisation's best)."""
 
     def __init__(self, parent: QtCore.QObject | None = None):
         super().__init__(parent)
@@ -64,7 +69,7 @@ class Worker(QtCore.QThread):
         except Exception as exc:  # a bug: show it, with the traceback for the report
             self.failed.emit(f"{type(exc).__name__}: {exc}\n\n{traceback.format_exc()}")
         else:
-            if self.is_cancelled():
+            if self.is_cancelled() and not self.result_survives_cancel:
                 self.cancelled.emit()
             else:
                 self.succeeded.emit(result)
@@ -111,3 +116,101 @@ class ReportWorker(Worker):
             progress=self.progress.emit,
             cancel=self.is_cancelled,
         )
+
+
+@dataclass(frozen=True)
+class RunSnapshot:
+    """What the GUI draws of a running optimisation, taken at its redraw rate.
+
+    ``points`` are new (run, cumulative evaluations, best goal, best penalty) rows since
+    the last snapshot; ``latest`` the newest core ``Progress`` (None before the first);
+    ``solutions`` new points of a multi-objective sweep; ``evaluations`` counts all runs.
+    """
+
+    latest: Progress | None
+    points: tuple[tuple[int, int, float, float], ...]
+    solutions: tuple
+    evaluations: int
+    elapsed: float
+
+
+class RunWorker(Worker):
+    """Runs a project's optimisation (one seed, or one run per seed) off the GUI thread.
+
+    The optimizer calls back thousands of times a second: the worker only records
+    (under a lock) and the GUI takes a ``RunSnapshot`` on its own timer, so drawing is
+    throttled and never floods the event loop. A cancelled run is not an error: it
+    ends with ``succeeded`` and the best result found so far (status "cancelled").
+    ``succeeded`` carries a list of ``RunResult`` (one per seed).
+    """
+
+    result_survives_cancel = True
+
+    def __init__(self, project, prepared, seeds=None, parent: QtCore.QObject | None = None):
+        super().__init__(parent)
+        self.project, self.prepared = project, prepared
+        self.seeds = list(seeds) if seeds else None
+        self._lock = threading.Lock()
+        self._latest: Progress | None = None
+        self._points: list = []
+        self._solutions: list = []
+        self._offset = 0  # evaluations of finished VNS runs and levels
+        self._last_evals = 0
+        self._last_key = None
+        self._t0 = time.perf_counter()
+
+    def _progress(self, p: Progress) -> None:
+        with self._lock:
+            if p.evaluations < self._last_evals or (
+                self._latest is not None and p.run != self._latest.run
+            ):
+                self._offset += self._last_evals  # a new VNS (level, epsilon, seed) began
+            self._last_evals = p.evaluations
+            key = (p.run, p.best_value, p.best_penalty)
+            if key != self._last_key:
+                total = self._offset + p.evaluations
+                self._points.append((p.run, total, p.best_goal, p.best_penalty))
+                self._last_key = key
+            self._latest = p
+
+    def _solution(self, solution) -> None:
+        with self._lock:
+            self._solutions.append(solution)
+
+    def snapshot(self) -> RunSnapshot:
+        """The progress since the previous snapshot (thread-safe)."""
+        with self._lock:
+            points, self._points = tuple(self._points), []
+            sols, self._solutions = tuple(self._solutions), []
+            return RunSnapshot(
+                self._latest,
+                points,
+                sols,
+                self._offset + self._last_evals,
+                time.perf_counter() - self._t0,
+            )
+
+    def work(self):
+        from lightinv_core.optimize.run import solve, solve_seeds
+
+        self._t0 = time.perf_counter()
+        if self.seeds is not None and len(self.seeds) > 1:
+            return solve_seeds(
+                self.project,
+                self.prepared,
+                self.seeds,
+                progress=self._progress,
+                cancel=self.is_cancelled,
+                on_result=lambda r: self._solution(r.best),
+            )
+        seed = self.seeds[0] if self.seeds else None
+        return [
+            solve(
+                self.project,
+                self.prepared,
+                seed,
+                progress=self._progress,
+                cancel=self.is_cancelled,
+                on_solution=self._solution,
+            )
+        ]

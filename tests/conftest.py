@@ -25,11 +25,14 @@ def cornell_F(cornell_patches):
 
 @pytest.fixture(scope="session", autouse=True)
 def private_operator_cache(tmp_path_factory):
-    """Operators built by the tests go to a temporary cache, never the user's."""
-    old = os.environ.get("LIGHTINV_CACHE_DIR")
+    """Operators built by the tests go to a temporary cache, never the user's; so do
+    the window's autosaves."""
+    saved = {k: os.environ.get(k) for k in ("LIGHTINV_CACHE_DIR", "LIGHTINV_AUTOSAVE_DIR")}
     os.environ["LIGHTINV_CACHE_DIR"] = str(tmp_path_factory.mktemp("operator-cache"))
+    os.environ["LIGHTINV_AUTOSAVE_DIR"] = str(tmp_path_factory.mktemp("autosave"))
     yield
-    if old is None:
-        os.environ.pop("LIGHTINV_CACHE_DIR", None)
-    else:
-        os.environ["LIGHTINV_CACHE_DIR"] = old
+    for key, old in saved.items():
+        if old is None:
+            os.environ.pop(key, None)
+        else:
+            os.environ[key] = old

@@ -1,0 +1,165 @@
+"""Autosave and crash recovery.
+
+While a project has unsaved changes or an optimisation runs, the window writes the
+project — with the best result of the running optimisation — to
+``<autosave dir>/autosave-<pid>.json`` every ``interval`` seconds (atomically: a
+crash mid-write leaves the previous autosave). A clean exit, or a save with nothing
+running, removes the file. At start-up, autosaves whose process is gone are offered
+for recovery.
+
+The directory is ``$LIGHTINV_AUTOSAVE_DIR`` or the user data folder
+(``platformdirs.user_data_dir("LightInv")/autosave``); the interval is
+``$LIGHTINV_AUTOSAVE_SECONDS`` or ``lightinv --autosave-interval`` (default 30 s).
+"""
+
+from __future__ import annotations
+
+import contextlib
+import json
+import os
+import time
+from dataclasses import dataclass, replace
+from pathlib import Path
+
+from PySide6 import QtCore
+
+from lightinv_core.errors import LightInvError
+from lightinv_core.io.project import Project, project_from_dict, project_to_dict
+from lightinv_core.io.project_write import write_json
+
+FORMAT = 1
+DEFAULT_INTERVAL = 30.0
+
+
+def autosave_dir() -> Path:
+    """Where autosaves go (created on first use)."""
+    env = os.environ.get("LIGHTINV_AUTOSAVE_DIR")
+    if env:
+        return Path(env)
+    from platformdirs import user_data_dir
+
+    return Path(user_data_dir("LightInv", appauthor=False)) / "autosave"
+
+
+def autosave_interval() -> float:
+    """Seconds between autosaves ($LIGHTINV_AUTOSAVE_SECONDS, default 30)."""
+    try:
+        value = float(os.environ.get("LIGHTINV_AUTOSAVE_SECONDS", DEFAULT_INTERVAL))
+    except ValueError:
+        return DEFAULT_INTERVAL
+    return value if value > 0 else DEFAULT_INTERVAL
+
+
+def write_autosave(path: Path, project: Project, original: Path | None, note: str = "") -> None:
+    """Write ``project`` (scene paths absolute) as an autosave, atomically."""
+    data = {
+        "lightinv_autosave": FORMAT,
+        "pid": os.getpid(),
+        "saved_at": time.strftime("%Y-%m-%d %H:%M:%S"),
+        "original": None if original is None else str(Path(original).resolve()),
+        "note": note,
+        "project": project_to_dict(project),
+    }
+    path.parent.mkdir(parents=True, exist_ok=True)
+    write_json(data, path)
+
+
+def pid_alive(pid: int) -> bool:
+    """Whether a process with this id exists (its autosave is not orphaned)."""
+    if pid == os.getpid():
+        return True
+    try:
+        os.kill(pid, 0)
+    except ProcessLookupError:
+        return False
+    except (PermissionError, OSError):
+        return True
+    return True
+
+
+@dataclass(frozen=True)
+class Recoverable:
+    """An orphaned autosave: its project (None if unreadable, with ``error``)."""
+
+    path: Path
+    project: Project | None
+    original: Path | None
+    saved_at: str
+    note: str
+    error: str = ""
+
+
+def read_autosave(path: Path) -> Recoverable:
+    """Read one autosave; a broken one comes back with ``error`` set, never raises."""
+    try:
+        data = json.loads(path.read_text(encoding="utf-8"))
+        if data.get("lightinv_autosave") != FORMAT:
+            raise LightInvError(f"unknown autosave format {data.get('lightinv_autosave')!r}")
+        original = Path(data["original"]) if data.get("original") else None
+        project = project_from_dict(data["project"], None)
+        return Recoverable(
+            path, project, original, str(data.get("saved_at", "")), str(data.get("note", ""))
+        )
+    except (OSError, ValueError, KeyError, TypeError, AttributeError) as exc:
+        return Recoverable(path, None, None, "", "", f"{type(exc).__name__}: {exc}")
+
+
+def orphaned_autosaves(directory: Path | None = None) -> list[Recoverable]:
+    """Autosaves left by LightInv processes that are gone (a crash or a kill)."""
+    directory = directory or autosave_dir()
+    found = []
+    for path in sorted(Path(directory).glob("autosave-*.json")):
+        try:
+            pid = int(path.stem.split("-", 1)[1])
+        except ValueError:
+            continue
+        if not pid_alive(pid):
+            found.append(read_autosave(path))
+    return found
+
+
+class Autosaver(QtCore.QObject):
+    """Writes a window's unsaved work (and a running optimisation's best) on a timer."""
+
+    def __init__(self, window, seconds: float | None = None, folder: Path | None = None):
+        super().__init__(window)
+        self.win = window
+        self.folder = Path(folder) if folder is not None else autosave_dir()
+        self.path = self.folder / f"autosave-{os.getpid()}.json"
+        self.count = 0
+        self.timer = QtCore.QTimer(self)
+        self.timer.setInterval(int(1000 * (seconds or autosave_interval())))
+        self.timer.timeout.connect(self.save_now)
+        self.timer.start()
+
+    def content(self) -> Project | None:
+        """What would be lost in a crash now: the project if it has unsaved changes, with
+        the running optimisation's results so far; None when nothing would be lost."""
+        doc = self.win.doc
+        if doc.project is None:
+            return None
+        running = self.win.runs.best_so_far()
+        if not running and not doc.dirty:
+            return None
+        return replace(doc.project, solutions=doc.project.solutions + running)
+
+    def save_now(self) -> bool:
+        """Autosave (or remove a stale autosave when nothing is unsaved). Never raises:
+        a failed autosave is reported in the status bar and tried again next time."""
+        try:
+            project = self.content()
+            if project is None:
+                self.discard()
+                return False
+            note = "optimisation running" if self.win.runs.running else "unsaved changes"
+            write_autosave(self.path, project, self.win.doc.path, note)
+        except (OSError, LightInvError) as exc:
+            self.win.statusBar().showMessage(f"Autosave failed: {exc}", 8000)
+            return False
+        self.count += 1
+        return True
+
+    def discard(self) -> None:
+        """Remove this window's autosave (saved or closed cleanly)."""
+        with contextlib.suppress(OSError):
+            self.path.unlink()

@@ -1,0 +1,205 @@
+"""Running an optimisation from the window: start, live redraws, cancel, results.
+
+``RunController`` owns the ``RunWorker`` and a timer that takes the worker's snapshot
+20 times a second at most: the convergence plots and counters are drawn from it, the
+best layout so far lights the viewport (when the run's variables are the design's),
+and the autosave reads the best so far from here. When the worker ends — finished or
+cancelled — its results go into the project, the best one is loaded into the design,
+and an infeasible outcome opens the Violations tab with the offending patches in red.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from PySide6 import QtCore, QtWidgets
+
+from app.workers import RunWorker
+from lightinv_core.design.problem import DesignProblem
+from lightinv_core.design.solution import ParetoFront, Solution
+from lightinv_core.errors import LightInvError
+from lightinv_core.optimize.run import Prepared
+
+REDRAW_MS = 50
+"""Plots and counters redraw at most 20 times a second."""
+MULTI = ("epsilon", "two_step")
+
+
+class RunController(QtCore.QObject):
+    """One optimisation at a time for a main window."""
+
+    started = QtCore.Signal()
+    finished = QtCore.Signal(str)  # the run's status: feasible, infeasible, cancelled, failed
+
+    def __init__(self, window):
+        super().__init__(window)
+        self.win, self.doc, self.panel = window, window.doc, window.run_panel
+        self.worker: RunWorker | None = None
+        self.problem: DesignProblem | None = None
+        self.found: list[Solution] = []  # sweep points so far (autosave)
+        self.best_x: tuple[float, ...] = ()
+        self.best_info: dict = {}
+        self.status = ""
+        self.timer = QtCore.QTimer(self)
+        self.timer.setInterval(REDRAW_MS)
+        self.timer.timeout.connect(self.tick)
+
+    @property
+    def running(self) -> bool:
+        return self.worker is not None
+
+    def start(self) -> bool:
+        """Run the project's optimisation in a worker; False (with a message) if it cannot
+        start now."""
+        d = self.doc
+        if self.worker is not None:
+            return False
+        if d.operator is None or self.win.worker is not None:
+            self._say("Wait for the radiosity operator (Compute > Precompute) first.")
+            return False
+        try:
+            problem = d.problem()
+            if problem.vars.n == 0:
+                raise LightInvError(
+                    "nothing to optimise: add a source (Properties > Add source in zone) "
+                    "whose corners, flux or filter are free"
+                )
+        except LightInvError as exc:
+            self._say(str(exc))
+            return False
+        self.problem, self.found, self.best_x, self.best_info = problem, [], (), {}
+        prepared = Prepared(d.scene, d.patches, d.operator, True, 0.0)
+        self.worker = RunWorker(d.project, prepared, self.panel.seeds(), self)
+        self.worker.succeeded.connect(self._succeeded)
+        self.worker.failed.connect(self._failed)
+        self.worker.finished.connect(self._ended)
+        self.panel.plot.reset(self.panel.goal_label())
+        self.panel.set_running(True)
+        self.panel.state.setText("Running...")
+        self.win.act_run.setEnabled(False)
+        self.win.act_cancel_run.setEnabled(True)
+        self.worker.start()
+        self.timer.start()
+        self.started.emit()
+        return True
+
+    def cancel(self) -> None:
+        """Stop the run at its next batch; its best result is kept."""
+        if self.worker is not None:
+            self.panel.state.setText("Cancelling: keeping the best so far...")
+            self.worker.cancel()
+
+    def stop(self) -> None:
+        """Cancel and wait (closing, switching projects); the best is still delivered."""
+        if self.worker is not None:
+            self.worker.cancel()
+            self.worker.wait()
+            QtWidgets.QApplication.processEvents()
+
+    # -- while running ----------------------------------------------------------------------
+    def tick(self) -> None:
+        """Draw the worker's progress since the last tick."""
+        if self.worker is None:
+            return
+        snap = self.worker.snapshot()
+        self.found.extend(snap.solutions)
+        p = snap.latest
+        latest = None if p is None else (p.run, snap.evaluations)
+        if snap.points or latest is not None:
+            self.panel.plot.add_points(snap.points, latest)
+        self.panel.show_progress(snap)
+        if p is None or len(p.best_x) != self.problem.vars.n:
+            return  # a sub-problem with other variables (two-step's skylight step)
+        if p.best_x != self.best_x:
+            self.best_x = p.best_x
+            self.best_info = {
+                "seed": self.doc.project.optimizer.seed,
+                "evaluations": snap.evaluations,
+                "seconds": snap.elapsed,
+                "status": "running",
+            }
+            if self.panel.show_best.isChecked():
+                self.doc.set_preview(self.problem, np.array(p.best_x))
+                self.win._sources_changed()
+
+    def best_so_far(self) -> tuple[Solution, ...]:
+        """The running optimisation's results so far, judged on all patches (autosave)."""
+        if self.worker is None:
+            return ()
+        if self.doc.project.optimizer.method in MULTI:
+            return tuple(self.found)
+        if not self.best_x:
+            return ()
+        return (self.problem.solution(np.array(self.best_x), self.best_info),)
+
+    # -- when it ends -------------------------------------------------------------------------
+    def _succeeded(self, results) -> None:
+        self.tick()
+        front: ParetoFront | None = results[0].pareto
+        if front is not None:
+            self.doc.set_results((), front)
+            chosen = front.solutions[0] if front.solutions else None
+            if chosen is None and front.candidates:
+                chosen = min(front.candidates, key=lambda s: s.penalty)
+        else:
+            bests = tuple(r.best for r in results if r.best is not None)
+            self.doc.set_results(bests, None)
+            chosen = _best_of(bests, self.problem)
+        self.doc.set_preview(None)
+        if chosen is not None:
+            self.doc.apply_solution(chosen)
+            self.win.solutions_panel.refresh()
+        self.status = _status(results)
+        evals = sum(r.evaluations for r in results)
+        seconds = sum(r.seconds for r in results)
+        text = {
+            "feasible": "Done: a feasible layout was found",
+            "infeasible": "Done, but no layout meets every rule and intention",
+            "cancelled": "Cancelled: the best layout found so far is kept",
+        }[self.status]
+        if front is not None:
+            text += f"; {len(front.solutions)} on the front of {len(front.candidates)}"
+        self.panel.state.setText(f"{text} ({evals:,} evaluations, {seconds:.1f} s).")
+        if chosen is None:
+            self.panel.state.setText(f"{text}: no result to keep.")
+        elif not chosen.feasible:
+            self.win.tabs.setCurrentWidget(self.win.violations_panel)
+        elif front is not None or len(results) > 1:
+            self.win.tabs.setCurrentWidget(self.win.solutions_panel)
+        self.win.statusBar().showMessage(self.panel.state.text(), 10_000)
+
+    def _failed(self, message: str) -> None:
+        self.status = "failed"
+        self.doc.set_preview(None)
+        self.panel.state.setText("The run failed; nothing was changed.")
+        QtWidgets.QMessageBox.critical(self.win, "LightInv: optimisation failed", message)
+
+    def _ended(self) -> None:
+        self.timer.stop()
+        self.worker.deleteLater()
+        self.worker = None
+        self.panel.set_running(False)
+        self.win.act_run.setEnabled(True)
+        self.win.act_cancel_run.setEnabled(False)
+        self.finished.emit(self.status)
+
+    def _say(self, message: str) -> None:
+        QtWidgets.QMessageBox.information(self.win, "LightInv", message)
+
+
+def _status(results) -> str:
+    statuses = {r.status for r in results}
+    if "cancelled" in statuses:
+        return "cancelled"
+    return "feasible" if "feasible" in statuses else "infeasible"
+
+
+def _best_of(solutions: tuple[Solution, ...], problem: DesignProblem) -> Solution | None:
+    """The best of several runs' results: feasible first, then by the primary goal."""
+    if not solutions:
+        return None
+    sign = -1.0 if problem.primary == "max_light_power" else 1.0
+
+    def key(s: Solution):
+        return (not s.feasible, s.penalty, sign * s.objectives.get(problem.primary, np.inf))
+
+    return min(solutions, key=key)

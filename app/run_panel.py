@@ -1,0 +1,189 @@
+"""The run panel: the project's optimisation settings, Run / Cancel, live status and the
+convergence plots.
+
+Settings are the project's (``OptimizerSettings`` and the primary goal): editing a field
+writes it to the document at once, so a saved project runs the same from the command
+line. The number of seeds is the panel's own: several seeds run the same problem that
+many times (the paper's experiment 4) and are not saved.
+"""
+
+from __future__ import annotations
+
+from PySide6 import QtCore, QtWidgets
+
+from app.document import Document
+from app.plots import ConvergencePlot
+from lightinv_core.errors import LightInvError
+
+METHOD_LABELS = {
+    "vns": "VNS on all patches",
+    "multilevel": "Multilevel VNS (n/64, n/16, n)",
+    "epsilon": "Pareto front: epsilon-constraint",
+    "two_step": "Pareto front: two-step",
+}
+GOAL_LABELS = {
+    "min_electric_power": ("least electric power", "electric power (W)"),
+    "max_light_power": ("most light power", "light power (lm)"),
+    "match": ("match a target lighting", "match error e"),
+}
+MULTI = ("epsilon", "two_step")
+
+
+class RunPanel(QtWidgets.QWidget):
+    """Settings, buttons and progress of one optimisation run at a time."""
+
+    runRequested = QtCore.Signal()
+    cancelRequested = QtCore.Signal()
+
+    def __init__(self, doc: Document, parent: QtWidgets.QWidget | None = None):
+        super().__init__(parent)
+        self.doc = doc
+        lay = QtWidgets.QHBoxLayout(self)
+        left = QtWidgets.QWidget()
+        left.setMaximumWidth(340)
+        form = QtWidgets.QFormLayout(left)
+        form.setContentsMargins(0, 0, 0, 0)
+        self.method = QtWidgets.QComboBox()
+        for key, label in METHOD_LABELS.items():
+            self.method.addItem(label, key)
+        form.addRow("Method", self.method)
+        self.goal = QtWidgets.QComboBox()
+        form.addRow("Goal", self.goal)
+        self.max_evals = QtWidgets.QSpinBox(maximum=100_000_000, singleStep=1000)
+        self.max_evals.setSpecialValueText("no limit")
+        form.addRow("Evaluations (per run)", self.max_evals)
+        self.time_limit = QtWidgets.QDoubleSpinBox(maximum=86_400.0, decimals=1, suffix=" s")
+        self.time_limit.setSpecialValueText("no limit")
+        form.addRow("Time limit (per run)", self.time_limit)
+        self.seed = QtWidgets.QSpinBox(maximum=2**31 - 1)
+        form.addRow("Seed", self.seed)
+        self.runs = QtWidgets.QSpinBox(minimum=1, maximum=100)
+        self.runs_label = QtWidgets.QLabel("Seeds")
+        form.addRow(self.runs_label, self.runs)
+        self.show_best = QtWidgets.QCheckBox("show the best so far in the view")
+        self.show_best.setChecked(True)
+        form.addRow(self.show_best)
+        buttons = QtWidgets.QHBoxLayout()
+        self.run_button = QtWidgets.QPushButton("Run")
+        self.cancel_button = QtWidgets.QPushButton("Cancel")
+        self.cancel_button.setEnabled(False)
+        buttons.addWidget(self.run_button)
+        buttons.addWidget(self.cancel_button)
+        form.addRow(buttons)
+        self.state = QtWidgets.QLabel("Ready")
+        self.state.setWordWrap(True)
+        self.counters = QtWidgets.QLabel("")
+        form.addRow(self.state)
+        form.addRow(self.counters)
+        lay.addWidget(left)
+        self.plot = ConvergencePlot()
+        lay.addWidget(self.plot, 1)
+
+        self.method.currentIndexChanged.connect(self._method_edited)
+        self.goal.currentIndexChanged.connect(self._goal_edited)
+        self.max_evals.valueChanged.connect(lambda v: self._set(max_evals=v or None))
+        self.time_limit.valueChanged.connect(lambda v: self._set(time_limit=v or None))
+        self.seed.valueChanged.connect(lambda v: self._set(seed=v))
+        self.runs.valueChanged.connect(self._runs_edited)
+        self.run_button.clicked.connect(self.runRequested)
+        self.cancel_button.clicked.connect(self.cancelRequested)
+        for sig in (doc.sceneChanged, doc.designChanged):
+            sig.connect(self.refresh)
+        self._seeds = 1
+
+    # -- document -> widgets ----------------------------------------------------------------
+    def refresh(self) -> None:
+        """Show the project's settings (signals blocked: showing is not editing)."""
+        if self.doc.project is None:
+            return
+        o = self.doc.project.optimizer
+        widgets = (self.method, self.goal, self.max_evals, self.time_limit, self.seed, self.runs)
+        for w in widgets:
+            w.blockSignals(True)
+        self.method.setCurrentIndex(self.method.findData(o.method))
+        self.goal.clear()
+        design = self.doc.design
+        kinds = ["min_electric_power", "max_light_power"]
+        if design.target_sources:
+            kinds.append("match")
+        for k in kinds:
+            self.goal.addItem(GOAL_LABELS[k][0], k)
+        self.goal.setCurrentIndex(self.goal.findData(design.goals[0].kind))
+        self.goal.setEnabled(o.method not in MULTI)
+        self.max_evals.setValue(o.max_evals or 0)
+        self.time_limit.setValue(o.time_limit or 0.0)
+        self.seed.setValue(o.seed)
+        self._show_runs()
+        for w in widgets:
+            w.blockSignals(False)
+
+    def _show_runs(self) -> None:
+        o = self.doc.project.optimizer
+        if o.method == "epsilon":
+            self.runs_label.setText("Front points")
+            self.runs.setValue(o.epsilon_count)
+        elif o.method == "two_step":
+            self.runs_label.setText("Two-step runs")
+            self.runs.setValue(o.runs)
+        else:
+            self.runs_label.setText("Seeds (runs)")
+            self.runs.setValue(self._seeds)
+
+    # -- widgets -> document ----------------------------------------------------------------
+    def _set(self, **fields) -> None:
+        try:
+            self.doc.set_optimizer(**fields)
+        except LightInvError as exc:
+            QtWidgets.QMessageBox.warning(self, "LightInv", str(exc))
+            self.refresh()
+
+    def _method_edited(self) -> None:
+        self._set(method=self.method.currentData())
+        self.refresh()
+
+    def _goal_edited(self) -> None:
+        kind = self.goal.currentData()
+        if kind is not None:
+            self.doc.set_primary_goal(kind)
+
+    def _runs_edited(self, value: int) -> None:
+        method = self.doc.project.optimizer.method
+        if method == "epsilon":
+            self._set(epsilon_count=value)
+        elif method == "two_step":
+            self._set(runs=value)
+        else:
+            self._seeds = value
+
+    # -- queries and run state ----------------------------------------------------------------
+    def seeds(self) -> list[int]:
+        """Seeds of a single-objective run: the project's seed, then the next ones."""
+        o = self.doc.project.optimizer
+        n = 1 if o.method in MULTI else self._seeds
+        return [o.seed + i for i in range(n)]
+
+    def goal_label(self) -> str:
+        """The plotted objective with its units."""
+        if self.doc.project.optimizer.method in MULTI:
+            return "objective of each sub-run"
+        return GOAL_LABELS[self.doc.design.goals[0].kind][1]
+
+    def set_running(self, running: bool) -> None:
+        """Enable Cancel (and nothing else) while a run goes on."""
+        self.run_button.setEnabled(not running)
+        self.cancel_button.setEnabled(running)
+        for w in (self.method, self.goal, self.max_evals, self.time_limit, self.seed, self.runs):
+            w.setEnabled(not running and (w is not self.goal or self.goal.count() > 0))
+        if not running:
+            self.goal.setEnabled(self.doc.project.optimizer.method not in MULTI)
+
+    def show_progress(self, snap) -> None:
+        """Counters of a ``RunSnapshot``."""
+        p = snap.latest
+        rate = snap.evaluations / snap.elapsed if snap.elapsed > 0 else 0.0
+        text = f"{snap.evaluations:,} evaluations, {snap.elapsed:.1f} s, {rate:,.0f} /s"
+        if p is not None:
+            run = f"run {p.run + 1} of {p.runs}, " if p.runs > 1 else ""
+            level = f", level n/{p.level}" if p.level > 1 else ""
+            text += f"\n{run}best {p.best_goal:.6g}, P = {p.best_penalty:.3g}{level}"
+        self.counters.setText(text)
