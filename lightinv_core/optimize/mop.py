@@ -30,11 +30,16 @@ def _light_goal(design: Design) -> Goal:
 
 
 def front_of(solutions: list[Solution], method: str) -> ParetoFront:
-    """The non-dominated feasible solutions (power minimised, light maximised)."""
+    """The non-dominated feasible solutions (power minimised, light maximised), each
+    objective point once."""
     feasible = [s for s in solutions if s.feasible]
     if feasible:
         F = np.array([[s.objectives[POWER], -s.objectives[LIGHT]] for s in feasible])
         keep = non_dominated(F)
+        # Two epsilon runs can end on the same layout (a bound below the previous
+        # optimum): a front lists each point once, the first run that found it.
+        _, first = np.unique(F, axis=0, return_index=True)
+        keep &= np.isin(np.arange(len(F)), first)
         order = np.argsort(F[:, 0], kind="stable")
         front = tuple(feasible[i] for i in order if keep[i])
     else:

@@ -302,3 +302,16 @@ def test_sweeps_report_each_run_and_each_point(office):
         cancel=lambda: next(calls) >= 20,
     )
     assert front.candidates == ()
+
+
+def test_a_front_lists_a_repeated_point_once():
+    from lightinv_core.design.solution import Solution
+    from lightinv_core.optimize.mop import front_of
+
+    def sol(w, lm, seed):
+        objectives = {"min_electric_power": w, "max_light_power": lm}
+        return Solution((), objectives, 0.0, info={"seed": seed})
+
+    front = front_of([sol(10, 100, 0), sol(10, 100, 1), sol(20, 150, 2), sol(30, 120, 3)], "t")
+    assert [s.info["seed"] for s in front.solutions] == [0, 2]
+    assert len(front.candidates) == 4
