@@ -19,6 +19,7 @@ from lightinv_core.errors import LightInvError
 
 CORNERS = ("u0", "v0", "u1", "v1")
 VARIABLES = (*CORNERS, "flux", "filter")
+MAX_PATCH_ID = 2**53  # project files limit integers to 2^53 too
 
 
 class DesignError(LightInvError):
@@ -26,16 +27,38 @@ class DesignError(LightInvError):
 
 
 def _finite(value, where: str, lo: float | None = None, hi: float | None = None) -> float:
+    if isinstance(value, bool | str):
+        raise DesignError(f"{where}: {_short(value)} is not a number")
     try:
         v = float(value)
     except (TypeError, ValueError):
-        raise DesignError(f"{where}: {value!r} is not a number") from None
+        raise DesignError(f"{where}: {_short(value)} is not a number") from None
+    except OverflowError:
+        raise DesignError(f"{where}: {_short(value)} is not a finite number") from None
     if not math.isfinite(v):
         raise DesignError(f"{where}: {value!r} is not a finite number")
     if (lo is not None and v < lo) or (hi is not None and v > hi):
         rng = f"[{lo if lo is not None else '-inf'}, {hi if hi is not None else 'inf'}]"
         raise DesignError(f"{where}: {v} is outside {rng}")
     return v
+
+
+def _short(value) -> str:
+    text = repr(value)
+    return text if len(text) <= 40 else text[:40] + "..."
+
+
+def _items(value, where: str, what: str) -> tuple:
+    """``value`` as a tuple: a list or tuple (not a string, a number or None)."""
+    if isinstance(value, str | bytes) or not isinstance(value, tuple | list):
+        raise DesignError(f"{where}: {what} must be a list, got {_short(value)}")
+    return tuple(value)
+
+
+def _name(value, where: str) -> str:
+    if not isinstance(value, str) or not value:
+        raise DesignError(f"{where} must be a non-empty string, got {_short(value)}")
+    return value
 
 
 @dataclass(frozen=True)
@@ -59,16 +82,20 @@ class Source:
     filter: float = 1.0
 
     def __post_init__(self) -> None:
+        _name(self.name, "a source's name")
         where = f"source {self.name!r}"
+        _name(self.zone, f"{where}: zone")
         if self.kind not in ("luminaire", "skylight"):
             raise DesignError(f"{where}: kind must be 'luminaire' or 'skylight'")
-        if len(self.rect) != 4:
+        rect = _items(self.rect, where, "rect")
+        if len(rect) != 4:
             raise DesignError(f"{where}: rect needs four numbers u0, v0, u1, v1 (m)")
-        object.__setattr__(self, "rect", tuple(_finite(x, f"{where} rect") for x in self.rect))
+        object.__setattr__(self, "rect", tuple(_finite(x, f"{where} rect") for x in rect))
+        object.__setattr__(self, "free", _items(self.free, where, "free"))
         bad = [v for v in self.free if v not in VARIABLES]
         if bad:
             raise DesignError(f"{where}: unknown variables {bad}; choose from {VARIABLES}")
-        if len(self.flux_range) != 2:
+        if len(_items(self.flux_range, where, "flux_range")) != 2:
             raise DesignError(f"{where}: flux_range needs two numbers (min, max) in lm")
         object.__setattr__(
             self,
@@ -158,6 +185,9 @@ class Rule:
                 f"rule {self.kind!r}: sources must be a list of names, "
                 f"not the string {self.sources!r}"
             )
+        names = _items(self.sources, f"rule {self.kind!r}", "sources")
+        for name in names:
+            _name(name, f"rule {self.kind!r}: a source name")
         where = f"rule {self.kind!r} on {list(self.sources)}"
         if len(set(self.sources)) != len(tuple(self.sources)):
             raise DesignError(f"{where}: a source is named twice")
@@ -182,7 +212,8 @@ class Rule:
         if self.min is not None and self.max is not None and self.min > self.max:
             raise DesignError(f"{where}: min {self.min} is larger than max {self.max}")
         if self.kind == "aspect" and (self.max is None or self.max < 1):
-            raise DesignError(f"{where}: max aspect ratio must be at least 1")
+            got = "none" if self.max is None else f"{self.max:g}"
+            raise DesignError(f"{where}: max aspect ratio must be at least 1, got {got}")
         if self.kind == "spacing" and self.min is None:
             raise DesignError(f"{where}: give the min gap (m)")
 
@@ -209,17 +240,22 @@ class Intention:
     weight: float = 100.0
 
     def __post_init__(self) -> None:
+        _name(self.name, "an intention's name")
         where = f"intention {self.name!r}"
         if (self.group is None) == (self.patches is None):
             raise DesignError(f"{where}: give either a group or a list of patches")
+        if self.group is not None:
+            _name(self.group, f"{where}: group")
         if self.patches is not None:
-            if isinstance(self.patches, str) or len(self.patches) == 0:
+            if not isinstance(self.patches, tuple | list | range) or len(self.patches) == 0:
                 raise DesignError(f"{where}: patches must be a non-empty list of patch ids")
             ids = []
             for i in self.patches:
                 whole = isinstance(i, numbers.Real) and not isinstance(i, bool)
                 if not whole or not math.isfinite(i) or not float(i).is_integer():
                     raise DesignError(f"{where}: patch id {i!r} is not a whole number")
+                if not 0 <= i <= MAX_PATCH_ID:
+                    raise DesignError(f"{where}: patch id {i!r} is negative or too large")
                 ids.append(int(i))
             object.__setattr__(self, "patches", tuple(ids))
         if self.quantity not in ("lux", "C"):
@@ -261,9 +297,7 @@ class Goal:
     def __post_init__(self) -> None:
         if self.kind not in GOALS:
             raise DesignError(f"goal {self.kind!r} is not one of {GOALS}")
-        if isinstance(self.kinds, str):
-            raise DesignError(f"goal {self.kind!r}: kinds must be a list")
-        object.__setattr__(self, "kinds", tuple(self.kinds))
+        object.__setattr__(self, "kinds", _items(self.kinds, f"goal {self.kind!r}", "kinds"))
         bad = [k for k in self.kinds if k not in ("luminaire", "skylight")]
         if bad:
             raise DesignError(f"goal {self.kind!r}: kinds {bad} must be 'luminaire' or 'skylight'")
@@ -300,8 +334,27 @@ class Design:
     penalty_power: int = 2
 
     def __post_init__(self) -> None:
-        for name in ("sources", "goals", "rules", "intentions", "target_sources"):
-            object.__setattr__(self, name, tuple(getattr(self, name)))
+        for name, cls in (
+            ("sources", Source),
+            ("goals", Goal),
+            ("rules", Rule),
+            ("intentions", Intention),
+            ("target_sources", Source),
+        ):
+            items = _items(getattr(self, name), "design", name)
+            bad = [x for x in items if not isinstance(x, cls)]
+            if bad:
+                raise DesignError(
+                    f"design: {name} must hold {cls.__name__} values, got {_short(bad[0])}"
+                )
+            object.__setattr__(self, name, items)
+        if not isinstance(self.daylight, Daylight):
+            raise DesignError(f"design: daylight must be a Daylight, got {_short(self.daylight)}")
+        pp = self.penalty_power
+        if not isinstance(pp, numbers.Integral) or isinstance(pp, bool):
+            raise DesignError(
+                f"penalty power must be an even positive integer (paper eq. 3), got {_short(pp)}"
+            )
         names = [s.name for s in self.sources]
         for what, items in (
             ("source", names),

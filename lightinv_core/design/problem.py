@@ -123,13 +123,20 @@ class DesignProblem:
     def _intention_patches(self, it) -> np.ndarray:
         if it.patches is not None:
             idx = np.asarray(it.patches, dtype=np.int64)
-            if idx.min() < 0 or idx.max() >= self.patches.n:
+            bad = idx[(idx < 0) | (idx >= self.patches.n)]
+            if len(bad):
                 raise DesignError(
-                    f"intention {it.name!r}: patch ids must be in 0..{self.patches.n - 1}"
+                    f"intention {it.name!r}: patch id {int(bad[0])} is not in the scene "
+                    f"(ids 0..{self.patches.n - 1}); pick the patches again on this mesh"
                 )
             return np.unique(idx)
         if it.group == "*":
             return np.arange(self.patches.n)
+        if it.group not in self.patches.group_names:
+            known = ", ".join(self.patches.group_names)
+            raise DesignError(
+                f"intention {it.name!r}: no group {it.group!r} in the scene (groups: {known})"
+            )
         return self.patches.group_index(it.group)
 
     # -- levels -----------------------------------------------------------------------------

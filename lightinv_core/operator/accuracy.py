@@ -8,9 +8,12 @@ emitter zones, each covering 2-20% of its zone, at 1,000 lm/m².
 
 from __future__ import annotations
 
+from collections.abc import Callable
+
 import numpy as np
 import scipy.sparse as sp
 
+from lightinv_core.errors import CancelledError
 from lightinv_core.scene.patches import Patches
 from lightinv_core.sources.zones import random_rectangles, rectangle_emission, zone_grid
 
@@ -33,16 +36,24 @@ def sample_emissions(patches: Patches, count: int, seed: int) -> np.ndarray:
 
 
 def reference_reflected(
-    F: sp.csr_matrix, rho: np.ndarray, E: np.ndarray, tol: float = 1e-6, max_iter: int = 500
+    F: sp.csr_matrix,
+    rho: np.ndarray,
+    E: np.ndarray,
+    tol: float = 1e-6,
+    max_iter: int = 500,
+    cancel: Callable[[], bool] | None = None,
 ) -> np.ndarray:
     """C = B - E of the reference (Jacobi on the sparse F, float32 products) for a stack
-    of emission vectors (n, m), to ``tol`` relative per column."""
+    of emission vectors (n, m), to ``tol`` relative per column. ``cancel()`` is polled
+    every sweep; True raises ``CancelledError``."""
     F32 = F.astype(np.float32)
     B = E.astype(np.float32)
     E32 = B.copy()
     r = rho.astype(np.float32)[:, None]
     scale = np.abs(E32).max(axis=0) + 1e-30
     for _ in range(max_iter):
+        if cancel is not None and cancel():
+            raise CancelledError("operator build cancelled")
         B_new = E32 + r * (F32 @ B)
         delta = (np.abs(B_new - B).max(axis=0) / scale).max()
         B = B_new

@@ -93,9 +93,12 @@ def build_operator(
     check_memory(patches, rays, k)
     report = progress or (lambda f: None)
 
-    def step(frac: float) -> None:
+    def check() -> None:
         if cancel is not None and cancel():
             raise CancelledError("operator build cancelled")
+
+    def step(frac: float) -> None:
+        check()
         report(frac)
 
     t0 = time.perf_counter()
@@ -105,17 +108,20 @@ def build_operator(
     t_ff = time.perf_counter() - t0
     zone_patches = np.flatnonzero(patches.zone_id >= 0)
     E = sample_emissions(patches, ERROR_SAMPLES, seed + 1)
-    C_ref = reference_reflected(F, patches.rho, E)
+    C_ref = reference_reflected(F, patches.rho, E, cancel=cancel)
     step(0.75)
-    exact, last = exact_bounces(F, patches.rho, zone_patches)
+    exact, last = exact_bounces(F, patches.rho, zone_patches, cancel=cancel)
     step(0.85)
     tries = []
     while True:
         labels, k_actual = cluster_patches(patches, k)
+        check()
         lowrank = assemble(
             cluster_form_factors(F, labels, k_actual), labels, patches.area, patches.rho
         )
+        check()
         Phi = zone_basis(exact, last, lowrank)
+        check()
         op = RadiosityOperator(lowrank, zone_patches, Phi, patches.digest())
         err = relative_errors(patches.rho[:, None] * op.illuminance(E), C_ref)
         tries.append(

@@ -28,6 +28,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from lightinv_core.design.geometry import rule_names, rule_violations
 from lightinv_core.design.model import DesignError
 from lightinv_core.design.problem import DesignProblem, Level
 
@@ -100,19 +101,20 @@ def random_start(problem: DesignProblem, rng: np.random.Generator) -> np.ndarray
     """A random x meeting every geometric rule (DesignError if none is found: the rules
     cannot be met together, e.g. a minimum area larger than the zone)."""
     lo, hi = problem.vars.lo, problem.vars.hi
-    from lightinv_core.design.geometry import rule_violations
-
+    failing = np.zeros(len(rule_names(problem.design)), np.int64)
     for _ in range(START_TRIES // 500):
         X = lo + rng.random((500, len(lo))) * (hi - lo)
         rect, _, _ = problem.vars.decode(X)
-        ok = np.flatnonzero(
-            ~np.any(rule_violations(problem.design, rect, problem.zone_size) > 0, axis=1)
-        )
+        broken = rule_violations(problem.design, rect, problem.zone_size) > 0
+        ok = np.flatnonzero(~np.any(broken, axis=1))
         if len(ok):
             return X[ok[0]]
+        failing += broken.sum(axis=0)
+    # Name the rule most layouts break: the one to relax first.
+    worst = rule_names(problem.design)[int(np.argmax(failing))]
     raise DesignError(
         f"no random layout out of {START_TRIES:,} meets the geometric rules; "
-        "check area, aspect and spacing bounds against the zone sizes"
+        f"most break {worst!r}: check area, aspect and spacing bounds against the zone sizes"
     )
 
 

@@ -8,6 +8,7 @@ normal points to; light arrives and leaves only on the front side.
 from __future__ import annotations
 
 import math
+import numbers
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -32,7 +33,10 @@ def check_reflectance(value: float, where: str) -> float:
 
 
 def _vec3(value, where: str) -> np.ndarray:
-    arr = np.asarray(value, dtype=float)
+    try:
+        arr = np.asarray(value, dtype=float)
+    except (TypeError, ValueError, OverflowError):
+        arr = np.full(0, np.nan)
     if arr.shape != (3,) or not np.all(np.isfinite(arr)):
         raise SceneError(f"{where}: expected 3 finite coordinates, got {value!r}")
     return arr
@@ -109,21 +113,31 @@ class Surface:
     grid: tuple[int, int] | None = None
 
     def __post_init__(self) -> None:
-        if self.grid is not None and (
-            self.rect is None or len(self.grid) != 2 or min(self.grid) < 1
-        ):
-            raise SceneError(
-                f"surface {self.name!r}: a fixed grid needs a rectangle and counts >= 1"
-            )
-        if not self.name or not self.group:
-            raise SceneError("a surface needs a non-empty name and group")
+        if self.grid is not None:
+            grid = tuple(self.grid) if isinstance(self.grid, tuple | list) else ()
+            whole = all(isinstance(c, numbers.Integral) and not isinstance(c, bool) for c in grid)
+            if self.rect is None or len(grid) != 2 or not whole or min(grid) < 1:
+                raise SceneError(
+                    f"surface {self.name!r}: a fixed grid needs a rectangle and two whole "
+                    f"counts >= 1, got {self.grid!r}"
+                )
+            object.__setattr__(self, "grid", (int(grid[0]), int(grid[1])))
+        if not (isinstance(self.name, str) and self.name and isinstance(self.group, str)):
+            raise SceneError(f"a surface needs a non-empty name and group, got {self.name!r}")
+        if not self.group:
+            raise SceneError(f"surface {self.name!r}: the group must be a non-empty name")
+        if self.rect is not None and not isinstance(self.rect, Rect):
+            raise SceneError(f"surface {self.name!r}: rect must be a Rect")
         object.__setattr__(
             self, "reflectance", check_reflectance(self.reflectance, f"surface {self.name!r}")
         )
         if (self.rect is None) == (self.triangles is None):
             raise SceneError(f"surface {self.name!r}: give either a rectangle or triangles")
         if self.triangles is not None:
-            tri = np.asarray(self.triangles, dtype=float)
+            try:
+                tri = np.asarray(self.triangles, dtype=float)
+            except (TypeError, ValueError, OverflowError):
+                tri = np.zeros(0)
             if tri.ndim != 3 or tri.shape[1:] != (3, 3) or len(tri) == 0:
                 raise SceneError(f"surface {self.name!r}: triangles must have shape (t, 3, 3)")
             if not np.all(np.isfinite(tri)):

@@ -125,7 +125,8 @@ def form_factor_matrix(
     n * rays_per_patch; use the low-rank operator for large scenes instead of F.
     """
     n = patches.n
-    rows_out, cols_out, vals_out = [], [], []
+    index = np.int32 if n * _check_rays(rays_per_patch) < 2**31 - 1 else np.int64
+    counts_out, cols_out, vals_out = [], [], []
     for batch in trace_rows(
         patches, rays_per_patch, seed, workers=workers, progress=progress, cancel=cancel
     ):
@@ -135,13 +136,20 @@ def form_factor_matrix(
         keys = local[ok].astype(np.int64) * n + flat[ok]
         uniq, counts = np.unique(keys, return_counts=True)
         r, c = np.divmod(uniq, n)
-        rows_out.append(batch.rows[r])
-        cols_out.append(c)
+        # Batches come in row order and ``uniq`` is sorted by (row, column), so the CSR
+        # arrays are just the batches' entries concatenated: no sort of all of F at the
+        # end (seconds on large scenes, during which a cancel would go unheard).
+        counts_out.append(np.bincount(r, minlength=len(batch.rows)))
+        cols_out.append(c.astype(index))
         vals_out.append(counts / batch.hits.shape[1])
-    rows = np.concatenate(rows_out) if rows_out else np.zeros(0, np.int64)
-    cols = np.concatenate(cols_out) if cols_out else np.zeros(0, np.int64)
+    if cancel is not None and cancel():
+        raise CancelledError("form-factor computation cancelled")
+    indptr = np.zeros(n + 1, np.int64)
+    if counts_out:
+        np.cumsum(np.concatenate(counts_out), out=indptr[1:])
+    cols = np.concatenate(cols_out) if cols_out else np.zeros(0, index)
     vals = np.concatenate(vals_out) if vals_out else np.zeros(0)
-    return sp.csr_matrix((vals, (rows, cols)), shape=(n, n))
+    return sp.csr_matrix((vals, cols, indptr.astype(index)), shape=(n, n))
 
 
 def lost_fraction(F: sp.spmatrix, patches: Patches) -> float:

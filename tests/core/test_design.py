@@ -17,7 +17,6 @@ from lightinv_core.design.model import (
     Source,
 )
 from lightinv_core.design.problem import FEASIBILITY_TOL, DesignProblem
-from lightinv_core.errors import SceneError
 from lightinv_core.operator.build import build_operator
 from lightinv_core.scene.builtin import builtin_scene
 from lightinv_core.scene.patches import mesh_patches
@@ -201,7 +200,7 @@ def test_invalid_designs_are_refused_clearly(office):
         problem(office, (Source("L", "skylight", "luminaire", (0, 0, 1, 1), flux=10.0),))
     with pytest.raises(DesignError, match="no emitter zone 'roof'"):
         problem(office, (Source("s", "roof", "skylight", (0, 0, 1, 1)),))
-    with pytest.raises(SceneError, match="no group 'tables'"):
+    with pytest.raises(DesignError, match="intention 't': no group 'tables'"):
         problem(office, (sky(),), intentions=(Intention("t", group="tables", min=1),))
 
 

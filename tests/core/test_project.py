@@ -573,7 +573,7 @@ ERRORS = [
     (_set("rules[0].min", 5), "rules[0]: rule 'area' on ['S1']: min 5.0 is larger than max 4.0"),
     (
         _set("rules[1].max", 0.5),
-        "rules[1]: rule 'aspect' on ['S1', 'S2']: max aspect ratio must be at least 1",
+        "rules[1]: rule 'aspect' on ['S1', 'S2']: max aspect ratio must be at least 1, got 0.5",
     ),
     (_set("rules[3].sources", []), "rules[3].sources: expected at least 1 source names, got 0"),
     (

@@ -1,0 +1,900 @@
+"""One catalogue of bad user input: every case feeds one bad input to the real loading
+code and returns what the user gets (an exception, or a warning for input that is
+accepted with a caveat). The same catalogue renders docs/bad-input.md; rerun with
+LIGHTINV_WRITE_DOCS=1 to regenerate it after a message changes."""
+
+from __future__ import annotations
+
+import copy
+import json
+import os
+import traceback
+from collections.abc import Callable
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from lightinv_core.design.model import Design, DesignError, Goal, Intention, Rule, Source
+from lightinv_core.design.problem import DesignProblem
+from lightinv_core.errors import LightInvError, ObjImportError, SceneError
+from lightinv_core.io.operator_cache import get_operator
+from lightinv_core.io.project import ProjectError, load_project
+from lightinv_core.optimize.run import prepare
+from lightinv_core.optimize.vns import random_start
+from lightinv_core.scene.edits import ZoneEdit, apply_zone_edits
+from lightinv_core.scene.loading import load_scene
+from lightinv_core.scene.model import Rect, Surface
+from lightinv_core.scene.obj_import import load_obj
+from lightinv_core.scene.patches import mesh_patches
+
+ROOT = Path(__file__).resolve().parents[2]
+DOC = ROOT / "docs" / "bad-input.md"
+
+# A closed 4 x 3 x 2.5 m room, every face counter-clockwise seen from inside.
+BOX = """\
+v 0 0 0
+v 4 0 0
+v 4 3 0
+v 0 3 0
+v 0 0 2.5
+v 4 0 2.5
+v 4 3 2.5
+v 0 3 2.5
+g floor
+f 1 2 3 4
+g ceiling
+f 5 8 7 6
+g walls
+f 1 5 6 2
+f 2 6 7 3
+f 3 7 8 4
+f 4 8 5 1
+"""
+CEILING = "g ceiling\nf 5 8 7 6\n"
+
+# A valid project on the box: a skylight zone drawn on the ceiling, one free skylight.
+PROJECT: dict = {
+    "schema": 1,
+    "name": "box study",
+    "scene": {
+        "obj": "room.obj",
+        "resolution": 0.5,
+        "zones": [{"name": "sky", "kind": "skylight", "surface": "ceiling", "rect": [1, 1, 3, 2]}],
+    },
+    "operator": {"rank": 8, "rays": 64},
+    "sources": [
+        {
+            "name": "S1",
+            "zone": "sky",
+            "kind": "skylight",
+            "rect": [0.2, 0.2, 1, 0.8],
+            "free": ["u0", "v0", "u1", "v1"],
+        }
+    ],
+    "rules": [{"kind": "area", "sources": ["S1"], "min": 0.2, "max": 1}],
+    "intentions": [{"name": "floor light", "group": "floor", "average": 100}],
+    "goals": [{"kind": "max_light_power"}],
+}
+
+WARNING = "warning"
+
+
+@dataclass(frozen=True)
+class Warned:
+    """Input accepted with a warning: the warning text."""
+
+    message: str
+
+
+@dataclass(frozen=True)
+class Case:
+    id: str
+    area: str
+    tried: str  # markdown
+    expect: type | str  # the exception class, or WARNING
+    names: tuple[str, ...]  # what the message must contain: where and what
+    run: Callable[[Path], object]
+
+
+CASES: list[Case] = []
+
+
+def case(id: str, area: str, tried: str, expect: type | str, *names: str):
+    def register(fn):
+        CASES.append(Case(id, area, tried, expect, names, fn))
+        return fn
+
+    return register
+
+
+def raised(fn: Callable[[], object]) -> BaseException | None:
+    try:
+        fn()
+    except Exception as exc:
+        return exc
+    return None
+
+
+def write(d: Path, text: str, name: str = "room.obj") -> Path:
+    path = d / name
+    path.write_text(text, encoding="utf-8")
+    return path
+
+
+def obj_error(d: Path, text: str, **kw) -> BaseException | None:
+    return raised(lambda: load_obj(write(d, text), resolution=0.5, **kw))
+
+
+def obj_warning(d: Path, text: str, match: str, **kw) -> Warned | None:
+    scene = load_obj(write(d, text), resolution=0.5, **kw)
+    found = [w for w in scene.info["warnings"] if match in w]
+    return Warned(found[0]) if found else None
+
+
+def box_scene(d: Path):
+    return load_obj(write(d, BOX), resolution=0.5)
+
+
+def write_project(d: Path, change: Callable[[dict], object] | None = None) -> Path:
+    data = copy.deepcopy(PROJECT)
+    if change is not None:
+        change(data)
+    write(d, BOX)
+    return write(d, json.dumps(data, indent=2), "project.json")
+
+
+def project_error(d: Path, change: Callable[[dict], object]) -> BaseException | None:
+    path = write_project(d, change)
+    return raised(lambda: load_project(path))
+
+
+def build_problem(d: Path, change: Callable[[dict], object] | None = None) -> DesignProblem:
+    project = load_project(write_project(d, change))
+    prepared = prepare(project)
+    return DesignProblem(project.design, prepared.scene, prepared.patches, prepared.operator)
+
+
+def problem_error(d: Path, change: Callable[[dict], object]) -> BaseException | None:
+    return raised(lambda: build_problem(d, change))
+
+
+def start_error(d: Path, change: Callable[[dict], object]) -> BaseException | None:
+    return raised(lambda: random_start(build_problem(d, change), np.random.default_rng(0)))
+
+
+def setter(path: str, value) -> Callable[[dict], None]:
+    """A change setting the value at a dotted path ("sources.0.rect") of the project."""
+
+    def change(data: dict) -> None:
+        *parents, last = path.split(".")
+        node = data
+        for key in parents:
+            node = node[int(key)] if isinstance(node, list) else node[key]
+        if isinstance(node, list):
+            node[int(last)] = value
+        else:
+            node[last] = value
+
+    return change
+
+
+# --- OBJ files ----------------------------------------------------------------------------
+
+
+@case(
+    "obj-bad-vertex",
+    "OBJ file",
+    "a vertex with a word for a coordinate (`v 4 x 0`)",
+    ObjImportError,
+    "room.obj line 2",
+    "'x' is not a number",
+)
+def _(d):
+    return obj_error(d, BOX.replace("v 4 0 0", "v 4 x 0"))
+
+
+@case(
+    "obj-face-out-of-range",
+    "OBJ file",
+    "a face referring to vertex 9 of 8",
+    ObjImportError,
+    "room.obj line 10",
+    "vertex 9",
+    "only 8 vertices",
+)
+def _(d):
+    return obj_error(d, BOX.replace("f 1 2 3 4", "f 1 2 3 9"))
+
+
+@case(
+    "obj-truncated",
+    "OBJ file",
+    "a file cut off in the middle of its last face line (`f 4 8`)",
+    ObjImportError,
+    "room.obj line 17",
+    "at least 3 vertices, got 2",
+)
+def _(d):
+    return obj_error(d, BOX[: BOX.rindex("f 4 8") + 5])
+
+
+@case(
+    "obj-nan",
+    "OBJ file",
+    "a NaN coordinate (`v nan 0 2.5`)",
+    ObjImportError,
+    "room.obj line 5",
+    "'nan' is not finite",
+)
+def _(d):
+    return obj_error(d, BOX.replace("v 0 0 2.5", "v nan 0 2.5"))
+
+
+@case(
+    "obj-inf",
+    "OBJ file",
+    "an infinite coordinate (`v 4 inf 0`)",
+    ObjImportError,
+    "room.obj line 3",
+    "'inf' is not finite",
+)
+def _(d):
+    return obj_error(d, BOX.replace("v 4 3 0", "v 4 inf 0"))
+
+
+DEGENERATE = BOX + "v 1 1 1\nv 2 1 1\nv 3 1 1\ng junk\nf 1 1 2\nf 9 10 11\n"
+
+
+@case(
+    "obj-degenerate",
+    "OBJ file",
+    "a face with a repeated vertex (`f 1 1 2`) and a zero-area face (three collinear vertices)",
+    ObjImportError,
+    "room.obj",
+    "2 degenerate face(s)",
+    "lines 22, 23",
+    "skip_degenerate=True",
+)
+def _(d):
+    return obj_error(d, DEGENERATE)
+
+
+@case(
+    "obj-degenerate-skipped",
+    "OBJ file",
+    "the same faces with `skip_degenerate=True`",
+    WARNING,
+    "room.obj",
+    "dropped 2 degenerate face(s)",
+    "lines 22, 23",
+)
+def _(d):
+    return obj_warning(d, DEGENERATE, "degenerate", skip_degenerate=True)
+
+
+@case(
+    "obj-all-degenerate-skipped",
+    "OBJ file",
+    "only degenerate faces, with `skip_degenerate=True`",
+    ObjImportError,
+    "room.obj",
+    "all 2 faces are degenerate",
+)
+def _(d):
+    return obj_error(d, BOX.split("g floor")[0] + "f 1 1 2\nf 1 2 2\n", skip_degenerate=True)
+
+
+@case(
+    "materials-out-of-range",
+    "OBJ materials",
+    'a materials file with a reflectance of 1.2 (`{"groups": {"floor": 1.2}}`)',
+    ObjImportError,
+    "materials file 'room-materials.json'",
+    '"groups"."floor"',
+    "1.2 is outside [0, 1)",
+)
+def _(d):
+    mats = write(d, json.dumps({"groups": {"floor": 1.2}}), "room-materials.json")
+    return obj_error(d, BOX, materials=mats)
+
+
+@case(
+    "materials-negative",
+    "OBJ materials",
+    'a materials file with a negative default reflectance (`{"default": -0.1}`)',
+    ObjImportError,
+    "materials file 'room-materials.json'",
+    '"default"',
+    "-0.1 is outside [0, 1)",
+)
+def _(d):
+    mats = write(d, json.dumps({"default": -0.1}), "room-materials.json")
+    return obj_error(d, BOX, materials=mats)
+
+
+@case(
+    "mtl-white",
+    "OBJ materials",
+    "an MTL material with `Kd 1 1 1` (reflectance 1)",
+    WARNING,
+    "material 'paint'",
+    "capped at 0.95",
+)
+def _(d):
+    write(d, "newmtl paint\nKd 1 1 1\n", "room.mtl")
+    return obj_warning(d, "mtllib room.mtl\nusemtl paint\n" + BOX, "capped")
+
+
+@case(
+    "mtl-negative",
+    "OBJ materials",
+    "an MTL material with a negative colour (`Kd -0.5 0.5 0.5`)",
+    WARNING,
+    "room.mtl line 2",
+    "Kd '-0.5 0.5 0.5'",
+    "default reflectance",
+)
+def _(d):
+    write(d, "newmtl paint\nKd -0.5 0.5 0.5\n", "room.mtl")
+    return obj_warning(d, "mtllib room.mtl\nusemtl paint\n" + BOX, "cannot use Kd")
+
+
+@case(
+    "zone-not-planar",
+    "OBJ emitter zone",
+    "a zone group `zone:sky:skylight` whose corner is lifted 0.2 m",
+    ObjImportError,
+    "zone group 'zone:sky:skylight' (line 23)",
+    "not planar",
+    "up to 0.0495 m",
+)
+def _(d):
+    zone = "v 1 1 2.4\nv 1 2 2.4\nv 2 2 2.6\nv 2 1 2.4\ng zone:sky:skylight\nf 9 10 11 12\n"
+    return obj_error(d, BOX + zone)
+
+
+@case(
+    "zone-not-rectangle",
+    "OBJ emitter zone",
+    "a zone group made of one triangle",
+    ObjImportError,
+    "zone group 'zone:sky:skylight' (line 22)",
+    "not a rectangle",
+)
+def _(d):
+    return obj_error(d, BOX + "v 1 1 2.4\nv 1 2 2.4\nv 2 2 2.4\ng zone:sky:skylight\nf 9 10 11\n")
+
+
+@case(
+    "open-room",
+    "lost light",
+    "a box without its ceiling (the operator is built, and light escapes)",
+    WARNING,
+    "% of the light leaving the surfaces escapes the model",
+    "the room is open",
+)
+def _(d):
+    scene = load_obj(write(d, BOX.replace(CEILING, "")), resolution=0.5)
+    got: list[str] = []
+    get_operator(mesh_patches(scene), rank=8, rays=64, use_cache=False, warn=got.append)
+    return Warned(got[0]) if got else None
+
+
+# --- scenes and drawn zones ---------------------------------------------------------------
+
+
+@case(
+    "scene-unknown",
+    "scene",
+    "a scene that is neither built in nor an OBJ file (`room.dae`)",
+    SceneError,
+    "'room.dae'",
+    "neither a built-in scene",
+)
+def _(d):
+    return raised(lambda: load_scene("room.dae"))
+
+
+@case(
+    "scene-missing-obj",
+    "scene",
+    "an OBJ path that does not exist",
+    ObjImportError,
+    "'<dir>/gone.obj' does not exist",
+)
+def _(d):
+    return raised(lambda: load_scene(str(d / "gone.obj")))
+
+
+@case(
+    "surface-reflectance",
+    "scene",
+    "a surface with reflectance 1 (`Surface('floor', 'floor', 1.0, rect=...)`)",
+    SceneError,
+    "surface 'floor'",
+    "1.0 is outside [0, 1)",
+)
+def _(d):
+    rect = Rect((0, 0, 0), (1, 0, 0), (0, 1, 0))
+    return raised(lambda: Surface("floor", "floor", 1.0, rect=rect))
+
+
+@case(
+    "zone-unknown-surface",
+    "drawn zone",
+    "a zone drawn on a surface that does not exist (`ceilng`)",
+    SceneError,
+    "new emitter zone 'Z1' on surface 'ceilng'",
+    "has no surface 'ceilng'",
+    "did you mean 'ceiling'",
+)
+def _(d):
+    edit = ZoneEdit("Z1", "luminaire", "ceilng", (1, 1, 2, 2))
+    return raised(lambda: apply_zone_edits(box_scene(d), [edit]))
+
+
+@case(
+    "zone-outside-surface",
+    "drawn zone",
+    "a zone running past the edge of the ceiling (`(3, 1)-(5, 2)` on its 3 x 4 m)",
+    SceneError,
+    "new emitter zone 'Z1' on surface 'ceiling'",
+    "(3, 1)-(5, 2)",
+    "outside the surface",
+)
+def _(d):
+    edit = ZoneEdit("Z1", "luminaire", "ceiling", (3, 1, 5, 2))
+    return raised(lambda: apply_zone_edits(box_scene(d), [edit]))
+
+
+@case(
+    "zone-empty",
+    "drawn zone",
+    "a zone of zero width (`(1, 1)-(1, 2)`)",
+    SceneError,
+    "new emitter zone 'Z1' on surface 'ceiling'",
+    "zero width or height",
+)
+def _(d):
+    return raised(lambda: ZoneEdit("Z1", "luminaire", "ceiling", (1, 1, 1, 2)))
+
+
+# --- project files: when loaded -----------------------------------------------------------
+
+
+@case(
+    "project-schema",
+    "project file",
+    'an unknown schema version (`"schema": 2`)',
+    ProjectError,
+    "project.json",
+    "unknown project schema 2",
+)
+def _(d):
+    return project_error(d, setter("schema", 2))
+
+
+@case(
+    "project-missing-field",
+    "project file",
+    "no `goals`",
+    ProjectError,
+    "project.json",
+    "goals",
+)
+def _(d):
+    return project_error(d, lambda data: data.pop("goals"))
+
+
+@case(
+    "project-wrong-type",
+    "project file",
+    'a rectangle given as text (`"rect": "0 0 1 1"`)',
+    ProjectError,
+    "project.json: sources[0].rect",
+    "expected a list of 4 numbers",
+)
+def _(d):
+    return project_error(d, setter("sources.0.rect", "0 0 1 1"))
+
+
+@case(
+    "project-negative-resolution",
+    "project file",
+    'a negative resolution (`"resolution": -0.5`)',
+    ProjectError,
+    "project.json: scene.resolution",
+    "-0.5",
+)
+def _(d):
+    return project_error(d, setter("scene.resolution", -0.5))
+
+
+@case(
+    "project-tol",
+    "project file",
+    'an operator tolerance of 100% (`"tol": 1`)',
+    ProjectError,
+    "project.json: operator.tol",
+    "< 1",
+)
+def _(d):
+    return project_error(d, setter("operator.tol", 1))
+
+
+@case(
+    "project-invalid-json",
+    "project file",
+    "invalid JSON (a missing comma)",
+    ProjectError,
+    "project.json",
+    "invalid JSON at line 4, column 3",
+)
+def _(d):
+    path = write_project(d)
+    text = path.read_text(encoding="utf-8").replace('"box study",', '"box study"', 1)
+    return raised(lambda: load_project(write(d, text, "project.json")))
+
+
+@case(
+    "project-truncated",
+    "project file",
+    "a file cut off halfway",
+    ProjectError,
+    "project.json",
+    "invalid JSON at line",
+)
+def _(d):
+    path = write_project(d)
+    text = path.read_text(encoding="utf-8")
+    return raised(lambda: load_project(write(d, text[: len(text) // 2], "project.json")))
+
+
+@case(
+    "project-unknown-source",
+    "project file",
+    "a rule naming a source that does not exist (`S9`)",
+    ProjectError,
+    "project.json: rules[0].sources[0]",
+    "no source 'S9'",
+)
+def _(d):
+    return project_error(d, setter("rules.0.sources", ["S9"]))
+
+
+@case(
+    "project-unknown-scene",
+    "project file",
+    'a misspelt built-in scene (`"builtin": "ofice"`)',
+    ProjectError,
+    "project.json: scene.builtin",
+    "ofice",
+)
+def _(d):
+    return project_error(d, setter("scene", {"builtin": "ofice"}))
+
+
+# --- project files: when the scene is loaded and the problem built ------------------------
+
+
+@case(
+    "project-obj-missing",
+    "project scene",
+    "a project whose OBJ file is missing (`project.scene.load()`)",
+    ObjImportError,
+    "'<dir>/gone.obj' does not exist",
+)
+def _(d):
+    return problem_error(d, setter("scene.obj", "gone.obj"))
+
+
+@case(
+    "project-zone-surface",
+    "project scene",
+    "a drawn zone on a surface the scene lacks (`project.scene.load()`)",
+    SceneError,
+    "new emitter zone 'sky' on surface 'roof'",
+    "has no surface 'roof'",
+)
+def _(d):
+    return problem_error(d, setter("scene.zones.0.surface", "roof"))
+
+
+@case(
+    "problem-unknown-group",
+    "problem built",
+    "an intention on a group the scene does not have (`desks`)",
+    DesignError,
+    "intention 'floor light': no group 'desks'",
+    "groups: floor, ceiling, walls",
+)
+def _(d):
+    return problem_error(d, setter("intentions.0.group", "desks"))
+
+
+@case(
+    "problem-unknown-zone",
+    "problem built",
+    "a source in an emitter zone the scene does not have (`roof`)",
+    DesignError,
+    "source 'S1'",
+    "no emitter zone 'roof'",
+    "zones: sky",
+)
+def _(d):
+    return problem_error(d, setter("sources.0.zone", "roof"))
+
+
+@case(
+    "problem-zone-kind",
+    "problem built",
+    "a luminaire placed in a skylight zone",
+    DesignError,
+    "source 'L1' is a luminaire",
+    "zone 'sky' takes skylights",
+)
+def _(d):
+    lum = {"name": "L1", "zone": "sky", "kind": "luminaire", "rect": [0, 0, 1, 1], "flux": 1}
+    return problem_error(d, lambda data: data["sources"].append(lum))
+
+
+@case(
+    "problem-patch-id",
+    "problem built",
+    "an intention on patch 99999 of a scene with fewer patches",
+    DesignError,
+    "intention 'floor light'",
+    "patch id 99999 is not in the scene",
+)
+def _(d):
+    return problem_error(
+        d, setter("intentions.0", {"name": "floor light", "patches": [99999], "min": 1})
+    )
+
+
+# --- constraints infeasible on their face ------------------------------------------------
+
+
+@case(
+    "rule-area-min-max",
+    "constraints",
+    "an area rule with min 2 m² > max 1 m²",
+    ProjectError,
+    "project.json: rules[0]",
+    "min 2.0 is larger than max 1.0",
+)
+def _(d):
+    return project_error(
+        d, setter("rules.0", {"kind": "area", "sources": ["S1"], "min": 2, "max": 1})
+    )
+
+
+@case(
+    "intention-min-max",
+    "constraints",
+    "an intention with min 500 lux > max 300 lux",
+    ProjectError,
+    "project.json: intentions[0]",
+    "intention 'floor light'",
+    "min 500.0 is above max 300.0",
+)
+def _(d):
+    return project_error(
+        d, setter("intentions.0", {"name": "floor light", "group": "floor", "min": 500, "max": 300})
+    )
+
+
+@case(
+    "intention-average-max",
+    "constraints",
+    "an intention with average 500 lux > max 300 lux",
+    ProjectError,
+    "project.json: intentions[0]",
+    "average 500.0 is above max 300.0",
+)
+def _(d):
+    it = {"name": "floor light", "group": "floor", "average": 500, "max": 300}
+    return project_error(d, setter("intentions.0", it))
+
+
+@case(
+    "rule-aspect",
+    "constraints",
+    "an aspect rule with max 0.5 (< 1)",
+    ProjectError,
+    "project.json: rules[0]",
+    "max aspect ratio must be at least 1, got 0.5",
+)
+def _(d):
+    return project_error(d, setter("rules.0", {"kind": "aspect", "sources": ["S1"], "max": 0.5}))
+
+
+@case(
+    "rule-area-too-large",
+    "run start",
+    "an area rule asking for at least 5 m² in a 2 x 1 m zone",
+    DesignError,
+    "no random layout",
+    "meets the geometric rules",
+)
+def _(d):
+    return start_error(d, setter("rules.0", {"kind": "area", "sources": ["S1"], "min": 5}))
+
+
+@case(
+    "rule-spacing-too-large",
+    "run start",
+    "two sources 3 m apart in a 2 x 1 m zone (spacing rule)",
+    DesignError,
+    "no random layout",
+    "meets the geometric rules",
+)
+def _(d):
+    def change(data):
+        s2 = dict(data["sources"][0], name="S2")
+        data["sources"].append(s2)
+        data["rules"] = [{"kind": "spacing", "sources": ["S1", "S2"], "min": 3}]
+
+    return start_error(d, change)
+
+
+# --- values of the wrong type given to the model classes in code ------------------------
+# Not in the docs table (no file can produce them: the readers check types first), but
+# each used to escape as a TypeError, ValueError or OverflowError instead of a
+# LightInvError naming the value.
+
+SQUARE = Rect((0, 0, 0), (1, 0, 0), (0, 1, 0))
+LUM = {"name": "L", "zone": "z", "kind": "luminaire", "rect": (0, 0, 1, 1), "flux": 1.0}
+GOALS = (Goal("min_electric_power"),)
+WRONG_TYPES = {
+    "source rect not a list": lambda: Source(**{**LUM, "rect": 5}),
+    "source rect None": lambda: Source(**{**LUM, "rect": None}),
+    "source free not a list": lambda: Source(**{**LUM, "free": 3}),
+    "source flux_range not a list": lambda: Source(**{**LUM, "flux_range": 5}),
+    "source flux too large for a float": lambda: Source(**{**LUM, "flux": 10**400}),
+    "source name not a string": lambda: Source(**{**LUM, "name": ["L"]}),
+    "rule sources not a list": lambda: Rule("area", 5, min=1),
+    "rule source names not strings": lambda: Rule("area", [["a"]], min=1),
+    "intention patches not a list": lambda: Intention("i", patches=5, min=1),
+    "intention patch id too large": lambda: Intention("i", patches=[1e300], min=1),
+    "goal kinds not a list": lambda: Goal("max_light_power", kinds=5),
+    "design sources not a list": lambda: Design(5, GOALS),
+    "design goals None": lambda: Design((), None),
+    "design sources of strings": lambda: Design(("a",), GOALS),
+    "design penalty power a string": lambda: Design((), GOALS, penalty_power="2"),
+    "rect origin a string": lambda: Rect("abc", (1, 0, 0), (0, 1, 0)),
+    "surface triangles a string": lambda: Surface("a", "g", 0.5, triangles="abc"),
+    "surface grid a string": lambda: Surface("a", "g", 0.5, rect=SQUARE, grid="ab"),
+    "surface grid not whole": lambda: Surface("a", "g", 0.5, rect=SQUARE, grid=(2.5, 2)),
+    "surface name not a string": lambda: Surface(5, "g", 0.5, rect=SQUARE),
+}
+
+
+@pytest.mark.parametrize("make", WRONG_TYPES.values(), ids=WRONG_TYPES.keys())
+def test_wrong_types_in_code_raise_light_inv_errors(make):
+    with pytest.raises(LightInvError):
+        make()
+
+
+# --- running the catalogue ----------------------------------------------------------------
+
+
+def run_case(c: Case, d: Path) -> object:
+    try:
+        return c.run(d)
+    except Exception as exc:  # a crash while setting the case up is reported by its test
+        return exc
+
+
+@pytest.fixture(scope="module")
+def outcomes(tmp_path_factory) -> dict[str, tuple[object, str]]:
+    """Every case run once: id -> (result, message with the case's folder shown as <dir>)."""
+    out = {}
+    for c in CASES:
+        d = tmp_path_factory.mktemp(c.id, numbered=True)
+        result = run_case(c, d)
+        text = result.message if isinstance(result, Warned) else str(result)
+        out[c.id] = (result, text.replace(str(d), "<dir>"))
+    return out
+
+
+def describe(result: object) -> str:
+    if result is None:
+        return "nothing was raised or warned"
+    if isinstance(result, BaseException):
+        return "".join(traceback.format_exception(result))
+    return repr(result)
+
+
+def test_the_base_project_is_valid(tmp_path):
+    """Each project case changes one thing of a project that loads and can start a run."""
+    problem = build_problem(tmp_path)
+    assert problem.vars.n == 4
+    random_start(problem, np.random.default_rng(0))
+
+
+def test_case_ids_are_unique():
+    assert len({c.id for c in CASES}) == len(CASES)
+
+
+@pytest.mark.parametrize("c", CASES, ids=lambda c: c.id)
+def test_bad_input(c: Case, outcomes, tmp_path_factory):
+    result, text = outcomes[c.id]
+    if c.expect == WARNING:
+        assert isinstance(result, Warned), describe(result)
+    else:
+        assert type(result) is c.expect, describe(result)
+        assert isinstance(result, LightInvError)
+    for name in c.names:
+        assert name in text, f"{name!r} not in {text!r}"
+    assert str(tmp_path_factory.getbasetemp()) not in text
+    assert "\n" not in text and "Traceback" not in text
+
+
+def code(text: str) -> str:
+    """``text`` as a markdown code span inside a table cell."""
+    text = text.replace("|", "\\|")
+    fence = "``" if "`" in text else "`"
+    pad = " " if fence == "``" else ""
+    return f"{fence}{pad}{text}{pad}{fence}"
+
+
+HEADER = """\
+# What LightInv says about bad input
+
+<!-- Generated by tests/core/test_bad_input.py: do not edit by hand. -->
+
+Generated by `tests/core/test_bad_input.py` from the messages the engine actually gives:
+each row is one case of its catalogue, fed to the real loading code. After changing a
+message, regenerate this file with
+
+```bash
+LIGHTINV_WRITE_DOCS=1 .venv/bin/python -m pytest tests/core/test_bad_input.py
+```
+
+(without the variable the test fails while this file differs from the messages).
+
+Every error a user can cause is a `LightInvError` (a `ValueError`): `SceneError` for
+scenes, surfaces and drawn zones, `ObjImportError` (a `SceneError`) for OBJ, MTL and
+materials files, `ProjectError` for project files (its message starts with the file
+name and the JSON path), `DesignError` for designs that cannot work on the scene or
+whose rules cannot be met. The window shows the message exactly as below in an error
+dialog (`str(exc)` in a message box, never a traceback); `lightinv-cli` prints it as
+one line, `lightinv-cli: error: MESSAGE`, and exits with status 2.
+
+A *warning* does not stop the work: the import or build goes on and the text is
+returned (`scene.info["warnings"]`, the `warn` callback of `get_operator` and
+`prepare`); `lightinv-cli` prints it on stderr and the window in its status bar.
+
+`<dir>` stands for the folder of the file. The area also says which step finds the
+problem: *project file* when it is loaded (`load_project`), *project scene* when its
+scene is loaded (`project.scene.load()`), *problem built* when the design meets the
+scene (`DesignProblem`), *run start* when a run looks for a first layout meeting the
+geometric rules; *constraints* contradictory on their face are found when loading.
+
+| area | input tried | raises | what the user sees |
+|---|---|---|---|
+"""
+
+
+def render(outcomes) -> str:
+    rows = []
+    for c in CASES:
+        result, text = outcomes[c.id]
+        kind = "warning" if c.expect == WARNING else f"`{type(result).__name__}`"
+        rows.append(f"| {c.area} | {c.tried} | {kind} | {code(text)} |\n")
+    return HEADER + "".join(rows)
+
+
+def test_docs_table_matches_the_messages(outcomes):
+    text = render(outcomes)
+    if os.environ.get("LIGHTINV_WRITE_DOCS") == "1":
+        DOC.write_text(text, encoding="utf-8")
+        return
+    assert DOC.exists() and DOC.read_text(encoding="utf-8") == text, (
+        f"{DOC.relative_to(ROOT)} is out of date with the messages of the catalogue; "
+        "regenerate it with LIGHTINV_WRITE_DOCS=1 .venv/bin/python -m pytest "
+        "tests/core/test_bad_input.py"
+    )
