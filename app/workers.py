@@ -191,6 +191,14 @@ class RunWorker(Worker):
             )
 
     def work(self):
+        from threadpoolctl import threadpool_limits
+
+        # One BLAS thread while the window shares the two cores: OpenBLAS's second thread
+        # spins against the GUI thread and the run went 3x slower (bench/gui_run.py).
+        with threadpool_limits(limits=1, user_api="blas"):
+            return self._solve()
+
+    def _solve(self):
         from lightinv_core.optimize.run import solve, solve_seeds
 
         self._t0 = time.perf_counter()
