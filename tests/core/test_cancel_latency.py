@@ -137,3 +137,41 @@ def test_report(solved_office, tmp_path):
     )
     assert latency < LATENCY
     assert not out.exists() or not [p for p in out.rglob("*") if p.is_file()]
+
+
+@pytest.mark.parametrize("method", ["vns", "multilevel", "epsilon", "two_step"])
+def test_optimisation_ends_within_a_second_and_keeps_its_best(solved_office, method):
+    project, prepared = solved_office
+    sky = Source("S1", "skylight", "skylight", (1.0, 1.0, 2.0, 2.0), free=CORNERS)
+    design = replace(
+        project.design,
+        sources=(*project.design.sources, sky),
+        goals=(Goal("min_electric_power"), Goal("max_light_power")),
+    )
+    endless = replace(
+        project,
+        design=design,
+        optimizer=OptimizerSettings(method=method, max_evals=None, divisors=(4, 1)),
+    )
+    flag, snaps = threading.Event(), []
+    out: dict = {}
+
+    def run() -> None:
+        out["result"] = solve(endless, prepared, progress=snaps.append, cancel=flag.is_set)
+        out["end"] = time.perf_counter()
+
+    thread = threading.Thread(target=run)
+    thread.start()
+    deadline = time.perf_counter() + 30
+    while len(snaps) < 20 and time.perf_counter() < deadline:
+        time.sleep(0.01)
+    t_cancel = time.perf_counter()
+    flag.set()
+    thread.join(timeout=30)
+    assert not thread.is_alive()
+    assert out["end"] - t_cancel < LATENCY
+    result = out["result"]
+    assert result.status == "cancelled"
+    if method in ("vns", "multilevel"):
+        assert result.best is not None and result.best.info["status"] == "cancelled"
+        assert result.best.info["evaluations"] >= snaps[19].evaluations
