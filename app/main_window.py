@@ -85,6 +85,7 @@ class MainWindow(QtWidgets.QMainWindow):
         self.tabs.addTab(self.run_panel, "Run")
         self.tabs.addTab(self.solutions_panel, "Solutions")
         self.tabs.addTab(self.violations_panel, "Violations")
+        self.tabs.setMinimumHeight(self.run_panel.sizeHint().height() + 40)
         bottom.setWidget(self.tabs)
         self.addDockWidget(QtCore.Qt.BottomDockWidgetArea, bottom)
 
