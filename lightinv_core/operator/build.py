@@ -62,9 +62,15 @@ def check_memory(patches: Patches, rays: int, k: int) -> None:
     if need > 0.8 * have:
         raise LightInvError(
             f"building the operator for {patches.n:,} patches with {rays} rays and rank {k} "
-            f"needs about {need / 2**30:.1f} GiB but {have / 2**30:.1f} GiB is available; "
+            f"needs about {_size(need)} but {_size(have)} is available (a build may use at "
+            "most 80% of it); "
             "use a coarser --resolution, fewer --rays or a lower --rank"
         )
+
+
+def _size(nbytes: float) -> str:
+    """Bytes as GiB, or MiB below 1 GiB (never "0.0 GiB")."""
+    return f"{nbytes / 2**30:.1f} GiB" if nbytes >= 2**30 else f"{nbytes / 2**20:.0f} MiB"
 
 
 def build_operator(

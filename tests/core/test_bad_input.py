@@ -382,6 +382,23 @@ def _(d):
     return Warned(got[0]) if got else None
 
 
+@case(
+    "operator-memory",
+    "resources",
+    "an operator whose build would not fit in the memory available (8 MiB free)",
+    LightInvError,
+    "needs about",
+    "MiB is available (a build may use at most 80% of it); use a coarser --resolution",
+)
+def _(d):
+    from unittest import mock
+
+    scene = load_obj(write(d, BOX), resolution=0.1)
+    free = 8 * 2**20
+    with mock.patch("lightinv_core.operator.build.available_memory_bytes", return_value=free):
+        return raised(lambda: get_operator(mesh_patches(scene), rank=400, rays=1024))
+
+
 # --- scenes and drawn zones ---------------------------------------------------------------
 
 

@@ -117,7 +117,7 @@ def test_progress_and_cancel(office):
 
 def test_memory_guard_names_the_numbers(office, monkeypatch):
     monkeypatch.setattr(build_mod, "available_memory_bytes", lambda: 1 << 20)
-    with pytest.raises(LightInvError, match=r"GiB.*--resolution"):
+    with pytest.raises(LightInvError, match=r"(GiB|MiB) is available.*--resolution"):
         build_operator(office, rays=64)
 
 
