@@ -215,18 +215,9 @@ def two_step(
     for r in range(runs):
         if cancel is not None and cancel():
             break
-        _, _, first = _solve(
-            step1,
-            scene,
-            patches,
-            op,
-            seed + r,
-            stop,
-            divisors,
-            cancel=cancel,
-            vns_progress=vns_progress,
-            run=(2 * r, 2 * runs),
-        )
+        common = (scene, patches, op, seed + r, stop, divisors)
+        hooks = {"cancel": cancel, "vns_progress": vns_progress}
+        _, _, first = _solve(step1, *common, **hooks, run=(2 * r, 2 * runs))
         fixed = tuple(replace(s, free=()) for s in first.sources)
         step2 = Design(
             (*fixed, *lum),
@@ -236,18 +227,7 @@ def two_step(
             daylight=design.daylight,
             penalty_power=design.penalty_power,
         )
-        _, _, sol = _solve(
-            step2,
-            scene,
-            patches,
-            op,
-            seed + r,
-            stop,
-            divisors,
-            cancel=cancel,
-            vns_progress=vns_progress,
-            run=(2 * r + 1, 2 * runs),
-        )
+        _, _, sol = _solve(step2, *common, **hooks, run=(2 * r + 1, 2 * runs))
         sol.info["step1_light_power"] = first.objectives[LIGHT]
         solutions.append(sol)
         if progress is not None:

@@ -109,30 +109,19 @@ def solve(
     t0 = time.perf_counter()
     if o.method in ("epsilon", "two_step"):
         found = None if on_solution is None else (lambda _q, _n, sol: on_solution(sol))
-        front = (
-            epsilon_constraint(
-                *args,
-                epsilons=list(o.epsilons) if o.epsilons else None,
-                count=o.epsilon_count,
-                seed=seed,
-                stop=stop,
-                divisors=tuple(o.divisors),
-                progress=found,
-                cancel=cancel,
-                vns_progress=progress,
-            )
-            if o.method == "epsilon"
-            else two_step(
-                *args,
-                runs=o.runs,
-                seed=seed,
-                stop=stop,
-                divisors=tuple(o.divisors),
-                progress=found,
-                cancel=cancel,
-                vns_progress=progress,
-            )
-        )
+        shared = {
+            "seed": seed,
+            "stop": stop,
+            "divisors": tuple(o.divisors),
+            "progress": found,
+            "cancel": cancel,
+            "vns_progress": progress,
+        }
+        if o.method == "epsilon":
+            epsilons = list(o.epsilons) if o.epsilons else None
+            front = epsilon_constraint(*args, epsilons=epsilons, count=o.epsilon_count, **shared)
+        else:
+            front = two_step(*args, runs=o.runs, **shared)
         cancelled = cancel is not None and cancel()
         evals = sum(int(s.info.get("evaluations", 0)) for s in front.candidates)
         status = "cancelled" if cancelled else ("feasible" if front.solutions else "infeasible")
