@@ -74,8 +74,9 @@ class ConvergencePlot(QtWidgets.QWidget):
                 self._curves[run] = (self.goal_plot.plot(), self.penalty_plot.plot())
             g, p = self._curves[run]
             pen = _pen(run, run == current)
-            g.setData(a[:, 0], a[:, 1], pen=pen, stepMode="left")
-            p.setData(a[:, 0], np.maximum(a[:, 2], PENALTY_FLOOR), pen=pen, stepMode="left")
+            # pyqtgraph's "right": each value holds from its x to the next point's x.
+            g.setData(a[:, 0], a[:, 1], pen=pen, stepMode="right")
+            p.setData(a[:, 0], np.maximum(a[:, 2], PENALTY_FLOOR), pen=pen, stepMode="right")
         self.redraws += 1
 
     def curve(self, run: int = 0) -> np.ndarray:
