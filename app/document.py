@@ -66,6 +66,7 @@ class Document(QtCore.QObject):
         self.last_eval_ms = float("nan")
         self.shown: Solution | None = None  # the result last loaded into the design
         self.preview: tuple[DesignProblem, np.ndarray] | None = None  # a running best
+        self._compared: tuple | None = None  # (key, lux) of the last lux_of_sources
 
     # -- loading ------------------------------------------------------------------------------
     def set_project(self, project: Project, path: Path | None = None) -> None:
@@ -75,7 +76,7 @@ class Document(QtCore.QObject):
         patches = mesh_patches(scene)
         self.project, self.scene, self.patches = project, scene, patches
         self.operator, self._problem, self._lux = None, None, None
-        self.shown, self.preview = None, None
+        self.shown, self.preview, self._compared = None, None, None
         self.selection = np.zeros(0, np.int64)
         self.current_source = project.design.sources[0].name if project.design.sources else None
         self.path, self.dirty = path, False
@@ -107,7 +108,7 @@ class Document(QtCore.QObject):
     def set_operator(self, operator: RadiosityOperator) -> None:
         """Attach a built (or cached) operator; lighting becomes available."""
         self.operator = operator
-        self._problem = None
+        self._problem, self._compared = None, None
         self.operatorChanged.emit()
         self._relight()
 
@@ -319,10 +320,18 @@ class Document(QtCore.QObject):
         with the design's tied rules; None before the operator exists."""
         if self.operator is None:
             return None
-        problem = DesignProblem(
-            replace(self.design, sources=tuple(sources)), self.scene, self.patches, self.operator
-        )
-        return self.lux_at(problem, problem.vars.initial())
+        # The difference view asks on every edit of the loaded layout; the pinned one's
+        # light changes only with its sources and the rules, so keep the last answer.
+        key = (tuple(sources), self.design.rules)
+        if self._compared is None or self._compared[0] != key:
+            problem = DesignProblem(
+                replace(self.design, sources=tuple(sources)),
+                self.scene,
+                self.patches,
+                self.operator,
+            )
+            self._compared = (key, self.lux_at(problem, problem.vars.initial()))
+        return self._compared[1]
 
     def _relight(self) -> None:
         problem = self.problem()

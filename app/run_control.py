@@ -122,15 +122,16 @@ class RunController(QtCore.QObject):
         if p.best_x != self.best_x and now - self.preview_at >= PREVIEW_S:
             self.preview_at = now
             self.best_x = p.best_x
+            seeds = self.worker.seeds or [self.doc.project.optimizer.seed]
             self.best_info = {
-                "seed": self.doc.project.optimizer.seed,
+                "seed": seeds[min(p.run, len(seeds) - 1)],
                 "evaluations": snap.evaluations,
                 "seconds": snap.elapsed,
                 "status": "running",
             }
             if self.panel.show_best.isChecked():
+                # Relights the view, which redraws the source outlines too (_recolour).
                 self.doc.set_preview(self.problem, np.array(p.best_x))
-                self.win._sources_changed()
 
     def best_so_far(self) -> tuple[Solution, ...]:
         """The running optimisation's results so far, judged on all patches (autosave)."""
@@ -155,10 +156,10 @@ class RunController(QtCore.QObject):
             bests = tuple(r.best for r in results if r.best is not None)
             self.doc.set_results(bests, None)
             chosen = _best_of(bests, self.problem)
-        self.doc.set_preview(None)
-        if chosen is not None:
-            self.doc.apply_solution(chosen)
-            self.win.solutions_panel.refresh()
+        if chosen is None:
+            self.doc.set_preview(None)
+        else:
+            self.doc.apply_solution(chosen)  # ends the preview, relights once
         self.status = _status(results)
         evals = sum(r.evaluations for r in results)
         seconds = sum(r.seconds for r in results)

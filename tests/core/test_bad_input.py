@@ -28,30 +28,12 @@ from lightinv_core.scene.loading import load_scene
 from lightinv_core.scene.model import Rect, Surface
 from lightinv_core.scene.obj_import import load_obj
 from lightinv_core.scene.patches import mesh_patches
+from tests.core.test_obj_import import BOX
 
 ROOT = Path(__file__).resolve().parents[2]
 DOC = ROOT / "docs" / "bad-input.md"
 
-# A closed 4 x 3 x 2.5 m room, every face counter-clockwise seen from inside.
-BOX = """\
-v 0 0 0
-v 4 0 0
-v 4 3 0
-v 0 3 0
-v 0 0 2.5
-v 4 0 2.5
-v 4 3 2.5
-v 0 3 2.5
-g floor
-f 1 2 3 4
-g ceiling
-f 5 8 7 6
-g walls
-f 1 5 6 2
-f 2 6 7 3
-f 3 7 8 4
-f 4 8 5 1
-"""
+# The closed 4 x 3 x 2.5 m room of the OBJ importer's tests.
 CEILING = "g ceiling\nf 5 8 7 6\n"
 
 # A valid project on the box: a skylight zone drawn on the ceiling, one free skylight.
