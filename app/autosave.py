@@ -24,8 +24,8 @@ from pathlib import Path
 from PySide6 import QtCore
 
 from lightinv_core.errors import LightInvError
-from lightinv_core.io.project import Project, project_from_dict, project_to_dict
-from lightinv_core.io.project_write import write_json
+from lightinv_core.project import Project, project_from_dict, project_to_dict
+from lightinv_core.project.write import write_json
 
 FORMAT = 1
 DEFAULT_INTERVAL = 30.0

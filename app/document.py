@@ -16,16 +16,16 @@ import numpy as np
 from PySide6 import QtCore
 
 from lightinv_core.design.model import Design, DesignError, Goal, Intention, Source
-from lightinv_core.design.problem import DesignProblem
 from lightinv_core.design.solution import ParetoFront, Solution
-from lightinv_core.io.project import (
+from lightinv_core.operator.radiosity import RadiosityOperator
+from lightinv_core.optimize.problem import DesignProblem
+from lightinv_core.project import (
     OperatorSettings,
     Project,
     SceneSpec,
     load_project,
     save_project,
 )
-from lightinv_core.operator.radiosity import RadiosityOperator
 from lightinv_core.scene.model import Scene
 from lightinv_core.scene.patches import Patches, mesh_patches
 from lightinv_core.sources.zones import zone_grid

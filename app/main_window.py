@@ -18,7 +18,7 @@ from app.run_panel import RunPanel
 from app.viewport import Viewport
 from app.workers import PrecomputeWorker, ReportWorker
 from lightinv_core.errors import LightInvError
-from lightinv_core.io.project import Project, SceneSpec
+from lightinv_core.project import Project, SceneSpec
 from lightinv_core.scene.builtin import BUILTIN_SCENES
 
 COLORMAPS = ("inferno", "viridis", "plasma", "coolwarm", "gray")
@@ -468,7 +468,7 @@ class MainWindow(QtWidgets.QMainWindow):
 
     def open_path(self, path: str | Path) -> bool:
         """Open a project file."""
-        from lightinv_core.io.project import load_project
+        from lightinv_core.project import load_project
 
         try:
             project = load_project(path)
@@ -543,7 +543,7 @@ class MainWindow(QtWidgets.QMainWindow):
     def export_report(self, path: str | Path) -> bool:
         """Write the PDF report of the project's saved solution in a worker (progress bar,
         Cancel); needs the operator and a solution saved by a run."""
-        from lightinv_core.optimize.run import Prepared
+        from lightinv_core.study import Prepared
 
         d = self.doc
         if d.operator is None or self.worker is not None:

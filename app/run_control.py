@@ -16,10 +16,10 @@ import numpy as np
 from PySide6 import QtCore, QtWidgets
 
 from app.workers import RunWorker
-from lightinv_core.design.problem import DesignProblem
 from lightinv_core.design.solution import ParetoFront, Solution
 from lightinv_core.errors import LightInvError
-from lightinv_core.optimize.run import Prepared
+from lightinv_core.optimize.problem import DesignProblem
+from lightinv_core.study import Prepared
 
 REDRAW_MS = 200
 """Plots and counters redraw at most 5 times a second. The optimizer shares the

@@ -19,7 +19,7 @@ from typing import ClassVar
 from PySide6 import QtCore
 
 from lightinv_core.errors import CancelledError, LightInvError
-from lightinv_core.io.operator_cache import get_operator
+from lightinv_core.operator.cache import get_operator
 from lightinv_core.optimize.vns import Progress
 from lightinv_core.scene.patches import Patches
 
@@ -199,7 +199,7 @@ class RunWorker(Worker):
             return self._solve()
 
     def _solve(self):
-        from lightinv_core.optimize.run import solve, solve_seeds
+        from lightinv_core.study import solve, solve_seeds
 
         self._t0 = time.perf_counter()
         if self.seeds is not None and len(self.seeds) > 1:

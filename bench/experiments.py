@@ -16,9 +16,9 @@ from pathlib import Path
 
 import numpy as np
 
-from lightinv_core.io.project import load_project
 from lightinv_core.optimize.pareto import non_dominated
-from lightinv_core.optimize.run import prepare, solve
+from lightinv_core.project import load_project
+from lightinv_core.study import prepare, solve
 
 PROJECTS = Path(__file__).resolve().parent.parent / "resources" / "projects"
 

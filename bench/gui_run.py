@@ -22,7 +22,7 @@ from pathlib import Path
 from PySide6 import QtCore, QtWidgets
 
 from app.main_window import MainWindow
-from lightinv_core.optimize.run import Prepared, solve
+from lightinv_core.study import Prepared, solve
 
 DEMO = Path(__file__).resolve().parent.parent / "resources" / "projects" / "office-demo.json"
 

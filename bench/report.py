@@ -19,11 +19,11 @@ from pathlib import Path
 
 import numpy as np
 
-from lightinv_core.io.project import OperatorSettings, load_project
-from lightinv_core.optimize.run import prepare, solve
+from lightinv_core.project import OperatorSettings, load_project
 from lightinv_core.report import render_view, write_report
 from lightinv_core.scene.builtin import builtin_scene
 from lightinv_core.scene.patches import mesh_patches
+from lightinv_core.study import prepare, solve
 
 PROJECTS = Path(__file__).resolve().parents[1] / "resources" / "projects"
 

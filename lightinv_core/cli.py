@@ -16,7 +16,7 @@ import time
 from collections.abc import Sequence
 
 from lightinv_core.errors import CancelledError, LightInvError
-from lightinv_core.io.operator_cache import get_operator
+from lightinv_core.operator.cache import get_operator
 from lightinv_core.scene.builtin import BUILTIN_SCENES, builtin_scene
 from lightinv_core.scene.loading import load_scene
 from lightinv_core.scene.patches import count_patches, mesh_patches
@@ -331,8 +331,8 @@ def cmd_solve(args) -> int:
     """Optimise a project file; optionally save it with the results."""
     from dataclasses import replace
 
-    from lightinv_core.io.project import load_project, save_project
-    from lightinv_core.optimize.run import prepare, solve
+    from lightinv_core.project import load_project, save_project
+    from lightinv_core.study import prepare, solve
 
     project = load_project(args.project)
     if args.resolution is not None:
@@ -435,9 +435,9 @@ def _vns_printer():
 
 def cmd_report(args) -> int:
     """Write a PDF report of a project's solution."""
-    from lightinv_core.io.project import load_project
-    from lightinv_core.optimize.run import prepare
+    from lightinv_core.project import load_project
     from lightinv_core.report import write_report
+    from lightinv_core.study import prepare
 
     project = load_project(args.project)
     prepared = prepare(project, progress=_progress_printer("precompute"), warn=_warn)

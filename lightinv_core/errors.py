@@ -18,5 +18,9 @@ class ObjImportError(SceneError):
     """An OBJ/MTL file or its materials mapping cannot be imported."""
 
 
+class DesignError(LightInvError):
+    """The design specification is invalid (bad value, unknown name, contradictory rules)."""
+
+
 class CancelledError(LightInvError):
     """Long work was cancelled by the caller (the cancel callback returned True)."""

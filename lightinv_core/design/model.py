@@ -15,15 +15,11 @@ import math
 import numbers
 from dataclasses import dataclass, field
 
-from lightinv_core.errors import LightInvError
+from lightinv_core.errors import DesignError
 
 CORNERS = ("u0", "v0", "u1", "v1")
 VARIABLES = (*CORNERS, "flux", "filter")
 MAX_PATCH_ID = 2**53  # project files limit integers to 2^53 too
-
-
-class DesignError(LightInvError):
-    """The design specification is invalid (bad value, unknown name, contradictory rules)."""
 
 
 def _finite(value, where: str, lo: float | None = None, hi: float | None = None) -> float:

@@ -10,11 +10,11 @@ from dataclasses import replace
 import numpy as np
 
 from lightinv_core.design.model import Design, Goal
-from lightinv_core.design.problem import DesignProblem
 from lightinv_core.design.solution import ParetoFront, Solution
 from lightinv_core.operator.radiosity import RadiosityOperator
 from lightinv_core.optimize.multilevel import multilevel
 from lightinv_core.optimize.pareto import non_dominated
+from lightinv_core.optimize.problem import DesignProblem
 from lightinv_core.optimize.vns import Progress, StopRule
 from lightinv_core.scene.model import Scene
 from lightinv_core.scene.patches import Patches

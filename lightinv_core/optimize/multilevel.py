@@ -8,7 +8,7 @@ from dataclasses import replace
 
 import numpy as np
 
-from lightinv_core.design.problem import DesignProblem
+from lightinv_core.optimize.problem import DesignProblem
 from lightinv_core.optimize.vns import Progress, StopRule, VNSResult, vns
 
 DEFAULT_DIVISORS = (64, 16, 1)

@@ -30,7 +30,7 @@ import numpy as np
 
 from lightinv_core.design.geometry import rule_names, rule_violations
 from lightinv_core.design.model import DesignError
-from lightinv_core.design.problem import DesignProblem, Level
+from lightinv_core.optimize.problem import DesignProblem, Level
 
 R_VALUES = (0.1, 0.2, 0.3, 0.4, 0.5, 0.6, 0.7, 0.8, 0.9, 1.0)
 START_TRIES = 20_000

@@ -12,12 +12,12 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from lightinv_core.design.emission import EmissionBuilder
 from lightinv_core.design.model import Design, Goal, Intention
 from lightinv_core.design.solution import Solution
 from lightinv_core.errors import LightInvError
-from lightinv_core.io.project import Project
+from lightinv_core.project import Project
 from lightinv_core.scene.patches import Patches
+from lightinv_core.sources.emission import EmissionBuilder
 
 
 @dataclass(frozen=True)

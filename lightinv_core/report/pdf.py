@@ -22,9 +22,9 @@ from pathlib import Path
 from matplotlib.backends.backend_pdf import PdfPages
 from matplotlib.figure import Figure
 
+from lightinv_core.atomic import atomic_writer
 from lightinv_core.errors import CancelledError
-from lightinv_core.io.atomic import atomic_writer
-from lightinv_core.io.project import Project
+from lightinv_core.project import Project
 from lightinv_core.report.figures import (
     convergence_figure,
     pareto_figure,
@@ -147,7 +147,7 @@ def write_report(
     """Write a PDF report of ``solution`` (default: the project's first saved solution,
     else the first of its Pareto front) to ``path``.
 
-    ``prepared`` is ``lightinv_core.optimize.run.prepare(project)`` (scene, patches and
+    ``prepared`` is ``lightinv_core.study.prepare(project)`` (scene, patches and
     operator). With ``png_dir`` each page is also saved as ``NN-name.png``. ``progress``
     gets the fraction done after each page; ``cancel`` is polled between pages and a
     True answer raises ``CancelledError`` (nothing is left on disk).

@@ -14,8 +14,8 @@ import numpy as np
 
 from lightinv_core.design.geometry import rule_names, rule_violations
 from lightinv_core.design.model import Design, Source
-from lightinv_core.design.problem import FEASIBILITY_TOL
 from lightinv_core.design.solution import Solution
+from lightinv_core.optimize.problem import FEASIBILITY_TOL
 from lightinv_core.report.light import intention_patches
 from lightinv_core.scene.patches import Patches
 from lightinv_core.sources.zones import zone_grid

@@ -7,7 +7,7 @@ from pathlib import Path
 
 import numpy as np
 
-from lightinv_core.io.atomic import atomic_writer
+from lightinv_core.atomic import atomic_writer
 from lightinv_core.scene.patches import Patches
 
 

@@ -8,7 +8,7 @@ import pytest
 from PySide6 import QtCore, QtGui, QtWidgets
 
 from app.panels import IntentionDialog
-from lightinv_core.io.project import load_project
+from lightinv_core.project import load_project
 from tests.app.conftest import wait_for_operator
 
 
@@ -219,7 +219,7 @@ def test_mirror_and_centre_rules_from_the_source_panel(qtbot, window):
 
 
 def test_export_report_from_the_window(qtbot, window, tmp_path):
-    from lightinv_core.optimize.run import solve
+    from lightinv_core.study import solve
 
     assert window.new_project("cornell", 0.25)
     wait_for_operator(qtbot, window)
@@ -227,7 +227,7 @@ def test_export_report_from_the_window(qtbot, window, tmp_path):
     d.add_source("light")
     from dataclasses import replace
 
-    from lightinv_core.optimize.run import Prepared
+    from lightinv_core.study import Prepared
 
     prepared = Prepared(d.scene, d.patches, d.operator, True, 0.0)
     result = solve(d.project, prepared, max_evals=300)

@@ -13,7 +13,7 @@ from PySide6 import QtWidgets
 
 from app.workers import RunWorker
 from lightinv_core.design.model import CORNERS, Intention
-from lightinv_core.io.project import OperatorSettings, load_project
+from lightinv_core.project import OperatorSettings, load_project
 from tests.app.conftest import wait_for_operator
 
 PROJECTS = Path(__file__).resolve().parents[2] / "resources" / "projects"

@@ -17,7 +17,7 @@ from PySide6 import QtCore
 from app.autosave import orphaned_autosaves, read_autosave
 from app.main_window import MainWindow
 from lightinv_core.design.model import CORNERS, Design, Goal, Intention, Source
-from lightinv_core.io.project import OptimizerSettings, Project, SceneSpec, save_project
+from lightinv_core.project import OptimizerSettings, Project, SceneSpec, save_project
 from tests.app.conftest import wait_for_operator
 
 ROOT = Path(__file__).resolve().parents[2]

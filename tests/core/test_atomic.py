@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import pytest
 
-from lightinv_core.io.atomic import atomic_writer
+from lightinv_core.atomic import atomic_writer
 
 
 def test_new_files_get_ordinary_permissions_and_existing_ones_keep_theirs(tmp_path):

@@ -17,17 +17,17 @@ import numpy as np
 import pytest
 
 from lightinv_core.design.model import Design, DesignError, Goal, Intention, Rule, Source
-from lightinv_core.design.problem import DesignProblem
 from lightinv_core.errors import LightInvError, ObjImportError, SceneError
-from lightinv_core.io.operator_cache import get_operator
-from lightinv_core.io.project import ProjectError, load_project
-from lightinv_core.optimize.run import prepare
+from lightinv_core.operator.cache import get_operator
+from lightinv_core.optimize.problem import DesignProblem
 from lightinv_core.optimize.vns import random_start
+from lightinv_core.project import ProjectError, load_project
 from lightinv_core.scene.edits import ZoneEdit, apply_zone_edits
 from lightinv_core.scene.loading import load_scene
 from lightinv_core.scene.model import Rect, Surface
 from lightinv_core.scene.obj_import import load_obj
 from lightinv_core.scene.patches import mesh_patches
+from lightinv_core.study import prepare
 from tests.core.test_obj_import import BOX
 
 ROOT = Path(__file__).resolve().parents[2]

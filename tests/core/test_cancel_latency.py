@@ -19,12 +19,12 @@ import pytest
 
 from lightinv_core.design.model import CORNERS, Design, Goal, Intention, Source
 from lightinv_core.errors import CancelledError
-from lightinv_core.io.operator_cache import get_operator
-from lightinv_core.io.project import OperatorSettings, OptimizerSettings, Project, SceneSpec
-from lightinv_core.optimize.run import prepare, solve
+from lightinv_core.operator.cache import get_operator
+from lightinv_core.project import OperatorSettings, OptimizerSettings, Project, SceneSpec
 from lightinv_core.report import write_report
 from lightinv_core.scene.builtin import builtin_scene
 from lightinv_core.scene.patches import mesh_patches
+from lightinv_core.study import prepare, solve
 from lightinv_core.transport.formfactors import form_factor_matrix
 
 LATENCY = 1.0  # s, from setting the cancel flag to the task's end

@@ -16,8 +16,8 @@ from lightinv_core.design.model import (
     Rule,
     Source,
 )
-from lightinv_core.design.problem import FEASIBILITY_TOL, DesignProblem
 from lightinv_core.operator.build import build_operator
+from lightinv_core.optimize.problem import FEASIBILITY_TOL, DesignProblem
 from lightinv_core.scene.builtin import builtin_scene
 from lightinv_core.scene.patches import mesh_patches
 

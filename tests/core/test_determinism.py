@@ -11,11 +11,11 @@ import pytest
 from threadpoolctl import threadpool_limits
 
 from lightinv_core.design.model import CORNERS, Design, Goal, Intention, Rule, Source
-from lightinv_core.io.project import OperatorSettings, OptimizerSettings, Project, SceneSpec
 from lightinv_core.operator.build import build_operator
-from lightinv_core.optimize.run import prepare, solve
+from lightinv_core.project import OperatorSettings, OptimizerSettings, Project, SceneSpec
 from lightinv_core.scene.builtin import builtin_scene
 from lightinv_core.scene.patches import mesh_patches
+from lightinv_core.study import prepare, solve
 from lightinv_core.transport.formfactors import form_factor_matrix
 
 

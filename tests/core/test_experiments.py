@@ -16,9 +16,9 @@ import pytest
 
 from lightinv_core import cli
 from lightinv_core.design.model import DesignError
-from lightinv_core.io.project import OperatorSettings, load_project
 from lightinv_core.optimize.pareto import non_dominated
-from lightinv_core.optimize.run import prepare, solve, solve_seeds
+from lightinv_core.project import OperatorSettings, load_project
+from lightinv_core.study import prepare, solve, solve_seeds
 
 PROJECTS = Path(__file__).resolve().parents[2] / "resources" / "projects"
 FAST = OperatorSettings(rank=250, rays=256)

@@ -11,8 +11,8 @@ import pytest
 
 from lightinv_core import cli
 from lightinv_core.errors import CancelledError, LightInvError
-from lightinv_core.io import operator_cache as oc
 from lightinv_core.operator import build as build_mod
+from lightinv_core.operator import cache as oc
 from lightinv_core.operator.accuracy import sample_emissions
 from lightinv_core.operator.build import build_operator
 from lightinv_core.scene.builtin import builtin_scene

@@ -8,11 +8,11 @@ import numpy as np
 import pytest
 
 from lightinv_core.design.model import CORNERS, Design, DesignError, Goal, Intention, Rule, Source
-from lightinv_core.design.problem import DesignProblem, representatives
 from lightinv_core.operator.build import build_operator
 from lightinv_core.optimize.mop import epsilon_constraint, two_step
 from lightinv_core.optimize.multilevel import multilevel
 from lightinv_core.optimize.pareto import hypervolume_2d, non_dominated
+from lightinv_core.optimize.problem import DesignProblem, representatives
 from lightinv_core.optimize.vns import StopRule, neighbourhoods, random_start, vns
 from lightinv_core.scene.builtin import builtin_scene
 from lightinv_core.scene.patches import mesh_patches

@@ -13,11 +13,11 @@ import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
+import lightinv_core.project as project_module
 from lightinv_core.design.model import Design, DesignError, Goal, Source
 from lightinv_core.design.solution import ParetoFront, Solution, Violation
 from lightinv_core.errors import LightInvError, SceneError
-from lightinv_core.io import project as project_module
-from lightinv_core.io.project import (
+from lightinv_core.project import (
     OperatorSettings,
     OptimizerSettings,
     Project,

@@ -14,12 +14,11 @@ from matplotlib.figure import Figure
 from matplotlib.image import imread
 
 from lightinv_core.design.model import CORNERS, Design, Goal, Intention, Rule, Source
-from lightinv_core.design.problem import DesignProblem
 from lightinv_core.design.solution import ParetoFront, Solution
 from lightinv_core.errors import CancelledError, LightInvError
-from lightinv_core.io.project import OperatorSettings, OptimizerSettings, Project, SceneSpec
-from lightinv_core.optimize.run import prepare, solve
+from lightinv_core.optimize.problem import DesignProblem
 from lightinv_core.optimize.vns import random_start
+from lightinv_core.project import OperatorSettings, OptimizerSettings, Project, SceneSpec
 from lightinv_core.report import (
     intention_table,
     render_view,
@@ -33,6 +32,7 @@ from lightinv_core.report.tables import Table, fmt
 from lightinv_core.report.views import visible_patches, zone_frame
 from lightinv_core.scene.builtin import builtin_scene
 from lightinv_core.scene.patches import mesh_patches
+from lightinv_core.study import prepare, solve
 
 SCENE = SceneSpec(builtin="office", resolution=0.6)
 FAST = OperatorSettings(rank=120, rays=256)

@@ -18,11 +18,11 @@ from typing import Any
 
 import numpy as np
 
+from lightinv_core.atomic import atomic_writer
 from lightinv_core.design.model import Goal, Intention, Rule, Source
 from lightinv_core.design.solution import Solution
-from lightinv_core.io.atomic import atomic_writer
-from lightinv_core.io.project_checks import ProjectError, _fail, _is_int, _is_number, _join
-from lightinv_core.io.project_model import (
+from lightinv_core.fields import ProjectError, _fail, _is_int, _is_number, _join
+from lightinv_core.project.model import (
     LUMINAIRE_ONLY,
     OPERATOR_FIELDS,
     OPTIMIZER_FIELDS,

@@ -19,8 +19,8 @@ from pathlib import Path
 
 import numpy as np
 
+from lightinv_core.atomic import atomic_writer
 from lightinv_core.errors import LightInvError
-from lightinv_core.io.atomic import atomic_writer
 from lightinv_core.operator.build import OPERATOR_VERSION, build_operator
 from lightinv_core.operator.lowrank import LowRank
 from lightinv_core.operator.radiosity import RadiosityOperator

@@ -11,14 +11,14 @@ from collections.abc import Callable
 from dataclasses import dataclass, replace
 
 from lightinv_core.design.model import DesignError
-from lightinv_core.design.problem import DesignProblem
 from lightinv_core.design.solution import ParetoFront, Solution
-from lightinv_core.io.operator_cache import get_operator
-from lightinv_core.io.project import Project
+from lightinv_core.operator.cache import get_operator
 from lightinv_core.operator.radiosity import RadiosityOperator
 from lightinv_core.optimize.mop import epsilon_constraint, two_step
 from lightinv_core.optimize.multilevel import multilevel
+from lightinv_core.optimize.problem import DesignProblem
 from lightinv_core.optimize.vns import Progress, StopRule, vns
+from lightinv_core.project import Project
 from lightinv_core.scene.model import Scene
 from lightinv_core.scene.patches import Patches, mesh_patches
 

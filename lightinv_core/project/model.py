@@ -16,13 +16,11 @@ from typing import Any
 from lightinv_core.design.model import Design, Source
 from lightinv_core.design.solution import ParetoFront, Solution
 from lightinv_core.errors import SceneError
-from lightinv_core.io.project_checks import (
+from lightinv_core.fields import (
     _boolean,
     _check_fields,
     _choice,
-    _count,
     _fail,
-    _integer,
     _join,
     _list,
     _number,
@@ -33,6 +31,8 @@ from lightinv_core.io.project_checks import (
     _string,
     _unique,
 )
+from lightinv_core.operator.settings import OperatorSettings
+from lightinv_core.optimize.settings import OptimizerSettings
 from lightinv_core.scene.builtin import BUILTIN_SCENES
 from lightinv_core.scene.edits import ZoneEdit, apply_zone_edits
 from lightinv_core.scene.loading import load_scene
@@ -40,7 +40,6 @@ from lightinv_core.scene.model import MIN_RESOLUTION, ZONE_KINDS, Scene
 from lightinv_core.scene.obj_parse import UP_AXES
 
 SCHEMA = 1
-METHODS = ("vns", "multilevel", "epsilon", "two_step")
 SOURCE_KINDS = ("luminaire", "skylight")
 
 
@@ -148,77 +147,6 @@ class SceneSpec:
                 skip_degenerate=self.skip_degenerate,
             )
         return apply_zone_edits(scene, self.zones) if self.zones else scene
-
-
-@dataclass(frozen=True)
-class OperatorSettings:
-    """How the radiosity operator is built: relative accuracy ``tol`` (used when ``rank``
-    is None), or a fixed ``rank`` (clusters); ``rays`` per patch for the form factors and
-    the ray ``seed``."""
-
-    tol: float = 0.01
-    rank: int | None = None
-    rays: int = 1024
-    seed: int = 0
-
-    def __post_init__(self) -> None:
-        _check_fields(
-            self,
-            {
-                "tol": lambda v, p: _number(v, p, gt=0.0, lt=1.0),
-                "rank": _optional(lambda v, p: _integer(v, p, lo=1)),
-                "rays": lambda v, p: _integer(v, p, lo=1),
-                "seed": lambda v, p: _integer(v, p, lo=0),
-            },
-        )
-
-
-@dataclass(frozen=True)
-class OptimizerSettings:
-    """How the optimiser runs (see docs/project-file.md for every field).
-
-    ``method``: "vns" (one VNS on all patches), "multilevel" (VNS on ``divisors``
-    levels), "epsilon" (epsilon-constraint sweep) or "two_step" (paper 5.5). Stopping:
-    ``max_evals``, ``time_limit`` (s), ``target`` (primary goal's units, counts only
-    when feasible), ``stall`` (evaluations without improvement); None disables each.
-    """
-
-    method: str = "vns"
-    seed: int = 0
-    max_evals: int | None = 20000
-    time_limit: float | None = None
-    target: float | None = None
-    stall: int | None = None
-    trials: int = 32
-    divisors: tuple[int, ...] = (64, 16, 1)
-    level_max_evals: int | None = None
-    level_target: float | None = None
-    runs: int = 10
-    epsilons: tuple[float, ...] | None = None
-    epsilon_count: int = 12
-
-    def __post_init__(self) -> None:
-        count, value = _count, _number
-        _check_fields(
-            self,
-            {
-                "method": lambda v, p: _choice(v, p, METHODS),
-                "seed": lambda v, p: _integer(v, p, lo=0),
-                "max_evals": _optional(count),
-                "time_limit": _optional(lambda v, p: _number(v, p, gt=0.0)),
-                "target": _optional(value),
-                "stall": _optional(count),
-                "trials": count,
-                "divisors": lambda v, p: _list(v, p, count, "divisors (integers >= 1)", 1),
-                "level_max_evals": _optional(count),
-                "level_target": _optional(value),
-                "runs": count,
-                "epsilons": _optional(
-                    lambda v, p: _list(v, p, lambda x, q: _number(x, q, lo=0.0), "lm values", 1)
-                ),
-                "epsilon_count": count,
-            },
-        )
 
 
 # -- the project ----------------------------------------------------------------------------

@@ -4,7 +4,7 @@ Each checker takes a parsed JSON value and the JSON path it came from, and retur
 value normalised (``_number`` gives a float, ``_list`` a tuple, ...) or raises a
 ``ProjectError`` naming that path. The data classes in ``project_model`` and the builders
 in ``project_read`` are made of these. The leading underscores mark helpers private to
-the ``lightinv_core.io.project*`` modules.
+the ``lightinv_core.project*`` modules.
 """
 
 from __future__ import annotations
@@ -18,8 +18,7 @@ from typing import Any, NoReturn
 
 import numpy as np
 
-from lightinv_core.design.model import DesignError
-from lightinv_core.errors import LightInvError
+from lightinv_core.errors import DesignError, LightInvError
 
 MAX_INT = 2**53  # integers beyond this are not exact in every JSON reader
 NONFINITE = {"inf": math.inf, "-inf": -math.inf, "nan": math.nan}

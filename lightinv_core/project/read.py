@@ -25,7 +25,7 @@ from lightinv_core.design.model import (
     Source,
 )
 from lightinv_core.design.solution import ParetoFront, Solution, Violation
-from lightinv_core.io.project_checks import (
+from lightinv_core.fields import (
     NONFINITE,
     _choice,
     _describe,
@@ -42,7 +42,7 @@ from lightinv_core.io.project_checks import (
     _unique,
     _within,
 )
-from lightinv_core.io.project_model import (
+from lightinv_core.project.model import (
     DAYLIGHT_FIELDS,
     GOAL_FIELDS,
     INTENTION_FIELDS,

@@ -26,17 +26,12 @@ import os
 from dataclasses import replace
 from pathlib import Path
 
-from lightinv_core.io.project_checks import ProjectError
-from lightinv_core.io.project_model import (
-    METHODS,
-    SCHEMA,
-    OperatorSettings,
-    OptimizerSettings,
-    Project,
-    SceneSpec,
-)
-from lightinv_core.io.project_read import object_pairs_hook, read_project
-from lightinv_core.io.project_write import project_dict, solution_to_dict, write_json
+from lightinv_core.fields import ProjectError
+from lightinv_core.operator.settings import OperatorSettings
+from lightinv_core.optimize.settings import METHODS, OptimizerSettings
+from lightinv_core.project.model import SCHEMA, Project, SceneSpec
+from lightinv_core.project.read import object_pairs_hook, read_project
+from lightinv_core.project.write import project_dict, solution_to_dict, write_json
 
 __all__ = [
     "METHODS",

@@ -20,7 +20,6 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from lightinv_core.design.emission import EmissionBuilder
 from lightinv_core.design.geometry import rule_violations
 from lightinv_core.design.model import Design, DesignError
 from lightinv_core.design.variables import Variables
@@ -28,6 +27,7 @@ from lightinv_core.operator.clustering import cluster_patches
 from lightinv_core.operator.radiosity import RadiosityOperator
 from lightinv_core.scene.model import Scene
 from lightinv_core.scene.patches import Patches
+from lightinv_core.sources.emission import EmissionBuilder
 
 FEASIBILITY_TOL = 1e-3
 EPSILON_WEIGHT = 100.0
