@@ -16,10 +16,14 @@ import time
 from collections.abc import Sequence
 
 from lightinv_core.errors import CancelledError, LightInvError
+from lightinv_core.kinds import SourceKind
+from lightinv_core.light.model import LightModel
 from lightinv_core.operator.cache import get_operator
+from lightinv_core.operator.settings import OperatorSettings
 from lightinv_core.scene.builtin import BUILTIN_SCENES, builtin_scene
 from lightinv_core.scene.loading import load_scene
 from lightinv_core.scene.patches import count_patches, mesh_patches
+from lightinv_core.sources.emission import source_electric_power, source_flux
 from lightinv_core.transport.formfactors import DEFAULT_RAYS, form_factor_matrix, lost_fraction
 from lightinv_core.transport.photometry import group_illuminance, write_patch_csv
 from lightinv_core.transport.solver import energy_balance, group_emission, solve
@@ -206,12 +210,10 @@ def _warn(msg: str) -> None:
 
 
 def _operator(args, patches):
+    settings = OperatorSettings(tol=args.tol, rank=args.rank, rays=args.rays, seed=args.seed)
     return get_operator(
         patches,
-        rank=args.rank,
-        tol=args.tol,
-        rays=args.rays,
-        seed=args.seed,
+        settings,
         use_cache=not args.no_cache,
         progress=_progress_printer("precompute"),
         warn=_warn,
@@ -222,9 +224,9 @@ def _simulate_lrr(args, scene, p, E) -> int:
     t0 = time.perf_counter()
     got = _operator(args, p)
     t1 = time.perf_counter()
-    H = got.operator.illuminance(E)
+    field = LightModel(scene, p, got.operator).emission_field(E)
     t2 = time.perf_counter()
-    B = E + p.rho * H
+    H, B = field.illuminance, field.radiosity
     if args.patches_csv:
         write_patch_csv(args.patches_csv, p, E, B, H)
     stats = group_illuminance(p, H)
@@ -300,7 +302,7 @@ def cmd_precompute(args) -> int:
     return 0
 
 
-def _source_summary(src) -> dict:
+def _source_summary(src, daylight) -> dict:
     u0, v0, u1, v1 = src.rect
     out = {
         "name": src.name,
@@ -309,20 +311,19 @@ def _source_summary(src) -> dict:
         "corners": [min(u0, u1), min(v0, v1), max(u0, u1), max(v0, v1)],
         "area_m2": src.area,
     }
-    if src.kind == "skylight":
+    if src.kind == SourceKind.SKYLIGHT:
         out["filter"] = src.filter
     else:
-        flux = src.flux if src.flux is not None else src.exitance * src.area
-        out.update(flux_lm=flux, electric_w=flux / src.efficacy)
+        out.update(flux_lm=source_flux(src, daylight), electric_w=source_electric_power(src))
     return out
 
 
-def _solution_summary(sol) -> dict:
+def _solution_summary(sol, daylight) -> dict:
     return {
         "objectives": dict(sol.objectives),
         "penalty": sol.penalty,
         "feasible": sol.feasible,
-        "sources": [_source_summary(s) for s in sol.sources],
+        "sources": [_source_summary(s, daylight) for s in sol.sources],
         "violations": [dataclasses.asdict(v) for v in sol.violations],
     }
 
@@ -362,12 +363,14 @@ def cmd_solve(args) -> int:
         out.update(
             objective=best.objectives.get(primary),
             objective_kind=primary,
-            **_solution_summary(best),
+            **_solution_summary(best, project.design.daylight),
         )
         if "match" in best.objectives:
             out["error"] = best.objectives["match"]
     if result.pareto is not None:
-        out["pareto"] = [_solution_summary(s) for s in result.pareto.solutions]
+        out["pareto"] = [
+            _solution_summary(s, project.design.daylight) for s in result.pareto.solutions
+        ]
         out["candidates"] = len(result.pareto.candidates)
     if args.output:
         sols = (best,) if best is not None and result.pareto is None else ()
@@ -390,7 +393,7 @@ def _solve_text(out: dict) -> str:
         c = ", ".join(f"{x:.3f}" for x in s["corners"])
         extra = (
             f"filter {s['filter']:.3f}"
-            if s["kind"] == "skylight"
+            if s["kind"] == SourceKind.SKYLIGHT
             else f"{s['flux_lm']:.0f} lm, {s['electric_w']:.1f} W"
         )
         lines.append(f"  {s['name']:<10} {s['zone']:<10} ({c}) m  {s['area_m2']:.2f} m²  {extra}")

@@ -9,11 +9,12 @@ along a zone axis. Tied values are never variables.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
-from lightinv_core.design.model import CORNERS, Design, DesignError
+from lightinv_core.design.model import CORNERS, Design, DesignError, Source
+from lightinv_core.kinds import SourceKind
 
 
 @dataclass(frozen=True)
@@ -110,3 +111,17 @@ class Variables:
             for c in (axis, axis + 2):
                 rect[:, d, c] = size_d - rect[:, o, c] * (size_d / size_o)
         return rect, flux, filt
+
+    def sources_at(self, x: np.ndarray) -> tuple[Source, ...]:
+        """The design's sources with the parameters of x (nvar,) filled in and the tied
+        rules applied: rectangles (m), a skylight's filter, a luminaire's flux (lm)."""
+        rect, flux, filt = self.decode(np.asarray(x, dtype=float)[None])
+        out = []
+        for j, s in enumerate(self.design.sources):
+            kw = {"rect": tuple(float(c) for c in rect[0, j])}
+            if s.kind == SourceKind.SKYLIGHT:
+                kw["filter"] = float(filt[0, j])
+            elif s.flux is not None:
+                kw["flux"] = float(flux[0, j])
+            out.append(replace(s, **kw))
+        return tuple(out)

@@ -19,14 +19,14 @@ from lightinv_core.operator.accuracy import reference_reflected, relative_errors
 from lightinv_core.operator.clustering import cluster_patches
 from lightinv_core.operator.lowrank import assemble, cluster_form_factors
 from lightinv_core.operator.radiosity import RadiosityOperator
+from lightinv_core.operator.settings import OperatorSettings
 from lightinv_core.operator.zone_basis import exact_bounces, zone_basis
 from lightinv_core.scene.patches import Patches
-from lightinv_core.transport.formfactors import DEFAULT_RAYS, form_factor_matrix, lost_fraction
+from lightinv_core.transport.formfactors import form_factor_matrix, lost_fraction
 
 OPERATOR_VERSION = 2
 """Bump whenever the operator a given (geometry, settings) produces changes, so older
 cache files are seen as stale and rebuilt (2: exact-k clustering)."""
-DEFAULT_TOL = 0.01
 ERROR_SAMPLES = 6
 START_DIVISOR = 64
 MAX_DIVISOR = 4
@@ -75,20 +75,20 @@ def _size(nbytes: float) -> str:
 
 def build_operator(
     patches: Patches,
-    rank: int | None = None,
-    tol: float = DEFAULT_TOL,
-    rays: int = DEFAULT_RAYS,
-    seed: int = 0,
+    settings: OperatorSettings | None = None,
     progress: Callable[[float], None] | None = None,
     cancel: Callable[[], bool] | None = None,
 ) -> RadiosityOperator:
     """Trace, factor and measure the radiosity operator of ``patches``.
 
-    ``rank`` fixes k (clusters); otherwise k starts at n/64 and doubles (up to
-    n/4) until the mean relative error of C on sampled emissions is <= ``tol``.
-    ``progress(fraction)`` is called along the way; ``cancel()`` returning True
-    stops the build with ``CancelledError``.
+    ``settings.rank`` fixes k (clusters); otherwise k starts at n/64 and doubles (up to
+    n/4) until the mean relative error of C on sampled emissions is <= ``settings.tol``;
+    ``settings.rays`` per patch with ray seed ``settings.seed`` (defaults:
+    ``OperatorSettings()``). ``progress(fraction)`` is called along the way;
+    ``cancel()`` returning True stops the build with ``CancelledError``.
     """
+    settings = settings or OperatorSettings()
+    rank, tol, rays, seed = settings.rank, settings.tol, settings.rays, settings.seed
     n = patches.n
     if rank is not None and not (1 <= int(rank) <= n):
         raise LightInvError(f"rank must be between 1 and the patch count {n}, got {rank}")

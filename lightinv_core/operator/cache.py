@@ -24,6 +24,7 @@ from lightinv_core.errors import LightInvError
 from lightinv_core.operator.build import OPERATOR_VERSION, build_operator
 from lightinv_core.operator.lowrank import LowRank
 from lightinv_core.operator.radiosity import RadiosityOperator
+from lightinv_core.operator.settings import OperatorSettings
 from lightinv_core.scene.patches import Patches
 
 MAGIC = b"LIGHTINV-OPERATOR 1\n"
@@ -44,18 +45,19 @@ def cache_dir() -> Path:
     return Path(user_cache_dir("lightinv")) / "operators"
 
 
-def operator_key(patches: Patches, rank: int | None, tol: float, rays: int, seed: int) -> str:
+def operator_key(patches: Patches, settings: OperatorSettings) -> str:
     """Hash of everything the operator depends on: geometry, materials, zones, settings."""
     h = hashlib.sha256(patches.digest().encode())
     h.update(np.ascontiguousarray(patches.zone_id).tobytes())
-    settings = {
+    s = settings
+    keyed = {
         "version": OPERATOR_VERSION,
-        "rank": rank,
-        "tol": None if rank else tol,
-        "rays": rays,
-        "seed": seed,
+        "rank": s.rank,
+        "tol": None if s.rank else s.tol,
+        "rays": s.rays,
+        "seed": s.seed,
     }
-    h.update(json.dumps(settings, sort_keys=True).encode())
+    h.update(json.dumps(keyed, sort_keys=True).encode())
     return h.hexdigest()
 
 
@@ -179,23 +181,22 @@ def open_scene_warning(op: RadiosityOperator) -> str | None:
 
 def get_operator(
     patches: Patches,
-    rank: int | None = None,
-    tol: float = 0.01,
-    rays: int = 1024,
-    seed: int = 0,
+    settings: OperatorSettings | None = None,
     use_cache: bool = True,
     progress: Callable[[float], None] | None = None,
     cancel: Callable[[], bool] | None = None,
     warn: Callable[[str], None] | None = None,
 ) -> CachedOperator:
-    """Load the operator from the cache, or build it (and cache it).
+    """Load the operator built with ``settings`` (default ``OperatorSettings()``) from the
+    cache, or build it (and cache it).
 
     A stale or corrupt cache file is reported through ``warn`` and rebuilt.
     """
     import time
 
+    settings = settings or OperatorSettings()
     t0 = time.perf_counter()
-    key = operator_key(patches, rank, tol, rays, seed)
+    key = operator_key(patches, settings)
     path = cache_dir() / f"{key[:32]}{SUFFIX}" if use_cache else None
     if path is not None and path.exists():
         try:
@@ -208,9 +209,7 @@ def get_operator(
         except CacheError as exc:
             if warn is not None:
                 warn(f"operator cache {exc}; rebuilding")
-    op = build_operator(
-        patches, rank=rank, tol=tol, rays=rays, seed=seed, progress=progress, cancel=cancel
-    )
+    op = build_operator(patches, settings, progress=progress, cancel=cancel)
     if warn is not None and (msg := open_scene_warning(op)):
         warn(msg)
     if path is not None:

@@ -4,24 +4,30 @@ and total reflected light power (lm, maximised)."""
 
 from __future__ import annotations
 
+import time
 from collections.abc import Callable
 from dataclasses import replace
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from lightinv_core.design.model import Design, Goal
 from lightinv_core.design.solution import ParetoFront, Solution
-from lightinv_core.operator.radiosity import RadiosityOperator
+from lightinv_core.kinds import GoalKind, SourceKind
+from lightinv_core.light.model import LightModel
+from lightinv_core.optimize.method import SolutionFn
 from lightinv_core.optimize.multilevel import multilevel
 from lightinv_core.optimize.pareto import non_dominated
 from lightinv_core.optimize.problem import DesignProblem
-from lightinv_core.optimize.vns import Progress, StopRule
-from lightinv_core.scene.model import Scene
-from lightinv_core.scene.patches import Patches
+from lightinv_core.optimize.progress import CancelFn, ProgressFn
+from lightinv_core.optimize.result import OptimizationResult
+from lightinv_core.optimize.termination import StopRule
+from lightinv_core.optimize.vns import judged
 
-ProgressFn = Callable[[Progress], None]
+if TYPE_CHECKING:
+    from lightinv_core.optimize.settings import OptimizerSettings
 
-POWER, LIGHT = "min_electric_power", "max_light_power"
+POWER, LIGHT = GoalKind.MIN_ELECTRIC_POWER, GoalKind.MAX_LIGHT_POWER
 OBJECTIVES = (POWER, LIGHT)
 
 
@@ -44,14 +50,12 @@ def front_of(solutions: list[Solution], method: str) -> ParetoFront:
         front = tuple(feasible[i] for i in order if keep[i])
     else:
         front = ()
-    return ParetoFront(OBJECTIVES, front, method, tuple(solutions))
+    return ParetoFront(tuple(map(str, OBJECTIVES)), front, method, tuple(solutions))
 
 
 def _solve(
     design: Design,
-    scene,
-    patches,
-    op,
+    light: LightModel,
     seed: int,
     stop: StopRule,
     divisors,
@@ -60,22 +64,18 @@ def _solve(
     cancel=None,
     vns_progress: ProgressFn | None = None,
     run: tuple[int, int] = (0, 1),
+    method: str = "",
+    info: dict | None = None,
 ):
-    problem = DesignProblem(design, scene, patches, op, epsilon=epsilon)
+    """One (multilevel) VNS sub-run of a sweep and its solution judged on every patch."""
+    problem = DesignProblem(design, light, epsilon=epsilon)
     tagged = _tagged(vns_progress, *run)
     res, _ = multilevel(
         problem, divisors, seed=seed, stop=stop, x0=x0, cancel=cancel, progress=tagged
     )
-    sol = problem.solution(
-        res.x,
-        {
-            "seed": seed,
-            "evaluations": res.evaluations,
-            "seconds": res.seconds,
-            "status": res.status,
-        },
-    )
-    return problem, res, sol
+    sol = judged(problem, res, method, seed, **(info or {})).best
+    # A sweep's points carry no convergence history (each is one of many runs).
+    return problem, res, replace(sol, info=sol.info.but(history=()))
 
 
 def _tagged(progress: ProgressFn | None, run: int, runs: int) -> ProgressFn | None:
@@ -87,13 +87,11 @@ def _tagged(progress: ProgressFn | None, run: int, runs: int) -> ProgressFn | No
 
 def light_power_range(
     design: Design,
-    scene: Scene,
-    patches: Patches,
-    op: RadiosityOperator,
+    light: LightModel,
     seed: int = 0,
     stop: StopRule | None = None,
     divisors=(1,),
-    cancel: Callable[[], bool] | None = None,
+    cancel: CancelFn | None = None,
     vns_progress: ProgressFn | None = None,
     runs: int = 2,
 ) -> tuple[float, float]:
@@ -101,37 +99,24 @@ def light_power_range(
     the interval the epsilon sweep covers when none is given. Its two VNS runs report as
     runs 0 and 1 of ``runs``."""
     stop = stop or StopRule(max_evals=5000)
-    light = _light_goal(design)
-    common = (scene, patches, op, seed, stop, divisors)
-    _, _, hi = _solve(
-        replace(design, goals=(light, Goal(POWER))),
-        *common,
-        cancel=cancel,
-        vns_progress=vns_progress,
-        run=(0, runs),
-    )
-    _, _, lo = _solve(
-        replace(design, goals=(Goal(POWER), light)),
-        *common,
-        cancel=cancel,
-        vns_progress=vns_progress,
-        run=(1, runs),
-    )
+    goal = _light_goal(design)
+    common = (light, seed, stop, divisors)
+    hooks = {"cancel": cancel, "vns_progress": vns_progress, "method": "epsilon"}
+    _, _, hi = _solve(replace(design, goals=(goal, Goal(POWER))), *common, run=(0, runs), **hooks)
+    _, _, lo = _solve(replace(design, goals=(Goal(POWER), goal)), *common, run=(1, runs), **hooks)
     return lo.objectives[LIGHT], hi.objectives[LIGHT]
 
 
 def epsilon_constraint(
     design: Design,
-    scene: Scene,
-    patches: Patches,
-    op: RadiosityOperator,
+    light: LightModel,
     epsilons: list[float] | None = None,
     count: int = 12,
     seed: int = 0,
     stop: StopRule | None = None,
     divisors=(1,),
     progress: Callable[[int, int, Solution], None] | None = None,
-    cancel: Callable[[], bool] | None = None,
+    cancel: CancelFn | None = None,
     vns_progress: ProgressFn | None = None,
 ) -> ParetoFront:
     """Minimise electric power subject to light power >= epsilon for each epsilon (lm),
@@ -145,9 +130,7 @@ def epsilon_constraint(
     if epsilons is None:
         lo, hi = light_power_range(
             design,
-            scene,
-            patches,
-            op,
+            light,
             seed,
             stop=stop,
             divisors=divisors,
@@ -164,9 +147,7 @@ def epsilon_constraint(
             break
         _, res, sol = _solve(
             mop,
-            scene,
-            patches,
-            op,
+            light,
             seed + q,
             stop,
             divisors,
@@ -175,8 +156,9 @@ def epsilon_constraint(
             cancel=cancel,
             vns_progress=vns_progress,
             run=(first + q, first + len(epsilons)),
+            method="epsilon",
+            info={"epsilon": float(eps)},
         )
-        sol.info["epsilon"] = float(eps)
         solutions.append(sol)
         x = res.x
         if progress is not None:
@@ -186,27 +168,25 @@ def epsilon_constraint(
 
 def two_step(
     design: Design,
-    scene: Scene,
-    patches: Patches,
-    op: RadiosityOperator,
+    light: LightModel,
     runs: int = 10,
     seed: int = 0,
     stop: StopRule | None = None,
     divisors=(1,),
     progress: Callable[[int, int, Solution], None] | None = None,
-    cancel: Callable[[], bool] | None = None,
+    cancel: CancelFn | None = None,
     vns_progress: ProgressFn | None = None,
 ) -> ParetoFront:
     """Step 1: skylights alone, most natural light, under their geometric rules only.
     Step 2: skylights fixed, luminaires minimise electric power under every rule and
     intention. Repeated with ``runs`` seeds; returns the non-dominated front."""
     stop = stop or StopRule(max_evals=20000)
-    sky = tuple(s for s in design.sources if s.kind == "skylight")
-    lum = tuple(s for s in design.sources if s.kind == "luminaire")
+    sky = tuple(s for s in design.sources if s.kind == SourceKind.SKYLIGHT)
+    lum = tuple(s for s in design.sources if s.kind == SourceKind.LUMINAIRE)
     sky_names = {s.name for s in sky}
     step1 = Design(
         sky,
-        (Goal(LIGHT, ("skylight",)),),
+        (Goal(LIGHT, (SourceKind.SKYLIGHT,)),),
         tuple(r for r in design.rules if set(r.sources) <= sky_names),
         daylight=design.daylight,
         penalty_power=design.penalty_power,
@@ -215,8 +195,8 @@ def two_step(
     for r in range(runs):
         if cancel is not None and cancel():
             break
-        common = (scene, patches, op, seed + r, stop, divisors)
-        hooks = {"cancel": cancel, "vns_progress": vns_progress}
+        common = (light, seed + r, stop, divisors)
+        hooks = {"cancel": cancel, "vns_progress": vns_progress, "method": "two_step"}
         _, _, first = _solve(step1, *common, **hooks, run=(2 * r, 2 * runs))
         fixed = tuple(replace(s, free=()) for s in first.sources)
         step2 = Design(
@@ -227,9 +207,81 @@ def two_step(
             daylight=design.daylight,
             penalty_power=design.penalty_power,
         )
-        _, _, sol = _solve(step2, *common, **hooks, run=(2 * r + 1, 2 * runs))
-        sol.info["step1_light_power"] = first.objectives[LIGHT]
+        _, _, sol = _solve(
+            step2,
+            *common,
+            **hooks,
+            run=(2 * r + 1, 2 * runs),
+            info={"step1_light_power": first.objectives[LIGHT]},
+        )
         solutions.append(sol)
         if progress is not None:
             progress(r + 1, runs, sol)
     return front_of(solutions, "two-step")
+
+
+def _front_result(front: ParetoFront, cancelled: bool, seconds: float) -> OptimizationResult:
+    """A sweep's outcome: its front, the first point as ``best``, evaluations summed."""
+    evals = sum(int(s.info.evaluations or 0) for s in front.candidates)
+    best = front.solutions[0] if front.solutions else None
+    status = "cancelled" if cancelled else ("feasible" if best is not None else "infeasible")
+    return OptimizationResult(status, best, front, evals, seconds)
+
+
+class _Sweep:
+    """Shared run() of the multi-objective drivers: progress, cancel and ``on_solution``."""
+
+    multi_objective = True
+
+    def run(
+        self,
+        problem: DesignProblem,
+        settings: OptimizerSettings,
+        stop: StopRule,
+        seed: int,
+        progress: ProgressFn | None = None,
+        cancel: CancelFn | None = None,
+        on_solution: SolutionFn | None = None,
+    ) -> OptimizationResult:
+        """Sweep over ``settings`` (see the subclass); each point as it is found goes to
+        ``on_solution``."""
+        t0 = time.perf_counter()
+        found = None if on_solution is None else (lambda _q, _n, sol: on_solution(sol))
+        front = self.sweep(
+            problem.design,
+            problem.light,
+            settings,
+            seed=seed,
+            stop=stop,
+            divisors=tuple(settings.divisors),
+            progress=found,
+            cancel=cancel,
+            vns_progress=progress,
+        )
+        cancelled = cancel is not None and cancel()
+        return _front_result(front, cancelled, time.perf_counter() - t0)
+
+
+class EpsilonMethod(_Sweep):
+    """Epsilon-constraint sweep (paper eq. 10): least power for each light-power bound."""
+
+    name = "epsilon"
+    label = "Epsilon-constraint front"
+
+    @staticmethod
+    def sweep(design, light, settings, **kw) -> ParetoFront:
+        """``settings.epsilons`` (lm) or ``settings.epsilon_count`` bounds."""
+        eps = list(settings.epsilons) if settings.epsilons else None
+        return epsilon_constraint(design, light, epsilons=eps, count=settings.epsilon_count, **kw)
+
+
+class TwoStepMethod(_Sweep):
+    """Two-step process (paper 5.5): skylights first, then luminaires, ``runs`` seeds."""
+
+    name = "two_step"
+    label = "Two-step front"
+
+    @staticmethod
+    def sweep(design, light, settings, **kw) -> ParetoFront:
+        """``settings.runs`` runs of the two steps."""
+        return two_step(design, light, runs=settings.runs, **kw)

@@ -1,17 +1,36 @@
 """Multilevel VNS (paper 5.2): optimise on n/64, then n/16 representative patches,
-then all patches, each level warm-started from the previous one's best."""
+then all patches, each level warm-started from the previous one's best.
+
+The answer is always judged on every patch: a level list that does not end with 1
+gets a final all-patch level, so a layout that is feasible only at a coarse level is
+never returned as the answer (it goes on at full resolution, or is reported
+infeasible when the budget runs out there).
+"""
 
 from __future__ import annotations
 
-from collections.abc import Callable
 from dataclasses import replace
+from typing import TYPE_CHECKING
 
 import numpy as np
 
+from lightinv_core.optimize.method import SolutionFn
 from lightinv_core.optimize.problem import DesignProblem
-from lightinv_core.optimize.vns import Progress, StopRule, VNSResult, vns
+from lightinv_core.optimize.progress import CancelFn, ProgressFn
+from lightinv_core.optimize.result import OptimizationResult
+from lightinv_core.optimize.termination import StopRule
+from lightinv_core.optimize.vns import VNSResult, judged, vns
+
+if TYPE_CHECKING:
+    from lightinv_core.optimize.settings import OptimizerSettings
 
 DEFAULT_DIVISORS = (64, 16, 1)
+
+
+def full_resolution(divisors: tuple[int, ...]) -> tuple[int, ...]:
+    """``divisors`` ending at 1 (every patch): a final level is added when missing."""
+    divisors = tuple(int(d) for d in divisors) or (1,)
+    return divisors if divisors[-1] <= 1 else (*divisors, 1)
 
 
 def multilevel(
@@ -22,16 +41,17 @@ def multilevel(
     level_stop: StopRule | None = None,
     x0: np.ndarray | None = None,
     trials: int = 32,
-    progress: Callable[[Progress], None] | None = None,
-    cancel: Callable[[], bool] | None = None,
+    progress: ProgressFn | None = None,
+    cancel: CancelFn | None = None,
 ) -> tuple[VNSResult, list[VNSResult]]:
-    """Run VNS level by level; returns the last level's result (judged on all patches
-    when the last divisor is 1) and every level's result.
+    """Run VNS level by level; returns the result of the last level (every patch: see
+    ``full_resolution``) and every level's result.
 
     ``level_stop`` bounds the coarse levels (default: ``stop``); the evaluation and
     time budgets of ``stop`` are shared by all levels. A cancelled level ends the run.
     """
     stop = stop or StopRule()
+    divisors = full_resolution(divisors)
     results: list[VNSResult] = []
     x = x0
     used_evals, used_time = 0, 0.0
@@ -72,3 +92,39 @@ def multilevel(
         [h for r in results for h in r.history],
     )
     return total, results
+
+
+class MultilevelMethod:
+    """VNS on coarse representative patches first, then on every patch (paper 5.2)."""
+
+    name = "multilevel"
+    label = "Multilevel VNS"
+    multi_objective = False
+
+    def run(
+        self,
+        problem: DesignProblem,
+        settings: OptimizerSettings,
+        stop: StopRule,
+        seed: int,
+        progress: ProgressFn | None = None,
+        cancel: CancelFn | None = None,
+        on_solution: SolutionFn | None = None,
+    ) -> OptimizationResult:
+        """Levels ``settings.divisors``; coarse levels bounded by ``level_max_evals``,
+        ``level_target`` and ``stall``."""
+        level_stop = StopRule(
+            max_evals=settings.level_max_evals, target=settings.level_target, stall=settings.stall
+        )
+        res, levels = multilevel(
+            problem,
+            tuple(settings.divisors),
+            seed=seed,
+            stop=stop,
+            level_stop=level_stop,
+            trials=settings.trials,
+            progress=progress,
+            cancel=cancel,
+        )
+        per_level = tuple(r.evaluations for r in levels)
+        return judged(problem, res, self.name, seed, level_evaluations=per_level)

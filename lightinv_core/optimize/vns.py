@@ -23,14 +23,23 @@ cancelled run returns its best solution. Everything random comes from
 from __future__ import annotations
 
 import time
-from collections.abc import Callable
 from dataclasses import dataclass, field
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from lightinv_core.design.geometry import rule_names, rule_violations
-from lightinv_core.design.model import DesignError
+from lightinv_core.design.solution import SolutionInfo
+from lightinv_core.errors import DesignError
+from lightinv_core.kinds import GoalKind
+from lightinv_core.optimize.method import SolutionFn
 from lightinv_core.optimize.problem import DesignProblem, Level
+from lightinv_core.optimize.progress import CancelFn, Progress, ProgressFn
+from lightinv_core.optimize.result import OptimizationResult, status_of
+from lightinv_core.optimize.termination import StopRule
+
+if TYPE_CHECKING:
+    from lightinv_core.optimize.settings import OptimizerSettings
 
 R_VALUES = (0.1, 0.2, 0.3, 0.4, 0.5, 0.6, 0.7, 0.8, 0.9, 1.0)
 START_TRIES = 20_000
@@ -38,39 +47,6 @@ MAX_V = 4
 """Most variables changed at once. The paper allows v up to nvar; measured on
 experiments 1 and 5, v <= 4 converges as reliably and faster (larger moves are
 almost always rejected)."""
-
-
-@dataclass(frozen=True)
-class StopRule:
-    """When to stop; ``None`` disables a criterion. ``target`` is in the primary goal's
-    units (W, lm, or the match error e) and counts only with P = 0."""
-
-    max_evals: int | None = 20_000
-    time_limit: float | None = None
-    target: float | None = None
-    stall: int | None = None
-
-
-@dataclass(frozen=True)
-class Progress:
-    """An immutable snapshot for progress callbacks (GUI plots, CLI, autosave).
-
-    ``best_x`` is the best variable vector so far (the problem's own variables; a
-    multi-objective driver's sub-problems may have other variables than the design's).
-    ``run``/``runs`` say which of several VNS runs of a driver (epsilon values, two-step
-    runs, seeds) this is, counted from 0; a single run is 0 of 1.
-    """
-
-    iteration: int
-    evaluations: int
-    elapsed: float
-    best_value: float
-    best_penalty: float
-    best_goal: float
-    level: int
-    best_x: tuple[float, ...] = ()
-    run: int = 0
-    runs: int = 1
 
 
 @dataclass
@@ -129,8 +105,8 @@ def vns(
     stop: StopRule | None = None,
     level: Level | None = None,
     trials: int = 32,
-    progress: Callable[[Progress], None] | None = None,
-    cancel: Callable[[], bool] | None = None,
+    progress: ProgressFn | None = None,
+    cancel: CancelFn | None = None,
 ) -> VNSResult:
     """Minimise f + P over the problem's variables; returns the best solution found."""
     stop = stop or StopRule()
@@ -222,6 +198,56 @@ def _better(value: float, penalty: float, best_value: float, best_penalty: float
 
 
 def _reached(problem: DesignProblem, goal: float, target: float) -> bool:
-    if problem.primary == "max_light_power":
+    if problem.primary == GoalKind.MAX_LIGHT_POWER:
         return goal >= target
     return goal <= target
+
+
+def history_rows(history) -> tuple[tuple[int, float, float, float], ...]:
+    """A run's convergence history as plain rows (evaluations, f + P, P, goal)."""
+    return tuple((int(e), float(v), float(p), float(g)) for e, v, p, g in history)
+
+
+def judged(
+    problem: DesignProblem, res: VNSResult, method: str, seed: int, **info
+) -> OptimizationResult:
+    """A VNS-style run's answer judged on every patch, with its typed info."""
+    history = history_rows(res.history)
+    best = problem.solution(
+        res.x,
+        SolutionInfo(
+            method=method,
+            seed=seed,
+            evaluations=res.evaluations,
+            seconds=res.seconds,
+            status=res.status,
+            history=history,
+            **info,
+        ),
+    )
+    status = status_of(best, res.status == "cancelled")
+    return OptimizationResult(status, best, None, res.evaluations, res.seconds, history)
+
+
+class VNSMethod:
+    """Variable Neighbourhood Search on every patch (paper Algorithm 1)."""
+
+    name = "vns"
+    label = "VNS"
+    multi_objective = False
+
+    def run(
+        self,
+        problem: DesignProblem,
+        settings: OptimizerSettings,
+        stop: StopRule,
+        seed: int,
+        progress: ProgressFn | None = None,
+        cancel: CancelFn | None = None,
+        on_solution: SolutionFn | None = None,
+    ) -> OptimizationResult:
+        """One VNS run of ``settings.trials`` neighbours per local search."""
+        res = vns(
+            problem, seed=seed, stop=stop, trials=settings.trials, progress=progress, cancel=cancel
+        )
+        return judged(problem, res, self.name, seed)

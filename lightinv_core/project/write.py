@@ -103,7 +103,7 @@ def _solution_dict(s: Solution) -> dict:
             for v in s.violations
         ],
         "x": list(s.x),
-        "info": _Info(s.info),
+        "info": _Info(s.info.to_dict()),
     }
 
 

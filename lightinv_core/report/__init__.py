@@ -7,11 +7,11 @@ and next to a GUI without touching its backend. See docs/report.md.
 - ``render_view(patches, values, camera, ...)``: one false-colour view (``views.py``);
 - ``source_table``, ``intention_table``, ... : the tables as data (``tables.py``);
 - ``convergence_figure``, ``pareto_figure``: the plots (``figures.py``);
-- ``solution_field``: the illuminance of a saved solution (``light.py``).
+- ``solution_field``: the illuminance of a saved solution (``chosen.py``).
 """
 
+from lightinv_core.report.chosen import choose_solution, solution_field
 from lightinv_core.report.figures import convergence_figure, pareto_figure
-from lightinv_core.report.light import choose_solution, solution_field
 from lightinv_core.report.pdf import ReportInfo, write_report
 from lightinv_core.report.tables import (
     Table,

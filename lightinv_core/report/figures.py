@@ -136,7 +136,7 @@ def _levels(history: np.ndarray, stage_evals=None) -> tuple[np.ndarray, list[flo
 
     Each multilevel stage counts its evaluations from zero (a row whose count does not
     grow starts a stage). With ``stage_evals`` (the evaluations each stage used, e.g.
-    ``info["level_evaluations"]``) stages are placed exactly; without, each stage is
+    ``info.level_evaluations``) stages are placed exactly; without, each stage is
     drawn from the previous stage's last recorded improvement.
     """
     ev = history[:, 0].astype(float)
@@ -156,16 +156,16 @@ def _levels(history: np.ndarray, stage_evals=None) -> tuple[np.ndarray, list[flo
 
 
 def convergence_figure(solution: Solution, primary: str) -> Figure | None:
-    """Best primary goal and best penalty against evaluations, from ``info["history"]``
+    """Best primary goal and best penalty against evaluations, from ``info.history``
     (rows: evaluations, best f + P, best P, best goal); None without a history."""
-    rows = solution.info.get("history") if isinstance(solution.info, dict) else None
+    rows = solution.info.history
     if not rows:
         return None
     H = np.array([[float(v) for v in r[:4]] for r in rows if len(r) >= 4])
     if len(H) == 0:
         return None
-    ev, starts = _levels(H, solution.info.get("level_evaluations"))
-    total = solution.info.get("evaluations")
+    ev, starts = _levels(H, solution.info.level_evaluations)
+    total = solution.info.evaluations
     end = max(float(total), ev[-1]) if isinstance(total, int | float) else ev[-1]
     x = np.r_[ev, end]
     name, units = OBJECTIVES.get(primary, (primary, ""))

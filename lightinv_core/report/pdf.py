@@ -25,13 +25,13 @@ from matplotlib.figure import Figure
 from lightinv_core.atomic import atomic_writer
 from lightinv_core.errors import CancelledError
 from lightinv_core.project import Project
+from lightinv_core.report.chosen import Chosen, choose_solution, solution_field
 from lightinv_core.report.figures import (
     convergence_figure,
     pareto_figure,
     table_pages,
     text_page,
 )
-from lightinv_core.report.light import Chosen, choose_solution, solution_field
 from lightinv_core.report.tables import (
     Table,
     fmt,
@@ -94,16 +94,16 @@ def _solution_lines(project: Project, chosen: Chosen) -> list[str]:
     for kind, value in sol.objectives.items():
         tag = "  (optimised goal)" if kind == primary else ""
         lines.append(objective_text(kind, value) + tag)
-    info = sol.info if isinstance(sol.info, dict) else {}
+    info = sol.info
     run = []
-    if "evaluations" in info:
-        run.append(f"{int(info['evaluations']):,} evaluations")
-    if isinstance(info.get("seconds"), int | float):
-        run.append(f"{info['seconds']:.1f} s")
-    if "seed" in info:
-        run.append(f"seed {info['seed']}")
-    if "status" in info:
-        run.append(f"stopped by {info['status']}")
+    if info.evaluations is not None:
+        run.append(f"{info.evaluations:,} evaluations")
+    if info.seconds is not None:
+        run.append(f"{info.seconds:.1f} s")
+    if info.seed is not None:
+        run.append(f"seed {info.seed}")
+    if info.status:
+        run.append(f"stopped by {info.status}")
     lines.append(f"Optimiser: {project.optimizer.method}" + (f"; {', '.join(run)}" if run else ""))
     return lines
 
@@ -157,9 +157,10 @@ def write_report(
     chosen = choose_solution(project, solution)
     sol = chosen.solution
     patches, design = prepared.patches, project.design
-    H = solution_field(project, prepared, sol)
+    field = solution_field(project, prepared, sol)
+    H = field.illuminance
     outlines = source_outlines(patches, sol.sources)
-    intentions = intention_table(sol, design, patches, H)
+    intentions = intention_table(sol, design, field)
 
     def view(name):
         # Each view has its own colour bar, from 0 to the 99th percentile of what it
@@ -170,7 +171,7 @@ def write_report(
         return table_pages([source_table(sol, design), rules_table(sol, design, patches)])
 
     def tables_second():
-        return table_pages([intentions, group_table(patches, H)])
+        return table_pages([intentions, group_table(field)])
 
     primary = design.goals[0].kind
     plan: list[tuple[str, Callable[[], Figure | list[Figure] | None]]] = [
@@ -180,7 +181,7 @@ def write_report(
         ("sources", tables_first),
         ("intentions", tables_second),
     ]
-    history = sol.info.get("history") if isinstance(sol.info, dict) else None
+    history = sol.info.history
     if history:
         plan.append(("convergence", lambda: convergence_figure(sol, primary)))
     if project.pareto is not None and project.pareto.solutions:

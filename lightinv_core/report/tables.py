@@ -15,9 +15,10 @@ import numpy as np
 from lightinv_core.design.geometry import rule_names, rule_violations
 from lightinv_core.design.model import Design, Source
 from lightinv_core.design.solution import Solution
-from lightinv_core.optimize.problem import FEASIBILITY_TOL
-from lightinv_core.report.light import intention_patches
+from lightinv_core.kinds import Bound, Quantity, SourceKind
+from lightinv_core.light.field import LightField
 from lightinv_core.scene.patches import Patches
+from lightinv_core.sources.emission import source_electric_power, source_flux
 from lightinv_core.sources.zones import zone_grid
 
 PASS, FAIL = "pass", "FAIL"
@@ -69,30 +70,13 @@ def objective_text(kind: str, value: float) -> str:
     return f"{name}: {fmt(value)}{' ' + units if units else ''}"
 
 
-def source_flux(s: Source, design: Design) -> float:
-    """Luminous flux (lm) a source emits: a luminaire's flux, or exitance x area (panels,
-    skylights: filter x transmittance x exterior lux x area)."""
-    if s.kind == "skylight":
-        d = design.daylight
-        return s.filter * d.transmittance * d.exterior_lux * s.area
-    return s.flux if s.flux is not None else s.exitance * s.area
-
-
-def source_electric_power(s: Source) -> float:
-    """Electric power (W): flux / efficacy for a luminaire, 0 for a skylight."""
-    if s.kind == "skylight":
-        return 0.0
-    flux = s.flux if s.flux is not None else s.exitance * s.area
-    return flux / s.efficacy
-
-
 def source_table(solution: Solution, design: Design) -> Table:
     """One row per source: zone, corners, size and area, flux or filter, electric power."""
     rows = []
     total_w = 0.0
     for s in solution.sources:
         w, h = s.size
-        if s.kind == "skylight":
+        if s.kind == SourceKind.SKYLIGHT:
             setting = f"filter {s.filter:.3f}"
             power = "—"
         else:
@@ -109,13 +93,13 @@ def source_table(solution: Solution, design: Design) -> Table:
                 f"{w:.2f} x {h:.2f}",
                 f"{s.area:.2f}",
                 setting,
-                fmt(source_flux(s, design)),
+                fmt(source_flux(s, design.daylight)),
                 power,
             )
         )
     note = (
         f"Total electric power {fmt(total_w)} W."
-        if any(s.kind == "luminaire" for s in solution.sources)
+        if any(s.kind == SourceKind.LUMINAIRE for s in solution.sources)
         else ""
     )
     return Table(
@@ -170,10 +154,8 @@ def rules_table(solution: Solution, design: Design, patches: Patches) -> Table |
                 )
             )
             flags.append("fail")
-    eps = solution.info.get("epsilon") if isinstance(solution.info, dict) else None
-    if isinstance(eps, int | float) and not any(
-        v.constraint == "epsilon" for v in solution.violations
-    ):
+    eps = solution.info.epsilon
+    if eps is not None and not any(v.constraint == "epsilon" for v in solution.violations):
         rows.append((f"light power ≥ {fmt(eps)} lm", "epsilon", PASS))
         flags.append("pass")
     if not rows:
@@ -181,14 +163,12 @@ def rules_table(solution: Solution, design: Design, patches: Patches) -> Table |
     return Table("Geometric rules", ("rule", "type", "result"), tuple(rows), tuple(flags))
 
 
-def intention_table(
-    solution: Solution, design: Design, patches: Patches, H: np.ndarray
-) -> Table | None:
+def intention_table(solution: Solution, design: Design, field: LightField) -> Table | None:
     """One row per bound of every lighting intention: required vs achieved and pass/fail.
 
-    The achieved values come from the field H (lux) computed for the report; pass/fail is
-    the solution's own verdict (its violations) when its intentions were judged (finite
-    penalty), else the verdict of the computed field, with the same 0.1% tolerance.
+    The achieved values come from the solution's light ``field``; pass/fail is the
+    solution's own verdict (its violations) when its intentions were judged (finite
+    penalty), else the verdict of the field, with the same 0.1% tolerance.
     """
     if not design.intentions:
         return None
@@ -196,37 +176,24 @@ def intention_table(
     failed = {(v.name, v.constraint) for v in solution.violations}
     rows, flags = [], []
     for it in design.intentions:
-        idx = intention_patches(it, patches)
-        q = H[idx] * (patches.rho[idx] if it.quantity == "C" else 1.0)
-        a = patches.area[idx]
-        qmin, qmax = float(q.min()), float(q.max())
-        avg = float(np.dot(q, a) / a.sum())
-        u0 = qmin / avg if avg > 0 else float("nan")
-        units = "lux" if it.quantity == "lux" else "lm/m²"
-        where = {None: f"{len(idx)} picked", "*": "all"}.get(it.group, it.group)
-        stats = f"{fmt(qmin)} / {fmt(avg)} / {fmt(qmax)}"
-        bounds = []
-        if it.min is not None:
-            bounds.append(("min", "≥", it.min, qmin, (it.min - qmin) / max(it.min, 1e-12)))
-        if it.max is not None:
-            bounds.append(("max", "≤", it.max, qmax, (qmax - it.max) / max(it.max, 1e-12)))
-        if it.average is not None:
-            bounds.append(
-                ("average", "≥", it.average, avg, (it.average - avg) / max(it.average, 1e-12))
-            )
-        if it.uniformity is not None:
-            c = (it.uniformity - u0) / max(it.uniformity, 1e-12)
-            bounds.append(("uniformity", "≥", it.uniformity, u0, c))
-        for bound, sign, limit, value, c in bounds:
-            bad = (it.name, bound) in failed if judged else c > FEASIBILITY_TOL
-            u = "" if bound == "uniformity" else f" {units}"
-            label = "U0" if bound == "uniformity" else bound
+        res = field.intention(it)
+        st = res.stats
+        u0 = float(st.uniformity[0]) if st.average[0] > 0 else float("nan")
+        units = "lux" if it.quantity == Quantity.LUX else "lm/m²"
+        where = {None: f"{len(res.patches)} picked", "*": "all"}.get(it.group, it.group)
+        stats = f"{fmt(st.min[0])} / {fmt(st.average[0])} / {fmt(st.max[0])}"
+        for chk in res.checks:
+            bad = (it.name, chk.bound) in failed if judged else not chk.met[0]
+            c = float(chk.c[0])
+            u = "" if chk.bound == Bound.UNIFORMITY else f" {units}"
+            label = "U0" if chk.bound == Bound.UNIFORMITY else str(chk.bound)
+            sign = "≤" if chk.bound == Bound.MAX else "≥"
             rows.append(
                 (
                     it.name,
                     where,
-                    f"{label} {sign} {fmt(limit)}{u}",
-                    f"{fmt(value)}{u}",
+                    f"{label} {sign} {fmt(chk.limit)}{u}",
+                    f"{fmt(chk.value[0])}{u}",
                     stats + f" {units}",
                     fmt(u0, 3),
                     f"{FAIL} ({100 * max(c, 0):.1f}%)" if bad else PASS,
@@ -243,24 +210,25 @@ def intention_table(
     )
 
 
-def group_table(patches: Patches, H: np.ndarray) -> Table:
+def group_table(field: LightField) -> Table:
     """Illuminance (lux) per lighting group: area, min, area-weighted average, max, U0."""
     rows = []
+    patches = field.patches
     for gid, name in enumerate(patches.group_names):
         idx = np.flatnonzero(patches.group_id == gid)
         if len(idx) == 0:
             continue
-        a, h = patches.area[idx], H[idx]
-        avg = float(np.dot(h, a) / a.sum())
+        st = field.group_stats(name)
+        avg = float(st.average[0])
         rows.append(
             (
                 name,
                 str(len(idx)),
-                f"{a.sum():.1f}",
-                fmt(h.min()),
+                f"{patches.area[idx].sum():.1f}",
+                fmt(st.min[0]),
                 fmt(avg),
-                fmt(h.max()),
-                fmt(h.min() / avg, 3) if avg > 0 else "—",
+                fmt(st.max[0]),
+                fmt(st.uniformity[0], 3) if avg > 0 else "—",
             )
         )
     return Table(

@@ -19,6 +19,7 @@ import pytest
 from lightinv_core.design.model import Design, DesignError, Goal, Intention, Rule, Source
 from lightinv_core.errors import LightInvError, ObjImportError, SceneError
 from lightinv_core.operator.cache import get_operator
+from lightinv_core.operator.settings import OperatorSettings
 from lightinv_core.optimize.problem import DesignProblem
 from lightinv_core.optimize.vns import random_start
 from lightinv_core.project import ProjectError, load_project
@@ -135,7 +136,7 @@ def project_error(d: Path, change: Callable[[dict], object]) -> BaseException | 
 def build_problem(d: Path, change: Callable[[dict], object] | None = None) -> DesignProblem:
     project = load_project(write_project(d, change))
     prepared = prepare(project)
-    return DesignProblem(project.design, prepared.scene, prepared.patches, prepared.operator)
+    return DesignProblem(project.design, prepared.light)
 
 
 def problem_error(d: Path, change: Callable[[dict], object]) -> BaseException | None:
@@ -360,7 +361,9 @@ def _(d):
 def _(d):
     scene = load_obj(write(d, BOX.replace(CEILING, "")), resolution=0.5)
     got: list[str] = []
-    get_operator(mesh_patches(scene), rank=8, rays=64, use_cache=False, warn=got.append)
+    get_operator(
+        mesh_patches(scene), OperatorSettings(rank=8, rays=64), use_cache=False, warn=got.append
+    )
     return Warned(got[0]) if got else None
 
 
@@ -378,7 +381,9 @@ def _(d):
     scene = load_obj(write(d, BOX), resolution=0.1)
     free = 8 * 2**20
     with mock.patch("lightinv_core.operator.build.available_memory_bytes", return_value=free):
-        return raised(lambda: get_operator(mesh_patches(scene), rank=400, rays=1024))
+        return raised(
+            lambda: get_operator(mesh_patches(scene), OperatorSettings(rank=400, rays=1024))
+        )
 
 
 # --- scenes and drawn zones ---------------------------------------------------------------

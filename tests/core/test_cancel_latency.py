@@ -173,5 +173,5 @@ def test_optimisation_ends_within_a_second_and_keeps_its_best(solved_office, met
     result = out["result"]
     assert result.status == "cancelled"
     if method in ("vns", "multilevel"):
-        assert result.best is not None and result.best.info["status"] == "cancelled"
-        assert result.best.info["evaluations"] >= snaps[19].evaluations
+        assert result.best is not None and result.best.info.status == "cancelled"
+        assert result.best.info.evaluations >= snaps[19].evaluations

@@ -31,8 +31,8 @@ def test_form_factors_do_not_depend_on_the_thread_count(office):
 
 
 def test_operator_builds_are_identical(office):
-    a = build_operator(office, rank=100, rays=256, seed=2)
-    b = build_operator(office, rank=100, rays=256, seed=2)
+    a = build_operator(office, OperatorSettings(rank=100, rays=256, seed=2))
+    b = build_operator(office, OperatorSettings(rank=100, rays=256, seed=2))
     assert np.array_equal(a.Phi, b.Phi)
 
 

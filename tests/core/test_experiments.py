@@ -87,7 +87,7 @@ def test_experiment4_area_times_filter_is_nearly_constant(patio):
     project = coarse("experiment4", 0.7)
     seen, snaps = [], []
     runs = solve_seeds(project, patio, [0, 1, 2, 3], progress=snaps.append, on_result=seen.append)
-    assert runs == seen and [r.best.info["seed"] for r in runs] == [0, 1, 2, 3]
+    assert runs == seen and [r.best.info.seed for r in runs] == [0, 1, 2, 3]
     assert {(s.run, s.runs) for s in snaps} == {(i, 4) for i in range(4)}
     prods = []
     for r in runs:

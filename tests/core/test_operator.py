@@ -15,6 +15,7 @@ from lightinv_core.operator import build as build_mod
 from lightinv_core.operator import cache as oc
 from lightinv_core.operator.accuracy import sample_emissions
 from lightinv_core.operator.build import build_operator
+from lightinv_core.operator.settings import OperatorSettings
 from lightinv_core.scene.builtin import builtin_scene
 from lightinv_core.scene.patches import mesh_patches
 from lightinv_core.sources.zones import random_zone_emissions
@@ -31,7 +32,7 @@ def office():
 
 @pytest.fixture(scope="module")
 def office_op(office):
-    return build_operator(office, tol=0.01, rays=1024, seed=0)
+    return build_operator(office, OperatorSettings(tol=0.01, rays=1024, seed=0))
 
 
 @pytest.fixture(scope="module")
@@ -98,35 +99,35 @@ def test_emission_outside_zones_uses_the_coarser_low_rank_path(office, office_op
 
 
 def test_rank_override_and_bad_settings(office):
-    op = build_operator(office, rank=150, rays=64)
+    op = build_operator(office, OperatorSettings(rank=150, rays=64))
     assert op.info["rank"] == 150 and 100 <= op.k <= 150
     with pytest.raises(LightInvError, match="rank"):
-        build_operator(office, rank=0, rays=16)
-    with pytest.raises(LightInvError, match="tolerance"):
-        build_operator(office, tol=2.0, rays=16)
+        build_operator(office, OperatorSettings(rank=0, rays=16))
+    with pytest.raises(LightInvError, match="tol"):
+        build_operator(office, OperatorSettings(tol=2.0, rays=16))
 
 
 def test_progress_and_cancel(office):
     seen = []
-    build_operator(office, rank=100, rays=64, progress=seen.append)
+    build_operator(office, OperatorSettings(rank=100, rays=64), progress=seen.append)
     assert seen[-1] == pytest.approx(1.0)
     assert all(a <= b + 1e-12 for a, b in itertools.pairwise(seen))
     with pytest.raises(CancelledError):
-        build_operator(office, rank=100, rays=64, cancel=lambda: True)
+        build_operator(office, OperatorSettings(rank=100, rays=64), cancel=lambda: True)
 
 
 def test_memory_guard_names_the_numbers(office, monkeypatch):
     monkeypatch.setattr(build_mod, "available_memory_bytes", lambda: 1 << 20)
     with pytest.raises(LightInvError, match=r"(GiB|MiB) is available.*--resolution"):
-        build_operator(office, rays=64)
+        build_operator(office, OperatorSettings(rays=64))
 
 
 def test_cache_round_trip_corruption_and_staleness(office, tmp_path, monkeypatch):
     monkeypatch.setenv("LIGHTINV_CACHE_DIR", str(tmp_path))
     warnings = []
-    first = oc.get_operator(office, rank=120, rays=64, warn=warnings.append)
+    first = oc.get_operator(office, OperatorSettings(rank=120, rays=64), warn=warnings.append)
     assert not first.from_cache and first.path.exists()
-    second = oc.get_operator(office, rank=120, rays=64, warn=warnings.append)
+    second = oc.get_operator(office, OperatorSettings(rank=120, rays=64), warn=warnings.append)
     assert second.from_cache and second.path == first.path and not warnings
     np.testing.assert_array_equal(second.operator.Phi, first.operator.Phi)
     np.testing.assert_array_equal(second.operator.lowrank.Y, first.operator.lowrank.Y)
@@ -136,15 +137,15 @@ def test_cache_round_trip_corruption_and_staleness(office, tmp_path, monkeypatch
     raw = bytearray(first.path.read_bytes())
     raw[-100] ^= 0xFF
     first.path.write_bytes(bytes(raw))
-    third = oc.get_operator(office, rank=120, rays=64, warn=warnings.append)
+    third = oc.get_operator(office, OperatorSettings(rank=120, rays=64), warn=warnings.append)
     assert not third.from_cache and "checksum" in warnings[-1]
-    assert oc.get_operator(office, rank=120, rays=64).from_cache
+    assert oc.get_operator(office, OperatorSettings(rank=120, rays=64)).from_cache
     # Truncated file.
     first.path.write_bytes(first.path.read_bytes()[:-10])
-    fourth = oc.get_operator(office, rank=120, rays=64, warn=warnings.append)
+    fourth = oc.get_operator(office, OperatorSettings(rank=120, rays=64), warn=warnings.append)
     assert not fourth.from_cache and "truncated" in warnings[-1]
     # Other settings live in another file; no temporary files are left behind.
-    other = oc.get_operator(office, rank=120, rays=32)
+    other = oc.get_operator(office, OperatorSettings(rank=120, rays=32))
     assert other.path != first.path
     assert sorted(p.suffix for p in tmp_path.iterdir()) == [".lrr", ".lrr"]
     with pytest.raises(oc.CacheError, match="stale"):
@@ -196,13 +197,17 @@ def test_an_open_scene_is_reported(tmp_path, monkeypatch):
     )
     patches = mesh_patches(scene)
     warnings = []
-    got = oc.get_operator(patches, rank=2, rays=64, warn=warnings.append)
+    got = oc.get_operator(patches, OperatorSettings(rank=2, rays=64), warn=warnings.append)
     assert got.operator.info["lost_fraction"] > 0.5
     assert "escapes the model" in warnings[0]
-    oc.get_operator(patches, rank=2, rays=64, warn=warnings.append)  # from the cache too
+    oc.get_operator(
+        patches, OperatorSettings(rank=2, rays=64), warn=warnings.append
+    )  # from the cache too
     assert len(warnings) == 2
     closed = []
     oc.get_operator(
-        mesh_patches(builtin_scene("cornell", 0.5)), rank=20, rays=64, warn=closed.append
+        mesh_patches(builtin_scene("cornell", 0.5)),
+        OperatorSettings(rank=20, rays=64),
+        warn=closed.append,
     )
     assert closed == []

@@ -8,7 +8,9 @@ import numpy as np
 import pytest
 
 from lightinv_core.design.model import CORNERS, Design, DesignError, Goal, Intention, Rule, Source
+from lightinv_core.light.model import LightModel
 from lightinv_core.operator.build import build_operator
+from lightinv_core.operator.settings import OperatorSettings
 from lightinv_core.optimize.mop import epsilon_constraint, two_step
 from lightinv_core.optimize.multilevel import multilevel
 from lightinv_core.optimize.pareto import hypervolume_2d, non_dominated
@@ -22,7 +24,7 @@ from lightinv_core.scene.patches import mesh_patches
 def office():
     scene = builtin_scene("office", 0.5)
     patches = mesh_patches(scene)
-    return scene, patches, build_operator(patches, rank=150, rays=256)
+    return scene, patches, build_operator(patches, OperatorSettings(rank=150, rays=256))
 
 
 def match_problem(office):
@@ -30,7 +32,7 @@ def match_problem(office):
     target = Source("t", "lum_west", "luminaire", (0.5, 2.0, 1.5, 3.5), flux=4000.0)
     free = Source("L", "lum_west", "luminaire", (0.0, 0.0, 0.5, 0.5), free=CORNERS, flux=4000.0)
     design = Design((free,), (Goal("match"),), target_sources=(target,))
-    return DesignProblem(design, scene, patches, op)
+    return DesignProblem(design, LightModel(scene, patches, op))
 
 
 def test_neighbourhood_grid_runs_small_to_large():
@@ -87,7 +89,7 @@ def test_rules_that_cannot_be_met_are_reported_before_running(office):
     s = Source("s", "skylight", "skylight", (0, 0, 1, 1), free=CORNERS)
     d = Design((s,), (Goal("max_light_power"),), (Rule("area", ("s",), min=20.0),))
     with pytest.raises(DesignError, match="geometric rules"):
-        random_start(DesignProblem(d, scene, patches, op), np.random.default_rng(0))
+        random_start(DesignProblem(d, LightModel(scene, patches, op)), np.random.default_rng(0))
 
 
 def test_infeasible_intentions_are_named(office):
@@ -99,7 +101,7 @@ def test_infeasible_intentions_are_named(office):
         (Rule("area", ("s",), max=2.0),),
         (Intention("desks", group="desks", min=20000.0),),
     )
-    p = DesignProblem(d, scene, patches, op)
+    p = DesignProblem(d, LightModel(scene, patches, op))
     res = vns(p, seed=0, stop=StopRule(max_evals=1500))
     sol = p.solution(res.x)
     assert not sol.feasible and res.penalty > 0
@@ -115,7 +117,7 @@ def test_feasibility_is_reached_and_kept(office):
         (Rule("area", ("s",), max=4.0),),
         (Intention("desks", group="desks", max=400.0),),
     )
-    p = DesignProblem(d, scene, patches, op)
+    p = DesignProblem(d, LightModel(scene, patches, op))
     res = vns(p, seed=1, stop=StopRule(max_evals=4000))
     sol = p.solution(res.x)
     assert sol.feasible and sol.penalty == 0.0
@@ -126,9 +128,9 @@ def test_feasibility_is_reached_and_kept(office):
 
 def _sparse(p, x):
     rect, flux, filt = p.vars.decode(np.asarray(x)[None])
-    V = p.emission.matrix(rect, flux, filt)[:, 0]
+    V = p.light.zone_emission(p.design.sources, rect, flux, filt, p.design.daylight)[:, 0]
     nz = np.flatnonzero(V)
-    return p.op.zone_patches[nz], V[nz]
+    return p.light.op.zone_patches[nz], V[nz]
 
 
 def test_representatives_cover_each_cluster_once(office):
@@ -168,7 +170,7 @@ def test_non_dominated_and_hypervolume():
 def corridor():
     scene = builtin_scene("corridor", 0.6)
     patches = mesh_patches(scene)
-    return scene, patches, build_operator(patches, rank=200, rays=256)
+    return scene, patches, build_operator(patches, OperatorSettings(rank=200, rays=256))
 
 
 def corridor_design(with_luminaires: bool) -> Design:
@@ -205,7 +207,7 @@ def corridor_design(with_luminaires: bool) -> Design:
 
 def test_skylights_alone_cannot_light_the_panels(corridor):
     scene, patches, op = corridor
-    p = DesignProblem(corridor_design(False), scene, patches, op)
+    p = DesignProblem(corridor_design(False), LightModel(scene, patches, op))
     res = vns(p, seed=0, stop=StopRule(max_evals=3000))
     sol = p.solution(res.x)
     assert not sol.feasible and [v.name for v in sol.violations] == ["panels"]
@@ -217,9 +219,9 @@ def test_multi_objective_fronts_are_non_dominated(corridor, method):
     d = corridor_design(True)
     stop = StopRule(max_evals=8000, stall=3000)
     if method == "epsilon":
-        front = epsilon_constraint(d, scene, patches, op, count=4, stop=stop)
+        front = epsilon_constraint(d, LightModel(scene, patches, op), count=4, stop=stop)
     else:
-        front = two_step(d, scene, patches, op, runs=5, stop=stop)
+        front = two_step(d, LightModel(scene, patches, op), runs=5, stop=stop)
     # Two-step runs whose skylights leave the panels too dark stay infeasible, so the
     # front may be short; the epsilon sweep covers the range.
     assert len(front.solutions) >= (2 if method == "epsilon" else 1)
@@ -254,7 +256,8 @@ def test_offending_patches_are_the_ones_out_of_bounds(office):
         Intention("desks", group="desks", min=300.0, uniformity=0.95),
         Intention("floor", group="floor", max=1e9),
     )
-    p = DesignProblem(Design((s,), (Goal("max_light_power"),), (), its), scene, patches, op)
+    design = Design((s,), (Goal("max_light_power"),), (), its)
+    p = DesignProblem(design, LightModel(scene, patches, op))
     x = p.vars.initial()
     lux = op.zone_illuminance(*_sparse(p, x))
     found = {(name, bound): ids for name, bound, ids in p.offending_patches(x)}
@@ -264,7 +267,7 @@ def test_offending_patches_are_the_ones_out_of_bounds(office):
     assert 0 < len(found["desks", "uniformity"]) < len(desks)
     # A layout that meets every bound offends nowhere.
     loose = Design((s,), (Goal("max_light_power"),), (), (Intention("d", group="desks", min=0.1),))
-    assert DesignProblem(loose, scene, patches, op).offending_patches(x) == []
+    assert DesignProblem(loose, LightModel(scene, patches, op)).offending_patches(x) == []
 
 
 def test_sweeps_report_each_run_and_each_point(office):
@@ -280,9 +283,7 @@ def test_sweeps_report_each_run_and_each_point(office):
     snaps, points = [], []
     front = epsilon_constraint(
         d,
-        scene,
-        patches,
-        op,
+        LightModel(scene, patches, op),
         count=3,
         stop=StopRule(max_evals=600),
         progress=lambda q, n, sol: points.append((q, n)),
@@ -294,9 +295,7 @@ def test_sweeps_report_each_run_and_each_point(office):
     calls = iter(range(10**6))
     front = epsilon_constraint(
         d,
-        scene,
-        patches,
-        op,
+        LightModel(scene, patches, op),
         count=3,
         stop=StopRule(max_evals=10**6),
         cancel=lambda: next(calls) >= 20,
@@ -313,5 +312,5 @@ def test_a_front_lists_a_repeated_point_once():
         return Solution((), objectives, 0.0, info={"seed": seed})
 
     front = front_of([sol(10, 100, 0), sol(10, 100, 1), sol(20, 150, 2), sol(30, 120, 3)], "t")
-    assert [s.info["seed"] for s in front.solutions] == [0, 2]
+    assert [s.info.seed for s in front.solutions] == [0, 2]
     assert len(front.candidates) == 4

@@ -220,8 +220,8 @@ def test_loaded_values_have_the_model_types():
     assert s.penalty == math.inf and s.objectives["min_electric_power"] == math.inf
     assert math.isnan(s.violations[0].value) and s.violations[1].bound == 300.0
     assert s.x[3] == -math.inf
-    assert s.info["epsilon"] == math.inf and math.isnan(s.info["trace"][1])
-    assert isinstance(s.info["seconds"], float) and isinstance(s.info["seed"], int)
+    assert s.info.epsilon == math.inf and math.isnan(s.info.extra["trace"][1])
+    assert isinstance(s.info.seconds, float) and isinstance(s.info.seed, int)
     assert p.pareto.objectives == ("min_electric_power", "max_light_power")
     assert len(p.pareto.candidates) == 2 and p.pareto.candidates[1].feasible is False
 
@@ -269,7 +269,7 @@ def test_file_round_trip_with_inf_nan_and_a_pareto_front(tmp_path):
     q = load_project(path)
     assert q.path == path.resolve()
     assert project_to_dict(q) == project_to_dict(p)
-    assert q.design == p.design and q.solutions[0].info["best"] == -math.inf
+    assert q.design == p.design and q.solutions[0].info.extra["best"] == -math.inf
     assert math.isnan(q.pareto.candidates[1].x[1])
     assert [f.name for f in tmp_path.iterdir()] == ["experiment3.json"]
 

@@ -77,7 +77,7 @@ def single():
     project = Project("Report test office", SCENE, office_design(), FAST, OptimizerSettings())
     prepared = prepare(project)
     best = solve(project, prepared, max_evals=600).best
-    assert best.info["history"]
+    assert best.info.history
     return replace(project, solutions=(best,)), prepared
 
 
@@ -86,7 +86,7 @@ def multi(single):
     """A two-goal office project whose results are a small hand-made Pareto front."""
     _, prepared = single
     design = office_design((Goal("min_electric_power"), Goal("max_light_power")))
-    problem = DesignProblem(design, prepared.scene, prepared.patches, prepared.operator)
+    problem = DesignProblem(design, prepared.light)
     sols = [
         problem.solution(random_start(problem, np.random.default_rng(s)), {"seed": s})
         for s in range(3)
@@ -155,8 +155,7 @@ def test_single_objective_report_text(single, single_report):
         for cell in (row[0], row[3], row[6], row[8]):
             assert squash(cell) in text, cell
     # Every bound of every intention with its verdict, on one line.
-    H = solution_field(project, prepared, sol)
-    table = intention_table(sol, project.design, prepared.patches, H)
+    table = intention_table(sol, project.design, solution_field(project, prepared, sol))
     results = {r[0] + " " + r[2]: r[-1] for r in table.rows}
     assert results["no glare max ≤ 1,000,000 lux"] == "pass"
     assert results["bright walls min ≥ 100,000 lux"].startswith("FAIL")
@@ -186,13 +185,14 @@ def test_multi_objective_report_marks_the_pareto_front(multi, tmp_path):
 def test_report_field_agrees_with_the_solution(single):
     project, prepared = single
     sol = project.solutions[0]
-    H = solution_field(project, prepared, sol)
+    H = solution_field(project, prepared, sol).illuminance
     walls = prepared.patches.group_index("walls")
     v = next(v for v in sol.violations if v.name == "bright walls")
     assert H[walls].min() == pytest.approx(v.value, rel=1e-4)
     # Sources are taken by name: another order gives the same light.
     shuffled = replace(sol, sources=tuple(reversed(sol.sources)))
-    np.testing.assert_allclose(solution_field(project, prepared, shuffled), H, rtol=1e-5)
+    again = solution_field(project, prepared, shuffled).illuminance
+    np.testing.assert_allclose(again, H, rtol=1e-5)
 
 
 def test_cancel_and_failure_leave_no_file(single, tmp_path):
