@@ -3,8 +3,9 @@ then all patches, each level warm-started from the previous one's best.
 
 The answer is always judged on every patch: a level list that does not end with 1
 gets a final all-patch level, so a layout that is feasible only at a coarse level is
-never returned as the answer (it goes on at full resolution, or is reported
-infeasible when the budget runs out there).
+never returned as the answer: it goes on at full resolution with at least a quarter
+of the budget (``FULL_LEVEL_SHARE``), and is reported infeasible if it is still
+infeasible when that runs out.
 """
 
 from __future__ import annotations
@@ -25,6 +26,9 @@ if TYPE_CHECKING:
     from lightinv_core.optimize.settings import OptimizerSettings
 
 DEFAULT_DIVISORS = (64, 16, 1)
+FULL_LEVEL_SHARE = 0.25
+"""Part of the evaluation and time budgets the coarse levels leave to the full level: a
+coarse answer can break bounds by several times on patches no representative sees."""
 
 
 def full_resolution(divisors: tuple[int, ...]) -> tuple[int, ...]:
@@ -48,7 +52,8 @@ def multilevel(
     ``full_resolution``) and every level's result.
 
     ``level_stop`` bounds the coarse levels (default: ``stop``); the evaluation and
-    time budgets of ``stop`` are shared by all levels. A cancelled level ends the run.
+    time budgets of ``stop`` are shared by all levels, the coarse ones using at most
+    1 - ``FULL_LEVEL_SHARE`` of them. A cancelled level ends the run.
     """
     stop = stop or StopRule()
     divisors = full_resolution(divisors)
@@ -56,12 +61,15 @@ def multilevel(
     x = x0
     used_evals, used_time = 0, 0.0
     for i, d in enumerate(divisors):
-        rule = stop if i == len(divisors) - 1 or level_stop is None else level_stop
+        last = i == len(divisors) - 1
+        rule = stop if last or level_stop is None else level_stop
+        # The coarse levels leave the full level at least FULL_LEVEL_SHARE of each budget.
+        keep = 0.0 if last else FULL_LEVEL_SHARE
         if stop.max_evals is not None:
-            left = stop.max_evals - used_evals
+            left = int(stop.max_evals * (1 - keep)) - used_evals
             rule = replace(rule, max_evals=max(1, min(rule.max_evals or left, left)))
         if stop.time_limit is not None:
-            left_t = stop.time_limit - used_time
+            left_t = stop.time_limit * (1 - keep) - used_time
             rule = replace(rule, time_limit=max(0.0, min(rule.time_limit or left_t, left_t)))
         res = vns(
             problem,

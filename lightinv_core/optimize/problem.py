@@ -195,15 +195,21 @@ class DesignProblem:
         value = np.full(m, np.inf)
         penalty = np.full(m, np.inf)
         goals = {k: np.full(m, np.nan) for k in GoalKind}
-        G = np.full((m, len(self.constraints)), np.inf)
-        G[:, : geo.shape[1]] = geo
+        G = np.empty((m, len(self.constraints)))
+        ngeo = geo.shape[1]
+        G[:, :ngeo] = geo
         good = np.flatnonzero(ok)
-        if len(good):
-            v, p, g, lighting = self._score(rect[good], flux[good], filt[good], level)
-            value[good], penalty[good] = v, p
-            G[np.ix_(good, np.arange(geo.shape[1], G.shape[1]))] = lighting
-            for k in goals:
-                goals[k][good] = g[k]
+        if len(good) == m:
+            # Every candidate was lit (the usual case): plain slices, no fancy indexing.
+            value, penalty, goals, G[:, ngeo:] = self._score(rect, flux, filt, level)
+        else:
+            G[:, ngeo:] = np.inf
+            if len(good):
+                v, p, g, lighting = self._score(rect[good], flux[good], filt[good], level)
+                value[good], penalty[good] = v, p
+                G[good, ngeo:] = lighting
+                for k in goals:
+                    goals[k][good] = g[k]
         F = np.full((m, len(self.objectives)), np.inf)
         for j, kind in enumerate(self.objectives):
             sign = -1.0 if kind == GoalKind.MAX_LIGHT_POWER else 1.0

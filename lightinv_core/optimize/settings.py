@@ -5,8 +5,10 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 from lightinv_core.fields import _check_fields, _choice, _count, _integer, _list, _number, _optional
+from lightinv_core.optimize.registry import method_names
 
-METHODS = ("vns", "multilevel", "epsilon", "two_step")
+METHODS = method_names()
+"""The method names a project may choose: the registry's (registry.py)."""
 
 
 @dataclass(frozen=True)

@@ -142,7 +142,7 @@ class ZoneEmission:
             cols = self._cols[s.zone]
             V[cols] += block
             if split_kinds:
-                by_kind[SourceKind(s.kind)][cols] += block
+                by_kind[s.kind][cols] += block
         return (V, by_kind) if split_kinds else V
 
     def full_exitance(self, s: Source, daylight: Daylight) -> float:
