@@ -14,7 +14,6 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from lightinv_core.design.model import CORNERS, Design, DesignError, Source
-from lightinv_core.kinds import SourceKind
 
 
 @dataclass(frozen=True)
@@ -114,14 +113,12 @@ class Variables:
 
     def sources_at(self, x: np.ndarray) -> tuple[Source, ...]:
         """The design's sources with the parameters of x (nvar,) filled in and the tied
-        rules applied: rectangles (m), a skylight's filter, a luminaire's flux (lm)."""
+        rules applied: rectangles (m), filters, and fluxes (lm) of sources that have one."""
         rect, flux, filt = self.decode(np.asarray(x, dtype=float)[None])
         out = []
         for j, s in enumerate(self.design.sources):
-            kw = {"rect": tuple(float(c) for c in rect[0, j])}
-            if s.kind == SourceKind.SKYLIGHT:
-                kw["filter"] = float(filt[0, j])
-            elif s.flux is not None:
+            kw = {"rect": tuple(float(c) for c in rect[0, j]), "filter": float(filt[0, j])}
+            if s.flux is not None:
                 kw["flux"] = float(flux[0, j])
             out.append(replace(s, **kw))
         return tuple(out)

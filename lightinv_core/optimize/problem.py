@@ -358,11 +358,8 @@ class DesignProblem:
 
 
 def _electric_scale(design: Design, light: LightModel) -> float:
-    """Largest electric power (W) of the luminaires: the scale of the power goal."""
+    """Largest electric power (W) of the sources: the scale of the power goal."""
     total = 0.0
     for s in design.sources:
-        if s.kind == SourceKind.LUMINAIRE:
-            w, h = light.zone_size(s.zone)
-            flux = s.exitance * w * h if s.exitance is not None else s.flux_range[1]
-            total += flux / s.efficacy
+        total += light.emission.full_electric_power(s)
     return max(total, 1e-9)

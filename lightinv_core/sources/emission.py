@@ -5,10 +5,7 @@ area (vectorised over candidates), giving E over the operator's zone-patch colum
 V (nz, m) float32, the input of every radiosity evaluation. Also here: what a source
 emits (lm) and draws (W), the per-source facts every view reports.
 
-A source's exitance:
-- luminaire: flux / area (``flux`` given, possibly a variable), or a fixed ``exitance``
-  (a luminous panel: flux = exitance * area);
-- skylight: filter * glazing transmittance * exterior diffuse illuminance (``Daylight``).
+What each kind of source emits and draws is its ``SourceType`` (types.py).
 """
 
 from __future__ import annotations
@@ -23,6 +20,7 @@ from lightinv_core.kinds import SourceKind
 from lightinv_core.operator.radiosity import RadiosityOperator
 from lightinv_core.scene.model import Scene
 from lightinv_core.scene.patches import Patches
+from lightinv_core.sources.types import source_type
 from lightinv_core.sources.zones import ZoneGrid, zone_grid
 
 
@@ -35,38 +33,25 @@ def source_stack(sources: Sequence[Source]) -> tuple[np.ndarray, np.ndarray, np.
     return rect, flux, filt
 
 
-def rect_areas(rect: np.ndarray) -> np.ndarray:
-    """Areas (m²) of rectangles (..., 4) given by two diagonal corners."""
-    return np.abs(rect[..., 2] - rect[..., 0]) * np.abs(rect[..., 3] - rect[..., 1])
-
-
 def source_flux(s: Source, daylight: Daylight) -> float:
-    """Luminous flux (lm) a source emits: a luminaire's flux, or exitance x area (panels,
-    skylights: filter x transmittance x exterior lux x area)."""
-    if s.kind == SourceKind.SKYLIGHT:
-        return s.filter * daylight.transmittance * daylight.exterior_lux * s.area
-    return s.flux if s.flux is not None else s.exitance * s.area
+    """Luminous flux (lm) a source emits (its type's rule: a luminaire's flux, a panel's
+    or a skylight's exitance x area)."""
+    return source_type(s.kind).flux(s, daylight)
 
 
 def source_electric_power(s: Source) -> float:
-    """Electric power (W) a source draws: flux / efficacy for a luminaire, 0 for a skylight."""
-    if s.kind == SourceKind.SKYLIGHT:
-        return 0.0
-    flux = s.flux if s.flux is not None else s.exitance * s.area
-    return flux / s.efficacy
+    """Electric power (W) a source draws as placed (0 for daylight)."""
+    rect, flux, _ = source_stack((s,))
+    return float(source_type(s.kind).electric_power(s, rect[:, 0], flux[:, 0])[0])
 
 
 def electric_power(sources: Sequence[Source], rect: np.ndarray, flux: np.ndarray) -> np.ndarray:
-    """Electric power (W) of the luminaires among ``sources`` for each candidate (rect
-    (m, S, 4), flux (m, S)): flux / efficacy, a panel's exitance x area / efficacy."""
+    """Electric power (W) of ``sources`` for each candidate (rect (m, S, 4), flux (m, S))."""
     total = np.zeros(rect.shape[0])
     for j, s in enumerate(sources):
-        if s.kind != SourceKind.LUMINAIRE:
-            continue
-        if s.exitance is not None:
-            total += s.exitance * rect_areas(rect[:, j]) / s.efficacy
-        else:
-            total += flux[:, j] / s.efficacy
+        t = source_type(s.kind)
+        if t.electric:
+            total += t.electric_power(s, rect[:, j], flux[:, j])
     return total
 
 
@@ -108,16 +93,6 @@ class ZoneEmission:
         """(width, height) in metres of an emitter zone."""
         return self.grid(zone).size
 
-    def exitance(
-        self, s: Source, rect: np.ndarray, flux: np.ndarray, filt: np.ndarray, daylight: Daylight
-    ) -> np.ndarray:
-        """Exitance (lm/m²) of source s for each candidate (rect (m, 4), flux, filt (m,))."""
-        if s.kind == SourceKind.SKYLIGHT:
-            return filt * daylight.transmittance * daylight.exterior_lux
-        if s.exitance is not None:
-            return np.full(len(rect), s.exitance)
-        return flux / np.maximum(rect_areas(rect), 1e-12)
-
     def matrix(
         self,
         sources: Sequence[Source],
@@ -135,7 +110,7 @@ class ZoneEmission:
         by_kind = {k: np.zeros((nz, m), np.float32) for k in SourceKind}
         for j, s in enumerate(sources):
             g = self.grid(s.zone)
-            ex = self.exitance(s, rect[:, j], flux[:, j], filt[:, j], daylight)
+            ex = source_type(s.kind).exitance(s, rect[:, j], flux[:, j], filt[:, j], daylight)
             ou = _overlap(rect[:, j, 0], rect[:, j, 2], g.patch.shape[0], g.du)
             ov = _overlap(rect[:, j, 1], rect[:, j, 3], g.patch.shape[1], g.dv)
             block = (ex[:, None, None] * ou[:, :, None] * ov[:, None, :]).reshape(m, -1).T
@@ -146,14 +121,14 @@ class ZoneEmission:
         return (V, by_kind) if split_kinds else V
 
     def full_exitance(self, s: Source, daylight: Daylight) -> float:
-        """The exitance (lm/m²) of source s covering its whole zone at its largest setting
-        (a luminaire's largest flux): the scale of the power goals."""
-        if s.kind == SourceKind.SKYLIGHT:
-            return daylight.exterior_lux * daylight.transmittance
-        if s.exitance is not None:
-            return s.exitance
-        w, h = self.zone_size(s.zone)
-        return s.flux_range[1] / (w * h)
+        """The exitance (lm/m²) of source s covering its whole zone at its largest
+        setting (a luminaire's largest flux): the scale of the light-power goal."""
+        return source_type(s.kind).largest_exitance(s, self.zone_size(s.zone), daylight)
+
+    def full_electric_power(self, s: Source) -> float:
+        """Electric power (W) of source s at its largest setting over its whole zone:
+        the scale of the power goal."""
+        return source_type(s.kind).largest_electric_power(s, self.zone_size(s.zone))
 
 
 def _overlap(a: np.ndarray, b: np.ndarray, cells: int, size: float) -> np.ndarray:
