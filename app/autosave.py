@@ -5,7 +5,7 @@ project — with the best result of the running optimisation — to
 ``<autosave dir>/autosave-<pid>.json`` every ``interval`` seconds (atomically: a
 crash mid-write leaves the previous autosave). A clean exit, or a save with nothing
 running, removes the file. At start-up, autosaves whose process is gone are offered
-for recovery.
+for recovery (``offer_recovery``, ``recover``).
 
 The directory is ``$LIGHTINV_AUTOSAVE_DIR`` or the user data folder
 (``platformdirs.user_data_dir("LightInv")/autosave``); the interval is
@@ -18,6 +18,7 @@ import contextlib
 import json
 import os
 import time
+from collections.abc import Callable
 from dataclasses import dataclass, replace
 from pathlib import Path
 
@@ -163,3 +164,37 @@ class Autosaver(QtCore.QObject):
         """Remove this window's autosave (saved or closed cleanly)."""
         with contextlib.suppress(OSError):
             self.path.unlink()
+
+
+def offer_recovery(window, ask: Callable[[Recoverable], str]) -> bool:
+    """Offer the autosaves of LightInv sessions that ended without closing (a crash, a
+    kill) to ``window``: ``ask(recoverable) -> "recover" | "discard" | "keep"``. Returns
+    True if a project was recovered."""
+    for rec in orphaned_autosaves(window.autosaver.folder):
+        answer = ask(rec)
+        if answer == "recover" and rec.project is not None and recover(window, rec):
+            return True
+        if answer == "discard":
+            rec.path.unlink(missing_ok=True)
+    return False
+
+
+def recover(window, rec: Recoverable) -> bool:
+    """Open an autosave as ``window``'s project (unsaved; Save writes to the original
+    file), with the best layout of an interrupted run loaded into the design."""
+    if not window.load_project(rec.project, rec.original):
+        return False
+    doc = window.doc
+    doc.mark_dirty()
+    running = [s for s in rec.project.solutions if s.info.status == "running"]
+    if running:
+        with contextlib.suppress(LightInvError):
+            doc.apply_solution(running[-1])
+    rec.path.unlink(missing_ok=True)
+    window.autosaver.save_now()
+    window.statusBar().showMessage(
+        f"Recovered the work autosaved at {rec.saved_at}"
+        + (" with the interrupted run's best layout" if running else ""),
+        10_000,
+    )
+    return True

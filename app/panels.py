@@ -11,6 +11,7 @@ from PySide6 import QtCore, QtWidgets
 from app.document import Document
 from lightinv_core.design.model import DesignError, Intention
 from lightinv_core.errors import LightInvError
+from lightinv_core.kinds import Bound, Quantity, SourceKind
 
 
 class DesignTree(QtWidgets.QTreeWidget):
@@ -56,9 +57,7 @@ class DesignTree(QtWidgets.QTreeWidget):
         )
         for it in d.design.intentions:
             bounds = ", ".join(
-                f"{k} {getattr(it, k):g}"
-                for k in ("min", "max", "average", "uniformity")
-                if getattr(it, k) is not None
+                f"{k} {getattr(it, k):g}" for k in Bound if getattr(it, k) is not None
             )
             target = it.group if it.group is not None else f"{len(it.patches)} picked patches"
             QtWidgets.QTreeWidgetItem(its, [it.name, f"{target}: {bounds} {it.quantity}"]).setData(
@@ -164,7 +163,7 @@ class SourcePanel(QtWidgets.QGroupBox):
                 box.setMaximum(top)
                 box.setValue(value)
             self.strength.setEnabled(True)
-            if s.kind == "skylight":
+            if s.kind == SourceKind.SKYLIGHT:
                 self.strength_label.setText("filter (0-1)")
                 self.strength.setRange(0.0, 1.0)
                 self.strength.setSingleStep(0.05)
@@ -197,7 +196,11 @@ class SourcePanel(QtWidgets.QGroupBox):
 
     def _strength_edited(self) -> None:
         s = self.doc.design.source(self.doc.current_source)
-        key = "filter" if s.kind == "skylight" else ("flux" if s.flux is not None else "exitance")
+        key = (
+            "filter"
+            if s.kind == SourceKind.SKYLIGHT
+            else ("flux" if s.flux is not None else "exitance")
+        )
         self._apply(**{key: self.strength.value()})
 
     def _centred_edited(self, on: bool) -> None:
@@ -230,6 +233,15 @@ class SourcePanel(QtWidgets.QGroupBox):
             self.doc.remove_source(self.doc.current_source)
 
 
+BOUND_FIELDS = {
+    Bound.MIN: ("Minimum", 300.0),
+    Bound.MAX: ("Maximum", 1000.0),
+    Bound.AVERAGE: ("Average at least", 500.0),
+    Bound.UNIFORMITY: ("Uniformity U0 at least", 0.6),
+}
+"""Each bound of an intention: its label and the value the dialog offers."""
+
+
 class IntentionDialog(QtWidgets.QDialog):
     """Name, quantity and bounds of a new lighting intention on a group or the selection."""
 
@@ -240,20 +252,16 @@ class IntentionDialog(QtWidgets.QDialog):
         self.name = QtWidgets.QLineEdit(target)
         form.addRow("Name", self.name)
         self.quantity = QtWidgets.QComboBox()
-        self.quantity.addItem("illuminance (lux)", "lux")
-        self.quantity.addItem("reflected exitance C (lm/m²)", "C")
+        self.quantity.addItem("illuminance (lux)", str(Quantity.LUX))
+        self.quantity.addItem("reflected exitance C (lm/m²)", str(Quantity.C))
         form.addRow("Quantity", self.quantity)
         self.fields = {}
-        for key, label in (
-            ("min", "Minimum"),
-            ("max", "Maximum"),
-            ("average", "Average at least"),
-            ("uniformity", "Uniformity U0 at least"),
-        ):
+        for bound, (label, default) in BOUND_FIELDS.items():
+            key, u0 = str(bound), bound == Bound.UNIFORMITY
             check = QtWidgets.QCheckBox()
-            box = QtWidgets.QDoubleSpinBox(decimals=2 if key == "uniformity" else 1)
-            box.setRange(0.0, 1.0 if key == "uniformity" else 1e6)
-            box.setValue({"min": 300.0, "max": 1000.0, "average": 500.0, "uniformity": 0.6}[key])
+            box = QtWidgets.QDoubleSpinBox(decimals=2 if u0 else 1)
+            box.setRange(0.0, 1.0 if u0 else 1e6)
+            box.setValue(default)
             box.setEnabled(False)
             check.toggled.connect(box.setEnabled)
             row = QtWidgets.QHBoxLayout()
@@ -261,8 +269,8 @@ class IntentionDialog(QtWidgets.QDialog):
             row.addWidget(box)
             form.addRow(label, row)
             self.fields[key] = (check, box)
-        self.fields["average"][0].setChecked(True)
-        self.fields["uniformity"][0].setChecked(True)
+        self.fields[str(Bound.AVERAGE)][0].setChecked(True)
+        self.fields[str(Bound.UNIFORMITY)][0].setChecked(True)
         buttons = QtWidgets.QDialogButtonBox(
             QtWidgets.QDialogButtonBox.Ok | QtWidgets.QDialogButtonBox.Cancel
         )
@@ -304,7 +312,7 @@ class ZonePanel(QtWidgets.QGroupBox):
         self.name = QtWidgets.QLineEdit()
         form.addRow("Name", self.name)
         self.kind = QtWidgets.QComboBox()
-        self.kind.addItems(["luminaire", "skylight"])
+        self.kind.addItems([str(k) for k in SourceKind])
         form.addRow("Kind", self.kind)
         self.corners = []
         for label in ("u0", "v0", "u1", "v1"):
@@ -388,7 +396,7 @@ class ZoneDialog(QtWidgets.QDialog):
         self.name = QtWidgets.QLineEdit(default_name)
         form.addRow("Name", self.name)
         self.kind = QtWidgets.QComboBox()
-        self.kind.addItems(["luminaire", "skylight"])
+        self.kind.addItems([str(k) for k in SourceKind])
         form.addRow("Kind", self.kind)
         buttons = QtWidgets.QDialogButtonBox(
             QtWidgets.QDialogButtonBox.Ok | QtWidgets.QDialogButtonBox.Cancel

@@ -10,6 +10,8 @@ import numpy as np
 import pyqtgraph as pg
 from PySide6 import QtCore, QtWidgets
 
+from lightinv_core.kinds import GoalKind, SourceKind
+
 PENALTY_FLOOR = 1e-6
 """Penalties are drawn on a log axis; P = 0 (feasible) is drawn at this floor."""
 
@@ -85,26 +87,26 @@ class ConvergencePlot(QtWidgets.QWidget):
 
 
 AXES = {
-    "power": ("electric power (W)", lambda s: s.objectives.get("min_electric_power")),
-    "light": ("light power (lm)", lambda s: s.objectives.get("max_light_power")),
+    "power": ("electric power (W)", lambda s: s.objectives.get(GoalKind.MIN_ELECTRIC_POWER)),
+    "light": ("light power (lm)", lambda s: s.objectives.get(GoalKind.MAX_LIGHT_POWER)),
     "sky_area": (
         "skylight area (m²)",
-        lambda s: sum(x.area for x in s.sources if x.kind == "skylight"),
+        lambda s: sum(x.area for x in s.sources if x.kind == SourceKind.SKYLIGHT),
     ),
     "sky_filter": (
         "mean skylight filter",
-        lambda s: _mean([x.filter for x in s.sources if x.kind == "skylight"]),
+        lambda s: _mean([x.filter for x in s.sources if x.kind == SourceKind.SKYLIGHT]),
     ),
     "lum_area": (
         "luminaire area (m²)",
-        lambda s: sum(x.area for x in s.sources if x.kind == "luminaire"),
+        lambda s: sum(x.area for x in s.sources if x.kind == SourceKind.LUMINAIRE),
     ),
     "lum_flux": (
         "luminaire flux (lm)",
-        lambda s: sum(x.flux or 0.0 for x in s.sources if x.kind == "luminaire"),
+        lambda s: sum(x.flux or 0.0 for x in s.sources if x.kind == SourceKind.LUMINAIRE),
     ),
     "penalty": ("penalty P", lambda s: s.penalty),
-    "match": ("match error e", lambda s: s.objectives.get("match")),
+    "match": ("match error e", lambda s: s.objectives.get(GoalKind.MATCH)),
 }
 
 

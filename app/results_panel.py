@@ -90,7 +90,7 @@ class SolutionsPanel(QtWidgets.QWidget):
         self.entries = self.doc.results()
         sols = [s for _, s in self.entries]
         on_front = [self.doc.on_front(s) for s in sols]
-        pinned = [bool(s.info.get("pinned")) for s in sols]
+        pinned = [s.info.pinned for s in sols]
         chosen = self.index_of(self.doc.shown)
         self.table.blockSignals(True)
         self.table.setRowCount(len(sols))
@@ -131,7 +131,7 @@ class SolutionsPanel(QtWidgets.QWidget):
         self.compare.blockSignals(True)
         self.compare.clear()
         for i, (label, s) in enumerate(self.entries):
-            if s.info.get("pinned"):
+            if s.info.pinned:
                 self.compare.addItem(f"pinned: {label}, {_fmt(axis_value(s, 'power'))} W", i)
         if current is not None and self.compare.findData(current) >= 0:
             self.compare.setCurrentIndex(self.compare.findData(current))
@@ -166,7 +166,7 @@ class SolutionsPanel(QtWidgets.QWidget):
             QtWidgets.QMessageBox.information(self, "LightInv", "Select a result to pin first.")
             return
         s = self.entries[rows[0].row()][1]
-        self.doc.pin(s, not s.info.get("pinned"))
+        self.doc.pin(s, not s.info.pinned)
 
     def _compare_edited(self) -> None:
         if self.difference.isChecked():
@@ -223,9 +223,7 @@ class ViolationsPanel(QtWidgets.QWidget):
         elif sol.feasible:
             self.summary.setText("Feasible: every rule and lighting intention is met.")
         else:
-            problem = self.doc.problem()
-            if problem is not None:
-                self.offending = problem.offending_patches(problem.vars.initial())
+            self.offending = self.doc.offending_patches()
             n = sum(len(ids) for _, _, ids in self.offending)
             self.summary.setText(
                 f"Not feasible: {len(sol.violations)} violated"

@@ -15,11 +15,13 @@ import time
 import numpy as np
 from PySide6 import QtCore, QtWidgets
 
+from app import dialogs
 from app.workers import RunWorker
-from lightinv_core.design.solution import ParetoFront, Solution
+from lightinv_core.design.solution import ParetoFront, Solution, SolutionInfo
 from lightinv_core.errors import LightInvError
+from lightinv_core.kinds import GoalKind
 from lightinv_core.optimize.problem import DesignProblem
-from lightinv_core.study import Prepared
+from lightinv_core.optimize.registry import get_method
 
 REDRAW_MS = 200
 """Plots and counters redraw at most 5 times a second. The optimizer shares the
@@ -29,7 +31,6 @@ office demo (bench/gui_run.py, 2 cores), the run kept 63% of its speed at 5 Hz,
 PREVIEW_S = 0.25
 """The viewport shows a new best at most 4 times a second: a software-GL render costs
 ~15 ms of the GUI thread, and the optimizer shares the interpreter with it."""
-MULTI = ("epsilon", "two_step")
 
 
 class RunController(QtCore.QObject):
@@ -45,7 +46,7 @@ class RunController(QtCore.QObject):
         self.problem: DesignProblem | None = None
         self.found: list[Solution] = []  # sweep points so far (autosave)
         self.best_x: tuple[float, ...] = ()
-        self.best_info: dict = {}
+        self.best_info = SolutionInfo()
         self.status = ""
         self.preview_at = 0.0
         self.timer = QtCore.QTimer(self)
@@ -75,9 +76,8 @@ class RunController(QtCore.QObject):
         except LightInvError as exc:
             self._say(str(exc))
             return False
-        self.problem, self.found, self.best_x, self.best_info = problem, [], (), {}
-        prepared = Prepared(d.scene, d.patches, d.operator, True, 0.0)
-        self.worker = RunWorker(d.project, prepared, self.panel.seeds(), self)
+        self.problem, self.found, self.best_x, self.best_info = problem, [], (), SolutionInfo()
+        self.worker = RunWorker(d.project, d.prepared(), self.panel.seeds(), self)
         self.worker.succeeded.connect(self._succeeded)
         self.worker.failed.connect(self._failed)
         self.worker.finished.connect(self._ended)
@@ -122,22 +122,25 @@ class RunController(QtCore.QObject):
         if p.best_x != self.best_x and now - self.preview_at >= PREVIEW_S:
             self.preview_at = now
             self.best_x = p.best_x
-            seeds = self.worker.seeds or [self.doc.project.optimizer.seed]
-            self.best_info = {
-                "seed": seeds[min(p.run, len(seeds) - 1)],
-                "evaluations": snap.evaluations,
-                "seconds": snap.elapsed,
-                "status": "running",
-            }
+            optimizer = self.worker.project.optimizer
+            seeds = self.worker.seeds or [optimizer.seed]
+            self.best_info = SolutionInfo(
+                method=optimizer.method,
+                seed=seeds[min(p.run, len(seeds) - 1)],
+                evaluations=snap.evaluations,
+                seconds=snap.elapsed,
+                status="running",
+            )
             if self.panel.show_best.isChecked():
-                # Relights the view, which redraws the source outlines too (_recolour).
-                self.doc.set_preview(self.problem, np.array(p.best_x))
+                # The model lights the best layout (rules applied) without touching the
+                # design; that relights the view and redraws the outlines (_recolour).
+                self.doc.set_preview(self.problem.sources_at(np.array(p.best_x)))
 
     def best_so_far(self) -> tuple[Solution, ...]:
         """The running optimisation's results so far, judged on all patches (autosave)."""
         if self.worker is None:
             return ()
-        if self.doc.project.optimizer.method in MULTI:
+        if get_method(self.worker.project.optimizer.method).multi_objective:
             return tuple(self.found)
         if not self.best_x:
             return ()
@@ -183,7 +186,7 @@ class RunController(QtCore.QObject):
         self.status = "failed"
         self.doc.set_preview(None)
         self.panel.state.setText("The run failed; nothing was changed.")
-        QtWidgets.QMessageBox.critical(self.win, "LightInv: optimisation failed", message)
+        dialogs.error(self.win, "optimisation failed", message)
 
     def _ended(self) -> None:
         self.timer.stop()
@@ -195,7 +198,7 @@ class RunController(QtCore.QObject):
         self.finished.emit(self.status)
 
     def _say(self, message: str) -> None:
-        QtWidgets.QMessageBox.information(self.win, "LightInv", message)
+        dialogs.inform(self.win, message)
 
 
 def _status(results) -> str:
@@ -209,7 +212,7 @@ def _best_of(solutions: tuple[Solution, ...], problem: DesignProblem) -> Solutio
     """The best of several runs' results: feasible first, then by the primary goal."""
     if not solutions:
         return None
-    sign = -1.0 if problem.primary == "max_light_power" else 1.0
+    sign = -1.0 if problem.primary == GoalKind.MAX_LIGHT_POWER else 1.0
 
     def key(s: Solution):
         return (not s.feasible, s.penalty, sign * s.objectives.get(problem.primary, np.inf))

@@ -14,19 +14,27 @@ from PySide6 import QtCore, QtWidgets
 from app.document import Document
 from app.plots import ConvergencePlot
 from lightinv_core.errors import LightInvError
+from lightinv_core.kinds import GoalKind
+from lightinv_core.optimize.method import OptimizationMethod
+from lightinv_core.optimize.mop import EpsilonMethod, TwoStepMethod
+from lightinv_core.optimize.registry import METHODS, get_method
 
-METHOD_LABELS = {
-    "vns": "VNS on all patches",
-    "multilevel": "Multilevel VNS (n/64, n/16, n)",
-    "epsilon": "Pareto front: epsilon-constraint",
-    "two_step": "Pareto front: two-step",
-}
 GOAL_LABELS = {
-    "min_electric_power": ("least electric power", "electric power (W)"),
-    "max_light_power": ("most light power", "light power (lm)"),
-    "match": ("match a target lighting", "match error e"),
+    GoalKind.MIN_ELECTRIC_POWER: ("least electric power", "electric power (W)"),
+    GoalKind.MAX_LIGHT_POWER: ("most light power", "light power (lm)"),
+    GoalKind.MATCH: ("match a target lighting", "match error e"),
 }
-MULTI = ("epsilon", "two_step")
+SWEEP_COUNTS = {
+    EpsilonMethod: ("Front points", "epsilon_count"),
+    TwoStepMethod: ("Two-step runs", "runs"),
+}
+"""For a multi-objective method: the label of its run count and the settings field."""
+
+
+def sweep_count(method: OptimizationMethod) -> tuple[str, str] | None:
+    """(label, settings field) of a sweep's run count; None for a single-objective
+    method (the panel's seeds) or a sweep without one."""
+    return SWEEP_COUNTS.get(type(method))
 
 
 class RunPanel(QtWidgets.QWidget):
@@ -44,8 +52,8 @@ class RunPanel(QtWidgets.QWidget):
         form = QtWidgets.QFormLayout(left)
         form.setContentsMargins(0, 0, 0, 0)
         self.method = QtWidgets.QComboBox()
-        for key, label in METHOD_LABELS.items():
-            self.method.addItem(label, key)
+        for m in METHODS:
+            self.method.addItem(m.label, m.name)
         form.addRow("Method", self.method)
         self.goal = QtWidgets.QComboBox()
         form.addRow("Goal", self.goal)
@@ -103,13 +111,13 @@ class RunPanel(QtWidgets.QWidget):
         self.method.setCurrentIndex(self.method.findData(o.method))
         self.goal.clear()
         design = self.doc.design
-        kinds = ["min_electric_power", "max_light_power"]
+        kinds = [GoalKind.MIN_ELECTRIC_POWER, GoalKind.MAX_LIGHT_POWER]
         if design.target_sources:
-            kinds.append("match")
+            kinds.append(GoalKind.MATCH)
         for k in kinds:
-            self.goal.addItem(GOAL_LABELS[k][0], k)
-        self.goal.setCurrentIndex(self.goal.findData(design.goals[0].kind))
-        self.goal.setEnabled(o.method not in MULTI)
+            self.goal.addItem(GOAL_LABELS[k][0], str(k))
+        self.goal.setCurrentIndex(self.goal.findData(str(design.goals[0].kind)))
+        self.goal.setEnabled(not self._multi())
         self.max_evals.setValue(o.max_evals or 0)
         self.time_limit.setValue(o.time_limit or 0.0)
         self.seed.setValue(o.seed)
@@ -117,14 +125,19 @@ class RunPanel(QtWidgets.QWidget):
         for w in widgets:
             w.blockSignals(False)
 
+    def _multi(self) -> bool:
+        return get_method(self.doc.project.optimizer.method).multi_objective
+
     def _show_runs(self) -> None:
         o = self.doc.project.optimizer
-        if o.method == "epsilon":
-            self.runs_label.setText("Front points")
-            self.runs.setValue(o.epsilon_count)
-        elif o.method == "two_step":
-            self.runs_label.setText("Two-step runs")
-            self.runs.setValue(o.runs)
+        method = get_method(o.method)
+        count = sweep_count(method)
+        if count is not None:
+            self.runs_label.setText(count[0])
+            self.runs.setValue(getattr(o, count[1]))
+        elif method.multi_objective:
+            self.runs_label.setText("Runs")
+            self.runs.setValue(1)
         else:
             self.runs_label.setText("Seeds (runs)")
             self.runs.setValue(self._seeds)
@@ -147,26 +160,25 @@ class RunPanel(QtWidgets.QWidget):
             self.doc.set_primary_goal(kind)
 
     def _runs_edited(self, value: int) -> None:
-        method = self.doc.project.optimizer.method
-        if method == "epsilon":
-            self._set(epsilon_count=value)
-        elif method == "two_step":
-            self._set(runs=value)
-        else:
+        method = get_method(self.doc.project.optimizer.method)
+        count = sweep_count(method)
+        if count is not None:
+            self._set(**{count[1]: value})
+        elif not method.multi_objective:
             self._seeds = value
 
     # -- queries and run state ----------------------------------------------------------------
     def seeds(self) -> list[int]:
         """Seeds of a single-objective run: the project's seed, then the next ones."""
         o = self.doc.project.optimizer
-        n = 1 if o.method in MULTI else self._seeds
+        n = 1 if self._multi() else self._seeds
         return [o.seed + i for i in range(n)]
 
     def goal_label(self) -> str:
         """The plotted objective with its units."""
-        if self.doc.project.optimizer.method in MULTI:
+        if self._multi():
             return "objective of each sub-run"
-        return GOAL_LABELS[self.doc.design.goals[0].kind][1]
+        return GOAL_LABELS[GoalKind(self.doc.design.goals[0].kind)][1]
 
     def set_running(self, running: bool) -> None:
         """Enable Cancel (and nothing else) while a run goes on."""
@@ -175,7 +187,7 @@ class RunPanel(QtWidgets.QWidget):
         for w in (self.method, self.goal, self.max_evals, self.time_limit, self.seed, self.runs):
             w.setEnabled(not running and (w is not self.goal or self.goal.count() > 0))
         if not running:
-            self.goal.setEnabled(self.doc.project.optimizer.method not in MULTI)
+            self.goal.setEnabled(not self._multi())
 
     def show_progress(self, snap) -> None:
         """Counters of a ``RunSnapshot``."""

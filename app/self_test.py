@@ -23,15 +23,19 @@ def run() -> int:
             os.environ.setdefault("VTK_DEFAULT_OPENGL_WINDOW", "vtkEGLRenderWindow")
         import numpy as np
 
+        from lightinv_core.design.model import Daylight, Source
+        from lightinv_core.kinds import SourceKind
+        from lightinv_core.light import LightModel
         from lightinv_core.operator.build import build_operator
+        from lightinv_core.operator.settings import OperatorSettings
         from lightinv_core.scene.builtin import builtin_scene
         from lightinv_core.scene.patches import mesh_patches
-        from lightinv_core.sources.zones import rectangle_emission, zone_grid
 
-        patches = mesh_patches(builtin_scene("cornell", 0.3))
-        op = build_operator(patches, rank=80, rays=128)
-        idx, val = rectangle_emission(zone_grid(patches, "light"), 0.1, 0.1, 0.4, 0.4, 5000.0)
-        lux = op.zone_illuminance(idx, val)
+        scene = builtin_scene("cornell", 0.3)
+        patches = mesh_patches(scene)
+        op = build_operator(patches, OperatorSettings(rank=80, rays=128))
+        lamp = Source("L", "light", SourceKind.LUMINAIRE, (0.1, 0.1, 0.4, 0.4), flux=1000.0)
+        lux = LightModel(scene, patches, op).field((lamp,), Daylight()).illuminance
         report.update(
             patches=patches.n,
             k=op.k,

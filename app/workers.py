@@ -19,8 +19,9 @@ from typing import ClassVar
 from PySide6 import QtCore
 
 from lightinv_core.errors import CancelledError, LightInvError
-from lightinv_core.operator.cache import get_operator
-from lightinv_core.optimize.vns import Progress
+from lightinv_core.operator.cache import CachedOperator, get_operator
+from lightinv_core.operator.settings import OperatorSettings
+from lightinv_core.optimize.progress import Progress
 from lightinv_core.scene.patches import Patches
 
 
@@ -78,19 +79,17 @@ class Worker(QtCore.QThread):
 class PrecomputeWorker(Worker):
     """Builds (or loads from the cache) the radiosity operator of some patches."""
 
-    def __init__(self, patches: Patches, settings, parent: QtCore.QObject | None = None):
+    def __init__(
+        self, patches: Patches, settings: OperatorSettings, parent: QtCore.QObject | None = None
+    ):
         super().__init__(parent)
         self.patches, self.settings = patches, settings
         self.warnings: list[str] = []
 
-    def work(self):
-        s = self.settings
+    def work(self) -> CachedOperator:
         got = get_operator(
             self.patches,
-            rank=s.rank,
-            tol=s.tol,
-            rays=s.rays,
-            seed=s.seed,
+            self.settings,
             progress=self.progress.emit,
             cancel=self.is_cancelled,
             warn=self.warnings.append,

@@ -22,7 +22,7 @@ from pathlib import Path
 from PySide6 import QtCore, QtWidgets
 
 from app.main_window import MainWindow
-from lightinv_core.study import Prepared, solve
+from lightinv_core.study import solve
 
 DEMO = Path(__file__).resolve().parent.parent / "resources" / "projects" / "office-demo.json"
 
@@ -39,8 +39,8 @@ def gui_run(win, preview: bool) -> dict:
     win.runs.finished.disconnect(loop.quit)
     sol = win.doc.project.solutions[-1]
     return {
-        "evaluations": sol.info["evaluations"],
-        "seconds": sol.info["seconds"],
+        "evaluations": sol.info.evaluations,
+        "seconds": sol.info.seconds,
         "wall": wall,
         "redraws_per_s": (win.run_panel.plot.redraws - redraws) / wall,
     }
@@ -64,7 +64,7 @@ def main() -> None:
         app.processEvents(QtCore.QEventLoop.AllEvents, 20)
     win.doc.set_optimizer(max_evals=args.evals, stall=None, target=None, time_limit=None)
     d = win.doc
-    prepared = Prepared(d.scene, d.patches, d.operator, True, 0.0)
+    prepared = d.prepared()
     rows: dict[str, list[dict]] = {"core": [], "gui_preview": [], "gui_plots_only": []}
     for _ in range(args.repeat):
         r = solve(d.project, prepared)

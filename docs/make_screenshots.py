@@ -67,11 +67,9 @@ def main() -> None:
 
     d = win.doc
     d.set_optimizer(max_evals=3000)
-    its = tuple(
-        replace(i, name="desks 500-800 lux", min=500.0, max=800.0, average=None)
-        for i in d.design.intentions
-    )
-    d.project = replace(d.project, design=replace(d.design, intentions=its))
+    for i in d.design.intentions:
+        d.remove_intention(i.name)
+        d.add_intention(replace(i, name="desks 500-800 lux", min=500.0, max=800.0, average=None))
     d.remove_source("L2")
     d.remove_source("S1")
     d.update_source("L1", flux_range=(0.0, 6000.0))

@@ -24,7 +24,8 @@ from lightinv_core.design.model import (
     Rule,
     Source,
 )
-from lightinv_core.design.solution import ParetoFront, Solution, Violation
+from lightinv_core.design.solution import ParetoFront, Solution, SolutionInfo, Violation
+from lightinv_core.errors import DesignError
 from lightinv_core.fields import (
     NONFINITE,
     _choice,
@@ -331,13 +332,17 @@ def _solution(v: Any, path: str) -> Solution:
     info = _info_value(d.get("info", {}), at("info"))
     if not isinstance(info, dict):
         _fail(at("info"), f"expected an object, got {_describe(d['info'])}")
+    try:
+        typed = SolutionInfo.from_dict(info)
+    except DesignError as err:
+        _fail(at("info"), str(err))
     return Solution(
         sources,
         objectives,
         _result_number(d["penalty"], at("penalty")),
         _list(d.get("violations", []), at("violations"), _violation, "violations"),
         _list(d.get("x", []), at("x"), _result_number, "numbers"),
-        info,
+        typed,
     )
 
 

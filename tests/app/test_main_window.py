@@ -227,10 +227,7 @@ def test_export_report_from_the_window(qtbot, window, tmp_path):
     d.add_source("light")
     from dataclasses import replace
 
-    from lightinv_core.study import Prepared
-
-    prepared = Prepared(d.scene, d.patches, d.operator, True, 0.0)
-    result = solve(d.project, prepared, max_evals=300)
+    result = solve(d.project, d.prepared(), max_evals=300)
     d.project = replace(d.project, solutions=(result.best,))
     pdf = tmp_path / "report.pdf"
     assert window.export_report(pdf)

@@ -52,7 +52,7 @@ def test_a_run_plots_its_convergence_and_loads_the_best(qtbot, cornell_design):
     assert np.all(np.diff(curve[:, 1]) <= 1e-9)  # best power never rises...
     assert curve[-1, 2] == 0.0  # ...and the run ends feasible
     (best,) = win.doc.project.solutions
-    assert best.feasible and best.info["evaluations"] >= 1500
+    assert best.feasible and best.info.evaluations >= 1500
     assert win.doc.shown is best
     assert win.doc.design.sources[0].rect == best.sources[0].rect
     assert "evaluations" in win.run_panel.counters.text()
@@ -68,7 +68,7 @@ def test_cancel_keeps_the_best_solution_in_the_project(qtbot, cornell_design):
         win.run_panel.cancel_button.click()
     assert blocker.args == ["cancelled"]
     (best,) = win.doc.project.solutions
-    assert best.info["status"] == "cancelled" and best.info["evaluations"] > 0
+    assert best.info.status == "cancelled" and best.info.evaluations > 0
     assert win.doc.design.sources[0].rect == best.sources[0].rect
     assert "Cancelled" in win.run_panel.state.text()
 
@@ -98,7 +98,7 @@ def test_several_seeds_show_each_run(qtbot, cornell_design):
     win.run_panel.runs.setValue(3)
     assert run_and_wait(qtbot, win) == "feasible"
     sols = win.doc.project.solutions
-    assert [s.info["seed"] for s in sols] == [0, 1, 2]
+    assert [s.info.seed for s in sols] == [0, 1, 2]
     assert {0, 1, 2} <= set(win.run_panel.plot._data)  # one curve per run
     panel = win.solutions_panel
     assert panel.table.rowCount() == 3 and win.tabs.currentWidget() is panel
@@ -177,5 +177,5 @@ def test_pareto_browser_loads_pins_and_compares_solutions(qtbot, experiment5, tm
     path = tmp_path / "exp5.json"
     assert win.save_to(path)
     again = load_project(path)
-    assert [s.x for s in again.solutions if s.info.get("pinned")] == [front[0].x]
+    assert [s.x for s in again.solutions if s.info.pinned] == [front[0].x]
     assert len(again.pareto.solutions) == len(front)

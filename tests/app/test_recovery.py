@@ -66,7 +66,7 @@ def test_autosave_holds_the_running_best_and_a_clean_exit_removes_it(qtbot, make
     assert win.autosaver.save_now()
     rec = read_autosave(win.autosaver.path)
     (best,) = rec.project.solutions
-    assert best.info["status"] == "running" and rec.note == "optimisation running"
+    assert best.info.status == "running" and rec.note == "optimisation running"
     assert orphaned_autosaves(folder) == []  # this process is alive: not offered
     with qtbot.waitSignal(win.runs.finished, timeout=30_000):
         win.runs.cancel()
@@ -119,8 +119,8 @@ def test_kill_mid_run_then_recover(qtbot, make_window, tmp_path):
     (rec,) = offered
     assert rec.original == path.resolve() and rec.path == autosave
     wait_for_operator(qtbot, win)
-    (best,) = [s for s in win.doc.project.solutions if s.info.get("status") == "running"]
-    assert best.info["evaluations"] >= 500
+    (best,) = [s for s in win.doc.project.solutions if s.info.status == "running"]
+    assert best.info.evaluations >= 500
     assert win.doc.design.sources[0].rect == best.sources[0].rect  # loaded into the design
     assert win.doc.dirty and win.doc.path == path.resolve()
     assert not autosave.exists()  # taken over by this session's own autosave

@@ -1,0 +1,138 @@
+"""The window's actions, menus and toolbar: one function per menu.
+
+``create_actions`` makes the ``QAction``s as attributes of the window (``act_open``,
+``act_run``, ``mode_actions``, ...), which tests and scripts reach; the menu functions
+only place them. Slots are the window's public methods, so a menu entry and a script do
+the same thing.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+
+from PySide6 import QtGui, QtWidgets
+
+from lightinv_core.scene.builtin import BUILTIN_SCENES
+
+MODES = (
+    ("navigate", "Navigate"),
+    ("select", "Select patches"),
+    ("move", "Move source"),
+    ("zone", "Draw zone"),
+)
+CAMERAS = ("iso", "top", "front")
+
+
+def action(
+    parent: QtWidgets.QWidget, text: str, slot: Callable, shortcut=None, checkable=False
+) -> QtGui.QAction:
+    """A ``QAction`` calling ``slot`` when triggered."""
+    act = QtGui.QAction(text, parent)
+    if shortcut:
+        act.setShortcut(shortcut)
+    act.setCheckable(checkable)
+    act.triggered.connect(slot)
+    return act
+
+
+def create_actions(win) -> None:
+    """Every action of the main window ``win``, as its attributes."""
+    ks = QtGui.QKeySequence
+    win.act_open = action(win, "&Open project...", win.open_dialog, ks.Open)
+    win.act_save = action(win, "&Save", win.save, ks.Save)
+    win.act_save_as = action(win, "Save &As...", win.save_as_dialog, ks.SaveAs)
+    win.act_import = action(win, "&Import OBJ...", win.import_obj_dialog)
+    win.act_png = action(win, "Export viewport &PNG...", win.export_png_dialog)
+    win.act_report = action(win, "Export &report (PDF)...", win.export_report_dialog)
+    win.act_quit = action(win, "&Quit", win.close, ks.Quit)
+    win.act_precompute = action(win, "Precompute", win.start_precompute)
+    win.act_cancel = action(win, "Cancel", win.cancel_precompute)
+    win.act_cancel.setEnabled(False)
+    # The run controller is made after the actions: look it up when triggered.
+    win.act_run = action(win, "&Run optimisation", lambda: win.runs.start(), "F5")
+    win.act_cancel_run = action(win, "Cancel optimisation", lambda: win.runs.cancel())
+    win.act_cancel_run.setEnabled(False)
+    win.act_intention = action(win, "Add intention on selection...", win.add_intention_on_selection)
+    win.act_clear = action(win, "Clear selection", lambda: win.doc.set_selection([]))
+    win.mode_group = QtGui.QActionGroup(win)
+    win.mode_actions = {}
+    for mode, text in MODES:
+        act = action(win, text, lambda _=False, m=mode: win.set_mode(m), checkable=True)
+        win.mode_group.addAction(act)
+        win.mode_actions[mode] = act
+    win.mode_actions["navigate"].setChecked(True)
+    win.camera_actions = {
+        name: action(win, f"{name.title()} view", lambda _=False, n=name: win.viewport.camera(n))
+        for name in CAMERAS
+    }
+
+
+def file_menu(win, bar: QtWidgets.QMenuBar) -> None:
+    """File: new from a built-in scene, import, open, recent, save, export, quit."""
+    file = bar.addMenu("&File")
+    new = file.addMenu("&New from built-in scene")
+    for name in BUILTIN_SCENES:
+        new.addAction(action(win, name, lambda _=False, n=name: win.new_project(n)))
+    for act in (win.act_import, win.act_open):
+        file.addAction(act)
+    win.recent_menu = file.addMenu("Open &recent")
+    file.addSeparator()
+    for act in (win.act_save, win.act_save_as, win.act_png, win.act_report):
+        file.addAction(act)
+    file.addSeparator()
+    file.addAction(win.act_quit)
+
+
+def view_menu(win, bar: QtWidgets.QMenuBar) -> None:
+    """View: the camera presets."""
+    view = bar.addMenu("&View")
+    for act in win.camera_actions.values():
+        view.addAction(act)
+
+
+def design_menu(win, bar: QtWidgets.QMenuBar) -> None:
+    """Design: intentions on the selection, clearing it, the viewport's modes."""
+    design = bar.addMenu("&Design")
+    for act in (win.act_intention, win.act_clear, *win.mode_actions.values()):
+        design.addAction(act)
+
+
+def compute_menu(win, bar: QtWidgets.QMenuBar) -> None:
+    """Compute: precompute the operator, run the optimisation, and cancel either."""
+    compute = bar.addMenu("&Compute")
+    for act in (win.act_precompute, win.act_cancel, win.act_run, win.act_cancel_run):
+        compute.addAction(act)
+
+
+def main_toolbar(win) -> QtWidgets.QToolBar:
+    """The toolbar: files, precompute, run, modes, intention, cameras."""
+    tools = win.addToolBar("Main")
+    tools.setObjectName("main toolbar")
+    groups = (
+        (win.act_open, win.act_save, win.act_precompute, win.act_cancel),
+        (win.act_run, win.act_cancel_run),
+        (*win.mode_actions.values(), win.act_intention),
+        tuple(win.camera_actions.values()),
+    )
+    for i, group in enumerate(groups):
+        if i:
+            tools.addSeparator()
+        for act in group:
+            tools.addAction(act)
+    return tools
+
+
+def build_menus(win) -> None:
+    """The menu bar and the toolbar of ``win`` (its actions made first)."""
+    bar = win.menuBar()
+    for menu in (file_menu, view_menu, design_menu, compute_menu):
+        menu(win, bar)
+    main_toolbar(win)
+
+
+def fill_recent(win, paths: list[str]) -> None:
+    """The File > Open recent entries."""
+    win.recent_menu.clear()
+    for p in paths:
+        win.recent_menu.addAction(action(win, p, lambda _=False, q=p: win.open_path(q)))
+    win.recent_menu.setEnabled(bool(paths))

@@ -1,0 +1,127 @@
+"""Project files from the window: new, open, import, save, export, recent files.
+
+Errors are shown, never half-applied: a file that does not load leaves the open project
+as it was, a failed save keeps the old file. Unsaved changes are asked about before
+they are discarded (unless the window's ``ask_before_discard`` is off: scripts, tests).
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+from PySide6 import QtCore
+
+from app import actions, dialogs
+from lightinv_core.editing import blank_project, obj_project
+from lightinv_core.errors import LightInvError
+from lightinv_core.project import Project, load_project
+
+MAX_RECENT = 8
+
+
+class ProjectFiles(QtCore.QObject):
+    """Opening and saving the project of a main window."""
+
+    def __init__(self, window):
+        super().__init__(window)
+        self.win, self.doc = window, window.doc
+
+    # -- opening -------------------------------------------------------------------------------
+    def may_discard(self) -> bool:
+        """Whether the open project may be replaced (nothing unsaved, or the user agrees)."""
+        d = self.doc
+        if d.project is None or not d.dirty or not self.win.ask_before_discard:
+            return True
+        return dialogs.confirm_discard(self.win)
+
+    def load_project(self, project: Project, path: Path | None = None) -> bool:
+        """Open a project (its scene loaded and meshed); errors shown, nothing half-done."""
+        if not self.may_discard():
+            return False
+        self.win.stop_worker()
+        try:
+            self.doc.set_project(project, path)
+        except LightInvError as exc:
+            dialogs.error(self.win, "cannot open", str(exc))
+            return False
+        return True
+
+    def new_project(self, scene: str, resolution: float | None = None) -> bool:
+        """A new project on a built-in scene."""
+        return self.load_project(blank_project(scene, resolution))
+
+    def open_path(self, path: str | Path) -> bool:
+        """Open a project file (remembered among the recent files)."""
+        try:
+            project = load_project(path)
+        except LightInvError as exc:
+            dialogs.error(self.win, "cannot open", str(exc))
+            return False
+        if self.load_project(project, Path(path)):
+            self.remember(Path(path))
+            return True
+        return False
+
+    def import_obj(self, path: str | Path) -> bool:
+        """A new project on an OBJ model (groups, materials and zones from the file)."""
+        return self.load_project(obj_project(path))
+
+    def open_dialog(self) -> None:
+        path = dialogs.open_file(self.win, "Open project")
+        if path:
+            self.open_path(path)
+
+    def import_obj_dialog(self) -> None:
+        path = dialogs.open_file(self.win, "Import OBJ model", "Wavefront OBJ (*.obj)")
+        if path:
+            self.import_obj(path)
+
+    # -- saving and exporting ------------------------------------------------------------------
+    def save(self) -> bool:
+        """Save to the project's file (Save As when it has none)."""
+        if self.doc.path is None:
+            return self.save_as_dialog()
+        return self.save_to(self.doc.path)
+
+    def save_to(self, path: str | Path) -> bool:
+        """Save atomically; errors are shown and the old file is kept."""
+        try:
+            saved = self.doc.save(path)
+        except (LightInvError, OSError) as exc:
+            dialogs.error(self.win, "cannot save", str(exc))
+            return False
+        self.remember(saved)
+        self.win.autosaver.save_now()  # nothing unsaved: removes the autosave (unless running)
+        self.win.statusBar().showMessage(f"Saved {saved}", 4000)
+        return True
+
+    def save_as_dialog(self) -> bool:
+        path = dialogs.save_file(self.win, "Save project")
+        return bool(path) and self.save_to(path)
+
+    def export_png_dialog(self) -> None:
+        path = dialogs.save_file(self.win, "Export viewport", "PNG image (*.png)")
+        if path:
+            self.win.viewport.screenshot(path)
+
+    def export_report_dialog(self) -> None:
+        path = dialogs.save_file(self.win, "Export report", "PDF (*.pdf)")
+        if path:
+            self.win.export_report(path)
+
+    # -- recent files --------------------------------------------------------------------------
+    def recent_files(self) -> list[str]:
+        """The recently opened or saved project files, newest first."""
+        value = self.win.settings.value("recent") or []
+        return [value] if isinstance(value, str) else list(value)
+
+    def remember(self, path: Path) -> None:
+        """Put ``path`` first among the recent files."""
+        resolved = str(path.resolve())
+        recent = [resolved] + [p for p in self.recent_files() if p != resolved]
+        self.win.settings.setValue("recent", recent[:MAX_RECENT])
+        self.fill_recent()
+
+    def fill_recent(self) -> None:
+        """Refresh File > Open recent."""
+        actions.fill_recent(self.win, self.recent_files())

@@ -1,0 +1,110 @@
+"""Background work of the window other than optimisation: building (or loading) the
+radiosity operator, and writing the PDF report.
+
+One such worker at a time (``worker``), shown by the status bar's progress bar with
+Compute > Cancel; the optimisation has its own controller (run_control.py). Workers
+are in workers.py; this module starts them and takes their results to the document.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+from PySide6 import QtCore, QtWidgets
+
+from app import dialogs
+from app.workers import PrecomputeWorker, ReportWorker, Worker
+
+
+class BackgroundTasks(QtCore.QObject):
+    """Precompute and report workers of a main window."""
+
+    def __init__(self, window):
+        super().__init__(window)
+        self.win, self.doc = window, window.doc
+        self.worker: Worker | None = None
+
+    def _start(self, worker: Worker) -> None:
+        win = self.win
+        self.worker = worker
+        worker.progress.connect(lambda f: win.progress.setValue(int(1000 * f)))
+        worker.finished.connect(self._done)
+        win.progress.setValue(0)
+        win.progress.show()
+        win.act_cancel.setEnabled(True)
+        win.act_precompute.setEnabled(False)
+        worker.start()
+
+    # -- the operator --------------------------------------------------------------------------
+    def start_precompute(self) -> None:
+        """Build or load the operator in a worker thread (progress bar, cancel)."""
+        if self.doc.patches is None or self.worker is not None:
+            return
+        worker = PrecomputeWorker(self.doc.patches, self.doc.operator_settings, self)
+        worker.succeeded.connect(self._precomputed)
+        worker.failed.connect(lambda msg: dialogs.error(self.win, "precompute failed", msg))
+        worker.cancelled.connect(
+            lambda: self._say("Precompute cancelled: lighting unavailable until it runs", 6000)
+        )
+        self.win.statusBar().showMessage("Precomputing the radiosity operator...")
+        self._start(worker)
+
+    def _precomputed(self, got) -> None:
+        if got.operator.digest != self.doc.patches.digest():
+            return  # the scene changed while the worker ran
+        self.doc.set_operator(got.operator)
+        err = got.operator.info["estimated_rel_error"]
+        self.win.status_rank.setText(f"rank k = {got.operator.k} (error {100 * err:.2f}%)")
+        how = "loaded from the cache" if got.from_cache else "built"
+        self._say(f"Operator {how} in {got.seconds:.1f} s", 6000)
+        for w in self.worker.warnings:
+            self._say(w, 8000)
+
+    # -- the report ----------------------------------------------------------------------------
+    def export_report(self, path: str | Path) -> bool:
+        """Write the PDF report of the project's saved solution in a worker (progress bar,
+        Cancel); needs the operator and a solution saved by a run."""
+        d = self.doc
+        if d.operator is None or self.worker is not None:
+            dialogs.inform(self.win, "Wait for the radiosity operator first.")
+            return False
+        if not d.project.solutions and d.project.pareto is None:
+            dialogs.inform(
+                self.win, "The project has no results yet: press Run (Optimisation panel) first."
+            )
+            return False
+        worker = ReportWorker(d.project, d.prepared(), Path(path), self)
+        worker.succeeded.connect(
+            lambda info: self._say(f"Report written: {info.path} ({len(info.pages)} pages)", 8000)
+        )
+        worker.failed.connect(lambda msg: dialogs.error(self.win, "report failed", msg))
+        worker.cancelled.connect(lambda: self._say("Report cancelled; no file written", 6000))
+        self._start(worker)
+        return True
+
+    # -- common --------------------------------------------------------------------------------
+    def cancel(self) -> None:
+        """Ask the running worker to stop at its next check."""
+        if self.worker is not None:
+            self.worker.cancel()
+
+    def stop(self) -> None:
+        """Cancel and wait for the worker (closing, switching projects)."""
+        if self.worker is not None:
+            self.worker.cancel()
+            self.worker.wait()
+            QtWidgets.QApplication.processEvents()
+
+    def _done(self) -> None:
+        win = self.win
+        win.progress.hide()
+        win.act_cancel.setEnabled(False)
+        win.act_precompute.setEnabled(True)
+        self.worker.deleteLater()
+        self.worker = None
+        if win.run_after_precompute and self.doc.operator is not None:
+            win.run_after_precompute = False  # lightinv --run: start once the operator is there
+            win.runs.start()
+
+    def _say(self, message: str, ms: int) -> None:
+        self.win.statusBar().showMessage(message, ms)

@@ -1,0 +1,402 @@
+"""``DocumentModel``: the open project as an editor sees it, with every editing rule.
+
+Plain Python (the desktop window adapts it to Qt signals in ``app/document.py``; a
+script or a test drives it directly). It holds the project, its scene and patches, the
+radiosity operator and light model once built, the selection, the current source, the
+file path and dirty flag, the result shown and the layout previewed. Each setter applies
+its rule (the cascades are in rules.py, the results' bookkeeping in results.py), then
+emits the named events of what changed (events.py). All light comes from the
+``LightModel``: the design's as written, a running best's preview, or other sources'
+for the difference view.
+"""
+
+from __future__ import annotations
+
+from dataclasses import replace
+from pathlib import Path
+
+import numpy as np
+
+from lightinv_core.design.model import Design, Goal, Intention, Source
+from lightinv_core.design.solution import ParetoFront, Solution
+from lightinv_core.editing import results as _results
+from lightinv_core.editing import rules
+from lightinv_core.editing import zones as _zones
+from lightinv_core.editing.events import Events
+from lightinv_core.editing.lighting import ShownLight
+from lightinv_core.errors import DesignError
+from lightinv_core.kinds import GoalKind
+from lightinv_core.light.field import LightField
+from lightinv_core.light.model import LightModel
+from lightinv_core.operator.radiosity import RadiosityOperator
+from lightinv_core.optimize.problem import DesignProblem
+from lightinv_core.project import (
+    OperatorSettings,
+    Project,
+    SceneSpec,
+    load_project,
+    save_project,
+)
+from lightinv_core.scene.edits import ZoneEdit
+from lightinv_core.scene.model import Rect, Scene
+from lightinv_core.scene.patches import Patches, mesh_patches
+from lightinv_core.sources.zones import zone_grid
+from lightinv_core.study import Prepared
+
+
+class DocumentModel:
+    """The project, its scene, patches and light model, the selection and the results."""
+
+    def __init__(self) -> None:
+        self.events = Events()
+        self._project: Project | None = None
+        self.scene: Scene | None = None
+        self.patches: Patches | None = None
+        self.operator: RadiosityOperator | None = None
+        self.light: LightModel | None = None
+        self.selection = np.zeros(0, np.int64)
+        self.current_source: str | None = None
+        self.path: Path | None = None
+        self.dirty = False
+        self.shown: Solution | None = None  # the result last loaded into the design
+        self._problem: DesignProblem | None = None
+        self._light_shown: ShownLight | None = None  # the light model and the light shown
+        self._preview: tuple[Source, ...] | None = None  # a running best's sources, as lit
+
+    # -- the project --------------------------------------------------------------------------
+    @property
+    def project(self) -> Project | None:
+        """The open project (None before one is opened)."""
+        return self._project
+
+    @project.setter
+    def project(self, project: Project) -> None:
+        # Direct replacement (scripts, tests): no event, but nothing stale is kept.
+        self._project, self._problem = project, None
+
+    @property
+    def design(self) -> Design:
+        """The project's design."""
+        return self._project.design
+
+    @property
+    def operator_settings(self) -> OperatorSettings:
+        """How the operator is built for this project."""
+        return self._project.operator
+
+    def set_project(self, project: Project, path: Path | None = None) -> None:
+        """Make ``project`` the open one: its scene is loaded and meshed first, so a
+        SceneError changes nothing. The operator is dropped (build it again)."""
+        base = path.parent if path is not None else None
+        scene = project.scene.load(base)
+        patches = mesh_patches(scene)
+        self._project, self.scene, self.patches = project, scene, patches
+        self.operator, self.light, self._problem, self._light_shown = None, None, None, None
+        self.shown, self._preview = None, None
+        self.selection = np.zeros(0, np.int64)
+        self.current_source = project.design.sources[0].name if project.design.sources else None
+        self.path, self.dirty = path, False
+        for name in ("scene", "design", "selection", "path", "results"):
+            self.events.emit(name)
+
+    def open(self, path: str | Path) -> None:
+        """Open a project file (ProjectError on a bad file; nothing changes then)."""
+        path = Path(path)
+        self.set_project(load_project(path), path)
+
+    def new_from_scene(self, name: str, resolution: float | None = None) -> None:
+        """A new, unsaved project on a built-in scene."""
+        self.set_project(blank_project(name, resolution))
+
+    def save(self, path: str | Path | None = None) -> Path:
+        """Save atomically to ``path`` (default: where it came from); ValueError when the
+        project has no file yet."""
+        path = Path(path) if path is not None else self.path
+        if path is None:
+            raise ValueError("no file name yet: use Save As")
+        save_project(self._project, path)
+        self.path, self.dirty = path, False
+        self.events.emit("path")
+        return path
+
+    def mark_dirty(self) -> None:
+        """Flag unsaved changes (e.g. work recovered from an autosave)."""
+        self.dirty = True
+        self.events.emit("path")
+
+    def set_operator(self, operator: RadiosityOperator) -> None:
+        """Attach a built (or cached) operator of these patches; lighting becomes
+        available (DesignError if it was built for another scene)."""
+        self.light = LightModel(self.scene, self.patches, operator)
+        self.operator, self._problem = operator, None
+        self._light_shown = ShownLight(self.light)
+        self.events.emit("operator")
+        self._relight()
+
+    def prepared(self) -> Prepared:
+        """The scene, patches and operator for a run or a report in a worker thread (its
+        own light model: the zone tables fill lazily and are not shared across threads)."""
+        return Prepared(self.scene, self.patches, self.operator, True, 0.0)
+
+    # -- design edits ---------------------------------------------------------------------------
+    def _set_design(self, design: Design) -> None:
+        self._project = replace(self._project, design=design)
+        self._problem = None
+        self.shown = None  # an edited design is no longer the loaded result
+        self.dirty = True
+        self.events.emit("design")
+        self._relight()
+
+    def zone_kind(self, zone: str) -> str:
+        """The kind of source ("skylight" or "luminaire") an emitter zone takes."""
+        return self.scene.zone(zone).kind
+
+    def zone_size(self, zone: str) -> tuple[float, float]:
+        """(width, height) in metres of an emitter zone."""
+        if self.light is not None:
+            return self.light.zone_size(zone)
+        return zone_grid(self.patches, zone).size
+
+    def add_source(self, zone: str, name: str | None = None) -> Source:
+        """A new source centred in ``zone`` (see ``rules.new_source``); it becomes the
+        current one."""
+        src = rules.new_source(self.design, zone, self.zone_kind(zone), self.zone_size(zone), name)
+        design = rules.with_source(self.design, src)
+        self.current_source = src.name
+        self._set_design(design)
+        return src
+
+    def update_source(self, name: str, **fields) -> None:
+        """Change fields of a source (rect, flux, filter, free, ...); DesignError on a bad
+        value, leaving the design unchanged."""
+        self._set_design(rules.with_source_fields(self.design, name, **fields))
+
+    def move_source(self, name: str, du: float, dv: float) -> None:
+        """Shift a source by (du, dv) metres, kept inside its zone."""
+        s = self.design.source(name)
+        self.update_source(name, rect=rules.moved_rect(s, du, dv, self.zone_size(s.zone)))
+
+    def remove_source(self, name: str) -> None:
+        """Delete a source and the rules that name it."""
+        design = rules.without_source(self.design, name)
+        if self.current_source == name:
+            self.current_source = design.sources[0].name if design.sources else None
+        self._set_design(design)
+
+    def set_centred(self, name: str, centred: bool) -> None:
+        """Tie (or untie) a source to the centre of its zone."""
+        self._set_design(rules.with_centred(self.design, name, centred))
+
+    def set_mirror(self, name: str, original: str | None, axis: str = "u") -> None:
+        """Make source ``name`` the mirror image of ``original`` along a zone axis (None:
+        free again)."""
+        self._set_design(rules.with_mirror(self.design, name, original, axis))
+
+    def centred(self, name: str) -> bool:
+        """Whether a centred rule ties ``name``."""
+        return rules.is_centred(self.design, name)
+
+    def mirror_of(self, name: str) -> tuple[str, str] | None:
+        """(original, axis) if ``name`` mirrors another source."""
+        return rules.mirror_of(self.design, name)
+
+    def add_intention(self, intention: Intention) -> None:
+        """Append a lighting intention (DesignError if its name is taken)."""
+        self._set_design(replace(self.design, intentions=(*self.design.intentions, intention)))
+
+    def remove_intention(self, name: str) -> None:
+        """Delete a lighting intention."""
+        its = tuple(i for i in self.design.intentions if i.name != name)
+        self._set_design(replace(self.design, intentions=its))
+
+    def set_primary_goal(self, kind: str) -> None:
+        """Make ``kind`` the goal a single-objective run optimises (the others stay)."""
+        design = rules.with_primary_goal(self.design, kind)
+        if design is not self.design:
+            self._set_design(design)
+
+    def set_optimizer(self, **fields) -> None:
+        """Change run settings (method, seed, max_evals, time_limit, ...); ProjectError on
+        a bad value, leaving the project unchanged."""
+        opt = replace(self._project.optimizer, **fields)
+        if opt != self._project.optimizer:
+            self._project = replace(self._project, optimizer=opt)
+            self.mark_dirty()
+
+    def set_selection(self, patch_ids) -> None:
+        """Replace the picked patches (ids, any order, repeats dropped)."""
+        self.selection = np.unique(np.asarray(patch_ids, dtype=np.int64))
+        self.events.emit("selection")
+
+    def set_current_source(self, name: str | None) -> None:
+        """Which source the source panel edits and the viewport drags."""
+        self.current_source = name
+        self.events.emit("design")
+
+    # -- emitter zones drawn by the user ------------------------------------------------------
+    @property
+    def user_zones(self) -> tuple[ZoneEdit, ...]:
+        """Zones the project adds to its scene."""
+        return self._project.scene.zones
+
+    def drawable_surface(self, patch: int) -> tuple[str, Rect] | None:
+        """(surface name, Rect) under a patch if a zone may be drawn there, else None."""
+        return _zones.drawable_surface(self.scene, self.patches, patch)
+
+    def new_zone_name(self) -> str:
+        """A free name for a drawn zone (Z1, Z2, ...)."""
+        return _zones.new_zone_name(self.scene)
+
+    def set_user_zones(self, zones) -> None:
+        """Replace the drawn zones: the scene is rebuilt and re-meshed (the operator must
+        be built again) and sources in a zone that goes are removed with their rules.
+        SceneError on a bad zone, leaving the project unchanged."""
+        zones = tuple(zones)
+        names = _zones.zone_names_after(self.scene, self.user_zones, zones)
+        project = replace(
+            self._project,
+            scene=replace(self._project.scene, zones=zones),
+            design=rules.only_in_zones(self.design, names),
+        )
+        self.set_project(project, self.path)  # loads the scene first: an error changes nothing
+        self.mark_dirty()
+
+    def add_user_zone(self, name: str, kind: str, surface: str, rect) -> ZoneEdit:
+        """Draw a new zone ``name`` of ``kind`` on ``surface`` at ``rect`` (u0, v0, u1, v1)
+        metres of the surface; SceneError on a bad zone, leaving the project unchanged."""
+        edit = ZoneEdit(name, kind, surface, tuple(rect))
+        self.set_user_zones((*self.user_zones, edit))
+        return edit
+
+    # -- lighting -----------------------------------------------------------------------------
+    def problem(self) -> DesignProblem | None:
+        """The design bound to the light model (None before the operator exists)."""
+        if self.light is None:
+            return None
+        if self._problem is None:
+            self._problem = DesignProblem(self.design, self.light)
+        return self._problem
+
+    def effective_sources(self) -> tuple[Source, ...]:
+        """The design's sources as lit: mirrored and centred ones placed by their rules."""
+        if self._light_shown is None or not self.design.sources:
+            return self.design.sources
+        return self._light_shown.layout(self.design)
+
+    @property
+    def field(self) -> LightField | None:
+        """The light shown: a running best's if previewed, else the design's (None
+        before the operator exists)."""
+        return None if self._light_shown is None else self._light_shown.field
+
+    @property
+    def last_eval_ms(self) -> float:
+        """Time (ms) of the last relight."""
+        return float("nan") if self._light_shown is None else self._light_shown.last_eval_ms
+
+    def lighting(self) -> np.ndarray | None:
+        """Illuminance (lux) of every patch as shown, or None."""
+        field = self.field
+        return None if field is None else field.illuminance
+
+    def design_field(self) -> LightField | None:
+        """The light of the design as written (tied rules applied), even while a preview
+        is shown; None before the operator exists."""
+        return None if self._light_shown is None else self._light_shown.design_field(self.design)
+
+    def lighting_of(self, sources) -> np.ndarray | None:
+        """Illuminance (lux) of every patch lit by ``sources`` (e.g. a pinned result's)
+        under the design's tied rules; None before the operator exists."""
+        if self._light_shown is None:
+            return None
+        return self._light_shown.of_sources(self.design, sources)
+
+    def offending_patches(self) -> list[tuple[str, str, np.ndarray]]:
+        """Where the design's light breaks its intentions: (intention, bound, patch ids)
+        per violated bound; empty before the operator exists or when a geometric rule
+        fails."""
+        problem = self.problem()
+        return [] if problem is None else problem.offending_patches(problem.vars.initial())
+
+    def set_preview(self, sources=None) -> None:
+        """Light the view with ``sources`` as lit (a running best) without changing the
+        design; None returns to the design's own light."""
+        self._preview = None if sources is None else tuple(sources)
+        self._relight()
+
+    def preview_sources(self) -> tuple[Source, ...] | None:
+        """The previewed layout's sources (rules applied), or None."""
+        return self._preview
+
+    def _relight(self) -> None:
+        if self._light_shown is not None:
+            self._light_shown.relight(self.design, self._preview)
+            self.events.emit("lighting")
+
+    # -- results ------------------------------------------------------------------------------
+    def apply_solution(self, solution: Solution) -> None:
+        """Load a result into the design: each source takes the result's rectangle, flux
+        and filter (which variables are free, the rules and the intentions stay), and the
+        result becomes the shown one. DesignError if it was found for other sources."""
+        found = {s.name: s for s in solution.sources}
+        if set(found) != {s.name for s in self.design.sources}:
+            raise DesignError(
+                "this solution was found for other sources "
+                f"({', '.join(found)}); it cannot be loaded"
+            )
+        sources = tuple(
+            replace(
+                s, rect=found[s.name].rect, flux=found[s.name].flux, filter=found[s.name].filter
+            )
+            for s in self.design.sources
+        )
+        self._preview = None
+        self._set_design(replace(self.design, sources=sources))
+        self.shown = solution
+        self.events.emit("results")
+
+    def set_results(self, solutions: tuple[Solution, ...], pareto: ParetoFront | None) -> None:
+        """Store a run's results (pinned results of earlier runs are kept ahead)."""
+        self._project = _results.with_results(self._project, solutions, pareto)
+        self.mark_dirty()
+        self.events.emit("results")
+
+    def results(self) -> list[tuple[str, Solution]]:
+        """Every result to browse, labelled (see ``results.browse``)."""
+        return _results.browse(self._project)
+
+    def on_front(self, solution: Solution) -> bool:
+        """Whether ``solution`` is on the project's Pareto front."""
+        return _results.on_front(self._project, solution)
+
+    def pin(self, solution: Solution, pinned: bool = True) -> Solution:
+        """Pin (keep across runs, offer for comparison; saved with the project) or unpin
+        a result; returns the stored copy."""
+        self._project, new = _results.with_pin(self._project, solution, pinned)
+        if self.shown is not None and self.shown.x == solution.x:
+            self.shown = new
+        self.mark_dirty()
+        self.events.emit("results")
+        return new
+
+    def pinned(self) -> list[Solution]:
+        """The pinned results."""
+        return _results.pinned_results(self._project)
+
+
+def blank_project(scene_name: str, resolution: float | None = None) -> Project:
+    """A new project on a built-in scene: no sources yet, goal least electric power."""
+    return Project(
+        name=f"New {scene_name} project",
+        scene=SceneSpec(builtin=scene_name, resolution=resolution),
+        design=Design((), (Goal(GoalKind.MIN_ELECTRIC_POWER),)),
+    )
+
+
+def obj_project(path: str | Path) -> Project:
+    """A new project on an OBJ model (groups, materials and zones from the file)."""
+    return Project(
+        name=Path(path).stem,
+        scene=SceneSpec(obj=str(Path(path).resolve())),
+        design=Design((), (Goal(GoalKind.MIN_ELECTRIC_POWER),)),
+    )

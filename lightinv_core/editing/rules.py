@@ -1,0 +1,125 @@
+"""Editing rules of a design as pure functions: each takes a ``Design`` (and what it
+needs of the scene) and returns the edited design, never changing anything in place.
+
+The cascades live here: removing a source removes the rules that name it; keeping only
+the sources of some zones (a drawn zone deleted) keeps only the rules whose sources all
+stay.
+"""
+
+from __future__ import annotations
+
+from dataclasses import replace
+
+import numpy as np
+
+from lightinv_core.design.model import CORNERS, Design, Goal, Rule, Source
+from lightinv_core.kinds import RuleKind, SourceKind
+
+NEW_SOURCE_SIZE = 1.0
+"""m: a new source is a square this wide (or the zone's width or height if smaller)."""
+NEW_LUMINAIRE_FLUX = 3000.0
+"""lm: a typical luminaire's flux; a new skylight starts with filter 1."""
+
+
+def free_name(stem: str, taken: set[str]) -> str:
+    """The first of ``stem``1, ``stem``2, ... not in ``taken``."""
+    return next(f"{stem}{i}" for i in range(1, 10_000) if f"{stem}{i}" not in taken)
+
+
+def new_source(
+    design: Design, zone: str, kind: str, size: tuple[float, float], name: str | None = None
+) -> Source:
+    """A source centred in ``zone`` (``size`` (w, h) m): a 1 x 1 m (or smaller)
+    rectangle with its corners free, a 3,000 lm luminaire or a skylight with filter 1.
+    Unnamed, it takes the first free name L1, L2, ... (luminaires) or S1, ... (skylights)."""
+    w, h = size
+    sw, sh = min(NEW_SOURCE_SIZE, w), min(NEW_SOURCE_SIZE, h)
+    rect = ((w - sw) / 2, (h - sh) / 2, (w + sw) / 2, (h + sh) / 2)
+    if name is None:
+        stem = "L" if kind == SourceKind.LUMINAIRE else "S"
+        name = free_name(stem, {s.name for s in design.sources})
+    if kind == SourceKind.LUMINAIRE:
+        return Source(name, zone, kind, rect, free=CORNERS, flux=NEW_LUMINAIRE_FLUX)
+    return Source(name, zone, kind, rect, free=CORNERS)
+
+
+def with_source(design: Design, source: Source) -> Design:
+    """``design`` with ``source`` appended (DesignError if its name is taken)."""
+    return replace(design, sources=(*design.sources, source))
+
+
+def with_source_fields(design: Design, name: str, **fields) -> Design:
+    """``design`` with fields of source ``name`` changed (rect, flux, filter, free, ...);
+    the model validates them (DesignError)."""
+    design.source(name)  # DesignError naming the source if there is none
+    sources = tuple(replace(s, **fields) if s.name == name else s for s in design.sources)
+    return replace(design, sources=sources)
+
+
+def moved_rect(source: Source, du: float, dv: float, size: tuple[float, float]) -> tuple:
+    """``source``'s rectangle shifted by (du, dv) m, the shift clipped so that it stays
+    inside its zone of ``size`` (w, h) m."""
+    w, h = size
+    (a, b), (c, d) = source.u_range, source.v_range
+    du = float(np.clip(du, -a, w - b))
+    dv = float(np.clip(dv, -c, h - d))
+    return (a + du, c + dv, b + du, d + dv)
+
+
+def without_source(design: Design, name: str) -> Design:
+    """``design`` without source ``name`` and without the rules that name it."""
+    rules = tuple(r for r in design.rules if name not in r.sources)
+    sources = tuple(s for s in design.sources if s.name != name)
+    return replace(design, sources=sources, rules=rules)
+
+
+def only_in_zones(design: Design, zones: set[str]) -> Design:
+    """``design`` keeping only the sources placed in ``zones`` and the rules whose
+    sources all stay (a drawn zone was deleted or renamed)."""
+    kept = tuple(s for s in design.sources if s.zone in zones)
+    names = {s.name for s in kept}
+    rules = tuple(r for r in design.rules if set(r.sources) <= names)
+    return replace(design, sources=kept, rules=rules)
+
+
+def is_centred(design: Design, name: str) -> bool:
+    """Whether a centred rule ties source ``name`` to the centre of its zone."""
+    return any(r.kind == RuleKind.CENTRED and name in r.sources for r in design.rules)
+
+
+def with_centred(design: Design, name: str, centred: bool) -> Design:
+    """``design`` with source ``name`` tied to (or freed from) the centre of its zone."""
+    rules = tuple(r for r in design.rules if not (r.kind == RuleKind.CENTRED and name in r.sources))
+    if centred:
+        rules += (Rule(RuleKind.CENTRED, (name,)),)
+    return replace(design, rules=rules)
+
+
+def mirror_of(design: Design, name: str) -> tuple[str, str] | None:
+    """(original, axis) if source ``name`` mirrors another one, else None."""
+    for r in design.rules:
+        if r.kind == RuleKind.MIRROR and r.sources[0] == name:
+            return r.sources[1], r.axis
+    return None
+
+
+def with_mirror(design: Design, name: str, original: str | None, axis: str = "u") -> Design:
+    """``design`` with source ``name`` the mirror image of ``original`` along a zone axis
+    ("u" or "v"); None frees it. Its zone may be another one (the symmetric zone across
+    a hall)."""
+    rules = tuple(
+        r for r in design.rules if not (r.kind == RuleKind.MIRROR and r.sources[0] == name)
+    )
+    if original is not None:
+        rules += (Rule(RuleKind.MIRROR, (name, original), axis=axis),)
+    return replace(design, rules=rules)
+
+
+def with_primary_goal(design: Design, kind: str) -> Design:
+    """``design`` with goal ``kind`` first (what a single-objective run optimises); the
+    other goals stay, as secondary objectives reported with each solution."""
+    goals = design.goals
+    first = next((g for g in goals if g.kind == kind), None) or Goal(kind)
+    if goals and goals[0] == first:
+        return design
+    return replace(design, goals=(first, *(g for g in goals if g != first)))

@@ -1,0 +1,402 @@
+"""The editing model without a display: every editing rule, the events it fires, and the
+light it shows, checked against an independent ``LightModel`` of the same scene."""
+
+from __future__ import annotations
+
+from dataclasses import replace
+
+import numpy as np
+import pytest
+
+from lightinv_core.design.model import Design, Goal, Intention, Rule, Source
+from lightinv_core.design.solution import ParetoFront, Solution, SolutionInfo
+from lightinv_core.editing import EVENTS, DocumentModel, Events, blank_project, result_label
+from lightinv_core.editing import rules as edit_rules
+from lightinv_core.errors import DesignError, LightInvError
+from lightinv_core.kinds import GoalKind, RuleKind, SourceKind
+from lightinv_core.light.model import LightModel
+from lightinv_core.operator.build import build_operator
+from lightinv_core.operator.settings import OperatorSettings
+from lightinv_core.project import ProjectError, load_project
+from lightinv_core.scene.edits import ZoneEdit
+
+RESOLUTION = 0.7  # office at 0.7 m: ~670 patches, an operator in a fraction of a second
+# A free strip of the office ceiling between the skylight and the north wall (u = x,
+# v = 8 - y in the ceiling's coordinates): see docs/obj-import.md and scene/edits.py.
+STRIP = (4.0, 5.5, 8.0, 7.0)
+
+
+@pytest.fixture(scope="module")
+def office_operator():
+    """The office's operator, built once for the module (the patches mesh the same way
+    every time, so each test's fresh model accepts it)."""
+    model = DocumentModel()
+    model.set_project(blank_project("office", RESOLUTION))
+    return build_operator(model.patches, OperatorSettings(rank=100, rays=128))
+
+
+class Recorder:
+    """Every event a model emits, in order."""
+
+    def __init__(self, model: DocumentModel):
+        self.seen: list[str] = []
+        for name in EVENTS:
+            model.events.connect(name, lambda n=name: self.seen.append(n))
+
+    def take(self) -> list[str]:
+        seen, self.seen = self.seen, []
+        return seen
+
+
+@pytest.fixture
+def doc():
+    """A fresh model on a blank office project, no operator yet."""
+    model = DocumentModel()
+    model.set_project(blank_project("office", RESOLUTION))
+    return model
+
+
+@pytest.fixture
+def lit(doc, office_operator):
+    """``doc`` with its operator: lighting available."""
+    doc.set_operator(office_operator)
+    return doc
+
+
+def reference(model: DocumentModel) -> LightModel:
+    """A light model of the same scene built apart from the editing model's."""
+    return LightModel(model.scene, model.patches, model.operator)
+
+
+# -- events ---------------------------------------------------------------------------------
+def test_events_call_back_in_order_and_refuse_unknown_names():
+    events, calls = Events(), []
+    first, second = (lambda: calls.append(1)), (lambda: calls.append(2))
+    events.connect("design", first)
+    events.connect("design", second)
+    events.emit("design")
+    events.disconnect("design", first)
+    events.emit("design")
+    assert calls == [1, 2, 2] and events.counts["design"] == 2
+    with pytest.raises(KeyError, match="unknown event 'desing'"):
+        events.connect("desing", first)
+    with pytest.raises(KeyError):
+        events.emit("nothing")
+
+
+def test_opening_a_project_resets_everything_and_says_so(doc):
+    rec = Recorder(doc)
+    doc.set_selection([5, 3, 3])
+    assert list(doc.selection) == [3, 5] and rec.take() == ["selection"]
+    project = replace(blank_project("cornell", 0.3), name="c")
+    doc.set_project(project)
+    assert rec.take() == ["scene", "design", "selection", "path", "results"]
+    assert doc.project is project and doc.scene.name == "cornell" and not doc.dirty
+    assert doc.operator is None and doc.light is None and len(doc.selection) == 0
+    assert doc.lighting() is None and doc.field is None and doc.problem() is None
+    assert doc.effective_sources() == () and doc.current_source is None
+    assert doc.zone_size("light") == pytest.approx((0.5, 0.5), abs=0.05)
+
+
+# -- sources and their rules ----------------------------------------------------------------
+def test_new_sources_are_centred_named_and_current(lit):
+    rec = Recorder(lit)
+    lum = lit.add_source("lum_west")
+    assert rec.take() == ["design", "lighting"] and lit.dirty
+    assert lum.name == "L1" and lum.kind == SourceKind.LUMINAIRE and lum.flux == 3000.0
+    w, h = lit.zone_size("lum_west")
+    assert lum.rect == pytest.approx(((w - 1) / 2, (h - 1) / 2, (w + 1) / 2, (h + 1) / 2))
+    assert lum.free == ("u0", "v0", "u1", "v1")
+    sky = lit.add_source("skylight")
+    assert sky.name == "S1" and sky.kind == SourceKind.SKYLIGHT and sky.filter == 1.0
+    assert lit.current_source == "S1"
+    assert lit.add_source("lum_east").name == "L2"
+    lit.set_current_source("L1")
+    assert lit.current_source == "L1" and rec.take()[-1] == "design"
+
+
+def test_moving_keeps_a_source_in_its_zone_and_a_bad_edit_changes_nothing(lit):
+    s = lit.add_source("lum_west")
+    w = lit.zone_size("lum_west")[0]
+    lit.move_source(s.name, 100.0, -100.0)  # far past the zone's edges: clipped
+    (u0, v0, u1, _) = lit.design.source(s.name).rect
+    assert (u1, v0) == pytest.approx((w, 0.0)) and u1 - u0 == pytest.approx(1.0)
+    before = lit.project
+    with pytest.raises(LightInvError):
+        lit.update_source(s.name, flux=-5.0)
+    with pytest.raises(DesignError):
+        lit.update_source("nobody", flux=10.0)
+    assert lit.project is before
+
+
+def test_removing_a_source_removes_the_rules_that_name_it(lit):
+    a = lit.add_source("lum_west")
+    b = lit.add_source("lum_east")
+    c = lit.add_source("skylight")
+    lit.set_mirror(b.name, a.name, "u")
+    lit.set_centred(a.name, True)
+    lit.set_centred(c.name, True)
+    assert len(lit.design.rules) == 3
+    lit.set_current_source(a.name)
+    lit.remove_source(a.name)
+    assert [s.name for s in lit.design.sources] == [b.name, c.name]
+    assert lit.design.rules == (Rule(RuleKind.CENTRED, (c.name,)),)
+    assert lit.current_source == b.name  # the removed one was current
+    lit.remove_source(c.name)
+    assert lit.design.rules == () and lit.current_source == b.name
+
+
+def test_mirror_and_centred_rules_place_the_sources_as_lit(lit):
+    a = lit.add_source("lum_west")
+    b = lit.add_source("lum_east")
+    lit.update_source(a.name, rect=(0.2, 1.0, 0.8, 2.0))
+    lit.set_mirror(b.name, a.name)
+    assert lit.mirror_of(b.name) == (a.name, "u") and lit.mirror_of(a.name) is None
+    east = {s.name: s for s in lit.effective_sources()}[b.name]
+    w = lit.zone_size("lum_east")[0]
+    assert east.u_range == pytest.approx((w - 0.8, w - 0.2)) and east.flux == a.flux
+    # Replacing the mirror keeps one rule; None frees the source again.
+    lit.set_mirror(b.name, a.name, "v")
+    assert lit.mirror_of(b.name) == (a.name, "v") and len(lit.design.rules) == 1
+    lit.set_mirror(b.name, None)
+    assert lit.mirror_of(b.name) is None and lit.design.rules == ()
+    lit.set_centred(a.name, True)
+    assert lit.centred(a.name) and not lit.centred(b.name)
+    (u0, v0, u1, v1) = lit.effective_sources()[0].rect
+    zw, zh = lit.zone_size("lum_west")
+    assert (u0 + u1, v0 + v1) == pytest.approx((zw, zh))  # centred in its zone
+    lit.set_centred(a.name, False)
+    assert not lit.centred(a.name) and lit.design.rules == ()
+
+
+def test_intentions_goals_and_run_settings(doc):
+    rec = Recorder(doc)
+    doc.add_intention(Intention("desks", group="desks", min=300.0))
+    doc.add_intention(Intention("floor", group="floor", max=800.0))
+    with pytest.raises(DesignError):
+        doc.add_intention(Intention("desks", group="floor", min=1.0))  # name taken
+    doc.remove_intention("desks")
+    assert [i.name for i in doc.design.intentions] == ["floor"]
+    assert rec.take() == ["design"] * 3  # no operator: nothing to relight
+    doc.set_primary_goal(GoalKind.MAX_LIGHT_POWER)
+    assert [g.kind for g in doc.design.goals] == ["max_light_power", "min_electric_power"]
+    doc.set_primary_goal(GoalKind.MAX_LIGHT_POWER)  # already first: no edit
+    assert rec.take() == ["design"]
+    doc.dirty = False
+    doc.set_optimizer(max_evals=500, seed=3)
+    assert doc.project.optimizer.max_evals == 500 and doc.dirty and rec.take() == ["path"]
+    doc.set_optimizer(max_evals=500)  # unchanged: not an edit
+    assert rec.take() == []
+    before = doc.project
+    with pytest.raises(ProjectError):
+        doc.set_optimizer(max_evals=-1)
+    assert doc.project is before
+
+
+# -- drawn zones ----------------------------------------------------------------------------
+def test_drawn_zones_rebuild_the_scene_and_take_their_sources_with_them(lit):
+    ceiling = next(i for i in range(lit.patches.n) if lit.drawable_surface(i))
+    assert lit.drawable_surface(ceiling)[0].startswith(("floor", "ceiling"))
+    zone_patch = int(np.flatnonzero(lit.patches.surface_id == 2)[0])  # lum_west
+    assert lit.drawable_surface(zone_patch) is None
+    assert lit.new_zone_name() == "Z1"
+    a = lit.add_source("lum_west")
+    rec = Recorder(lit)
+    lit.add_user_zone("Z1", SourceKind.LUMINAIRE, "ceiling", STRIP)
+    assert rec.take() == ["scene", "design", "selection", "path", "results", "path"]
+    assert "Z1" in {z.name for z in lit.scene.zones} and lit.dirty
+    assert lit.operator is None and lit.lighting() is None  # new patches: build again
+    assert lit.user_zones == (ZoneEdit("Z1", "luminaire", "ceiling", STRIP),)
+    assert lit.new_zone_name() == "Z2"
+    z = lit.add_source("Z1")
+    lit.set_mirror(z.name, a.name)
+    # Renaming the drawn zone drops the sources placed in it and the rules naming them.
+    lit.set_user_zones((replace(lit.user_zones[0], name="Z9"),))
+    assert [s.name for s in lit.design.sources] == [a.name] and lit.design.rules == ()
+    before = lit.project
+    with pytest.raises(LightInvError):
+        lit.add_user_zone("Z2", "luminaire", "ceiling", (3.0, 2.0, 9.0, 6.0))  # on zones
+    assert lit.project is before and lit.user_zones[0].name == "Z9"
+    lit.set_user_zones(())
+    assert lit.project.scene.zones == () and "Z9" not in {z.name for z in lit.scene.zones}
+
+
+# -- the light shown ------------------------------------------------------------------------
+def test_the_light_shown_is_the_light_models_of_the_design(lit):
+    rec = Recorder(lit)
+    assert lit.lighting() is not None and not lit.lighting().any()  # no sources: dark
+    a = lit.add_source("lum_west")
+    b = lit.add_source("lum_east")
+    lit.update_source(a.name, rect=(0.1, 0.5, 0.9, 2.5), flux=4000.0)
+    lit.set_mirror(b.name, a.name)
+    sky = lit.add_source("skylight")
+    lit.update_source(sky.name, filter=0.5)
+    assert rec.take().count("lighting") == 6  # every design edit relights
+    ref = reference(lit).design_field(lit.design)
+    np.testing.assert_array_equal(lit.lighting(), ref.illuminance)
+    B = ref.emission + lit.patches.rho * ref.illuminance  # B = E + rho H
+    np.testing.assert_allclose(lit.field.radiosity, B)
+    assert lit.field.sources == lit.effective_sources() == ref.sources
+    assert lit.design_field() is lit.field and np.isfinite(lit.last_eval_ms)
+    lit.set_selection([1, 2])  # not a design edit: the light stays
+    assert rec.take() == ["selection"]
+
+
+def test_a_preview_lights_another_layout_without_touching_the_design(lit):
+    a = lit.add_source("lum_west")
+    lit.update_source(a.name, free=("u0", "v0", "u1", "v1", "flux"))
+    design, dirty = lit.design, lit.dirty
+    problem = lit.problem()
+    assert problem is lit.problem() and problem.vars.n == 5  # kept until the design changes
+    x = problem.vars.initial()
+    x[-1] = 9000.0  # a brighter luminaire
+    sources = problem.sources_at(x)
+    rec = Recorder(lit)
+    lit.set_preview(sources)
+    assert rec.take() == ["lighting"] and lit.preview_sources() == sources
+    assert lit.design is design and lit.dirty == dirty
+    ref = reference(lit)
+    np.testing.assert_allclose(
+        lit.lighting(), ref.field(sources, design.daylight).illuminance, rtol=1e-12
+    )
+    np.testing.assert_allclose(
+        lit.design_field().illuminance, ref.design_field(design).illuminance, rtol=1e-12
+    )
+    assert lit.lighting().max() == pytest.approx(3 * lit.design_field().illuminance.max())
+    assert lit.effective_sources() == ref.layout(design)
+    lit.set_preview(None)
+    assert lit.preview_sources() is None
+    np.testing.assert_array_equal(lit.lighting(), ref.design_field(design).illuminance)
+
+
+def test_the_difference_view_lights_other_sources_under_the_design_rules(lit):
+    assert DocumentModel().lighting_of(()) is None  # no operator: no light
+    a = lit.add_source("lum_west")
+    b = lit.add_source("lum_east")
+    lit.set_mirror(b.name, a.name)
+    other = (replace(a, rect=(0.0, 0.0, 1.0, 1.0)), b)
+    lux = lit.lighting_of(other)
+    ref = reference(lit).design_field(lit.design, other)
+    np.testing.assert_array_equal(lux, ref.illuminance)
+    assert ref.sources[1].u_range == pytest.approx((1.0, 2.0))  # mirrored by the rule
+    assert lit.lighting_of(other) is lux  # kept while the sources and rules stay
+    lit.update_source(a.name, flux=100.0)  # an edit of the loaded layout: same answer
+    assert lit.lighting_of(other) is lux
+    lit.set_mirror(b.name, None)  # the rules changed: lit again
+    again = lit.lighting_of(other)
+    assert again is not lux and not np.allclose(again, lux)
+
+
+def test_offending_patches_come_from_the_light_of_the_design(lit):
+    assert lit.offending_patches() == []  # no intentions
+    lit.add_source("lum_west")
+    lit.add_intention(Intention("blinding", group="floor", min=1e6))
+    ((name, bound, ids),) = lit.offending_patches()
+    floor = lit.patches.group_index("floor")
+    assert (name, bound) == ("blinding", "min") and set(ids) == set(floor)
+
+
+# -- results --------------------------------------------------------------------------------
+def solutions_of(model: DocumentModel, infos) -> list[Solution]:
+    """Solutions of the model's design at distinct layouts, one per info."""
+    problem = model.problem()
+    x0 = problem.vars.initial()
+    return [problem.solution(x0 - 0.05 * i, info) for i, info in enumerate(infos)]
+
+
+def test_applying_a_solution_loads_its_layout_and_refuses_foreign_sources(lit):
+    a = lit.add_source("lum_west")
+    lit.update_source(a.name, free=("u0", "v0", "u1", "v1", "flux"))
+    (_, sol) = solutions_of(lit, [SolutionInfo(), SolutionInfo(seed=1)])
+    sol = replace(sol, sources=(replace(sol.sources[0], flux=1234.0),))
+    lit.dirty = False
+    rec = Recorder(lit)
+    lit.apply_solution(sol)
+    assert rec.take() == ["design", "lighting", "results"]
+    got = lit.design.source(a.name)
+    assert got.rect == sol.sources[0].rect and got.flux == 1234.0
+    assert got.free == ("u0", "v0", "u1", "v1", "flux")  # the free variables stay
+    assert lit.shown is sol and lit.dirty
+    before = lit.project
+    foreign = replace(sol, sources=(replace(sol.sources[0], name="X"),))
+    with pytest.raises(DesignError, match="other sources"):
+        lit.apply_solution(foreign)
+    assert lit.project is before and lit.shown is sol
+    lit.update_source(a.name, flux=2000.0)
+    assert lit.shown is None  # an edited design is no longer the loaded result
+
+
+def test_results_keep_pinned_ones_across_runs_and_are_labelled(lit):
+    lit.add_source("lum_west")
+    s0, s1, eps, two, plain = solutions_of(
+        lit,
+        [
+            SolutionInfo(seed=0),
+            SolutionInfo(seed=1),
+            SolutionInfo(epsilon=1500.0),
+            SolutionInfo(step1_light_power=10.0, seed=3),
+            SolutionInfo(),
+        ],
+    )
+    assert [result_label(s) for s in (s0, eps, two, plain)] == [
+        "seed 0",
+        "epsilon 1,500 lm",
+        "two-step seed 3",
+        "result",
+    ]
+    rec = Recorder(lit)
+    lit.set_results((s0, s1), None)
+    assert rec.take() == ["path", "results"] and lit.dirty
+    assert [label for label, _ in lit.results()] == ["seed 0", "seed 1"]
+    lit.apply_solution(s1)
+    kept = lit.pin(s1)
+    assert kept.info.pinned and kept.info.seed == 1 and lit.shown is kept
+    assert lit.pinned() == [kept]
+    # A new run: the pinned result stays, first; the unpinned one goes.
+    front = ParetoFront(("min_electric_power", "max_light_power"), (eps,), "epsilon", (eps, two))
+    lit.set_results((), front)
+    assert [s.x for s in lit.project.solutions] == [s1.x]
+    assert [label for label, _ in lit.results()] == [
+        "seed 1",
+        "epsilon 1,500 lm",
+        "two-step seed 3",
+    ]
+    assert lit.on_front(eps) and not lit.on_front(two) and not lit.on_front(s1)
+    # Pinning a front point stores it once; unpinning sends it back to the front only.
+    lit.pin(eps)
+    assert [s.x for s in lit.pinned()] == [s1.x, eps.x]
+    assert len(lit.results()) == 3  # the pinned front point is not listed twice
+    lit.pin(eps, False)
+    assert [s.x for s in lit.project.solutions] == [s1.x] and len(lit.results()) == 3
+    lit.pin(kept, False)  # an unpinned seed result stays among the solutions
+    assert lit.pinned() == [] and not lit.project.solutions[0].info.pinned
+
+
+def test_saving_and_opening_round_trip_and_clear_the_dirty_flag(lit, tmp_path):
+    lit.add_source("lum_west")
+    lit.add_intention(Intention("desks", group="desks", average=300.0))
+    with pytest.raises(ValueError, match="Save As"):
+        lit.save()
+    rec = Recorder(lit)
+    path = lit.save(tmp_path / "office.json")
+    assert rec.take() == ["path"] and not lit.dirty and lit.path == path
+    assert load_project(path) == lit.project
+    again = DocumentModel()
+    again.open(path)
+    assert again.project == lit.project and again.path == path and not again.dirty
+    assert again.current_source == "L1"
+    again.mark_dirty()
+    assert again.dirty and again.events.counts["path"] == 2
+
+
+def test_editing_rules_are_pure_functions_of_the_design():
+    d = Design((), (Goal("min_electric_power"),))
+    s = edit_rules.new_source(d, "z", "luminaire", (0.5, 2.0))
+    assert s.rect == (0.0, 0.5, 0.5, 1.5) and s.name == "L1"
+    d2 = edit_rules.with_source(d, s)
+    assert d.sources == () and d2.sources == (s,)
+    assert edit_rules.moved_rect(s, -1.0, 0.25, (0.5, 2.0)) == (0.0, 0.75, 0.5, 1.75)
+    t = Source("T", "y", "luminaire", (0.0, 0.0, 0.5, 0.5), flux=10.0)
+    d3 = edit_rules.with_mirror(edit_rules.with_source(d2, t), "T", "L1")
+    assert edit_rules.only_in_zones(d3, {"z"}).rules == ()  # T's zone went, and its rule
+    assert edit_rules.only_in_zones(d3, {"z", "y"}) == d3
