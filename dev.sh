@@ -74,6 +74,7 @@ case "${1:-}" in
     setup
     .venv/bin/ruff check .
     .venv/bin/ruff format --check .
+    .venv/bin/lint-imports --no-cache
     exec .venv/bin/python -m pytest -q
     ;;
   *) echo "usage: ./dev.sh demo | test | setup" >&2; exit 2 ;;

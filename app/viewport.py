@@ -16,7 +16,7 @@ from PySide6 import QtCore, QtWidgets
 from pyvistaqt import QtInteractor
 
 from lightinv_core.scene.patches import Patches
-from lightinv_core.sources.zones import zone_grid
+from lightinv_core.scene.zone_grid import zone_grid
 
 CAMERAS = {
     "iso": ((1.0, -1.3, 1.2), (0, 0, 1)),

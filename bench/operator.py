@@ -25,7 +25,7 @@ from lightinv_core.operator.accuracy import (
 from lightinv_core.operator.build import build_operator
 from lightinv_core.scene.builtin import builtin_scene
 from lightinv_core.scene.patches import mesh_patches
-from lightinv_core.sources.zones import random_zone_emissions
+from lightinv_core.scene.zone_grid import random_zone_emissions
 from lightinv_core.transport.formfactors import form_factor_matrix
 
 

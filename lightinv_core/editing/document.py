@@ -40,7 +40,7 @@ from lightinv_core.project import (
 from lightinv_core.scene.edits import ZoneEdit
 from lightinv_core.scene.model import Rect, Scene
 from lightinv_core.scene.patches import Patches, mesh_patches
-from lightinv_core.sources.zones import zone_grid
+from lightinv_core.scene.zone_grid import zone_grid
 from lightinv_core.study import Prepared
 
 

@@ -15,7 +15,7 @@ import scipy.sparse as sp
 
 from lightinv_core.errors import CancelledError
 from lightinv_core.scene.patches import Patches
-from lightinv_core.sources.zones import random_rectangles, rectangle_emission, zone_grid
+from lightinv_core.scene.zone_grid import random_rectangles, rectangle_emission, zone_grid
 
 
 def sample_emissions(patches: Patches, count: int, seed: int) -> np.ndarray:

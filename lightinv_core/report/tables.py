@@ -18,8 +18,8 @@ from lightinv_core.design.solution import Solution
 from lightinv_core.kinds import Bound, Quantity, SourceKind
 from lightinv_core.light.field import LightField
 from lightinv_core.scene.patches import Patches
+from lightinv_core.scene.zone_grid import zone_grid
 from lightinv_core.sources.emission import source_electric_power, source_flux
-from lightinv_core.sources.zones import zone_grid
 
 PASS, FAIL = "pass", "FAIL"
 

@@ -25,7 +25,7 @@ from matplotlib.figure import Figure
 from lightinv_core.design.model import Source
 from lightinv_core.errors import LightInvError
 from lightinv_core.scene.patches import Patches
-from lightinv_core.sources.zones import zone_grid
+from lightinv_core.scene.zone_grid import zone_grid
 
 A4_LANDSCAPE = (11.69, 8.27)
 

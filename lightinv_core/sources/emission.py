@@ -20,8 +20,8 @@ from lightinv_core.kinds import SourceKind
 from lightinv_core.operator.radiosity import RadiosityOperator
 from lightinv_core.scene.model import Scene
 from lightinv_core.scene.patches import Patches
+from lightinv_core.scene.zone_grid import ZoneGrid, zone_grid
 from lightinv_core.sources.types import source_type
-from lightinv_core.sources.zones import ZoneGrid, zone_grid
 
 
 def source_stack(sources: Sequence[Source]) -> tuple[np.ndarray, np.ndarray, np.ndarray]:

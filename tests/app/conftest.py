@@ -10,6 +10,14 @@ from app.main_window import MainWindow
 from app.workers import Worker
 
 
+def pytest_collection_modifyitems(items):
+    """Every GUI test is slow: each opens a window and most build an operator."""
+    here = __file__.rsplit("/", 1)[0]
+    for item in items:
+        if str(item.fspath).startswith(here):
+            item.add_marker(pytest.mark.slow)
+
+
 @pytest.fixture
 def window(qtbot, tmp_path):
     settings = QtCore.QSettings(str(tmp_path / "settings.ini"), QtCore.QSettings.IniFormat)

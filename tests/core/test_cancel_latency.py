@@ -27,6 +27,8 @@ from lightinv_core.scene.patches import mesh_patches
 from lightinv_core.study import prepare, solve
 from lightinv_core.transport.formfactors import form_factor_matrix
 
+pytestmark = pytest.mark.slow  # operator builds and runs cancelled at points
+
 LATENCY = 1.0  # s, from setting the cancel flag to the task's end
 
 Task = Callable[[Callable[[float], None], Callable[[], bool]], object]

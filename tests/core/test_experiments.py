@@ -21,6 +21,8 @@ from lightinv_core.optimize.pareto import non_dominated
 from lightinv_core.project import OperatorSettings, load_project
 from lightinv_core.study import prepare, solve, solve_seeds
 
+pytestmark = pytest.mark.slow  # the paper's experiments: several optimisations each
+
 PROJECTS = Path(__file__).resolve().parents[2] / "resources" / "projects"
 FAST = OperatorSettings(rank=250, rays=256)
 

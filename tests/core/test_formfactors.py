@@ -57,6 +57,7 @@ def test_closed_forms_reproduce_howell_values():
     assert perpendicular_rectangles(1, 1, 1) == pytest.approx(0.200044, abs=2e-6)
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("a,b,c", [(1, 1, 1), (2, 0.5, 1), (1, 3, 2)])
 def test_parallel_opposed_rectangles(a, b, c):
     bottom = Rect((0, 0, 0), (a, 0, 0), (0, b, 0))
@@ -65,6 +66,7 @@ def test_parallel_opposed_rectangles(a, b, c):
     _check(mean, se, parallel_rectangles(a, b, c))
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("l,w,h", [(1, 1, 1), (2, 1, 0.5), (1, 0.5, 2)])
 def test_perpendicular_rectangles_sharing_an_edge(l, w, h):  # noqa: E741
     # Emitter: w (along y) x l (along x) on the floor; receiver: h high x l wall at y = 0.

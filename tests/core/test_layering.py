@@ -8,6 +8,8 @@ import subprocess
 import sys
 from pathlib import Path
 
+import pytest
+
 import lightinv_core
 
 FORBIDDEN = ("PySide6", "shiboken6", "vtk", "vtkmodules", "pyvista", "pyvistaqt", "app")
@@ -43,3 +45,12 @@ def test_importing_every_core_module_loads_no_gui_module():
     )
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
     assert out.stdout.strip() == ""
+
+
+def test_import_linter_contracts_hold():
+    """The layer order of docs/architecture.md (pyproject's import-linter contracts)."""
+    pytest.importorskip("importlinter", reason="import-linter is a dev dependency")
+    tool = Path(sys.executable).parent / "lint-imports"
+    out = subprocess.run([str(tool), "--no-cache"], capture_output=True, text=True, cwd=CORE.parent)
+    assert out.returncode == 0, out.stdout[-3000:] + out.stderr[-2000:]
+    assert "2 kept, 0 broken" in out.stdout

@@ -18,7 +18,7 @@ from lightinv_core.operator.build import build_operator
 from lightinv_core.operator.settings import OperatorSettings
 from lightinv_core.scene.builtin import builtin_scene
 from lightinv_core.scene.patches import mesh_patches
-from lightinv_core.sources.zones import random_zone_emissions
+from lightinv_core.scene.zone_grid import random_zone_emissions
 from lightinv_core.transport.formfactors import form_factor_matrix
 from lightinv_core.transport.solver import group_emission, solve_dense
 

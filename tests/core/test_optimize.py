@@ -213,6 +213,7 @@ def test_skylights_alone_cannot_light_the_panels(corridor):
     assert not sol.feasible and [v.name for v in sol.violations] == ["panels"]
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("method", ["epsilon", "two_step"])
 def test_multi_objective_fronts_are_non_dominated(corridor, method):
     scene, patches, op = corridor

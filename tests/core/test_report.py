@@ -34,6 +34,8 @@ from lightinv_core.scene.builtin import builtin_scene
 from lightinv_core.scene.patches import mesh_patches
 from lightinv_core.study import prepare, solve
 
+pytestmark = pytest.mark.slow  # PDF reports rendered and read back
+
 SCENE = SceneSpec(builtin="office", resolution=0.6)
 FAST = OperatorSettings(rank=120, rays=256)
 SINGLE_PAGES = [
