@@ -14,6 +14,7 @@ import math
 import numbers
 import os
 from collections.abc import Callable
+from dataclasses import dataclass
 from typing import Any, NoReturn
 
 import numpy as np
@@ -239,3 +240,123 @@ def _boolean(v: Any, path: str) -> bool:
 
 def _path_string(v: Any, path: str) -> str:
     return _string(os.fspath(v) if isinstance(v, os.PathLike) else v, path)
+
+
+# -- field specs: each field of a JSON object declared once ---------------------------------
+
+REQUIRED = object()
+"""The default of a field that must be given."""
+
+
+@dataclass(frozen=True)
+class Field:
+    """One field of a JSON object: its ``check`` (JSON value, JSON path -> normalised
+    value, ``ProjectError`` on a bad one), its ``default`` (``REQUIRED`` if it must be
+    given), what the docs say of its ``type`` and ``meaning``, the ``kinds`` of object
+    that take it (empty: every kind), whether it is written even at its default
+    (``always``) and whether a null means "not given" (``nullable``)."""
+
+    name: str
+    check: Callable[[Any, str], Any]
+    default: Any = REQUIRED
+    type: str = ""
+    meaning: str = ""
+    kinds: tuple[str, ...] = ()
+    always: bool = False
+    nullable: bool = False
+
+    @property
+    def required(self) -> bool:
+        """Whether the field must be given."""
+        return self.default is REQUIRED
+
+
+@dataclass(frozen=True)
+class ObjectSpec:
+    """The fields of one kind of JSON object, in the order they are written.
+
+    ``kind_field`` names the field that says which kinds' fields apply (a source's
+    ``kind``, a rule's ``kind``); ``not_taken(kind, field)`` words the error for a field
+    the kind does not take, checked after the values unless ``kinds_first``.
+    """
+
+    name: str
+    fields: tuple[Field, ...]
+    kind_field: str | None = None
+    not_taken: Callable[[str, str], str] | None = None
+    kinds_first: bool = False
+
+    @property
+    def names(self) -> tuple[str, ...]:
+        """Every field name, in order."""
+        return tuple(f.name for f in self.fields)
+
+    def field(self, name: str) -> Field:
+        """The field called ``name``."""
+        return next(f for f in self.fields if f.name == name)
+
+    def read(self, v: Any, path: str, skip: tuple[str, ...] = ()) -> dict[str, Any]:
+        """The checked values of the object ``v`` at ``path``: unknown, repeated and
+        missing fields, each value's check, then fields its kind does not take (a null
+        counts as not given where the field is ``nullable``). Fields in ``skip`` are
+        left for the caller to check."""
+        required = tuple(f.name for f in self.fields if f.required)
+        d = _object(v, path, self.names, required)
+        kind = None
+        if self.kind_field is not None:
+            kind = self.field(self.kind_field).check(d[self.kind_field], _join(path, "kind"))
+        out: dict[str, Any] = {}
+        for f in self.fields:
+            if f.name not in d or f.name in skip or (d[f.name] is None and f.nullable):
+                continue
+            if self.kinds_first:
+                self._taken(kind, f, path)
+            out[f.name] = f.check(d[f.name], _join(path, f.name))
+        for f in self.fields:
+            if f.name in out:
+                self._taken(kind, f, path)
+        return out
+
+    def _taken(self, kind: str | None, f: Field, path: str) -> None:
+        if kind is not None and f.kinds and kind not in f.kinds:
+            _fail(_join(path, f.name), self.not_taken(kind, f.name))
+
+    def write(self, obj: Any) -> dict[str, Any]:
+        """The fields of ``obj`` (attributes of the same names) as they are saved: required
+        and ``always`` fields, the others when they differ from their default and apply
+        to the object's kind."""
+        kind = getattr(obj, self.kind_field) if self.kind_field else None
+        out: dict[str, Any] = {}
+        for f in self.fields:
+            value = getattr(obj, f.name)
+            if f.kinds and kind not in f.kinds:
+                continue
+            if f.required or f.always or value != f.default:
+                out[f.name] = list(value) if isinstance(value, tuple) else value
+        return out
+
+    def markdown(self) -> str:
+        """The fields as a Markdown table: key, required, type, default, meaning."""
+        rows = ["| key | required | type | default | meaning |", "|---|---|---|---|---|"]
+        for f in self.fields:
+            need = "yes" if f.required else "no"
+            if f.required:
+                default = ""
+            elif f.default is None:
+                default = "none"
+            else:
+                default = f"`{_doc_value(f.default)}`"
+            only = f" ({', '.join(f.kinds)} only)" if f.kinds else ""
+            rows.append(f"| `{f.name}` | {need} | {f.type} | {default} | {f.meaning}{only} |")
+        return "\n".join(rows)
+
+
+def _doc_value(v: Any) -> str:
+    """A default value as JSON text for the docs."""
+    if isinstance(v, tuple):
+        return "[" + ", ".join(_doc_value(x) for x in v) + "]"
+    if isinstance(v, str):
+        return f'"{v}"'
+    if isinstance(v, bool):
+        return "true" if v else "false"
+    return _fmt(v)

@@ -13,7 +13,7 @@ from dataclasses import dataclass, field, fields
 from pathlib import Path
 from typing import Any
 
-from lightinv_core.design.model import Design, Source
+from lightinv_core.design.model import Design
 from lightinv_core.design.solution import ParetoFront, Solution
 from lightinv_core.errors import SceneError
 from lightinv_core.fields import (
@@ -40,7 +40,6 @@ from lightinv_core.scene.model import MIN_RESOLUTION, ZONE_KINDS, Scene
 from lightinv_core.scene.obj_parse import UP_AXES
 
 SCHEMA = 1
-SOURCE_KINDS = ("luminaire", "skylight")
 
 
 def resolve_path(p: str | None, base_dir: Path | None) -> str | None:
@@ -192,42 +191,6 @@ TOP_FIELDS = (
 SCENE_FIELDS = tuple(f.name for f in fields(SceneSpec))
 OPERATOR_FIELDS = tuple(f.name for f in fields(OperatorSettings))
 OPTIMIZER_FIELDS = tuple(f.name for f in fields(OptimizerSettings))
-DAYLIGHT_FIELDS = ("exterior_lux", "transmittance")
-SOURCE_FIELDS = (
-    "name",
-    "zone",
-    "kind",
-    "rect",
-    "free",
-    "flux",
-    "exitance",
-    "flux_range",
-    "efficacy",
-    "filter",
-)
-SOURCE_DEFAULTS = {f.name: f.default for f in fields(Source)}
-LUMINAIRE_ONLY = ("flux", "exitance", "flux_range", "efficacy")
-RULE_FIELDS = ("kind", "sources", "min", "max", "axis")
-RULE_TAKES = {
-    "area": ("min", "max"),
-    "aspect": ("max",),
-    "mirror": ("axis",),
-    "centred": (),
-    "spacing": ("min",),
-    "align": ("axis",),
-}
-INTENTION_FIELDS = (
-    "name",
-    "group",
-    "patches",
-    "quantity",
-    "min",
-    "max",
-    "average",
-    "uniformity",
-    "weight",
-)
-GOAL_FIELDS = ("kind", "kinds")
 RESULTS_FIELDS = ("solutions", "pareto")
 SOLUTION_FIELDS = ("sources", "objectives", "penalty", "violations", "x", "info")
 VIOLATION_FIELDS = ("name", "constraint", "amount", "value", "bound", "units")

@@ -16,7 +16,6 @@ from typing import Any
 
 from lightinv_core.design.model import (
     GOALS,
-    VARIABLES,
     Daylight,
     Design,
     Goal,
@@ -37,28 +36,19 @@ from lightinv_core.fields import (
     _join,
     _list,
     _number,
-    _numbers,
     _object,
     _string,
     _unique,
     _within,
 )
 from lightinv_core.project.model import (
-    DAYLIGHT_FIELDS,
-    GOAL_FIELDS,
-    INTENTION_FIELDS,
-    LUMINAIRE_ONLY,
     OPERATOR_FIELDS,
     OPTIMIZER_FIELDS,
     PARETO_FIELDS,
     RESULTS_FIELDS,
-    RULE_FIELDS,
-    RULE_TAKES,
     SCENE_FIELDS,
     SCHEMA,
     SOLUTION_FIELDS,
-    SOURCE_FIELDS,
-    SOURCE_KINDS,
     TOP_FIELDS,
     VIOLATION_FIELDS,
     OperatorSettings,
@@ -67,6 +57,7 @@ from lightinv_core.project.model import (
     SceneSpec,
     resolve_path,
 )
+from lightinv_core.project.specs import DAYLIGHT, GOAL, INTENTION, RULE, SOURCE
 
 # -- JSON parsing ---------------------------------------------------------------------------
 
@@ -90,37 +81,7 @@ def object_pairs_hook(pairs: list[tuple[str, Any]]) -> dict:
 
 
 def _source(v: Any, path: str) -> Source:
-    d = _object(v, path, SOURCE_FIELDS, ("name", "zone", "kind", "rect"))
-    at = partial(_join, path)
-    kind = _choice(d["kind"], at("kind"), SOURCE_KINDS)
-    kw: dict[str, Any] = {
-        "name": _string(d["name"], at("name")),
-        "zone": _string(d["zone"], at("zone")),
-        "kind": kind,
-        "rect": _numbers(d["rect"], at("rect"), 4),
-    }
-    if "free" in d:
-        names = _list(d["free"], at("free"), lambda x, p: _choice(x, p, VARIABLES), "variables")
-        kw["free"] = _unique(names, at("free"))
-    for key in ("flux", "exitance"):
-        if d.get(key) is not None:
-            kw[key] = _number(d[key], at(key), lo=0.0)
-    if "flux_range" in d:
-        kw["flux_range"] = _numbers(d["flux_range"], at("flux_range"), 2, lo=0.0)
-    if "efficacy" in d:
-        kw["efficacy"] = _number(d["efficacy"], at("efficacy"), gt=0.0)
-    if "filter" in d:
-        kw["filter"] = _number(d["filter"], at("filter"), lo=0.0, hi=1.0)
-    if kind == "skylight":
-        for key in LUMINAIRE_ONLY:
-            if key in kw:
-                _fail(
-                    at(key),
-                    "only luminaires have this; a skylight's exitance is "
-                    "filter x transmittance x exterior illuminance",
-                )
-    elif "filter" in kw:
-        _fail(at("filter"), "only skylights have a filter")
+    kw = SOURCE.read(v, path)
     with _within(path):
         return Source(**kw)
 
@@ -139,27 +100,13 @@ def _sources(v: Any, path: str) -> tuple[Source, ...]:
 
 
 def _rule(v: Any, path: str, names: tuple[str, ...]) -> Rule:
-    d = _object(v, path, RULE_FIELDS, ("kind", "sources"))
-    at = partial(_join, path)
-    kind = _choice(d["kind"], at("kind"), Rule.KINDS)
-    sources = _unique(_list(d["sources"], at("sources"), _string, "source names", 1), at("sources"))
-    for i, s in enumerate(sources):
+    kw = RULE.read(v, path)
+    for i, s in enumerate(kw["sources"]):
         if s not in names:
             known = ", ".join(names) or "none"
-            _fail(_join(at("sources"), i), f"no source {s!r} (sources: {known})")
-    takes = RULE_TAKES[kind]
-    kw: dict[str, Any] = {}
-    for key in ("min", "max", "axis"):
-        if d.get(key) is None:
-            continue
-        if key not in takes:
-            also = ", ".join(("sources", *takes))
-            _fail(at(key), f"{kind} rules do not take {key!r} (they take: {also})")
-        kw[key] = (
-            _choice(d[key], at(key), ("u", "v")) if key == "axis" else _number(d[key], at(key), 0.0)
-        )
+            _fail(_join(_join(path, "sources"), i), f"no source {s!r} (sources: {known})")
     with _within(path):
-        return Rule(kind, sources, **kw)
+        return Rule(**kw)
 
 
 def _rules(v: Any, path: str, names: tuple[str, ...]) -> tuple[Rule, ...]:
@@ -177,27 +124,8 @@ def _rules(v: Any, path: str, names: tuple[str, ...]) -> tuple[Rule, ...]:
     return rules
 
 
-def _patch_id(v: Any, path: str) -> int:
-    return _integer(v, path, lo=0)
-
-
 def _intention(v: Any, path: str) -> Intention:
-    d = _object(v, path, INTENTION_FIELDS, ("name",))
-    at = partial(_join, path)
-    kw: dict[str, Any] = {"name": _string(d["name"], at("name"))}
-    if d.get("group") is not None:
-        kw["group"] = _string(d["group"], at("group"))
-    if d.get("patches") is not None:
-        kw["patches"] = _list(d["patches"], at("patches"), _patch_id, "patch ids", 1)
-    if "quantity" in d:
-        kw["quantity"] = _choice(d["quantity"], at("quantity"), ("lux", "C"))
-    for key in ("min", "max", "average"):
-        if d.get(key) is not None:
-            kw[key] = _number(d[key], at(key), lo=0.0)
-    if d.get("uniformity") is not None:
-        kw["uniformity"] = _number(d["uniformity"], at("uniformity"), lo=0.0, hi=1.0)
-    if "weight" in d:
-        kw["weight"] = _number(d["weight"], at("weight"), lo=0.0)
+    kw = INTENTION.read(v, path)
     with _within(path):
         return Intention(**kw)
 
@@ -214,18 +142,11 @@ def _intentions(v: Any, path: str) -> tuple[Intention, ...]:
 
 
 def _goal(v: Any, path: str) -> Goal:
-    d = _object(v, path, GOAL_FIELDS, ("kind",))
-    kind = _choice(d["kind"], _join(path, "kind"), GOALS)
-    kinds: tuple[str, ...] = ()
-    if "kinds" in d:
-        at = _join(path, "kinds")
-        kinds = _unique(
-            _list(d["kinds"], at, lambda x, p: _choice(x, p, SOURCE_KINDS), "kinds"), at
-        )
-        if kinds and kind != "max_light_power":
-            _fail(at, "only a max_light_power goal takes source kinds")
+    kw = GOAL.read(v, path)
+    if kw.get("kinds") and kw["kind"] != "max_light_power":
+        _fail(_join(path, "kinds"), "only a max_light_power goal takes source kinds")
     with _within(path):
-        return Goal(kind, kinds)
+        return Goal(**kw)
 
 
 def _goals(v: Any, path: str) -> tuple[Goal, ...]:
@@ -242,14 +163,7 @@ def _goals(v: Any, path: str) -> tuple[Goal, ...]:
 
 
 def _daylight(v: Any, path: str) -> Daylight:
-    d = _object(v, path, DAYLIGHT_FIELDS)
-    kw = {}
-    if "exterior_lux" in d:
-        kw["exterior_lux"] = _number(d["exterior_lux"], _join(path, "exterior_lux"), lo=0.0)
-    if "transmittance" in d:
-        at = _join(path, "transmittance")
-        kw["transmittance"] = _number(d["transmittance"], at, lo=0.0, hi=1.0)
-    return Daylight(**kw)
+    return Daylight(**DAYLIGHT.read(v, path))
 
 
 def _design(d: dict) -> Design:

@@ -23,15 +23,13 @@ from lightinv_core.design.model import Goal, Intention, Rule, Source
 from lightinv_core.design.solution import Solution
 from lightinv_core.fields import ProjectError, _fail, _is_int, _is_number, _join
 from lightinv_core.project.model import (
-    LUMINAIRE_ONLY,
     OPERATOR_FIELDS,
     OPTIMIZER_FIELDS,
-    RULE_TAKES,
     SCHEMA,
-    SOURCE_DEFAULTS,
     Project,
     SceneSpec,
 )
+from lightinv_core.project.specs import DAYLIGHT, GOAL, INTENTION, RULE, SOURCE
 
 INLINE_WIDTH = 88  # objects and lists of scalars up to this width are written on one line
 
@@ -48,42 +46,19 @@ def _relative(p: str | None, base_dir: Path | None) -> str | None:
 
 
 def _source_dict(s: Source) -> dict:
-    d: dict[str, Any] = {"name": s.name, "zone": s.zone, "kind": s.kind, "rect": list(s.rect)}
-    if s.free:
-        d["free"] = list(s.free)
-    luminaire = s.kind == "luminaire"
-    used = LUMINAIRE_ONLY if luminaire else ("filter",)  # the other kind's are ignored
-    for key in used:
-        value = getattr(s, key)
-        if value != SOURCE_DEFAULTS[key]:
-            d[key] = list(value) if isinstance(value, tuple) else value
-    return d
+    return SOURCE.write(s)
 
 
 def _rule_dict(r: Rule) -> dict:
-    d: dict[str, Any] = {"kind": r.kind, "sources": list(r.sources)}
-    for key in RULE_TAKES.get(r.kind, ()):
-        if getattr(r, key) is not None:
-            d[key] = getattr(r, key)
-    return d
+    return RULE.write(r)
 
 
 def _intention_dict(it: Intention) -> dict:
-    d: dict[str, Any] = {"name": it.name}
-    if it.group is not None:
-        d["group"] = it.group
-    if it.patches is not None:
-        d["patches"] = list(it.patches)
-    d["quantity"] = it.quantity
-    for key in ("min", "max", "average", "uniformity"):
-        if getattr(it, key) is not None:
-            d[key] = getattr(it, key)
-    d["weight"] = it.weight
-    return d
+    return INTENTION.write(it)
 
 
 def _goal_dict(g: Goal) -> dict:
-    return {"kind": g.kind, "kinds": list(g.kinds)} if g.kinds else {"kind": g.kind}
+    return GOAL.write(g)
 
 
 def _solution_dict(s: Solution) -> dict:
@@ -166,10 +141,7 @@ def project_dict(p: Project, base_dir: Path | None) -> dict:
         "description": p.description,
         "scene": _scene_dict(p.scene, base_dir),
         "operator": {f: getattr(p.operator, f) for f in OPERATOR_FIELDS},
-        "daylight": {
-            "exterior_lux": design.daylight.exterior_lux,
-            "transmittance": design.daylight.transmittance,
-        },
+        "daylight": DAYLIGHT.write(design.daylight),
         "penalty_power": design.penalty_power,
         "sources": [_source_dict(s) for s in design.sources],
         "target_sources": [_source_dict(s) for s in design.target_sources],

@@ -1,0 +1,275 @@
+"""Every field of the design's JSON objects, declared once.
+
+Reading (``project/read.py``), the per-field error messages, writing
+(``project/write.py``) and the field tables of docs/project-file.md
+(``tests/core/test_fields.py`` regenerates them) all come from these specs. Checks that
+tie several fields together (a luminaire's flux or exitance, min <= max) stay with the
+model classes in ``design/model.py``.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+from lightinv_core.design.model import Daylight, Intention, Source
+from lightinv_core.fields import (
+    Field,
+    ObjectSpec,
+    _choice,
+    _integer,
+    _list,
+    _number,
+    _numbers,
+    _string,
+    _unique,
+)
+from lightinv_core.kinds import GoalKind, Quantity, RuleKind, SourceKind, VariableName
+
+LUMINAIRE = (str(SourceKind.LUMINAIRE),)
+SKYLIGHT = (str(SourceKind.SKYLIGHT),)
+VARIABLES = tuple(str(v) for v in VariableName)
+SOURCE_KINDS = tuple(str(k) for k in SourceKind)
+_D = {f: Source.__dataclass_fields__[f].default for f in ("flux_range", "efficacy", "filter")}
+
+
+def _nonneg(v: Any, p: str) -> float:
+    return _number(v, p, lo=0.0)
+
+
+def _variables(v: Any, p: str) -> tuple[str, ...]:
+    return _unique(_list(v, p, lambda x, q: _choice(x, q, VARIABLES), "variables"), p)
+
+
+def _source_not_taken(kind: str, field: str) -> str:
+    if kind == SourceKind.SKYLIGHT:
+        return (
+            "only luminaires have this; a skylight's exitance is "
+            "filter x transmittance x exterior illuminance"
+        )
+    return "only skylights have a filter"
+
+
+SOURCE = ObjectSpec(
+    "source",
+    (
+        Field("name", _string, type="string", meaning="unique among the sources"),
+        Field("zone", _string, type="string", meaning="the emitter zone it is placed in"),
+        Field(
+            "kind",
+            lambda v, p: _choice(v, p, SOURCE_KINDS),
+            type=" or ".join(f'`"{k}"`' for k in SOURCE_KINDS),
+            meaning="must match the zone's kind",
+        ),
+        Field(
+            "rect",
+            lambda v, p: _numbers(v, p, 4),
+            type="4 numbers",
+            meaning="`[u0, v0, u1, v1]`: two diagonal corners in the zone's axes, m",
+        ),
+        Field(
+            "free",
+            _variables,
+            (),
+            "list of variables",
+            "what the optimiser may change: `u0`, `v0`, `u1`, `v1`, `flux`, `filter`",
+        ),
+        Field(
+            "flux",
+            _nonneg,
+            None,
+            "number >= 0",
+            "luminous flux, lm (exitance = flux / area); the start of a free flux",
+            LUMINAIRE,
+            nullable=True,
+        ),
+        Field(
+            "exitance",
+            _nonneg,
+            None,
+            "number >= 0",
+            "fixed exitance, lm/m² (a luminous panel)",
+            LUMINAIRE,
+            nullable=True,
+        ),
+        Field(
+            "flux_range",
+            lambda v, p: _numbers(v, p, 2, lo=0.0),
+            _D["flux_range"],
+            "2 numbers",
+            "bounds of a free flux, lm; 0 <= min < max",
+            LUMINAIRE,
+        ),
+        Field(
+            "efficacy",
+            lambda v, p: _number(v, p, gt=0.0),
+            _D["efficacy"],
+            "number > 0",
+            "lm/W, for the electric power",
+            LUMINAIRE,
+        ),
+        Field(
+            "filter",
+            lambda v, p: _number(v, p, lo=0.0, hi=1.0),
+            _D["filter"],
+            "number in [0, 1]",
+            "fraction of the glazed daylight let in",
+            SKYLIGHT,
+        ),
+    ),
+    kind_field="kind",
+    not_taken=_source_not_taken,
+)
+
+RULE_TAKES = {
+    RuleKind.AREA: ("min", "max"),
+    RuleKind.ASPECT: ("max",),
+    RuleKind.MIRROR: ("axis",),
+    RuleKind.CENTRED: (),
+    RuleKind.SPACING: ("min",),
+    RuleKind.ALIGN: ("axis",),
+}
+"""Which of min, max and axis each rule kind takes."""
+
+
+def _taking(key: str) -> tuple[str, ...]:
+    return tuple(str(k) for k, takes in RULE_TAKES.items() if key in takes)
+
+
+def _rule_not_taken(kind: str, field: str) -> str:
+    also = ", ".join(("sources", *RULE_TAKES[RuleKind(kind)]))
+    return f"{kind} rules do not take {field!r} (they take: {also})"
+
+
+RULE = ObjectSpec(
+    "rule",
+    (
+        Field(
+            "kind",
+            lambda v, p: _choice(v, p, tuple(str(k) for k in RuleKind)),
+            type="rule kind",
+            meaning="see the table of rule kinds",
+        ),
+        Field(
+            "sources",
+            lambda v, p: _unique(_list(v, p, _string, "source names", 1), p),
+            type="list of source names",
+            meaning="the sources it constrains, each once",
+        ),
+        Field("min", _nonneg, None, "number >= 0", "lower bound", _taking("min"), nullable=True),
+        Field("max", _nonneg, None, "number >= 0", "upper bound", _taking("max"), nullable=True),
+        Field(
+            "axis",
+            lambda v, p: _choice(v, p, ("u", "v")),
+            None,
+            '`"u"` or `"v"`',
+            "the zone axis",
+            _taking("axis"),
+            nullable=True,
+        ),
+    ),
+    kind_field="kind",
+    not_taken=_rule_not_taken,
+    kinds_first=True,
+)
+
+_I = Intention.__dataclass_fields__
+INTENTION = ObjectSpec(
+    "intention",
+    (
+        Field("name", _string, type="string", meaning="unique among the intentions"),
+        Field(
+            "group",
+            _string,
+            None,
+            "string",
+            'a lighting group of the scene, or `"*"` (every patch); this or `patches`',
+            nullable=True,
+        ),
+        Field(
+            "patches",
+            lambda v, p: _list(v, p, lambda x, q: _integer(x, q, lo=0), "patch ids", 1),
+            None,
+            "list of integers >= 0",
+            "patch ids (at least one); this or `group`",
+            nullable=True,
+        ),
+        Field(
+            "quantity",
+            lambda v, p: _choice(v, p, tuple(str(q) for q in Quantity)),
+            _I["quantity"].default,
+            '`"lux"` or `"C"`',
+            "illuminance (lux), or reflected exitance C (lm/m²)",
+            always=True,
+        ),
+        Field("min", _nonneg, None, "number >= 0", "lower bound on every patch", nullable=True),
+        Field("max", _nonneg, None, "number >= 0", "upper bound on every patch", nullable=True),
+        Field(
+            "average",
+            _nonneg,
+            None,
+            "number >= 0",
+            "lower bound on the area-weighted mean",
+            nullable=True,
+        ),
+        Field(
+            "uniformity",
+            lambda v, p: _number(v, p, lo=0.0, hi=1.0),
+            None,
+            "number in [0, 1]",
+            "lower bound on U0 = min / mean",
+            nullable=True,
+        ),
+        Field(
+            "weight",
+            _nonneg,
+            _I["weight"].default,
+            "number >= 0",
+            "scales its penalty",
+            always=True,
+        ),
+    ),
+)
+
+GOAL = ObjectSpec(
+    "goal",
+    (
+        Field(
+            "kind",
+            lambda v, p: _choice(v, p, tuple(str(g) for g in GoalKind)),
+            type="goal kind",
+            meaning="see the table of goal kinds",
+        ),
+        Field(
+            "kinds",
+            lambda v, p: _unique(_list(v, p, lambda x, q: _choice(x, q, SOURCE_KINDS), "kinds"), p),
+            (),
+            "list of source kinds",
+            "`max_light_power` only: count the light of these kinds (all when empty)",
+        ),
+    ),
+)
+
+_DL = Daylight.__dataclass_fields__
+DAYLIGHT = ObjectSpec(
+    "daylight",
+    (
+        Field(
+            "exterior_lux",
+            _nonneg,
+            _DL["exterior_lux"].default,
+            "number >= 0",
+            "exterior diffuse illuminance, lux",
+            always=True,
+        ),
+        Field(
+            "transmittance",
+            lambda v, p: _number(v, p, lo=0.0, hi=1.0),
+            _DL["transmittance"].default,
+            "number in [0, 1]",
+            "fraction of it the skylight glazing lets through",
+            always=True,
+        ),
+    ),
+)
+
+DESIGN_SPECS = (SOURCE, RULE, INTENTION, GOAL, DAYLIGHT)
