@@ -16,9 +16,12 @@ import numbers
 from dataclasses import dataclass, field
 
 from lightinv_core.errors import DesignError
+from lightinv_core.kinds import GoalKind, Quantity, RuleKind, SourceKind, VariableName
 
-CORNERS = ("u0", "v0", "u1", "v1")
-VARIABLES = (*CORNERS, "flux", "filter")
+SOURCE_KINDS = tuple(str(k) for k in SourceKind)
+
+VARIABLES = tuple(str(v) for v in VariableName)
+CORNERS = VARIABLES[:4]
 MAX_PATCH_ID = 2**53  # project files limit integers to 2^53 too
 
 
@@ -81,7 +84,7 @@ class Source:
         _name(self.name, "a source's name")
         where = f"source {self.name!r}"
         _name(self.zone, f"{where}: zone")
-        if self.kind not in ("luminaire", "skylight"):
+        if self.kind not in SOURCE_KINDS:
             raise DesignError(f"{where}: kind must be 'luminaire' or 'skylight'")
         rect = _items(self.rect, where, "rect")
         if len(rect) != 4:
@@ -101,7 +104,7 @@ class Source:
         for key in ("flux", "exitance"):
             if getattr(self, key) is not None:
                 object.__setattr__(self, key, _finite(getattr(self, key), f"{where} {key}", lo=0.0))
-        if self.kind == "luminaire":
+        if self.kind == SourceKind.LUMINAIRE:
             if self.flux is not None and self.exitance is not None:
                 raise DesignError(
                     f"{where}: give a luminaire's flux (lm) or its exitance (lm/m²), not both"
@@ -173,7 +176,7 @@ class Rule:
     max: float | None = None
     axis: str | None = None
 
-    KINDS = ("area", "aspect", "mirror", "centred", "spacing", "align")
+    KINDS = tuple(str(k) for k in RuleKind)
 
     def __post_init__(self) -> None:
         if isinstance(self.sources, str):
@@ -254,7 +257,7 @@ class Intention:
                     raise DesignError(f"{where}: patch id {i!r} is negative or too large")
                 ids.append(int(i))
             object.__setattr__(self, "patches", tuple(ids))
-        if self.quantity not in ("lux", "C"):
+        if self.quantity not in tuple(Quantity):
             raise DesignError(f"{where}: quantity must be 'lux' or 'C'")
         for key in ("min", "max", "average"):
             v = getattr(self, key)
@@ -273,7 +276,7 @@ class Intention:
         _finite(self.weight, f"{where} weight", lo=0.0)
 
 
-GOALS = ("min_electric_power", "max_light_power", "match")
+GOALS = tuple(str(g) for g in GoalKind)
 
 
 @dataclass(frozen=True)
@@ -294,10 +297,10 @@ class Goal:
         if self.kind not in GOALS:
             raise DesignError(f"goal {self.kind!r} is not one of {GOALS}")
         object.__setattr__(self, "kinds", _items(self.kinds, f"goal {self.kind!r}", "kinds"))
-        bad = [k for k in self.kinds if k not in ("luminaire", "skylight")]
+        bad = [k for k in self.kinds if k not in SOURCE_KINDS]
         if bad:
             raise DesignError(f"goal {self.kind!r}: kinds {bad} must be 'luminaire' or 'skylight'")
-        if self.kinds and self.kind != "max_light_power":
+        if self.kinds and self.kind != GoalKind.MAX_LIGHT_POWER:
             raise DesignError(f"goal {self.kind!r}: only max_light_power counts source kinds")
 
 
@@ -370,7 +373,7 @@ class Design:
             missing = [s for s in r.sources if s not in known]
             if missing:
                 raise DesignError(f"rule {r.kind!r} names unknown sources {missing}")
-        if any(g.kind == "match" for g in self.goals) and not self.target_sources:
+        if any(g.kind == GoalKind.MATCH for g in self.goals) and not self.target_sources:
             raise DesignError("a match goal needs target_sources (the light to reproduce)")
         if self.penalty_power < 1 or self.penalty_power % 2:
             raise DesignError("penalty power must be an even positive integer (paper eq. 3)")

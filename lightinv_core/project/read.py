@@ -41,6 +41,7 @@ from lightinv_core.fields import (
     _unique,
     _within,
 )
+from lightinv_core.kinds import GoalKind
 from lightinv_core.project.model import (
     OPERATOR_FIELDS,
     OPTIMIZER_FIELDS,
@@ -143,7 +144,7 @@ def _intentions(v: Any, path: str) -> tuple[Intention, ...]:
 
 def _goal(v: Any, path: str) -> Goal:
     kw = GOAL.read(v, path)
-    if kw.get("kinds") and kw["kind"] != "max_light_power":
+    if kw.get("kinds") and kw["kind"] != GoalKind.MAX_LIGHT_POWER:
         _fail(_join(path, "kinds"), "only a max_light_power goal takes source kinds")
     with _within(path):
         return Goal(**kw)
@@ -174,7 +175,7 @@ def _design(d: dict) -> Design:
     intentions = _intentions(d.get("intentions", []), "intentions")
     goals = _goals(d["goals"], "goals")
     for i, g in enumerate(goals):
-        if g.kind == "match" and not targets:
+        if g.kind == GoalKind.MATCH and not targets:
             _fail(f"goals[{i}]", "a match goal needs target_sources (the light to reproduce)")
     daylight = _daylight(d["daylight"], "daylight") if "daylight" in d else Daylight()
     power = 2

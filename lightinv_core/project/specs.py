@@ -11,7 +11,7 @@ from __future__ import annotations
 
 from typing import Any
 
-from lightinv_core.design.model import Daylight, Intention, Source
+from lightinv_core.design.model import SOURCE_KINDS, VARIABLES, Daylight, Intention, Source
 from lightinv_core.fields import (
     Field,
     ObjectSpec,
@@ -23,12 +23,10 @@ from lightinv_core.fields import (
     _string,
     _unique,
 )
-from lightinv_core.kinds import GoalKind, Quantity, RuleKind, SourceKind, VariableName
+from lightinv_core.kinds import GoalKind, Quantity, RuleKind, SourceKind
 
 LUMINAIRE = (str(SourceKind.LUMINAIRE),)
 SKYLIGHT = (str(SourceKind.SKYLIGHT),)
-VARIABLES = tuple(str(v) for v in VariableName)
-SOURCE_KINDS = tuple(str(k) for k in SourceKind)
 _D = {f: Source.__dataclass_fields__[f].default for f in ("flux_range", "efficacy", "filter")}
 
 

@@ -14,8 +14,10 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from lightinv_core.errors import SceneError
+from lightinv_core.kinds import SourceKind
 
-ZONE_KINDS = ("skylight", "luminaire")
+ZONE_KINDS = tuple(str(k) for k in SourceKind)
+"""Emitter zones take the kinds of source placed in them."""
 
 
 def check_reflectance(value: float, where: str) -> float:

@@ -823,7 +823,10 @@ ZONE_ERRORS = [
     ([{**ZONES[0], "colour": 1}], "scene.zones[0]: unknown field 'colour' (known: name, kind,"),
     ([{**ZONES[0], "nam": 1}], "scene.zones[0]: unknown field 'nam'"),
     ([{"name": "Z1", "kind": "luminaire", "surface": "c"}], "scene.zones[0]: missing required"),
-    ([ZONES[0], {**ZONES[1], "kind": "lamp"}], "scene.zones[1].kind: expected one of 'skylight'"),
+    (
+        [ZONES[0], {**ZONES[1], "kind": "lamp"}],
+        "scene.zones[1].kind: expected one of 'luminaire', 'skylight'",
+    ),
     ([{**ZONES[0], "name": ""}], "scene.zones[0].name: expected a non-empty string"),
     ([{**ZONES[0], "surface": 3}], "scene.zones[0].surface: expected a string, got number 3"),
     ([{**ZONES[0], "rect": [1, 2, 3]}], "scene.zones[0].rect: expected 4 numbers, got 3"),
