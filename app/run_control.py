@@ -13,10 +13,10 @@ from __future__ import annotations
 import time
 
 import numpy as np
-from PySide6 import QtCore, QtWidgets
+from PySide6 import QtCore
 
 from app import dialogs
-from app.workers import RunWorker
+from app.workers import RunWorker, stop_and_wait
 from lightinv_core.design.solution import ParetoFront, Solution, SolutionInfo
 from lightinv_core.errors import LightInvError
 from lightinv_core.kinds import GoalKind
@@ -99,10 +99,7 @@ class RunController(QtCore.QObject):
 
     def stop(self) -> None:
         """Cancel and wait (closing, switching projects); the best is still delivered."""
-        if self.worker is not None:
-            self.worker.cancel()
-            self.worker.wait()
-            QtWidgets.QApplication.processEvents()
+        stop_and_wait(self.worker)
 
     # -- while running ----------------------------------------------------------------------
     def tick(self) -> None:

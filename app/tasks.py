@@ -10,10 +10,10 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from PySide6 import QtCore, QtWidgets
+from PySide6 import QtCore
 
 from app import dialogs
-from app.workers import PrecomputeWorker, ReportWorker, Worker
+from app.workers import PrecomputeWorker, ReportWorker, Worker, stop_and_wait
 
 
 class BackgroundTasks(QtCore.QObject):
@@ -90,10 +90,7 @@ class BackgroundTasks(QtCore.QObject):
 
     def stop(self) -> None:
         """Cancel and wait for the worker (closing, switching projects)."""
-        if self.worker is not None:
-            self.worker.cancel()
-            self.worker.wait()
-            QtWidgets.QApplication.processEvents()
+        stop_and_wait(self.worker)
 
     def _done(self) -> None:
         win = self.win

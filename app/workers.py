@@ -16,7 +16,7 @@ import weakref
 from dataclasses import dataclass
 from typing import ClassVar
 
-from PySide6 import QtCore
+from PySide6 import QtCore, QtWidgets
 
 from lightinv_core.errors import CancelledError, LightInvError
 from lightinv_core.operator.cache import CachedOperator, get_operator
@@ -221,3 +221,12 @@ class RunWorker(Worker):
                 on_solution=self._solution,
             )
         ]
+
+
+def stop_and_wait(worker: QtCore.QThread | None) -> None:
+    """Cancel ``worker`` (if any), wait for its thread and deliver its last signals
+    (closing the window, switching projects)."""
+    if worker is not None:
+        worker.cancel()
+        worker.wait()
+        QtWidgets.QApplication.processEvents()

@@ -16,7 +16,9 @@ A bound is met when c <= ``FEASIBILITY_TOL`` (0.1%).
 
 from __future__ import annotations
 
+import functools
 from dataclasses import dataclass
+from typing import NamedTuple
 
 import numpy as np
 
@@ -40,10 +42,10 @@ class IntentionStats:
     uniformity: np.ndarray
 
 
-@dataclass(frozen=True)
-class BoundCheck:
+class BoundCheck(NamedTuple):
     """One bound of one intention: the required ``limit``, the achieved ``value`` and the
-    relative violation ``c`` (arrays (m,)); ``units`` of value and limit."""
+    relative violation ``c`` (arrays (m,)); ``units`` of value and limit. (A named
+    tuple: the optimizer makes several per batch.)"""
 
     intention: Intention
     bound: Bound
@@ -98,6 +100,7 @@ def intention_stats(q: np.ndarray, weights: np.ndarray) -> IntentionStats:
     return IntentionStats(qmin, qmax, avg, qmin / np.maximum(avg, 1e-30))
 
 
+@functools.lru_cache(maxsize=1024)
 def bounds_set(intention: Intention) -> tuple[Bound, ...]:
     """The bounds an intention sets, in the order min, max, average, uniformity."""
     it = intention

@@ -20,6 +20,7 @@ need (one GEMM), and score:
 from __future__ import annotations
 
 from dataclasses import dataclass
+from functools import cached_property
 
 import numpy as np
 
@@ -42,6 +43,7 @@ from lightinv_core.operator.clustering import cluster_patches
 from lightinv_core.scene.patches import Patches
 
 EPSILON_WEIGHT = 100.0
+GOAL_NAMES = tuple(str(g) for g in GoalKind)
 GOAL_UNITS = {GoalKind.MIN_ELECTRIC_POWER: "W", GoalKind.MAX_LIGHT_POWER: "lm", GoalKind.MATCH: ""}
 
 __all__ = ["EPSILON_WEIGHT", "FEASIBILITY_TOL", "Constraint", "DesignProblem", "Evaluation"]
@@ -86,7 +88,8 @@ class Evaluation:
 
     ``value`` = scaled primary goal + ``penalty`` (inf where a geometric rule fails,
     ``ok`` False); ``goals`` {goal kind: (m,)} in W, lm or e for every goal kind;
-    ``F`` (m, o) and ``G`` (m, c) as described in the module; ``evaluated`` counts the
+    ``F`` (m, o) and ``G`` (m, c) as described in the module (assembled on first use:
+    the optimizer's hot loop reads only value and penalty); ``evaluated`` counts the
     light evaluations (the candidates with ``ok``).
     """
 
@@ -95,8 +98,28 @@ class Evaluation:
     ok: np.ndarray
     goals: dict[str, np.ndarray]
     evaluated: int
-    F: np.ndarray
-    G: np.ndarray
+    geometry: np.ndarray
+    lighting: tuple[np.ndarray, ...]
+    senses: tuple[tuple[str, float], ...]
+
+    @cached_property
+    def G(self) -> np.ndarray:
+        """(m, c) constraint values, met where <= 0 (+inf: light not computed)."""
+        m, ngeo = self.geometry.shape
+        G = np.full((m, ngeo + len(self.lighting)), np.inf)
+        G[:, :ngeo] = self.geometry
+        good = np.flatnonzero(self.ok)
+        for j, col in enumerate(self.lighting, ngeo):
+            G[good, j] = col
+        return G
+
+    @cached_property
+    def F(self) -> np.ndarray:
+        """(m, o) objectives as minimised (+inf where a geometric rule fails)."""
+        F = np.full((len(self.ok), len(self.senses)), np.inf)
+        for j, (kind, sign) in enumerate(self.senses):
+            F[self.ok, j] = sign * self.goals[kind][self.ok]
+        return F
 
     @property
     def feasible(self) -> np.ndarray:
@@ -140,7 +163,7 @@ class DesignProblem:
         self.zone_size = self.vars.zone_size
         self.intent_sets = [intention_patches(i, self.patches) for i in design.intentions]
         self.epsilon = tuple((str(k), float(b)) for k, b in epsilon)
-        self.primary = design.goals[0].kind
+        self.primary = str(design.goals[0].kind)
         self.objectives = tuple(GoalKind(g.kind) for g in design.goals)
         self.scales = {
             GoalKind.MAX_LIGHT_POWER: light.power_scale(sources, design.daylight),
@@ -148,6 +171,15 @@ class DesignProblem:
             GoalKind.MATCH: 1.0,
         }
         self.constraints = self._constraint_columns()
+        self._weights = [c.weight for c in self.constraints if c.kind != "geometry"]
+        self._senses = tuple(
+            (str(k), -1.0 if k == GoalKind.MAX_LIGHT_POWER else 1.0) for k in self.objectives
+        )
+        self._sign = -1.0 if self.primary == GoalKind.MAX_LIGHT_POWER else 1.0
+        light_goal = next((g for g in design.goals if g.kind == GoalKind.MAX_LIGHT_POWER), None)
+        # The light-power goal counts its kinds' sources (all kinds when it names none).
+        kinds = (light_goal.kinds if light_goal else ()) or tuple(SourceKind)
+        self._power_kinds = tuple(str(k) for k in kinds)
         self._levels: dict[int, Level] = {}
         self.match = None
         if any(g.kind == GoalKind.MATCH for g in design.goals):
@@ -192,31 +224,24 @@ class DesignProblem:
         rect, flux, filt = self.vars.decode(X)
         geo = rule_violations(self.design, rect, self.zone_size)
         ok = ~np.any(geo > 0, axis=1)
-        value = np.full(m, np.inf)
-        penalty = np.full(m, np.inf)
-        goals = {k: np.full(m, np.nan) for k in GoalKind}
-        G = np.empty((m, len(self.constraints)))
-        ngeo = geo.shape[1]
-        G[:, :ngeo] = geo
         good = np.flatnonzero(ok)
         if len(good) == m:
-            # Every candidate was lit (the usual case): plain slices, no fancy indexing.
-            value, penalty, goals, G[:, ngeo:] = self._score(rect, flux, filt, level)
+            # Every candidate was lit (the usual case): no scatter into full arrays.
+            value, penalty, goals, lighting = self._score(rect, flux, filt, level)
         else:
-            G[:, ngeo:] = np.inf
+            value, penalty = np.full(m, np.inf), np.full(m, np.inf)
+            goals = {k: np.full(m, np.nan) for k in GOAL_NAMES}
+            lighting = ()
             if len(good):
                 v, p, g, lighting = self._score(rect[good], flux[good], filt[good], level)
                 value[good], penalty[good] = v, p
-                G[good, ngeo:] = lighting
                 for k in goals:
                     goals[k][good] = g[k]
-        F = np.full((m, len(self.objectives)), np.inf)
-        for j, kind in enumerate(self.objectives):
-            sign = -1.0 if kind == GoalKind.MAX_LIGHT_POWER else 1.0
-            F[good, j] = sign * goals[kind][good]
-        return Evaluation(value, penalty, ok, goals, len(good), F, G)
+        return Evaluation(value, penalty, ok, goals, len(good), geo, lighting, self._senses)
 
     def _score(self, rect, flux, filt, level: Level):
+        """Value, penalty, goals and lighting constraint columns (c - tol, each (m,)) of
+        m lit candidates."""
         d = self.design
         V, by_kind = self.light.zone_emission(
             d.sources, rect, flux, filt, d.daylight, split_kinds=True
@@ -229,36 +254,29 @@ class DesignProblem:
         if need_field and len(level.rows):
             H = self.light.illuminance(V, level.receivers, cols)
         match = self._match(V, cols, H, level) if self.match is not None else np.zeros(m)
+        power_V = sum(by_kind[k] for k in self._power_kinds)
+        # Plain-string keys: this dict is read on every batch.
         goals = {
-            GoalKind.MAX_LIGHT_POWER: self._light_power(by_kind),
-            GoalKind.MIN_ELECTRIC_POWER: self.light.electric_power(d.sources, rect, flux),
-            GoalKind.MATCH: match,
+            "max_light_power": self.light.reflected_power(power_V),
+            "min_electric_power": self.light.electric_power(d.sources, rect, flux),
+            "match": match,
         }
         checks = self._checks(H, level) if self.intent_sets else []
-        lighting = [c.c - FEASIBILITY_TOL for c in checks]
+        lighting = [chk.c - FEASIBILITY_TOL for chk in checks]
         lighting += [c - FEASIBILITY_TOL for _, _, c in self._epsilon_terms(goals)]
-        G = np.stack(lighting, axis=1) if lighting else np.zeros((m, 0))
-        penalty = self._penalty(G, len(checks), m)
-        sign = -1.0 if self.primary == GoalKind.MAX_LIGHT_POWER else 1.0
-        value = sign * goals[self.primary] / self.scales[self.primary] + penalty
-        return value, penalty, goals, G
+        penalty = self._penalty(lighting, len(checks), m)
+        value = self._sign * goals[self.primary] / self.scales[self.primary] + penalty
+        return value, penalty, goals, tuple(lighting)
 
-    def _light_power(self, by_kind: dict) -> np.ndarray:
-        """Reflected light power (lm) of the sources the light-power goal counts."""
-        kinds = next((g.kinds for g in self.design.goals if g.kind == GoalKind.MAX_LIGHT_POWER), ())
-        V = sum(by_kind[k] for k in (kinds or tuple(SourceKind)))
-        return self.light.reflected_power(V)
-
-    def _penalty(self, G: np.ndarray, n_intent: int, m: int) -> np.ndarray:
-        """P = sum W max(0, G)^pow: intention columns, then epsilon columns."""
-        pw = self.design.penalty_power
-        weights = [c.weight for c in self.constraints if c.kind != "geometry"]
+    def _penalty(self, lighting: list, n_intent: int, m: int) -> np.ndarray:
+        """P = sum W max(0, G)^pow over the lighting columns: intentions, then epsilon."""
+        pw, weights = self.design.penalty_power, self._weights
         P = np.zeros(m)
         for j in range(n_intent):
-            P += weights[j] * np.maximum(0.0, G[:, j]) ** pw
+            P += weights[j] * np.maximum(0.0, lighting[j]) ** pw
         P_eps = 0.0
-        for j in range(n_intent, G.shape[1]):
-            P_eps = P_eps + weights[j] * np.maximum(0.0, G[:, j]) ** pw
+        for j in range(n_intent, len(lighting)):
+            P_eps = P_eps + weights[j] * np.maximum(0.0, lighting[j]) ** pw
         return P + P_eps
 
     def _match(self, V, cols, H, level: Level) -> np.ndarray:

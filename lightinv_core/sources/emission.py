@@ -55,6 +55,9 @@ def electric_power(sources: Sequence[Source], rect: np.ndarray, flux: np.ndarray
     return total
 
 
+KIND_NAMES = tuple(str(k) for k in SourceKind)
+
+
 class ZoneEmission:
     """The emitter zones of a scene as the operator sees them: each zone's grid and
     its columns in the zone basis, built on first use."""
@@ -107,7 +110,7 @@ class ZoneEmission:
         m = rect.shape[0]
         nz = len(self.op.zone_patches)
         V = np.zeros((nz, m), np.float32)
-        by_kind = {k: np.zeros((nz, m), np.float32) for k in SourceKind}
+        by_kind = {k: np.zeros((nz, m), np.float32) for k in KIND_NAMES}
         for j, s in enumerate(sources):
             g = self.grid(s.zone)
             ex = source_type(s.kind).exitance(s, rect[:, j], flux[:, j], filt[:, j], daylight)

@@ -110,7 +110,9 @@ class DiffusingGlazing:
         return 0.0
 
 
-SOURCE_TYPES: dict[str, SourceType] = {t.kind: t for t in (ZoneLuminaire(), DiffusingGlazing())}
+SOURCE_TYPES: dict[str, SourceType] = {
+    str(t.kind): t for t in (ZoneLuminaire(), DiffusingGlazing())
+}
 
 
 def source_type(kind: str) -> SourceType:
