@@ -335,6 +335,12 @@ class ObjectSpec:
                 out[f.name] = list(value) if isinstance(value, tuple) else value
         return out
 
+    def check_object(self, obj: Any) -> None:
+        """Check and normalise, in place, the fields of the frozen dataclass ``obj`` (a
+        settings object made in code or read from a file)."""
+        for f in self.fields:
+            object.__setattr__(obj, f.name, f.check(getattr(obj, f.name), f.name))
+
     def markdown(self) -> str:
         """The fields as a Markdown table: key, required, type, default, meaning."""
         rows = ["| key | required | type | default | meaning |", "|---|---|---|---|---|"]

@@ -1,10 +1,48 @@
-"""How a radiosity operator is built: the settings a project stores and the CLI overrides."""
+"""How a radiosity operator is built: the settings a project stores and the CLI overrides.
+
+Each field is declared once in ``OPERATOR``: the checks here, the project file's reading
+and writing and the table in docs/project-file.md come from it.
+"""
 
 from __future__ import annotations
 
 from dataclasses import dataclass
 
-from lightinv_core.fields import _check_fields, _integer, _number, _optional
+from lightinv_core.fields import Field, ObjectSpec, _integer, _number, _optional
+
+OPERATOR = ObjectSpec(
+    "operator",
+    (
+        Field(
+            "tol",
+            lambda v, p: _number(v, p, gt=0.0, lt=1.0),
+            0.01,
+            "number, 0 < tol < 1",
+            "target mean relative error of the reflected light C (used when `rank` is null)",
+        ),
+        Field(
+            "rank",
+            _optional(lambda v, p: _integer(v, p, lo=1)),
+            None,
+            "integer >= 1",
+            "fixed number of clusters k; null: grow k until `tol` is met",
+        ),
+        Field(
+            "rays",
+            lambda v, p: _integer(v, p, lo=1),
+            1024,
+            "integer >= 1",
+            "rays per patch for the form factors",
+        ),
+        Field(
+            "seed",
+            lambda v, p: _integer(v, p, lo=0),
+            0,
+            "integer >= 0",
+            "random seed of the ray tracing",
+        ),
+    ),
+)
 
 
 @dataclass(frozen=True)
@@ -13,18 +51,10 @@ class OperatorSettings:
     is None), or a fixed ``rank`` (clusters); ``rays`` per patch for the form factors and
     the ray ``seed``."""
 
-    tol: float = 0.01
-    rank: int | None = None
-    rays: int = 1024
-    seed: int = 0
+    tol: float = OPERATOR.field("tol").default
+    rank: int | None = OPERATOR.field("rank").default
+    rays: int = OPERATOR.field("rays").default
+    seed: int = OPERATOR.field("seed").default
 
     def __post_init__(self) -> None:
-        _check_fields(
-            self,
-            {
-                "tol": lambda v, p: _number(v, p, gt=0.0, lt=1.0),
-                "rank": _optional(lambda v, p: _integer(v, p, lo=1)),
-                "rays": lambda v, p: _integer(v, p, lo=1),
-                "seed": lambda v, p: _integer(v, p, lo=0),
-            },
-        )
+        OPERATOR.check_object(self)

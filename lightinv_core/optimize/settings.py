@@ -4,11 +4,128 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from lightinv_core.fields import _check_fields, _choice, _count, _integer, _list, _number, _optional
+from lightinv_core.fields import (
+    Field,
+    ObjectSpec,
+    _choice,
+    _count,
+    _integer,
+    _list,
+    _number,
+    _optional,
+)
 from lightinv_core.optimize.registry import method_names
 
 METHODS = method_names()
 """The method names a project may choose: the registry's (registry.py)."""
+
+
+_opt_count = _optional(_count)
+_opt_number = _optional(_number)
+
+OPTIMIZER = ObjectSpec(
+    "optimizer",
+    (
+        Field(
+            "method",
+            lambda v, p: _choice(v, p, METHODS),
+            "vns",
+            "string",
+            "`vns`: one VNS on all patches; `multilevel`: VNS on the `divisors` levels, each "
+            "warm-started from the previous; `epsilon`: epsilon-constraint sweep; "
+            "`two_step`: skylights first, then luminaires (paper 5.5)",
+        ),
+        Field(
+            "seed",
+            lambda v, p: _integer(v, p, lo=0),
+            0,
+            "integer >= 0",
+            "random seed; the same seed gives the same result",
+        ),
+        Field(
+            "max_evals",
+            _opt_count,
+            20000,
+            "integer >= 1",
+            "stop after this many evaluations (shared by all levels); null: no limit",
+        ),
+        Field(
+            "time_limit",
+            _optional(lambda v, p: _number(v, p, gt=0.0)),
+            None,
+            "number > 0",
+            "stop after this many seconds (shared by all levels)",
+        ),
+        Field(
+            "target",
+            _opt_number,
+            None,
+            "number",
+            "stop when the primary goal reaches this value with every rule and intention "
+            "met (W, lm or e)",
+        ),
+        Field(
+            "stall",
+            _opt_count,
+            None,
+            "integer >= 1",
+            "stop after this many evaluations without improvement",
+        ),
+        Field(
+            "trials",
+            _count,
+            32,
+            "integer >= 1",
+            "neighbours drawn (and evaluated as one batch) per local search",
+        ),
+        Field(
+            "divisors",
+            lambda v, p: _list(v, p, _count, "divisors (integers >= 1)", 1),
+            (64, 16, 1),
+            "list of integers >= 1",
+            "multilevel: levels on about n/d representative patches; a final level on "
+            "all patches (1) is added when missing, and keeps at least a quarter of the "
+            "budgets",
+        ),
+        Field(
+            "level_max_evals",
+            _opt_count,
+            None,
+            "integer >= 1",
+            "multilevel: evaluation limit of each coarse level",
+        ),
+        Field(
+            "level_target",
+            _opt_number,
+            None,
+            "number",
+            "multilevel: target of the coarse levels (e.g. 0.03 for a match error)",
+        ),
+        Field(
+            "runs",
+            _count,
+            10,
+            "integer >= 1",
+            "`two_step`: repetitions with seeds `seed`, `seed` + 1, ...",
+        ),
+        Field(
+            "epsilons",
+            _optional(lambda v, p: _list(v, p, lambda x, q: _number(x, q, lo=0.0), "lm values", 1)),
+            None,
+            "list of numbers >= 0",
+            "`epsilon`: the light-power bounds (lm) to sweep; null: automatic",
+        ),
+        Field(
+            "epsilon_count",
+            _count,
+            12,
+            "integer >= 1",
+            "`epsilon`: number of automatic bounds, evenly spread between the light power "
+            "of the least-power layout and the largest feasible light power",
+        ),
+    ),
+)
+"""Every run setting, declared once: checks, file reading and writing, and docs."""
 
 
 @dataclass(frozen=True)
@@ -21,39 +138,19 @@ class OptimizerSettings:
     when feasible), ``stall`` (evaluations without improvement); None disables each.
     """
 
-    method: str = "vns"
-    seed: int = 0
-    max_evals: int | None = 20000
-    time_limit: float | None = None
-    target: float | None = None
-    stall: int | None = None
-    trials: int = 32
-    divisors: tuple[int, ...] = (64, 16, 1)
-    level_max_evals: int | None = None
-    level_target: float | None = None
-    runs: int = 10
-    epsilons: tuple[float, ...] | None = None
-    epsilon_count: int = 12
+    method: str = OPTIMIZER.field("method").default
+    seed: int = OPTIMIZER.field("seed").default
+    max_evals: int | None = OPTIMIZER.field("max_evals").default
+    time_limit: float | None = OPTIMIZER.field("time_limit").default
+    target: float | None = OPTIMIZER.field("target").default
+    stall: int | None = OPTIMIZER.field("stall").default
+    trials: int = OPTIMIZER.field("trials").default
+    divisors: tuple[int, ...] = OPTIMIZER.field("divisors").default
+    level_max_evals: int | None = OPTIMIZER.field("level_max_evals").default
+    level_target: float | None = OPTIMIZER.field("level_target").default
+    runs: int = OPTIMIZER.field("runs").default
+    epsilons: tuple[float, ...] | None = OPTIMIZER.field("epsilons").default
+    epsilon_count: int = OPTIMIZER.field("epsilon_count").default
 
     def __post_init__(self) -> None:
-        count, value = _count, _number
-        _check_fields(
-            self,
-            {
-                "method": lambda v, p: _choice(v, p, METHODS),
-                "seed": lambda v, p: _integer(v, p, lo=0),
-                "max_evals": _optional(count),
-                "time_limit": _optional(lambda v, p: _number(v, p, gt=0.0)),
-                "target": _optional(value),
-                "stall": _optional(count),
-                "trials": count,
-                "divisors": lambda v, p: _list(v, p, count, "divisors (integers >= 1)", 1),
-                "level_max_evals": _optional(count),
-                "level_target": _optional(value),
-                "runs": count,
-                "epsilons": _optional(
-                    lambda v, p: _list(v, p, lambda x, q: _number(x, q, lo=0.0), "lm values", 1)
-                ),
-                "epsilon_count": count,
-            },
-        )
+        OPTIMIZER.check_object(self)

@@ -24,6 +24,8 @@ from lightinv_core.fields import (
     _unique,
 )
 from lightinv_core.kinds import GoalKind, Quantity, RuleKind, SourceKind
+from lightinv_core.operator.settings import OPERATOR
+from lightinv_core.optimize.settings import OPTIMIZER
 
 LUMINAIRE = (str(SourceKind.LUMINAIRE),)
 SKYLIGHT = (str(SourceKind.SKYLIGHT),)
@@ -271,3 +273,5 @@ DAYLIGHT = ObjectSpec(
 )
 
 DESIGN_SPECS = (SOURCE, RULE, INTENTION, GOAL, DAYLIGHT)
+FILE_SPECS = (*DESIGN_SPECS, OPERATOR, OPTIMIZER)
+"""Every object whose fields docs/project-file.md tabulates from its spec."""

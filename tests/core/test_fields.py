@@ -13,8 +13,10 @@ import pytest
 
 from lightinv_core.design.model import Intention, Rule, Source
 from lightinv_core.fields import Field, ObjectSpec, ProjectError, _number
+from lightinv_core.operator.settings import OPERATOR, OperatorSettings
+from lightinv_core.optimize.settings import OPTIMIZER, OptimizerSettings
 from lightinv_core.project import load_project, project_to_dict
-from lightinv_core.project.specs import DESIGN_SPECS, INTENTION, RULE, SOURCE
+from lightinv_core.project.specs import FILE_SPECS, INTENTION, RULE, SOURCE
 
 DOC = Path(__file__).resolve().parents[2] / "docs" / "project-file.md"
 PROJECTS = Path(__file__).resolve().parents[2] / "resources" / "projects"
@@ -22,13 +24,13 @@ BLOCK = re.compile(r"(<!-- fields:(\w+) [^>]*-->\n)(.*?)(<!-- /fields:\2 -->)", 
 
 
 def rendered(text: str) -> str:
-    specs = {s.name: s for s in DESIGN_SPECS}
+    specs = {s.name: s for s in FILE_SPECS}
     return BLOCK.sub(lambda m: m[1] + specs[m[2]].markdown() + "\n" + m[4], text)
 
 
 def test_docs_field_tables_come_from_the_specs():
     text = DOC.read_text(encoding="utf-8")
-    assert {m[2] for m in BLOCK.finditer(text)} == {s.name for s in DESIGN_SPECS}
+    assert {m[2] for m in BLOCK.finditer(text)} == {s.name for s in FILE_SPECS}
     new = rendered(text)
     if os.environ.get("LIGHTINV_WRITE_DOCS") == "1":
         DOC.write_text(new, encoding="utf-8")
@@ -37,7 +39,9 @@ def test_docs_field_tables_come_from_the_specs():
 
 
 def test_every_model_field_is_declared_once():
-    for spec, cls in ((SOURCE, Source), (RULE, Rule), (INTENTION, Intention)):
+    pairs = ((SOURCE, Source), (RULE, Rule), (INTENTION, Intention))
+    pairs += ((OPERATOR, OperatorSettings), (OPTIMIZER, OptimizerSettings))
+    for spec, cls in pairs:
         assert spec.names == tuple(f for f in cls.__dataclass_fields__ if f != "KINDS")
         assert len(set(spec.names)) == len(spec.names)
 
