@@ -17,8 +17,9 @@ from lightinv_core.design.model import Design
 from lightinv_core.design.solution import ParetoFront, Solution
 from lightinv_core.errors import SceneError
 from lightinv_core.fields import (
+    Field,
+    ObjectSpec,
     _boolean,
-    _check_fields,
     _choice,
     _fail,
     _join,
@@ -83,6 +84,73 @@ def _zone_edits(v: Any, path: str) -> tuple[ZoneEdit, ...]:
     return zones
 
 
+_OBJ = "OBJ only: "
+
+SCENE = ObjectSpec(
+    "scene",
+    (
+        Field(
+            "builtin",
+            _optional(lambda v, p: _choice(v, p, tuple(BUILTIN_SCENES))),
+            None,
+            "string",
+            "a built-in scene: " + ", ".join(f"`{n}`" for n in BUILTIN_SCENES),
+        ),
+        Field(
+            "obj",
+            _optional(_obj_path),
+            None,
+            "string",
+            "path of a Wavefront `.obj` room model (see [obj-import.md](obj-import.md))",
+        ),
+        Field(
+            "resolution",
+            _optional(lambda v, p: _number(v, p, lo=MIN_RESOLUTION)),
+            None,
+            f"number >= {MIN_RESOLUTION:g}",
+            "target patch size in metres; null: the scene's default (0.25 m for OBJ files)",
+        ),
+        Field(
+            "materials",
+            _optional(_path_string),
+            None,
+            "string",
+            _OBJ + "path of the reflectance JSON file",
+        ),
+        Field(
+            "scale",
+            lambda v, p: _number(v, p, gt=0.0),
+            1.0,
+            "number > 0",
+            _OBJ + "metres per model unit (0.001 for millimetres)",
+        ),
+        Field(
+            "up",
+            lambda v, p: _choice(v, p, UP_AXES),
+            "z",
+            " or ".join(f'`"{a}"`' for a in UP_AXES),
+            _OBJ + "the model's up axis",
+        ),
+        Field(
+            "skip_degenerate",
+            _boolean,
+            False,
+            "boolean",
+            _OBJ + "drop degenerate faces (with a warning) instead of failing",
+        ),
+        Field(
+            "zones",
+            _zone_edits,
+            (),
+            "list",
+            "[new emitter zones](#new-emitter-zones) drawn on the scene; written only when "
+            "not empty",
+        ),
+    ),
+)
+"""The scene fields, declared once (exactly one of builtin and obj)."""
+
+
 @dataclass(frozen=True)
 class SceneSpec:
     """The scene a project is on: a built-in scene or an OBJ file (exactly one).
@@ -95,29 +163,17 @@ class SceneSpec:
     (``ZoneEdit``), applied by ``load`` with ``apply_zone_edits``.
     """
 
-    builtin: str | None = None
-    obj: str | None = None
-    resolution: float | None = None
-    materials: str | None = None
-    scale: float = 1.0
-    up: str = "z"
-    skip_degenerate: bool = False
-    zones: tuple[ZoneEdit, ...] = ()
+    builtin: str | None = SCENE.field("builtin").default
+    obj: str | None = SCENE.field("obj").default
+    resolution: float | None = SCENE.field("resolution").default
+    materials: str | None = SCENE.field("materials").default
+    scale: float = SCENE.field("scale").default
+    up: str = SCENE.field("up").default
+    skip_degenerate: bool = SCENE.field("skip_degenerate").default
+    zones: tuple[ZoneEdit, ...] = SCENE.field("zones").default
 
     def __post_init__(self) -> None:
-        _check_fields(
-            self,
-            {
-                "builtin": _optional(lambda v, p: _choice(v, p, tuple(BUILTIN_SCENES))),
-                "obj": _optional(_obj_path),
-                "resolution": _optional(lambda v, p: _number(v, p, lo=MIN_RESOLUTION)),
-                "materials": _optional(_path_string),
-                "scale": lambda v, p: _number(v, p, gt=0.0),
-                "up": lambda v, p: _choice(v, p, UP_AXES),
-                "skip_degenerate": _boolean,
-                "zones": _zone_edits,
-            },
-        )
+        SCENE.check_object(self)
         if (self.builtin is None) == (self.obj is None):
             _fail(
                 "",

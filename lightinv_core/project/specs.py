@@ -26,6 +26,7 @@ from lightinv_core.fields import (
 from lightinv_core.kinds import GoalKind, Quantity, RuleKind, SourceKind
 from lightinv_core.operator.settings import OPERATOR
 from lightinv_core.optimize.settings import OPTIMIZER
+from lightinv_core.project.model import SCENE
 
 LUMINAIRE = (str(SourceKind.LUMINAIRE),)
 SKYLIGHT = (str(SourceKind.SKYLIGHT),)
@@ -273,5 +274,5 @@ DAYLIGHT = ObjectSpec(
 )
 
 DESIGN_SPECS = (SOURCE, RULE, INTENTION, GOAL, DAYLIGHT)
-FILE_SPECS = (*DESIGN_SPECS, OPERATOR, OPTIMIZER)
+FILE_SPECS = (SCENE, *DESIGN_SPECS, OPERATOR, OPTIMIZER)
 """Every object whose fields docs/project-file.md tabulates from its spec."""

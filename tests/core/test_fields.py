@@ -15,7 +15,8 @@ from lightinv_core.design.model import Intention, Rule, Source
 from lightinv_core.fields import Field, ObjectSpec, ProjectError, _number
 from lightinv_core.operator.settings import OPERATOR, OperatorSettings
 from lightinv_core.optimize.settings import OPTIMIZER, OptimizerSettings
-from lightinv_core.project import load_project, project_to_dict
+from lightinv_core.project import SceneSpec, load_project, project_to_dict
+from lightinv_core.project.model import SCENE
 from lightinv_core.project.specs import FILE_SPECS, INTENTION, RULE, SOURCE
 
 DOC = Path(__file__).resolve().parents[2] / "docs" / "project-file.md"
@@ -40,7 +41,7 @@ def test_docs_field_tables_come_from_the_specs():
 
 def test_every_model_field_is_declared_once():
     pairs = ((SOURCE, Source), (RULE, Rule), (INTENTION, Intention))
-    pairs += ((OPERATOR, OperatorSettings), (OPTIMIZER, OptimizerSettings))
+    pairs += ((OPERATOR, OperatorSettings), (OPTIMIZER, OptimizerSettings), (SCENE, SceneSpec))
     for spec, cls in pairs:
         assert spec.names == tuple(f for f in cls.__dataclass_fields__ if f != "KINDS")
         assert len(set(spec.names)) == len(spec.names)
