@@ -1,10 +1,17 @@
-"""Checks for project JSON values, and the ``ProjectError`` they raise.
+"""Project-file fields: value checks, the ``ProjectError`` they raise, and field specs.
 
 Each checker takes a parsed JSON value and the JSON path it came from, and returns the
 value normalised (``_number`` gives a float, ``_list`` a tuple, ...) or raises a
-``ProjectError`` naming that path. The data classes in ``project_model`` and the builders
-in ``project_read`` are made of these. The leading underscores mark helpers private to
-the ``lightinv_core.project*`` modules.
+``ProjectError`` naming that path. The leading underscores mark helpers private to the
+modules that declare fields.
+
+``Field`` and ``ObjectSpec`` declare each field of a JSON object once (its check,
+default, the kinds of object that take it, its docs); reading, the error messages,
+writing and the field tables of docs/project-file.md are all derived from them. The
+specs themselves live beside the classes they describe: ``OPERATOR`` in
+``operator/settings.py``, ``OPTIMIZER`` in ``optimize/settings.py``, the scene and the
+top level in ``project/model.py``, the design in ``project/specs.py`` and the results
+in ``project/results.py``.
 """
 
 from __future__ import annotations
@@ -13,7 +20,7 @@ import difflib
 import math
 import numbers
 import os
-from collections.abc import Callable
+from collections.abc import Callable, Mapping
 from dataclasses import dataclass
 from typing import Any, NoReturn
 
@@ -222,12 +229,6 @@ def _object(v: Any, path: str, known: tuple[str, ...], required: tuple[str, ...]
     return v
 
 
-def _check_fields(obj: Any, checks: dict[str, Callable[[Any, str], Any]]) -> None:
-    """Validate and normalise the fields of a frozen dataclass in place."""
-    for name, check in checks.items():
-        object.__setattr__(obj, name, check(getattr(obj, name), name))
-
-
 def _count(v: Any, path: str) -> int:
     return _integer(v, path, lo=1)
 
@@ -250,20 +251,32 @@ REQUIRED = object()
 
 @dataclass(frozen=True)
 class Field:
-    """One field of a JSON object: its ``check`` (JSON value, JSON path -> normalised
-    value, ``ProjectError`` on a bad one), its ``default`` (``REQUIRED`` if it must be
-    given), what the docs say of its ``type`` and ``meaning``, the ``kinds`` of object
-    that take it (empty: every kind), whether it is written even at its default
-    (``always``) and whether a null means "not given" (``nullable``)."""
+    """One field of a JSON object, declared once.
+
+    ``check`` turns the JSON value at a JSON path into the model's value (a
+    ``ProjectError`` on a bad one); with ``needs``, it also gets the values of those
+    earlier fields of the same object as keyword arguments (a rule's source names).
+    ``default`` is taken when the field is missing (``REQUIRED``: it must be given;
+    ``doc_default`` shows a default that is not a plain JSON value in the docs).
+    ``type`` and ``meaning`` (units included) are what the docs say of it. ``kinds``
+    lists the kinds of object that take the field (empty: every kind). On writing, a
+    field is left out at its default unless ``always``; ``of`` is the spec of the
+    object(s) it holds, ``encode`` turns any other value into plain data. ``nullable``:
+    a null means "not given".
+    """
 
     name: str
-    check: Callable[[Any, str], Any]
+    check: Callable[..., Any]
     default: Any = REQUIRED
     type: str = ""
     meaning: str = ""
     kinds: tuple[str, ...] = ()
     always: bool = False
     nullable: bool = False
+    needs: tuple[str, ...] = ()
+    of: ObjectSpec | None = None
+    encode: Callable[[Any], Any] | None = None
+    doc_default: str | None = None
 
     @property
     def required(self) -> bool:
@@ -276,8 +289,13 @@ class ObjectSpec:
     """The fields of one kind of JSON object, in the order they are written.
 
     ``kind_field`` names the field that says which kinds' fields apply (a source's
-    ``kind``, a rule's ``kind``); ``not_taken(kind, field)`` words the error for a field
-    the kind does not take, checked after the values unless ``kinds_first``.
+    ``kind``), or an attribute of the data class when the kind is implied (a scene's
+    ``kind``: builtin or obj; then the class calls ``check_kinds``). ``not_taken(kind,
+    field)`` words the error for a field the kind does not take; it is checked after
+    the values unless ``kinds_first``, and with ``default_anywhere`` a field at its
+    default passes whatever the kind (a built-in scene's ``"scale": 1``).
+    ``write_defaults``: every field is written, defaults included (settings, results).
+    ``kinds_doc`` words the docs' note on a field only some kinds take.
     """
 
     name: str
@@ -285,6 +303,9 @@ class ObjectSpec:
     kind_field: str | None = None
     not_taken: Callable[[str, str], str] | None = None
     kinds_first: bool = False
+    default_anywhere: bool = False
+    write_defaults: bool = False
+    kinds_doc: str = "{} only"
 
     @property
     def names(self) -> tuple[str, ...]:
@@ -295,45 +316,39 @@ class ObjectSpec:
         """The field called ``name``."""
         return next(f for f in self.fields if f.name == name)
 
-    def read(self, v: Any, path: str, skip: tuple[str, ...] = ()) -> dict[str, Any]:
-        """The checked values of the object ``v`` at ``path``: unknown, repeated and
-        missing fields, each value's check, then fields its kind does not take (a null
-        counts as not given where the field is ``nullable``). Fields in ``skip`` are
-        left for the caller to check."""
+    def defaults(self) -> dict[str, Any]:
+        """The default of every field that need not be given."""
+        return {f.name: f.default for f in self.fields if not f.required}
+
+    def read(self, v: Any, path: str) -> dict[str, Any]:
+        """The checked values of the object ``v`` at ``path`` (fields not given are left
+        out): unknown, repeated and missing fields, each value's check in field order,
+        then fields its kind does not take (a null counts as not given where the field
+        is ``nullable``)."""
         required = tuple(f.name for f in self.fields if f.required)
         d = _object(v, path, self.names, required)
         kind = None
-        if self.kind_field is not None:
+        if self.kind_field in self.names:
             kind = self.field(self.kind_field).check(d[self.kind_field], _join(path, "kind"))
         out: dict[str, Any] = {}
         for f in self.fields:
-            if f.name not in d or f.name in skip or (d[f.name] is None and f.nullable):
+            if f.name not in d or (d[f.name] is None and f.nullable):
                 continue
             if self.kinds_first:
-                self._taken(kind, f, path)
-            out[f.name] = f.check(d[f.name], _join(path, f.name))
+                self._taken(kind, f, d[f.name], path)
+            given = {n: out.get(n, self.field(n).default) for n in f.needs}
+            out[f.name] = f.check(d[f.name], _join(path, f.name), **given)
         for f in self.fields:
             if f.name in out:
-                self._taken(kind, f, path)
+                self._taken(kind, f, out[f.name], path)
         return out
 
-    def _taken(self, kind: str | None, f: Field, path: str) -> None:
-        if kind is not None and f.kinds and kind not in f.kinds:
-            _fail(_join(path, f.name), self.not_taken(kind, f.name))
-
-    def write(self, obj: Any) -> dict[str, Any]:
-        """The fields of ``obj`` (attributes of the same names) as they are saved: required
-        and ``always`` fields, the others when they differ from their default and apply
-        to the object's kind."""
-        kind = getattr(obj, self.kind_field) if self.kind_field else None
-        out: dict[str, Any] = {}
-        for f in self.fields:
-            value = getattr(obj, f.name)
-            if f.kinds and kind not in f.kinds:
-                continue
-            if f.required or f.always or value != f.default:
-                out[f.name] = list(value) if isinstance(value, tuple) else value
-        return out
+    def build(self, cls: type, v: Any, path: str) -> Any:
+        """``cls(**values)`` of the object ``v`` at ``path``, an error of the model class
+        (``DesignError``) reported at ``path``."""
+        values = self.read(v, path)
+        with _within(path):
+            return cls(**values)
 
     def check_object(self, obj: Any) -> None:
         """Check and normalise, in place, the fields of the frozen dataclass ``obj`` (a
@@ -341,20 +356,66 @@ class ObjectSpec:
         for f in self.fields:
             object.__setattr__(obj, f.name, f.check(getattr(obj, f.name), f.name))
 
+    def check_kinds(self, obj: Any, path: str = "") -> None:
+        """Fail on a field of the data class ``obj`` that its kind does not take."""
+        kind = getattr(obj, self.kind_field)
+        for f in self.fields:
+            value = getattr(obj, f.name)
+            if not (f.nullable and value is None):
+                self._taken(kind, f, value, path)
+
+    def _taken(self, kind: str | None, f: Field, value: Any, path: str) -> None:
+        if kind is None or not f.kinds or kind in f.kinds:
+            return
+        if self.default_anywhere and value == f.default:
+            return
+        _fail(_join(path, f.name), self.not_taken(kind, f.name))
+
+    def write(self, obj: Any) -> dict[str, Any]:
+        """The fields of ``obj`` (a mapping, or attributes of the same names) as they are
+        saved: the fields its kind takes that are required, ``always`` written or not at
+        their default (all of them with ``write_defaults``), nested objects by their own
+        spec, tuples as lists."""
+        get = obj.__getitem__ if isinstance(obj, Mapping) else lambda n: getattr(obj, n)
+        kind = get(self.kind_field) if self.kind_field else None
+        out: dict[str, Any] = {}
+        for f in self.fields:
+            value = get(f.name)
+            if f.kinds and kind not in f.kinds:
+                continue
+            if f.required or f.always or self.write_defaults or value != f.default:
+                out[f.name] = _encode(f, value)
+        return out
+
     def markdown(self) -> str:
-        """The fields as a Markdown table: key, required, type, default, meaning."""
+        """The fields as a Markdown table: key, required, type, default, meaning (the
+        kinds that take it, then what it is, with its units)."""
         rows = ["| key | required | type | default | meaning |", "|---|---|---|---|---|"]
         for f in self.fields:
             need = "yes" if f.required else "no"
-            if f.required:
+            if f.doc_default is not None:
+                default = f.doc_default
+            elif f.required:
                 default = ""
             elif f.default is None:
                 default = "none"
             else:
                 default = f"`{_doc_value(f.default)}`"
-            only = f" ({', '.join(f.kinds)} only)" if f.kinds else ""
-            rows.append(f"| `{f.name}` | {need} | {f.type} | {default} | {f.meaning}{only} |")
+            kinds = ", ".join(f"`{k}`" for k in f.kinds)
+            only = self.kinds_doc.format(kinds) + ": " if f.kinds else ""
+            rows.append(f"| `{f.name}` | {need} | {f.type} | {default} | {only}{f.meaning} |")
         return "\n".join(rows)
+
+
+def _encode(f: Field, value: Any) -> Any:
+    """A field's value as it is written (before ``_jsonable`` makes it plain JSON)."""
+    if f.encode is not None:
+        return f.encode(value)
+    if f.of is not None and value is not None:
+        if isinstance(value, tuple | list):
+            return [f.of.write(x) for x in value]
+        return f.of.write(value)
+    return list(value) if isinstance(value, tuple) else value
 
 
 def _doc_value(v: Any) -> str:

@@ -13,52 +13,52 @@ class SourceKind(StrEnum):
     """What emits: an electric luminaire or daylight through glazing (emitter zones take
     the same kinds)."""
 
-    LUMINAIRE = "luminaire"
-    SKYLIGHT = "skylight"
+    LUMINAIRE = "luminaire"  # electric: flux (lm) or exitance (lm/m²), efficacy (lm/W)
+    SKYLIGHT = "skylight"  # glazing: exitance = filter x transmittance x exterior lux
 
 
 class RuleKind(StrEnum):
     """Geometric rules on source rectangles (checked before any light is computed)."""
 
-    AREA = "area"
-    ASPECT = "aspect"
-    MIRROR = "mirror"
-    CENTRED = "centred"
-    SPACING = "spacing"
-    ALIGN = "align"
+    AREA = "area"  # each source's area within min..max, m²
+    ASPECT = "aspect"  # long side / short side at most max
+    MIRROR = "mirror"  # the first source is the second flipped along axis
+    CENTRED = "centred"  # each rectangle centred in its zone
+    SPACING = "spacing"  # two sources at least min apart, m
+    ALIGN = "align"  # centres on one line parallel to axis
 
 
 class Quantity(StrEnum):
     """What an intention bounds: illuminance (lux) or reflected exitance C (lm/m²)."""
 
-    LUX = "lux"
-    C = "C"
+    LUX = "lux"  # illuminance H = (B - E) / rho, lux
+    C = "C"  # reflected exitance C = B - E, lm/m²
 
 
 class Bound(StrEnum):
     """The bounds of an intention: per patch (min, max), area-weighted mean, U0."""
 
-    MIN = "min"
-    MAX = "max"
-    AVERAGE = "average"
-    UNIFORMITY = "uniformity"
+    MIN = "min"  # lower bound on every patch
+    MAX = "max"  # upper bound on every patch
+    AVERAGE = "average"  # lower bound on the area-weighted mean
+    UNIFORMITY = "uniformity"  # lower bound on U0 = min / mean, in [0, 1]
 
 
 class GoalKind(StrEnum):
     """What to optimise: electric power (W, minimised), reflected light power (lm,
     maximised), or the match error e (paper eq. 11, minimised)."""
 
-    MIN_ELECTRIC_POWER = "min_electric_power"
-    MAX_LIGHT_POWER = "max_light_power"
-    MATCH = "match"
+    MIN_ELECTRIC_POWER = "min_electric_power"  # sum of flux / efficacy, W
+    MAX_LIGHT_POWER = "max_light_power"  # sum_i C_i A_i, lm
+    MATCH = "match"  # e = ||C - C_obj|| / ||C_obj||, no unit
 
 
 class VariableName(StrEnum):
     """A source's optimisation variables: rectangle corners (m), flux (lm), filter."""
 
-    U0 = "u0"
-    V0 = "v0"
-    U1 = "u1"
-    V1 = "v1"
-    FLUX = "flux"
-    FILTER = "filter"
+    U0 = "u0"  # first corner along the zone's u axis, m
+    V0 = "v0"  # first corner along v, m
+    U1 = "u1"  # opposite corner along u, m
+    V1 = "v1"  # opposite corner along v, m
+    FLUX = "flux"  # a luminaire's luminous flux, lm
+    FILTER = "filter"  # a skylight's filter, fraction in [0, 1]

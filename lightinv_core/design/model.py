@@ -16,12 +16,17 @@ import numbers
 from dataclasses import dataclass, field
 
 from lightinv_core.errors import DesignError
-from lightinv_core.kinds import GoalKind, Quantity, RuleKind, SourceKind, VariableName
+from lightinv_core.kinds import Bound, GoalKind, Quantity, RuleKind, SourceKind, VariableName
 
 SOURCE_KINDS = tuple(str(k) for k in SourceKind)
-
+"""The source kinds as plain strings (the values stored in the model)."""
 VARIABLES = tuple(str(v) for v in VariableName)
+"""A source's variable names: the corners u0, v0, u1, v1 (m), flux (lm), filter."""
 CORNERS = VARIABLES[:4]
+AXES = ("u", "v")
+"""A zone's two axes, as mirror and align rules name them."""
+RULE_SOURCES = {RuleKind.MIRROR: 2, RuleKind.SPACING: 2}
+"""Rule kinds that take an exact number of sources."""
 MAX_PATCH_ID = 2**53  # project files limit integers to 2^53 too
 
 
@@ -52,6 +57,11 @@ def _items(value, where: str, what: str) -> tuple:
     if isinstance(value, str | bytes) or not isinstance(value, tuple | list):
         raise DesignError(f"{where}: {what} must be a list, got {_short(value)}")
     return tuple(value)
+
+
+def _either(names: tuple[str, ...]) -> str:
+    """``'a' or 'b'`` (the allowed values, for a message)."""
+    return " or ".join(repr(str(n)) for n in names)
 
 
 def _name(value, where: str) -> str:
@@ -85,7 +95,7 @@ class Source:
         where = f"source {self.name!r}"
         _name(self.zone, f"{where}: zone")
         if self.kind not in SOURCE_KINDS:
-            raise DesignError(f"{where}: kind must be 'luminaire' or 'skylight'")
+            raise DesignError(f"{where}: kind must be {_either(SOURCE_KINDS)}")
         rect = _items(self.rect, where, "rect")
         if len(rect) != 4:
             raise DesignError(f"{where}: rect needs four numbers u0, v0, u1, v1 (m)")
@@ -111,16 +121,16 @@ class Source:
                 )
             if self.flux is None and self.exitance is None:
                 raise DesignError(f"{where}: a luminaire needs either flux (lm) or exitance")
-            if "filter" in self.free:
+            if VariableName.FILTER in self.free:
                 raise DesignError(f"{where}: only skylights have a filter variable")
-            if "flux" in self.free and self.flux is None:
+            if VariableName.FLUX in self.free and self.flux is None:
                 raise DesignError(f"{where}: a free flux needs a starting flux")
             lo, hi = self.flux_range
             if not 0 <= lo < hi:
                 raise DesignError(f"{where}: flux range must satisfy 0 <= min < max")
             _finite(self.efficacy, f"{where} efficacy (lm/W)", lo=1e-6)
         else:
-            if "flux" in self.free or self.flux is not None or self.exitance is not None:
+            if VariableName.FLUX in self.free or self.flux is not None or self.exitance is not None:
                 raise DesignError(
                     f"{where}: skylights have a filter, not a flux or exitance "
                     "(their exitance is filter x transmittance x exterior lux)"
@@ -195,25 +205,25 @@ class Rule:
         object.__setattr__(self, "sources", tuple(self.sources))
         if not self.sources:
             raise DesignError(f"{where}: name at least one source")
-        need = {"mirror": 2, "spacing": 2}.get(self.kind)
+        need = RULE_SOURCES.get(self.kind)
         if need and len(self.sources) != need:
             raise DesignError(f"{where}: needs exactly {need} sources")
-        if self.kind == "align" and len(self.sources) < 2:
+        if self.kind == RuleKind.ALIGN and len(self.sources) < 2:
             raise DesignError(f"{where}: needs at least two sources")
-        if self.kind in ("mirror", "align") and self.axis not in ("u", "v"):
-            raise DesignError(f"{where}: axis must be 'u' or 'v'")
+        if self.kind in (RuleKind.MIRROR, RuleKind.ALIGN) and self.axis not in AXES:
+            raise DesignError(f"{where}: axis must be {_either(AXES)}")
         for key in ("min", "max"):
             v = getattr(self, key)
             if v is not None:
                 object.__setattr__(self, key, _finite(v, f"{where} {key}", lo=0.0))
-        if self.kind == "area" and self.min is None and self.max is None:
+        if self.kind == RuleKind.AREA and self.min is None and self.max is None:
             raise DesignError(f"{where}: give min and/or max area (m²)")
         if self.min is not None and self.max is not None and self.min > self.max:
             raise DesignError(f"{where}: min {self.min} is larger than max {self.max}")
-        if self.kind == "aspect" and (self.max is None or self.max < 1):
+        if self.kind == RuleKind.ASPECT and (self.max is None or self.max < 1):
             got = "none" if self.max is None else f"{self.max:g}"
             raise DesignError(f"{where}: max aspect ratio must be at least 1, got {got}")
-        if self.kind == "spacing" and self.min is None:
+        if self.kind == RuleKind.SPACING and self.min is None:
             raise DesignError(f"{where}: give the min gap (m)")
 
 
@@ -231,7 +241,7 @@ class Intention:
     name: str
     group: str | None = None
     patches: tuple[int, ...] | None = None
-    quantity: str = "lux"
+    quantity: str = Quantity.LUX.value
     min: float | None = None
     max: float | None = None
     average: float | None = None
@@ -258,8 +268,8 @@ class Intention:
                 ids.append(int(i))
             object.__setattr__(self, "patches", tuple(ids))
         if self.quantity not in tuple(Quantity):
-            raise DesignError(f"{where}: quantity must be 'lux' or 'C'")
-        for key in ("min", "max", "average"):
+            raise DesignError(f"{where}: quantity must be {_either(tuple(Quantity))}")
+        for key in (Bound.MIN, Bound.MAX, Bound.AVERAGE):
             v = getattr(self, key)
             if v is not None:
                 object.__setattr__(self, key, _finite(v, f"{where} {key}", lo=0.0))
@@ -267,8 +277,8 @@ class Intention:
             object.__setattr__(
                 self, "uniformity", _finite(self.uniformity, f"{where} uniformity", 0.0, 1.0)
             )
-        if all(getattr(self, k) is None for k in ("min", "max", "average", "uniformity")):
-            raise DesignError(f"{where}: give at least one of min, max, average, uniformity")
+        if all(getattr(self, k) is None for k in Bound):
+            raise DesignError(f"{where}: give at least one of {', '.join(Bound)}")
         if self.min is not None and self.max is not None and self.min > self.max:
             raise DesignError(f"{where}: min {self.min} is above max {self.max}")
         if self.average is not None and self.max is not None and self.average > self.max:
@@ -299,7 +309,7 @@ class Goal:
         object.__setattr__(self, "kinds", _items(self.kinds, f"goal {self.kind!r}", "kinds"))
         bad = [k for k in self.kinds if k not in SOURCE_KINDS]
         if bad:
-            raise DesignError(f"goal {self.kind!r}: kinds {bad} must be 'luminaire' or 'skylight'")
+            raise DesignError(f"goal {self.kind!r}: kinds {bad} must be {_either(SOURCE_KINDS)}")
         if self.kinds and self.kind != GoalKind.MAX_LIGHT_POWER:
             raise DesignError(f"goal {self.kind!r}: only max_light_power counts source kinds")
 

@@ -42,6 +42,7 @@ OPERATOR = ObjectSpec(
             "random seed of the ray tracing",
         ),
     ),
+    write_defaults=True,  # a saved file shows every setting of its run
 )
 
 

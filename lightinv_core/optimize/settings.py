@@ -124,6 +124,7 @@ OPTIMIZER = ObjectSpec(
             "of the least-power layout and the largest feasible light power",
         ),
     ),
+    write_defaults=True,  # a saved file shows every setting of its run
 )
 """Every run setting, declared once: checks, file reading and writing, and docs."""
 

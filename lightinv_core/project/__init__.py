@@ -13,10 +13,13 @@ Group and zone names are checked against the scene only when the problem is buil
 Relative scene paths (``obj``, ``materials``) are resolved against the project file's
 folder on loading, and written relative to the new file's folder on saving.
 
-This module is the public API. The work is done, in data-flow order, by
-``project_checks`` (the value checkers and ``ProjectError``), ``project_model`` (the
-data classes and the JSON field tables), ``project_read`` (JSON data -> ``Project``) and
-``project_write`` (``Project`` -> JSON data -> file).
+This module is the public API. Each field of every JSON object is declared once as a
+field spec (``lightinv_core.fields.Field`` in an ``ObjectSpec``): the top level in
+``model`` (with the ``Project`` data class), the scene in ``scene`` (with
+``SceneSpec``), the design's objects in ``specs``, saved results in ``results``, the run
+settings beside their classes (``operator/settings.py``, ``optimize/settings.py``).
+``read`` (JSON data -> ``Project``) and ``write`` (``Project`` -> JSON data -> file) are
+driven by those specs, and so are the field tables of docs/project-file.md.
 """
 
 from __future__ import annotations
@@ -29,8 +32,9 @@ from pathlib import Path
 from lightinv_core.fields import ProjectError
 from lightinv_core.operator.settings import OperatorSettings
 from lightinv_core.optimize.settings import METHODS, OptimizerSettings
-from lightinv_core.project.model import SCHEMA, Project, SceneSpec
+from lightinv_core.project.model import SCHEMA, Project
 from lightinv_core.project.read import object_pairs_hook, read_project
+from lightinv_core.project.scene import SceneSpec
 from lightinv_core.project.write import project_dict, solution_to_dict, write_json
 
 __all__ = [

@@ -1,6 +1,7 @@
-"""Every field of the design's JSON objects, declared once.
+"""Every field of the design's JSON objects, declared once, and their readers.
 
-Reading (``project/read.py``), the per-field error messages, writing
+Reading (``read_sources``, ``read_rules``, ...: JSON data -> design objects, with the
+checks that span a list, such as unique names), the per-field error messages, writing
 (``project/write.py``) and the field tables of docs/project-file.md
 (``tests/core/test_fields.py`` regenerates them) all come from these specs. Checks that
 tie several fields together (a luminaire's flux or exitance, min <= max) stay with the
@@ -9,28 +10,43 @@ model classes in ``design/model.py``.
 
 from __future__ import annotations
 
+from functools import partial
 from typing import Any
 
-from lightinv_core.design.model import SOURCE_KINDS, VARIABLES, Daylight, Intention, Source
+from lightinv_core.design.model import (
+    AXES,
+    SOURCE_KINDS,
+    VARIABLES,
+    Daylight,
+    Goal,
+    Intention,
+    Rule,
+    Source,
+)
 from lightinv_core.fields import (
     Field,
     ObjectSpec,
     _choice,
+    _fail,
     _integer,
+    _join,
     _list,
     _number,
     _numbers,
     _string,
     _unique,
+    _within,
 )
 from lightinv_core.kinds import GoalKind, Quantity, RuleKind, SourceKind
-from lightinv_core.operator.settings import OPERATOR
-from lightinv_core.optimize.settings import OPTIMIZER
-from lightinv_core.project.model import SCENE
 
 LUMINAIRE = (str(SourceKind.LUMINAIRE),)
 SKYLIGHT = (str(SourceKind.SKYLIGHT),)
 _D = {f: Source.__dataclass_fields__[f].default for f in ("flux_range", "efficacy", "filter")}
+
+
+def _either(values: tuple[str, ...]) -> str:
+    """The allowed values as the docs show them: ``"a"`` or ``"b"``."""
+    return " or ".join(f'`"{v}"`' for v in values)
 
 
 def _nonneg(v: Any, p: str) -> float:
@@ -58,7 +74,7 @@ SOURCE = ObjectSpec(
         Field(
             "kind",
             lambda v, p: _choice(v, p, SOURCE_KINDS),
-            type=" or ".join(f'`"{k}"`' for k in SOURCE_KINDS),
+            type=_either(SOURCE_KINDS),
             meaning="must match the zone's kind",
         ),
         Field(
@@ -160,9 +176,9 @@ RULE = ObjectSpec(
         Field("max", _nonneg, None, "number >= 0", "upper bound", _taking("max"), nullable=True),
         Field(
             "axis",
-            lambda v, p: _choice(v, p, ("u", "v")),
+            lambda v, p: _choice(v, p, AXES),
             None,
-            '`"u"` or `"v"`',
+            _either(AXES),
             "the zone axis",
             _taking("axis"),
             nullable=True,
@@ -198,7 +214,7 @@ INTENTION = ObjectSpec(
             "quantity",
             lambda v, p: _choice(v, p, tuple(str(q) for q in Quantity)),
             _I["quantity"].default,
-            '`"lux"` or `"C"`',
+            _either(tuple(Quantity)),
             "illuminance (lux), or reflected exitance C (lm/m²)",
             always=True,
         ),
@@ -245,9 +261,13 @@ GOAL = ObjectSpec(
             lambda v, p: _unique(_list(v, p, lambda x, q: _choice(x, q, SOURCE_KINDS), "kinds"), p),
             (),
             "list of source kinds",
-            "`max_light_power` only: count the light of these kinds (all when empty)",
+            "count the light of these kinds (all when empty)",
+            (str(GoalKind.MAX_LIGHT_POWER),),
         ),
     ),
+    kind_field="kind",
+    not_taken=lambda kind, field: "only a max_light_power goal takes source kinds",
+    default_anywhere=True,  # an empty list is the default: any goal may write it
 )
 
 _DL = Daylight.__dataclass_fields__
@@ -273,6 +293,78 @@ DAYLIGHT = ObjectSpec(
     ),
 )
 
-DESIGN_SPECS = (SOURCE, RULE, INTENTION, GOAL, DAYLIGHT)
-FILE_SPECS = (SCENE, *DESIGN_SPECS, OPERATOR, OPTIMIZER)
-"""Every object whose fields docs/project-file.md tabulates from its spec."""
+
+# -- readers: JSON data -> design objects ---------------------------------------------------
+
+
+def _unique_names(items: tuple, path: str) -> tuple:
+    """``items`` (with a ``name``), failing at the second use of a name."""
+    seen: dict[str, int] = {}
+    for i, x in enumerate(items):
+        if x.name in seen:
+            where = f"{path}[{seen[x.name]}]"
+            _fail(_join(_join(path, i), "name"), f"{x.name!r} is already used by {where}")
+        seen[x.name] = i
+    return items
+
+
+def read_sources(v: Any, path: str) -> tuple[Source, ...]:
+    """The sources (or target sources) listed at ``path``, names unique."""
+    return _unique_names(_list(v, path, partial(SOURCE.build, Source), "sources"), path)
+
+
+def _rule(v: Any, path: str, names: tuple[str, ...]) -> Rule:
+    values = RULE.read(v, path)
+    for i, s in enumerate(values["sources"]):
+        if s not in names:
+            known = ", ".join(names) or "none"
+            _fail(_join(_join(path, "sources"), i), f"no source {s!r} (sources: {known})")
+    with _within(path):
+        return Rule(**values)
+
+
+def read_rules(v: Any, path: str, sources: tuple[Source, ...] = ()) -> tuple[Rule, ...]:
+    """The rules listed at ``path``; each names some of ``sources``, and a source mirrors
+    at most one other."""
+    names = tuple(s.name for s in sources)
+    rules = _list(v, path, lambda x, p: _rule(x, p, names), "rules")
+    mirrored: dict[str, int] = {}
+    for i, r in enumerate(rules):
+        if r.kind == RuleKind.MIRROR:
+            derived = r.sources[0]
+            if derived in mirrored:
+                _fail(
+                    _join(_join(path, i), "sources[0]"),
+                    f"{derived!r} already mirrors another source ({path}[{mirrored[derived]}])",
+                )
+            mirrored[derived] = i
+    return rules
+
+
+def read_intentions(v: Any, path: str) -> tuple[Intention, ...]:
+    """The intentions listed at ``path``, names unique."""
+    items = _list(v, path, partial(INTENTION.build, Intention), "intentions")
+    return _unique_names(items, path)
+
+
+def read_goals(v: Any, path: str, target_sources: tuple[Source, ...] = ()) -> tuple[Goal, ...]:
+    """The goals listed at ``path``: at least one, each kind once, a match goal only with
+    ``target_sources``."""
+    goals = _list(v, path, partial(GOAL.build, Goal), "goals", 1)
+    seen: dict[str, int] = {}
+    for i, g in enumerate(goals):
+        if g.kind in seen:
+            _fail(
+                _join(_join(path, i), "kind"),
+                f"{g.kind!r} is already a goal ({path}[{seen[g.kind]}])",
+            )
+        seen[g.kind] = i
+    for i, g in enumerate(goals):
+        if g.kind == GoalKind.MATCH and not target_sources:
+            _fail(_join(path, i), "a match goal needs target_sources (the light to reproduce)")
+    return goals
+
+
+def read_daylight(v: Any, path: str) -> Daylight:
+    """The daylight object at ``path``."""
+    return DAYLIGHT.build(Daylight, v, path)

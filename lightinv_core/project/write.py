@@ -1,10 +1,11 @@
 """Writing a project: a ``Project`` -> plain JSON data -> pretty JSON text.
 
-``project_dict`` turns a project into plain JSON data (tuples as lists, inf/nan as
-strings, whole floats as integers, defaults left out where the format allows), with
-scene paths relative to the folder being written to. ``solution_to_dict`` does the same
-for one solution. ``write_json`` writes such data atomically, one item per line except
-for short objects and lists of scalars.
+``project_dict`` turns a project into plain JSON data by the ``TOP`` spec and the specs
+of the objects it holds (fields in their declared order, defaults left out where a spec
+says so), then makes it plain (tuples as lists, inf/nan as strings, whole floats as
+integers), with scene paths relative to the folder being written to.
+``solution_to_dict`` does the same for one solution. ``write_json`` writes such data
+atomically, one item per line except for short objects and lists of scalars.
 """
 
 from __future__ import annotations
@@ -19,17 +20,10 @@ from typing import Any
 import numpy as np
 
 from lightinv_core.atomic import atomic_writer
-from lightinv_core.design.model import Goal, Intention, Rule, Source
 from lightinv_core.design.solution import Solution
 from lightinv_core.fields import ProjectError, _fail, _is_int, _is_number, _join
-from lightinv_core.project.model import (
-    OPERATOR_FIELDS,
-    OPTIMIZER_FIELDS,
-    SCHEMA,
-    Project,
-    SceneSpec,
-)
-from lightinv_core.project.specs import DAYLIGHT, GOAL, INTENTION, RULE, SOURCE
+from lightinv_core.project.model import TOP, Project, project_values
+from lightinv_core.project.results import SOLUTION, Info
 
 INLINE_WIDTH = 88  # objects and lists of scalars up to this width are written on one line
 
@@ -45,69 +39,10 @@ def _relative(p: str | None, base_dir: Path | None) -> str | None:
         return p
 
 
-def _source_dict(s: Source) -> dict:
-    return SOURCE.write(s)
-
-
-def _rule_dict(r: Rule) -> dict:
-    return RULE.write(r)
-
-
-def _intention_dict(it: Intention) -> dict:
-    return INTENTION.write(it)
-
-
-def _goal_dict(g: Goal) -> dict:
-    return GOAL.write(g)
-
-
-def _solution_dict(s: Solution) -> dict:
-    return {
-        "sources": [_source_dict(x) for x in s.sources],
-        "objectives": dict(s.objectives),
-        "penalty": s.penalty,
-        "violations": [
-            {
-                "name": v.name,
-                "constraint": v.constraint,
-                "amount": v.amount,
-                "value": v.value,
-                "bound": v.bound,
-                "units": v.units,
-            }
-            for v in s.violations
-        ],
-        "x": list(s.x),
-        "info": _Info(s.info.to_dict()),
-    }
-
-
-def _scene_dict(s: SceneSpec, base_dir: Path | None) -> dict:
-    if s.builtin is not None:
-        d: dict[str, Any] = {"builtin": s.builtin, "resolution": s.resolution}
-    else:
-        d = {"obj": _relative(s.obj, base_dir), "resolution": s.resolution}
-        if s.materials is not None:
-            d["materials"] = _relative(s.materials, base_dir)
-        d.update(scale=s.scale, up=s.up)
-        if s.skip_degenerate:
-            d["skip_degenerate"] = True
-    if s.zones:
-        d["zones"] = [
-            {"name": z.name, "kind": z.kind, "surface": z.surface, "rect": list(z.rect)}
-            for z in s.zones
-        ]
-    return d
-
-
-class _Info(dict):
-    """A solution's free-form info: its numbers are written exactly as they are."""
-
-
 def _jsonable(v: Any, path: str, tidy: bool = True) -> Any:
     """Plain JSON data: tuples as lists, inf/nan as strings, numpy scalars as numbers, and
     (when ``tidy``) whole floats as integers, so that 300.0 lux is written 300."""
-    if isinstance(v, _Info):
+    if isinstance(v, Info):
         tidy = False
     if isinstance(v, np.generic | np.ndarray):
         v = v.tolist()
@@ -134,35 +69,11 @@ def _jsonable(v: Any, path: str, tidy: bool = True) -> Any:
 
 def project_dict(p: Project, base_dir: Path | None) -> dict:
     """``p`` as plain JSON data, scene paths relative to ``base_dir`` when it is given."""
-    design = p.design
-    d: dict[str, Any] = {
-        "schema": SCHEMA,
-        "name": p.name,
-        "description": p.description,
-        "scene": _scene_dict(p.scene, base_dir),
-        "operator": {f: getattr(p.operator, f) for f in OPERATOR_FIELDS},
-        "daylight": DAYLIGHT.write(design.daylight),
-        "penalty_power": design.penalty_power,
-        "sources": [_source_dict(s) for s in design.sources],
-        "target_sources": [_source_dict(s) for s in design.target_sources],
-        "rules": [_rule_dict(r) for r in design.rules],
-        "intentions": [_intention_dict(i) for i in design.intentions],
-        "goals": [_goal_dict(g) for g in design.goals],
-        "optimizer": {f: getattr(p.optimizer, f) for f in OPTIMIZER_FIELDS},
-    }
-    if p.solutions or p.pareto is not None:
-        front = p.pareto
-        d["results"] = {
-            "solutions": [_solution_dict(s) for s in p.solutions],
-            "pareto": None
-            if front is None
-            else {
-                "objectives": list(front.objectives),
-                "method": front.method,
-                "solutions": [_solution_dict(s) for s in front.solutions],
-                "candidates": [_solution_dict(s) for s in front.candidates],
-            },
-        }
+    d = TOP.write(project_values(p))
+    scene = d["scene"]
+    for key in ("obj", "materials"):
+        if key in scene:
+            scene[key] = _relative(scene[key], base_dir)
     return _jsonable(d, "")
 
 
@@ -170,7 +81,7 @@ def solution_to_dict(solution: Solution) -> dict:
     """``solution`` as plain JSON data, as it is written in a project's results (inf/nan
     as strings, tuples as lists). Raises ``ProjectError`` if its info cannot be saved."""
     try:
-        return _jsonable(_solution_dict(solution), "")
+        return _jsonable(SOLUTION.write(solution), "")
     except RecursionError:
         raise ProjectError("a solution's info is nested too deeply") from None
 

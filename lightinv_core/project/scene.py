@@ -1,0 +1,238 @@
+"""The scene a project is on, and the fields of its JSON form, declared once.
+
+``SceneSpec`` names a built-in scene or an OBJ file (with its import options) and the new
+emitter zones drawn on it; ``SCENE`` and ``ZONE`` declare the fields of the ``scene``
+object and of each of its ``zones``, from which the project file's reading, messages,
+writing and docs tables come.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
+
+from lightinv_core.errors import SceneError
+from lightinv_core.fields import (
+    Field,
+    ObjectSpec,
+    _boolean,
+    _choice,
+    _fail,
+    _join,
+    _list,
+    _number,
+    _numbers,
+    _optional,
+    _path_string,
+    _string,
+    _unique,
+)
+from lightinv_core.scene.builtin import BUILTIN_SCENES
+from lightinv_core.scene.edits import ZoneEdit, apply_zone_edits
+from lightinv_core.scene.loading import load_scene
+from lightinv_core.scene.model import MIN_RESOLUTION, ZONE_KINDS, Scene
+from lightinv_core.scene.obj_parse import UP_AXES
+
+
+def resolve_path(p: str | None, base_dir: Path | None) -> str | None:
+    """``p`` made absolute against ``base_dir`` when it is relative (None stays None)."""
+    if p is None:
+        return None
+    q = Path(p).expanduser()
+    if base_dir is not None and not q.is_absolute():
+        q = Path(base_dir) / q
+    return str(q)
+
+
+def _obj_path(v: Any, path: str) -> str:
+    s = _path_string(v, path)
+    if not s.lower().endswith(".obj"):
+        _fail(path, f"expected the path of an .obj file, got {s!r}")
+    return s
+
+
+ZONE = ObjectSpec(
+    "zone",
+    (
+        Field(
+            "name",
+            _string,
+            type="string",
+            meaning="the zone's name (sources refer to it with `zone`); also the name of its "
+            "new surface",
+        ),
+        Field(
+            "kind",
+            lambda v, p: _choice(v, p, ZONE_KINDS),
+            type=" or ".join(f'`"{k}"`' for k in ZONE_KINDS),
+            meaning="what may be placed in it",
+        ),
+        Field("surface", _string, type="string", meaning="the rectangular surface it is drawn on"),
+        Field(
+            "rect",
+            lambda v, p: _numbers(v, p, 4),
+            type="4 numbers",
+            meaning="(u0, v0, u1, v1) in metres along the surface's own u and v edges from its "
+            "origin; two opposite corners in any order (stored smallest first)",
+        ),
+    ),
+)
+"""A new emitter zone drawn on the scene (a ``ZoneEdit``)."""
+
+
+def _zone_edit(v: Any, path: str) -> ZoneEdit:
+    """A ``ZoneEdit`` from a JSON object (or a ``ZoneEdit`` given in code)."""
+    if isinstance(v, ZoneEdit):
+        return v
+    values = ZONE.read(v, path)
+    try:
+        return ZoneEdit(**values)
+    except SceneError as err:
+        _fail(_join(path, "rect"), str(err))
+
+
+def _zone_edits(v: Any, path: str) -> tuple[ZoneEdit, ...]:
+    zones = _list(v, path, _zone_edit, "zone objects")
+    _unique(tuple(z.name for z in zones), path)
+    return zones
+
+
+def _scene_not_taken(kind: str, field: str) -> str:
+    # Materials, scale and up are properties a built-in scene already has; skipping
+    # degenerate faces is an import option with nothing to apply to.
+    own = "" if field == "skip_degenerate" else "; a built-in scene has its own"
+    return "only an OBJ scene takes this" + own
+
+
+OBJ = ("obj",)
+
+SCENE = ObjectSpec(
+    "scene",
+    (
+        Field(
+            "builtin",
+            _optional(lambda v, p: _choice(v, p, tuple(BUILTIN_SCENES))),
+            None,
+            "string",
+            "a built-in scene: " + ", ".join(f"`{n}`" for n in BUILTIN_SCENES),
+        ),
+        Field(
+            "obj",
+            _optional(_obj_path),
+            None,
+            "string",
+            "path of a Wavefront `.obj` room model (see [obj-import.md](obj-import.md))",
+        ),
+        Field(
+            "resolution",
+            _optional(lambda v, p: _number(v, p, lo=MIN_RESOLUTION)),
+            None,
+            f"number >= {MIN_RESOLUTION:g}",
+            "target patch size in metres; null: the scene's default (0.25 m for OBJ files)",
+            always=True,
+        ),
+        Field(
+            "materials",
+            _optional(_path_string),
+            None,
+            "string",
+            "path of the reflectance JSON file",
+            OBJ,
+        ),
+        Field(
+            "scale",
+            lambda v, p: _number(v, p, gt=0.0),
+            1.0,
+            "number > 0",
+            "metres per model unit (0.001 for millimetres)",
+            OBJ,
+            always=True,
+        ),
+        Field(
+            "up",
+            lambda v, p: _choice(v, p, UP_AXES),
+            "z",
+            " or ".join(f'`"{a}"`' for a in UP_AXES),
+            "the model's up axis",
+            OBJ,
+            always=True,
+        ),
+        Field(
+            "skip_degenerate",
+            _boolean,
+            False,
+            "boolean",
+            "drop degenerate faces (with a warning) instead of failing",
+            OBJ,
+        ),
+        Field(
+            "zones",
+            _zone_edits,
+            (),
+            "list",
+            "[new emitter zones](#new-emitter-zones) drawn on the scene; written only when "
+            "not empty",
+            of=ZONE,
+        ),
+    ),
+    kind_field="kind",
+    not_taken=_scene_not_taken,
+    default_anywhere=True,
+    kinds_doc="OBJ only",
+)
+"""The scene fields, declared once (exactly one of builtin and obj; the kind of a scene
+is the one given)."""
+
+
+@dataclass(frozen=True)
+class SceneSpec:
+    """The scene a project is on: a built-in scene or an OBJ file (exactly one).
+
+    ``resolution`` is the target patch size in metres (None: the scene's default,
+    0.25 m for OBJ files). ``materials`` (a reflectance JSON file), ``scale`` (metres
+    per model unit), ``up`` ("z" or "y") and ``skip_degenerate`` apply to OBJ files only.
+    Relative ``obj``/``materials`` paths are resolved against ``base_dir`` in ``load``.
+    ``zones`` are new emitter zones drawn on rectangular surfaces of the scene
+    (``ZoneEdit``), applied by ``load`` with ``apply_zone_edits``.
+    """
+
+    builtin: str | None = SCENE.field("builtin").default
+    obj: str | None = SCENE.field("obj").default
+    resolution: float | None = SCENE.field("resolution").default
+    materials: str | None = SCENE.field("materials").default
+    scale: float = SCENE.field("scale").default
+    up: str = SCENE.field("up").default
+    skip_degenerate: bool = SCENE.field("skip_degenerate").default
+    zones: tuple[ZoneEdit, ...] = SCENE.field("zones").default
+
+    def __post_init__(self) -> None:
+        SCENE.check_object(self)
+        if (self.builtin is None) == (self.obj is None):
+            _fail(
+                "",
+                'give exactly one of "builtin" (a built-in scene name) '
+                'or "obj" (the path of an .obj file)',
+            )
+        SCENE.check_kinds(self)
+
+    @property
+    def kind(self) -> str:
+        """``"builtin"`` or ``"obj"``: the field that names the scene."""
+        return "builtin" if self.builtin is not None else "obj"
+
+    def load(self, base_dir: Path | None = None) -> Scene:
+        """Build the scene (relative paths resolved against ``base_dir``) with the new
+        emitter ``zones`` drawn on it."""
+        if self.builtin is not None:
+            scene = load_scene(self.builtin, self.resolution)
+        else:
+            scene = load_scene(
+                resolve_path(self.obj, base_dir),
+                self.resolution,
+                materials=resolve_path(self.materials, base_dir),
+                scale=self.scale,
+                up=self.up,
+                skip_degenerate=self.skip_degenerate,
+            )
+        return apply_zone_edits(scene, self.zones) if self.zones else scene
