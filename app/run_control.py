@@ -137,7 +137,8 @@ class RunController(QtCore.QObject):
         """The running optimisation's results so far, judged on all patches (autosave)."""
         if self.worker is None:
             return ()
-        if get_method(self.worker.project.optimizer.method).multi_objective:
+        project = self.worker.project
+        if get_method(project.optimizer.method).finds_front(project.design):
             return tuple(self.found)
         if not self.best_x:
             return ()

@@ -16,7 +16,6 @@ from app.plots import ConvergencePlot
 from lightinv_core.errors import LightInvError
 from lightinv_core.kinds import GoalKind
 from lightinv_core.optimize.method import OptimizationMethod
-from lightinv_core.optimize.mop import EpsilonMethod, TwoStepMethod
 from lightinv_core.optimize.registry import METHODS, get_method
 
 GOAL_LABELS = {
@@ -24,17 +23,12 @@ GOAL_LABELS = {
     GoalKind.MAX_LIGHT_POWER: ("most light power", "light power (lm)"),
     GoalKind.MATCH: ("match a target lighting", "match error e"),
 }
-SWEEP_COUNTS = {
-    EpsilonMethod: ("Front points", "epsilon_count"),
-    TwoStepMethod: ("Two-step runs", "runs"),
-}
-"""For a multi-objective method: the label of its run count and the settings field."""
 
 
-def sweep_count(method: OptimizationMethod) -> tuple[str, str] | None:
-    """(label, settings field) of a sweep's run count; None for a single-objective
-    method (the panel's seeds) or a sweep without one."""
-    return SWEEP_COUNTS.get(type(method))
+def sweep_count(method: OptimizationMethod, design) -> tuple[str, str] | None:
+    """(label, settings field) of a front method's run or point count; None for one
+    best layout (the panel's seeds) or a front method without one."""
+    return method.count_setting if method.finds_front(design) else None
 
 
 class RunPanel(QtWidgets.QWidget):
@@ -65,7 +59,7 @@ class RunPanel(QtWidgets.QWidget):
         form.addRow("Time limit (per run)", self.time_limit)
         self.seed = QtWidgets.QSpinBox(maximum=2**31 - 1)
         form.addRow("Seed", self.seed)
-        self.runs = QtWidgets.QSpinBox(minimum=1, maximum=100)
+        self.runs = QtWidgets.QSpinBox(minimum=1, maximum=1000)
         self.runs_label = QtWidgets.QLabel("Seeds")
         form.addRow(self.runs_label, self.runs)
         self.show_best = QtWidgets.QCheckBox("show the best so far in the view")
@@ -126,16 +120,16 @@ class RunPanel(QtWidgets.QWidget):
             w.blockSignals(False)
 
     def _multi(self) -> bool:
-        return get_method(self.doc.project.optimizer.method).multi_objective
+        return get_method(self.doc.project.optimizer.method).finds_front(self.doc.design)
 
     def _show_runs(self) -> None:
         o = self.doc.project.optimizer
         method = get_method(o.method)
-        count = sweep_count(method)
+        count = sweep_count(method, self.doc.design)
         if count is not None:
             self.runs_label.setText(count[0])
             self.runs.setValue(getattr(o, count[1]))
-        elif method.multi_objective:
+        elif self._multi():
             self.runs_label.setText("Runs")
             self.runs.setValue(1)
         else:
@@ -161,10 +155,10 @@ class RunPanel(QtWidgets.QWidget):
 
     def _runs_edited(self, value: int) -> None:
         method = get_method(self.doc.project.optimizer.method)
-        count = sweep_count(method)
+        count = sweep_count(method, self.doc.design)
         if count is not None:
             self._set(**{count[1]: value})
-        elif not method.multi_objective:
+        elif not self._multi():
             self._seeds = value
 
     # -- queries and run state ----------------------------------------------------------------
@@ -177,7 +171,8 @@ class RunPanel(QtWidgets.QWidget):
     def goal_label(self) -> str:
         """The plotted objective with its units."""
         if self._multi():
-            return "objective of each sub-run"
+            method = get_method(self.doc.project.optimizer.method)
+            return method.progress_label or "objective of each sub-run"
         return GOAL_LABELS[GoalKind(self.doc.design.goals[0].kind)][1]
 
     def set_running(self, running: bool) -> None:

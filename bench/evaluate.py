@@ -19,7 +19,7 @@ from pathlib import Path
 import numpy as np
 
 from lightinv_core.optimize.problem import DesignProblem
-from lightinv_core.optimize.vns import random_start
+from lightinv_core.optimize.search import random_start
 from lightinv_core.project import load_project
 from lightinv_core.study import prepare
 

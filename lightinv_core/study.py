@@ -19,7 +19,7 @@ from lightinv_core.operator.radiosity import RadiosityOperator
 from lightinv_core.optimize.method import SolutionFn
 from lightinv_core.optimize.problem import DesignProblem
 from lightinv_core.optimize.progress import CancelFn, ProgressFn
-from lightinv_core.optimize.registry import get_method, single_objective_names
+from lightinv_core.optimize.registry import finds_front, get_method
 from lightinv_core.optimize.result import HistoryRow
 from lightinv_core.optimize.termination import StopRule
 from lightinv_core.project import Project
@@ -125,11 +125,10 @@ def solve_seeds(
     """The same single-objective problem run once per seed (paper experiment 4: how much
     the answers vary). ``progress`` snapshots are tagged with the run index; a cancel
     ends the current run (its best kept) and skips the rest."""
-    single = single_objective_names()
-    if project.optimizer.method not in single:
+    if finds_front(project.optimizer.method, project.design):
         raise DesignError(
-            f"runs with several seeds take a single-objective method {single}; "
-            f"{project.optimizer.method!r} already sweeps several runs"
+            f"runs with several seeds take one best layout; {project.optimizer.method!r} "
+            "finds a front for this design (it already makes several runs or points)"
         )
     if not seeds:
         raise DesignError("give at least one seed")

@@ -1,7 +1,8 @@
 """The optimizer seam: the protocol every optimisation method implements.
 
 A method is an object with a registry ``name`` (what project files, the CLI and the GUI
-call it), a ``label`` for people, whether it finds a Pareto front, and ``run``: given a
+call it), a ``label`` for people, whether it finds a Pareto front for a design
+(``finds_front``), and ``run``: given a
 ``DesignProblem``, the run settings (whole: each method reads the fields it uses), a
 stop rule and a seed, it returns an ``OptimizationResult`` whose answer is judged on
 every patch. It reports ``Progress`` snapshots, checks ``cancel`` between batches (a
@@ -23,6 +24,7 @@ from lightinv_core.optimize.result import OptimizationResult
 from lightinv_core.optimize.termination import StopRule
 
 if TYPE_CHECKING:
+    from lightinv_core.design.model import Design
     from lightinv_core.optimize.problem import DesignProblem
     from lightinv_core.optimize.settings import OptimizerSettings
 
@@ -34,7 +36,16 @@ class OptimizationMethod(Protocol):
 
     name: str
     label: str
-    multi_objective: bool
+    count_setting: tuple[str, str] | None
+    """(label, settings field) of the number of runs or points a front method makes,
+    for the GUI; None when it has none."""
+    progress_label: str | None
+    """What ``Progress.best_goal`` holds when it is not the primary goal (a front's
+    methods), for the plots; None: the primary goal."""
+
+    def finds_front(self, design: Design) -> bool:
+        """Whether a run on ``design`` returns a Pareto front (else one best layout)."""
+        ...
 
     def run(
         self,

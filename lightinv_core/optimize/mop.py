@@ -21,8 +21,8 @@ from lightinv_core.optimize.pareto import non_dominated
 from lightinv_core.optimize.problem import DesignProblem
 from lightinv_core.optimize.progress import CancelFn, ProgressFn
 from lightinv_core.optimize.result import OptimizationResult
+from lightinv_core.optimize.search import judged
 from lightinv_core.optimize.termination import StopRule
-from lightinv_core.optimize.vns import judged
 
 if TYPE_CHECKING:
     from lightinv_core.optimize.settings import OptimizerSettings
@@ -231,7 +231,12 @@ def _front_result(front: ParetoFront, cancelled: bool, seconds: float) -> Optimi
 class _Sweep:
     """Shared run() of the multi-objective drivers: progress, cancel and ``on_solution``."""
 
-    multi_objective = True
+    progress_label = "objective of each sub-run"
+
+    @staticmethod
+    def finds_front(design) -> bool:
+        """Always a front."""
+        return True
 
     def run(
         self,
@@ -267,6 +272,7 @@ class EpsilonMethod(_Sweep):
 
     name = "epsilon"
     label = "Epsilon-constraint front"
+    count_setting = ("Front points", "epsilon_count")
 
     @staticmethod
     def sweep(design, light, settings, **kw) -> ParetoFront:
@@ -280,6 +286,7 @@ class TwoStepMethod(_Sweep):
 
     name = "two_step"
     label = "Two-step front"
+    count_setting = ("Two-step runs", "runs")
 
     @staticmethod
     def sweep(design, light, settings, **kw) -> ParetoFront:

@@ -19,8 +19,9 @@ from lightinv_core.optimize.method import SolutionFn
 from lightinv_core.optimize.problem import DesignProblem
 from lightinv_core.optimize.progress import CancelFn, ProgressFn
 from lightinv_core.optimize.result import OptimizationResult
+from lightinv_core.optimize.search import SearchResult, judged
 from lightinv_core.optimize.termination import StopRule
-from lightinv_core.optimize.vns import VNSResult, judged, vns
+from lightinv_core.optimize.vns import vns
 
 if TYPE_CHECKING:
     from lightinv_core.optimize.settings import OptimizerSettings
@@ -47,7 +48,7 @@ def multilevel(
     trials: int = 32,
     progress: ProgressFn | None = None,
     cancel: CancelFn | None = None,
-) -> tuple[VNSResult, list[VNSResult]]:
+) -> tuple[SearchResult, list[SearchResult]]:
     """Run VNS level by level; returns the result of the last level (every patch: see
     ``full_resolution``) and every level's result.
 
@@ -57,7 +58,7 @@ def multilevel(
     """
     stop = stop or StopRule()
     divisors = full_resolution(divisors)
-    results: list[VNSResult] = []
+    results: list[SearchResult] = []
     x = x0
     used_evals, used_time = 0, 0.0
     for i, d in enumerate(divisors):
@@ -88,7 +89,7 @@ def multilevel(
         if res.status == "cancelled":
             break
     final = results[-1]
-    total = VNSResult(
+    total = SearchResult(
         final.x,
         final.value,
         final.penalty,
@@ -107,7 +108,13 @@ class MultilevelMethod:
 
     name = "multilevel"
     label = "Multilevel VNS"
-    multi_objective = False
+    count_setting = None
+    progress_label = None
+
+    @staticmethod
+    def finds_front(design) -> bool:
+        """One best layout, never a front."""
+        return False
 
     def run(
         self,

@@ -31,6 +31,7 @@ from lightinv_core.design.variables import Variables
 from lightinv_core.kinds import Bound, GoalKind, SourceKind
 from lightinv_core.light.intentions import (
     FEASIBILITY_TOL,
+    JUDGED_TOL,
     BoundCheck,
     bound_checks,
     bounds_set,
@@ -336,14 +337,19 @@ class DesignProblem:
             for c, g in zip(self.constraints[:ngeo], ev.G[0, :ngeo], strict=True)
             if g > 0
         ]
+        penalty = float("inf")
         if ev.ok[0]:
+            # Penalty and violations from one computation, at the judging tolerance.
+            excess: list[np.ndarray] = []
             if self.intent_sets:
                 rect, flux, filt = self.vars.decode(x[None])
                 d = self.design
                 V = self.light.zone_emission(d.sources, rect, flux, filt, d.daylight)
                 H = self.light.illuminance(V, lv.receivers, np.arange(V.shape[0]))
-                for chk in self._checks(H, lv):
-                    if chk.c[0] > FEASIBILITY_TOL:
+                checks = self._checks(H, lv)
+                excess += [chk.c - JUDGED_TOL for chk in checks]
+                for chk in checks:
+                    if chk.c[0] > JUDGED_TOL:
                         units = "" if chk.bound == Bound.UNIFORMITY else chk.units
                         viol.append(
                             Violation(
@@ -355,16 +361,18 @@ class DesignProblem:
                                 units,
                             )
                         )
+            n_intent = len(excess)
             for kind, bound, c in self._epsilon_terms(ev.goals):
-                if c[0] > FEASIBILITY_TOL:
+                excess.append(c - JUDGED_TOL)
+                if c[0] > JUDGED_TOL:
                     value = float(ev.goals[kind][0])
                     units = GOAL_UNITS[GoalKind(kind)]
                     viol.append(
                         Violation(f"epsilon {kind}", "epsilon", float(c[0]), value, bound, units)
                     )
+            penalty = float(self._penalty(excess, n_intent, 1)[0])
         wanted = {g.kind for g in self.design.goals} | {k for k, _ in self.epsilon}
         objectives = {str(k): float(ev.goals[k][0]) for k in GoalKind if k in wanted}
-        penalty = float(ev.penalty[0]) if ev.ok[0] else float("inf")
         return Solution(
             self.sources_at(x),
             objectives,

@@ -7,17 +7,24 @@ Registering a method is one line in ``METHODS`` (its module implements the
 
 from __future__ import annotations
 
+from lightinv_core.design.model import Design
 from lightinv_core.errors import DesignError
+from lightinv_core.optimize.cmaes import CMAESMethod
 from lightinv_core.optimize.method import OptimizationMethod
 from lightinv_core.optimize.mop import EpsilonMethod, TwoStepMethod
 from lightinv_core.optimize.multilevel import MultilevelMethod
+from lightinv_core.optimize.nsga2 import NSGA2Method
+from lightinv_core.optimize.portfolio import AutoMethod
 from lightinv_core.optimize.vns import VNSMethod
 
 METHODS: tuple[OptimizationMethod, ...] = (
+    AutoMethod(),
     VNSMethod(),
     MultilevelMethod(),
+    CMAESMethod(),
     EpsilonMethod(),
     TwoStepMethod(),
+    NSGA2Method(),
 )
 
 
@@ -26,9 +33,9 @@ def method_names() -> tuple[str, ...]:
     return tuple(m.name for m in METHODS)
 
 
-def single_objective_names() -> tuple[str, ...]:
-    """The methods that return one best solution (not a front)."""
-    return tuple(m.name for m in METHODS if not m.multi_objective)
+def finds_front(name: str, design: Design) -> bool:
+    """Whether method ``name`` run on ``design`` returns a Pareto front."""
+    return get_method(name).finds_front(design)
 
 
 def get_method(name: str) -> OptimizationMethod:

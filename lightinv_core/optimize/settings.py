@@ -29,11 +29,13 @@ OPTIMIZER = ObjectSpec(
         Field(
             "method",
             lambda v, p: _choice(v, p, METHODS),
-            "vns",
+            "auto",
             "string",
-            "`vns`: one VNS on all patches; `multilevel`: VNS on the `divisors` levels, each "
-            "warm-started from the previous; `epsilon`: epsilon-constraint sweep; "
-            "`two_step`: skylights first, then luminaires (paper 5.5)",
+            "`auto` (default): NSGA-II when the design has both power goals, else CMA-ES "
+            "then VNS (docs/design.md); `vns`: one VNS on all patches; `multilevel`: VNS on "
+            "the `divisors` levels, each warm-started from the previous; `cmaes`: CMA-ES "
+            "with IPOP restarts; `epsilon`: epsilon-constraint sweep; `two_step`: "
+            "skylights first, then luminaires (paper 5.5); `nsga2`: NSGA-II front",
         ),
         Field(
             "seed",
@@ -109,6 +111,13 @@ OPTIMIZER = ObjectSpec(
             "`two_step`: repetitions with seeds `seed`, `seed` + 1, ...",
         ),
         Field(
+            "population",
+            lambda v, p: _integer(v, p, lo=4),
+            100,
+            "integer >= 4",
+            "`nsga2`: population size (and the most points of its front)",
+        ),
+        Field(
             "epsilons",
             _optional(lambda v, p: _list(v, p, lambda x, q: _number(x, q, lo=0.0), "lm values", 1)),
             None,
@@ -133,8 +142,7 @@ OPTIMIZER = ObjectSpec(
 class OptimizerSettings:
     """How the optimiser runs (see docs/project-file.md for every field).
 
-    ``method``: "vns" (one VNS on all patches), "multilevel" (VNS on ``divisors``
-    levels), "epsilon" (epsilon-constraint sweep) or "two_step" (paper 5.5). Stopping:
+    ``method``: a registry name (optimize/registry.py; "auto" by default). Stopping:
     ``max_evals``, ``time_limit`` (s), ``target`` (primary goal's units, counts only
     when feasible), ``stall`` (evaluations without improvement); None disables each.
     """
@@ -150,6 +158,7 @@ class OptimizerSettings:
     level_max_evals: int | None = OPTIMIZER.field("level_max_evals").default
     level_target: float | None = OPTIMIZER.field("level_target").default
     runs: int = OPTIMIZER.field("runs").default
+    population: int = OPTIMIZER.field("population").default
     epsilons: tuple[float, ...] | None = OPTIMIZER.field("epsilons").default
     epsilon_count: int = OPTIMIZER.field("epsilon_count").default
 

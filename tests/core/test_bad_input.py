@@ -21,7 +21,7 @@ from lightinv_core.errors import LightInvError, ObjImportError, SceneError
 from lightinv_core.operator.cache import get_operator
 from lightinv_core.operator.settings import OperatorSettings
 from lightinv_core.optimize.problem import DesignProblem
-from lightinv_core.optimize.vns import random_start
+from lightinv_core.optimize.search import random_start
 from lightinv_core.project import ProjectError, load_project
 from lightinv_core.scene.edits import ZoneEdit, apply_zone_edits
 from lightinv_core.scene.loading import load_scene

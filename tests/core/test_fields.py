@@ -233,17 +233,17 @@ def test_a_spec_of_its_own_reads_writes_and_documents():
 # sha256 of the text save_project wrote for each file before the writers were driven by the
 # field specs (the same on this commit). If the file format changes on purpose, update them.
 SAVED = {
-    "experiment1": "a0d80f59d1d584ded01d3108a7483ed0909b6ce89724385a71385659a5557420",
-    "experiment2": "4743774bfc8e2748ae5a6a8838dac786b175a290b7914e608ce32fb1a5abd208",
-    "experiment3": "06c1fc5630c7489d60c3ddeecd545365934ce774401212c9a5598043d6f0982d",
-    "experiment3b": "0e7d5be06213b1563a80005ccdb33689e543917fca9fc368c9917db2ccd2c7a1",
-    "experiment4": "a8af677b80876d3cd8e7b3a25cce8074120c1779dfb21b3d13d395f2687abcd2",
-    "experiment5-skylights": "eaf2f2e0846784071c7470cac44663aa2c53a2ff7a0b96d2105576a637393c88",
-    "experiment5-twostep": "04e559038da7c5ee728aab6dd85149cbe196ab89e3421349e4d72f4fb9aa7190",
-    "experiment5": "430a044a18a61883a5bb8ff99f62797619ffaba8d146ce689727b887ca3ca99b",
-    "office-demo": "ac3b56afae25bc09b9ded04f9c552a7094b3d334c60f7d78904db1b41e112cb6",
-    "with_results": "fc2cbb6398c7440de4efcc73224a71a0e43d66fd5e44eb472371e3662472e58e",
-    "zones": "5604150c6056450a928206d640fa340dc05b154643265bf534e11a70376d6786",
+    "experiment1": "374e38154fb40f071fb900cab3b58532dabc4557aebda38fb8dc938f447f0fd9",
+    "experiment2": "9a6a85741c3d0325be7a86e0fb8cc1c46f4fe5d4dfc61f098ea0a886b38ead3a",
+    "experiment3": "e7dddfedb0a1e281dc0dd92c96941fe20bdcef8f5ffe7f529356b3b9f1a74f99",
+    "experiment3b": "f6218f028915b203b3ca6909049950291a58647fa35952a6263c5670875141eb",
+    "experiment4": "e26567ac060fb531996540911e96f40bda86194ecb14c31123ad2a3ad3dcaee9",
+    "experiment5-skylights": "ae8bd580aeade262144aa417d153bf6dfa55aeb59a4ceccb976af0890e5c1546",
+    "experiment5-twostep": "7962957b9cd8336277433827cc5944732dfa06e067a9b3eee0c9f614db7e11f0",
+    "experiment5": "52e2dde92ed16508302ee42d8709f2cbc8e446066f75bfb6b45575cb08580bee",
+    "office-demo": "3c64acacaccfb986a7b872242ef00c1b1eb0958d62151b6428f8e55bdcac091f",
+    "with_results": "856ffb93ea5aaf1bd7ee3b512bfe60170c3373f3caa814bbd4928f23337a6f61",
+    "zones": "7a80052b5cdc654c710f96acfe4d876be83c935483401f9f0a8cf9cb54251f3b",
 }
 
 

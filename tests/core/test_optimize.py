@@ -15,7 +15,9 @@ from lightinv_core.optimize.mop import epsilon_constraint, two_step
 from lightinv_core.optimize.multilevel import multilevel
 from lightinv_core.optimize.pareto import hypervolume_2d, non_dominated
 from lightinv_core.optimize.problem import DesignProblem, representatives
-from lightinv_core.optimize.vns import StopRule, neighbourhoods, random_start, vns
+from lightinv_core.optimize.search import random_start
+from lightinv_core.optimize.termination import StopRule
+from lightinv_core.optimize.vns import neighbourhoods, vns
 from lightinv_core.scene.builtin import builtin_scene
 from lightinv_core.scene.patches import mesh_patches
 

@@ -127,6 +127,7 @@ VALID: dict = {
         "level_max_evals": 1000,
         "level_target": 0.03,
         "runs": 4,
+        "population": 24,
         "epsilons": [100, 200.5],
         "epsilon_count": 8,
     },
@@ -366,7 +367,7 @@ def test_save_refuses_a_project_it_could_not_read_back(tmp_path):
 
 
 def test_settings_validate_when_built_in_code():
-    with pytest.raises(ProjectError, match=r"^method: expected one of 'vns'"):
+    with pytest.raises(ProjectError, match=r"^method: expected one of 'auto', 'vns'"):
         OptimizerSettings(method="ga")
     with pytest.raises(ProjectError, match=r"^rays: expected an integer >= 1, got true"):
         OperatorSettings(rays=True)
@@ -506,7 +507,8 @@ ERRORS = [
     # choices
     (
         _set("optimizer.method", "ga"),
-        "optimizer.method: expected one of 'vns', 'multilevel', 'epsilon', 'two_step', got "
+        "optimizer.method: expected one of 'auto', 'vns', 'multilevel', 'cmaes', 'epsilon', "
+        "'two_step', 'nsga2', got "
         "string 'ga'",
     ),
     (

@@ -17,7 +17,7 @@ from lightinv_core.design.model import CORNERS, Design, Goal, Intention, Rule, S
 from lightinv_core.design.solution import ParetoFront, Solution
 from lightinv_core.errors import CancelledError, LightInvError
 from lightinv_core.optimize.problem import DesignProblem
-from lightinv_core.optimize.vns import random_start
+from lightinv_core.optimize.search import random_start
 from lightinv_core.project import OperatorSettings, OptimizerSettings, Project, SceneSpec
 from lightinv_core.report import (
     intention_table,

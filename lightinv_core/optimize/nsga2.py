@@ -1,0 +1,194 @@
+"""NSGA-II (package ``pymoo``, Apache-2.0) for the front of electric power (W, minimised)
+against reflected light power (lm, maximised).
+
+Constraints reach pymoo as G (every geometric rule, intention bound), not as a penalty:
+its constrained tournament and survival prefer feasible candidates, then smaller summed
+violation (Deb's rules, the same feasibility-first order as the other methods). Each
+generation is one batch for ``DesignProblem.evaluate`` on every patch.
+
+The first population is made of random layouts that meet the geometric rules (uniform
+samples mostly break the area and aspect rules). Every feasible candidate evaluated
+enters an archive of non-dominated points; the answer is that archive, thinned to at
+most ``population`` points by dropping the point of least hypervolume contribution, each
+point judged on every patch. Randomness: pymoo's per-algorithm generator seeded with
+the run's seed, and ``np.random.default_rng(seed)`` for the first population.
+"""
+
+from __future__ import annotations
+
+import time
+from dataclasses import replace
+from typing import TYPE_CHECKING
+
+import numpy as np
+
+from lightinv_core.design.model import Goal
+from lightinv_core.design.solution import SolutionInfo
+from lightinv_core.errors import DesignError
+from lightinv_core.optimize.method import SolutionFn
+from lightinv_core.optimize.mop import POWER, _light_goal, front_of
+from lightinv_core.optimize.pareto import hypervolume_2d, non_dominated
+from lightinv_core.optimize.problem import DesignProblem
+from lightinv_core.optimize.progress import CancelFn, Progress, ProgressFn
+from lightinv_core.optimize.quality import REFERENCE, front_scales
+from lightinv_core.optimize.result import OptimizationResult
+from lightinv_core.optimize.search import random_layouts
+from lightinv_core.optimize.termination import StopRule
+
+if TYPE_CHECKING:
+    from lightinv_core.optimize.settings import OptimizerSettings
+
+_BIG = 1e12  # stands for +inf (not lit) in F and G: pymoo needs finite numbers
+
+
+def thin(F: np.ndarray, keep: int) -> np.ndarray:
+    """Indices of at most ``keep`` rows of the non-dominated 2-D points F (minimised),
+    dropping one at a time the point of least exclusive hypervolume (extremes stay)."""
+    idx = np.argsort(F[:, 0], kind="stable")
+    while len(idx) > max(keep, 2):
+        P = F[idx]
+        contrib = (P[2:, 0] - P[1:-1, 0]) * (P[:-2, 1] - P[1:-1, 1])
+        idx = np.delete(idx, 1 + int(np.argmin(contrib)))
+    return idx
+
+
+class _Archive:
+    """Feasible non-dominated (x, F) seen so far, F as minimised normalised objectives."""
+
+    def __init__(self, nvar: int):
+        self.X, self.F = np.zeros((0, nvar)), np.zeros((0, 2))
+
+    def add(self, X: np.ndarray, F: np.ndarray) -> None:
+        X, F = np.vstack([self.X, X]), np.vstack([self.F, F])
+        _, first = np.unique(F, axis=0, return_index=True)
+        first = np.sort(first)
+        X, F = X[first], F[first]
+        keep = non_dominated(F)
+        self.X, self.F = X[keep], F[keep]
+
+    def hypervolume(self) -> float:
+        return hypervolume_2d(self.F, (REFERENCE[0], -REFERENCE[1]))
+
+
+def nsga2(
+    problem: DesignProblem,
+    scales: tuple[float, float],
+    population: int,
+    seed: int = 0,
+    stop: StopRule | None = None,
+    progress: ProgressFn | None = None,
+    cancel: CancelFn | None = None,
+) -> tuple[np.ndarray, np.ndarray, int, str, float]:
+    """Run NSGA-II on ``problem`` (objectives electric power, light power); returns the
+    archive's x (k, nvar) and normalised F (k, 2), the evaluations, why it stopped and the
+    seconds."""
+    from pymoo.algorithms.moo.nsga2 import NSGA2  # lazily: only front runs need pymoo
+    from pymoo.core.problem import Problem
+
+    stop = stop or StopRule()
+    n = problem.vars.n
+    if n == 0:
+        raise DesignError("nothing to optimise: no source has a free variable")
+    lo, hi = problem.vars.lo, problem.vars.hi
+    span = np.where(hi > lo, hi - lo, 1.0)
+    norm = np.array(scales)  # ev.F = (P, -L) -> (P/Pmax, -L/Lmax)
+    archive = _Archive(n)
+    count = {"evals": 0}
+    ncon = len(problem.constraints)
+
+    class _Lit(Problem):
+        def __init__(self):
+            super().__init__(n_var=n, n_obj=2, n_ieq_constr=max(ncon, 1), xl=0.0, xu=1.0)
+
+        def _evaluate(self, Z, out, *args, **kwargs):
+            X = lo + np.clip(Z, 0.0, 1.0) * span
+            ev = problem.evaluate(X)
+            count["evals"] += ev.evaluated
+            F = ev.F / norm
+            F = np.nan_to_num(F, nan=_BIG, posinf=_BIG, neginf=-_BIG)
+            G = ev.G if ncon else np.zeros((len(X), 1))
+            G = np.nan_to_num(G, nan=_BIG, posinf=_BIG)
+            ok = np.all(G <= 0, axis=1)
+            if ok.any():
+                archive.add(Z[ok], F[ok])
+            out["F"], out["G"] = F, G
+
+    rng = np.random.default_rng(seed)
+    start = (random_layouts(problem, rng, population) - lo) / span
+    algo = NSGA2(pop_size=population, sampling=start, eliminate_duplicates=True)
+    lit = _Lit()
+    algo.setup(lit, termination=("n_gen", 10**9), seed=int(seed) % 2**32, verbose=False)
+    t0 = time.perf_counter()
+    best_hv, last_gain, gen = 0.0, 0, 0
+    why = None
+    while True:
+        if cancel is not None and cancel():
+            why = "cancelled"
+        elif stop.max_evals is not None and count["evals"] >= stop.max_evals:
+            why = "max_evals"
+        elif stop.time_limit is not None and time.perf_counter() - t0 >= stop.time_limit:
+            why = "time_limit"
+        elif stop.stall is not None and count["evals"] - last_gain >= stop.stall:
+            why = "stall"
+        if why is not None:
+            break
+        pop = algo.ask()
+        algo.evaluator.eval(lit, pop)
+        algo.tell(infills=pop)
+        gen += 1
+        hv = archive.hypervolume()
+        if hv > best_hv:
+            best_hv, last_gain = hv, count["evals"]
+        if progress is not None:
+            cv = pop.get("CV")
+            least = 0.0 if len(archive.F) else float(np.min(cv)) if cv is not None else np.inf
+            progress(Progress(gen, count["evals"], time.perf_counter() - t0, -hv, least, hv, 1))
+    X = lo + archive.X * span
+    return X, archive.F, count["evals"], why, time.perf_counter() - t0
+
+
+class NSGA2Method:
+    """NSGA-II front of electric power against light power (pymoo)."""
+
+    name = "nsga2"
+    label = "NSGA-II front"
+    count_setting = ("Population", "population")
+    progress_label = "front hypervolume"
+
+    @staticmethod
+    def finds_front(design) -> bool:
+        """Always a front."""
+        return True
+
+    def run(
+        self,
+        problem: DesignProblem,
+        settings: OptimizerSettings,
+        stop: StopRule,
+        seed: int,
+        progress: ProgressFn | None = None,
+        cancel: CancelFn | None = None,
+        on_solution: SolutionFn | None = None,
+    ) -> OptimizationResult:
+        """One NSGA-II run of ``settings.population`` within ``stop``; the front's points
+        go to ``on_solution`` once judged."""
+        design = problem.design
+        mop = DesignProblem(
+            replace(design, goals=(Goal(POWER), _light_goal(design))), problem.light
+        )
+        scales = front_scales(mop.design, mop.light)
+        X, F, evals, why, seconds = nsga2(
+            mop, scales, settings.population, seed, stop, progress, cancel
+        )
+        solutions = []
+        for i in thin(F, settings.population) if len(F) else ():
+            info = SolutionInfo(method=self.name, seed=seed, evaluations=evals, status=why)
+            sol = mop.solution(X[i], info)
+            solutions.append(sol)
+            if on_solution is not None:
+                on_solution(sol)
+        front = front_of(solutions, "nsga2")
+        best = front.solutions[0] if front.solutions else None
+        cancelled = why == "cancelled"
+        status = "cancelled" if cancelled else ("feasible" if best is not None else "infeasible")
+        return OptimizationResult(status, best, front, evals, seconds)

@@ -1,0 +1,133 @@
+"""``auto``: the default method, a portfolio a user can leave on.
+
+By the problem's shape (decided from bench/optimizers.py, table in docs/design.md):
+
+- a design with both power goals (least electric power and most light power) gets a
+  front: NSGA-II, whose hypervolume on experiment 5 beats the epsilon-constraint and
+  two-step sweeps at a fraction of their evaluations;
+- any other design gets one best layout: CMA-ES with IPOP restarts on every patch for
+  up to ``CMA_SHARE`` of the evaluation and time budgets, then VNS from CMA-ES's best
+  with what is left. CMA-ES is the fastest to a target on the paper's experiments and
+  the demos; VNS's small coordinate moves then polish along active bounds, where a
+  Gaussian search samples mostly infeasible steps. The first phase is exactly a CMA-ES
+  run with the same seed, so wherever CMA-ES alone reaches a target, ``auto`` reaches
+  it at the same evaluation.
+"""
+
+from __future__ import annotations
+
+from dataclasses import replace
+from typing import TYPE_CHECKING
+
+from lightinv_core.design.model import Design
+from lightinv_core.kinds import GoalKind
+from lightinv_core.optimize.cmaes import cmaes
+from lightinv_core.optimize.method import SolutionFn
+from lightinv_core.optimize.nsga2 import NSGA2Method
+from lightinv_core.optimize.problem import DesignProblem
+from lightinv_core.optimize.progress import CancelFn, Progress, ProgressFn
+from lightinv_core.optimize.result import OptimizationResult
+from lightinv_core.optimize.search import SearchResult, better, judged
+from lightinv_core.optimize.termination import StopRule
+from lightinv_core.optimize.vns import vns
+
+if TYPE_CHECKING:
+    from lightinv_core.optimize.settings import OptimizerSettings
+
+CMA_SHARE = 0.5
+"""Part of the evaluation and time budgets CMA-ES may use before VNS takes over."""
+FRONT_GOALS = frozenset({GoalKind.MIN_ELECTRIC_POWER, GoalKind.MAX_LIGHT_POWER})
+
+
+def wants_front(design: Design) -> bool:
+    """Whether ``auto`` finds a front for ``design``: it has both power goals."""
+    return {GoalKind(g.kind) for g in design.goals} >= FRONT_GOALS
+
+
+def cma_then_vns(
+    problem: DesignProblem,
+    seed: int,
+    stop: StopRule,
+    trials: int = 32,
+    progress: ProgressFn | None = None,
+    cancel: CancelFn | None = None,
+) -> tuple[SearchResult, int]:
+    """CMA-ES for ``CMA_SHARE`` of the budgets, then VNS from its best with the rest;
+    returns the best over both phases and the evaluations CMA-ES used. Progress is one
+    continuous curve (VNS's evaluations and seconds counted on from CMA-ES's)."""
+    first = replace(
+        stop,
+        max_evals=None if stop.max_evals is None else max(1, int(stop.max_evals * CMA_SHARE)),
+        time_limit=None if stop.time_limit is None else stop.time_limit * CMA_SHARE,
+    )
+    a = cmaes(problem, seed=seed, stop=first, progress=progress, cancel=cancel)
+    if a.status in ("cancelled", "target"):
+        return a, a.evaluations
+    rest = replace(
+        stop,
+        max_evals=None if stop.max_evals is None else stop.max_evals - a.evaluations,
+        time_limit=None if stop.time_limit is None else stop.time_limit - a.seconds,
+    )
+    if (rest.max_evals is not None and rest.max_evals <= 0) or (
+        rest.time_limit is not None and rest.time_limit <= 0
+    ):
+        return a, a.evaluations
+
+    def shifted(p: Progress) -> None:
+        progress(
+            replace(p, evaluations=p.evaluations + a.evaluations, elapsed=p.elapsed + a.seconds)
+        )
+
+    b = vns(
+        problem,
+        x0=a.x,
+        seed=seed + 104_729,
+        stop=rest,
+        trials=trials,
+        progress=None if progress is None else shifted,
+        cancel=cancel,
+    )
+    best = b if better(b.value, b.penalty, a.value, a.penalty) else a
+    history = a.history + [(e + a.evaluations, *row) for e, *row in b.history]
+    total = SearchResult(
+        best.x,
+        best.value,
+        best.penalty,
+        best.goal,
+        a.evaluations + b.evaluations,
+        a.iterations + b.iterations,
+        a.seconds + b.seconds,
+        b.status,
+        history,
+    )
+    return total, a.evaluations
+
+
+class AutoMethod:
+    """The default: NSGA-II for a power/light front, else CMA-ES then VNS."""
+
+    name = "auto"
+    label = "Auto (CMA-ES + VNS, or NSGA-II for a front)"
+    count_setting = None
+    progress_label = "objective (front: hypervolume)"
+
+    @staticmethod
+    def finds_front(design: Design) -> bool:
+        """A front when the design has both power goals."""
+        return wants_front(design)
+
+    def run(
+        self,
+        problem: DesignProblem,
+        settings: OptimizerSettings,
+        stop: StopRule,
+        seed: int,
+        progress: ProgressFn | None = None,
+        cancel: CancelFn | None = None,
+        on_solution: SolutionFn | None = None,
+    ) -> OptimizationResult:
+        """NSGA-II or CMA-ES then VNS, by the design's goals (module docstring)."""
+        if wants_front(problem.design):
+            return NSGA2Method().run(problem, settings, stop, seed, progress, cancel, on_solution)
+        res, cma_evals = cma_then_vns(problem, seed, stop, settings.trials, progress, cancel)
+        return judged(problem, res, self.name, seed, extra={"cmaes_evaluations": cma_evals})
