@@ -1,0 +1,283 @@
+"""Benchmark: every optimisation method side by side on the paper's experiments and the
+office demo, 10 seeds each. Prints one JSON object.
+
+    python bench/optimizers.py --runs 10 > opt.json            # everything (~40 min)
+    python bench/optimizers.py --problems experiment1 office --runs 10 > part.json
+    python bench/optimizers.py --merge a.json b.json > opt.json
+    python bench/optimizers.py --markdown opt.json --update README.md docs/design.md
+
+Every method gets the project's own budget and stop rule (max_evals, stall, target).
+Single-objective problems:
+
+- success: ``experiment1`` reaches the match target e < 0.03; the others end feasible on
+  every patch with the primary goal within 2% of the best known (the best any method
+  found in this benchmark run, over all seeds);
+- evaluations and CPU seconds to success: read from the progress snapshots at the full
+  level (every patch), the first where P = 0 and the goal meets the success test; CPU
+  seconds are the process's (``time.process_time``);
+- final objective of each run (W, lm or e).
+
+Front problems (``experiment5``): hypervolume and spacing of each run's front in
+normalised objectives (optimize/quality.py), front size, evaluations, CPU seconds.
+The JSON records the machine's core count and the BLAS threads (1 per process: two
+processes share the 2 cores when the problems are split).
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import os
+import re
+import statistics
+import sys
+import time
+from dataclasses import replace
+from pathlib import Path
+
+from threadpoolctl import threadpool_limits
+
+from lightinv_core.kinds import GoalKind
+from lightinv_core.optimize.quality import front_quality, front_scales
+from lightinv_core.project import load_project
+from lightinv_core.study import prepare, solve
+
+PROJECTS = Path(__file__).resolve().parent.parent / "resources" / "projects"
+SINGLE = {
+    "experiment1": "experiment1",
+    "experiment3": "experiment3",
+    "experiment3b": "experiment3b",
+    "experiment4": "experiment4",
+    "experiment5-skylights": "experiment5-skylights",
+    "office": "office-demo",
+}
+FRONTS = {"experiment5": "experiment5"}
+SINGLE_METHODS = ("vns", "multilevel", "cmaes", "auto")
+FRONT_METHODS = ("epsilon", "two_step", "nsga2", "auto")
+MATCH_TARGET = 0.03
+WITHIN = 0.02
+
+
+def _single_run(project, prepared, method: str, seed: int) -> dict:
+    trace: list[tuple[int, float, float, float]] = []
+
+    def progress(p) -> None:
+        if p.level == 1 and p.best_penalty == 0.0:
+            if not trace or p.best_goal != trace[-1][3]:
+                trace.append(
+                    (p.evaluations, time.process_time() - cpu0, p.best_penalty, p.best_goal)
+                )
+
+    pr = replace(project, optimizer=replace(project.optimizer, method=method))
+    cpu0 = time.process_time()
+    r = solve(pr, prepared, seed=seed, progress=progress)
+    cpu = time.process_time() - cpu0
+    primary = str(pr.design.goals[0].kind)
+    final = r.best.objectives[primary] if r.best is not None else None
+    return {
+        "seed": seed,
+        "status": r.status,
+        "feasible": r.best is not None and r.best.feasible,
+        "final": final,
+        "evaluations": r.evaluations,
+        "cpu_seconds": cpu,
+        "seconds": r.seconds,
+        "trace": trace,
+    }
+
+
+def _front_run(project, prepared, method: str, seed: int, scales) -> dict:
+    pr = replace(project, optimizer=replace(project.optimizer, method=method))
+    cpu0 = time.process_time()
+    r = solve(pr, prepared, seed=seed)
+    cpu = time.process_time() - cpu0
+    sols = r.pareto.solutions if r.pareto is not None else ()
+    q = front_quality(sols, scales)
+    return {
+        "seed": seed,
+        "status": r.status,
+        "hypervolume": q.hypervolume,
+        "spacing": q.spacing,
+        "points": q.points,
+        "evaluations": r.evaluations,
+        "cpu_seconds": cpu,
+        "seconds": r.seconds,
+    }
+
+
+def run(problems: list[str], methods: list[str] | None, runs: int) -> dict:
+    import cma  # noqa: F401  (imported before timing: not part of any run)
+    import pymoo.algorithms.moo.nsga2  # noqa: F401
+
+    out: dict = {"runs": runs, "cores": os.cpu_count(), "blas_threads": 1, "problems": {}}
+    for name in problems:
+        file = SINGLE.get(name) or FRONTS[name]
+        project = load_project(PROJECTS / f"{file}.json")
+        prepared = prepare(project)
+        entry: dict = {"project": file, "patches": prepared.patches.n, "methods": {}}
+        if name in SINGLE:
+            entry["kind"] = "single"
+            entry["goal"] = str(project.design.goals[0].kind)
+            for m in methods or SINGLE_METHODS:
+                entry["methods"][m] = [_single_run(project, prepared, m, s) for s in range(runs)]
+                print(f"{name} {m} done", file=sys.stderr, flush=True)
+        else:
+            entry["kind"] = "front"
+            scales = front_scales(project.design, prepared.light)
+            entry["scales"] = list(scales)
+            for m in methods or FRONT_METHODS:
+                rows = [_front_run(project, prepared, m, s, scales) for s in range(runs)]
+                entry["methods"][m] = rows
+                print(f"{name} {m} done", file=sys.stderr, flush=True)
+        out["problems"][name] = entry
+    return summarise(out)
+
+
+def _success_test(name: str, goal: str, best_known: float):
+    if name == "experiment1":
+        return lambda g: g < MATCH_TARGET
+    if goal == GoalKind.MAX_LIGHT_POWER:
+        return lambda g: g >= best_known * (1 - WITHIN)
+    return lambda g: g <= best_known * (1 + WITHIN)
+
+
+def _median(values):
+    values = [v for v in values if v is not None]
+    return statistics.median(values) if values else None
+
+
+def summarise(out: dict) -> dict:
+    """Add each method's summary (success, medians) to every problem of ``out``."""
+    for name, entry in out["problems"].items():
+        summary = {}
+        if entry["kind"] == "single":
+            finals = [
+                r["final"]
+                for rows in entry["methods"].values()
+                for r in rows
+                if r["feasible"] and r["final"] is not None
+            ]
+            maximise = entry["goal"] == GoalKind.MAX_LIGHT_POWER
+            best = (max if maximise else min)(finals) if finals else None
+            entry["best_known"] = best
+            ok = _success_test(name, entry["goal"], best)
+            for m, rows in entry["methods"].items():
+                hits = []
+                for r in rows:
+                    hit = next((t for t in r["trace"] if ok(t[3])), None)
+                    success = r["feasible"] and r["final"] is not None and ok(r["final"])
+                    hits.append(hit if success else None)
+                done = [h for h in hits if h is not None]
+                finals_m = [r["final"] for r in rows if r["feasible"]]
+                summary[m] = {
+                    "success": len(done),
+                    "feasible": sum(r["feasible"] for r in rows),
+                    "runs": len(rows),
+                    "median_evals_to_success": _median([h[0] for h in done]),
+                    "median_cpu_to_success": _median([h[1] for h in done]),
+                    "median_final": _median(finals_m),
+                    "worst_final": ((min if maximise else max)(finals_m) if finals_m else None),
+                    "median_evaluations": _median([r["evaluations"] for r in rows]),
+                    "median_cpu_seconds": _median([r["cpu_seconds"] for r in rows]),
+                }
+        else:
+            for m, rows in entry["methods"].items():
+                summary[m] = {
+                    "runs": len(rows),
+                    "median_hypervolume": _median([r["hypervolume"] for r in rows]),
+                    "min_hypervolume": min(r["hypervolume"] for r in rows),
+                    "median_spacing": _median([r["spacing"] for r in rows]),
+                    "median_points": _median([r["points"] for r in rows]),
+                    "median_evaluations": _median([r["evaluations"] for r in rows]),
+                    "median_cpu_seconds": _median([r["cpu_seconds"] for r in rows]),
+                }
+        entry["summary"] = summary
+    return out
+
+
+def _fmt(v, spec: str = ",.0f") -> str:
+    return "–" if v is None else format(v, spec)
+
+
+def markdown(out: dict) -> str:
+    """The README / docs table of a benchmark JSON."""
+    lines = [
+        f"{out['runs']} seeds per method, {out['cores']} cores, 1 BLAS thread per process "
+        "(`bench/optimizers.py`).",
+        "",
+        "| problem | method | success | evaluations to success (median) "
+        "| CPU s to success (median) | final (median / worst) |",
+        "|---|---|---|---|---|---|",
+    ]
+    fronts = []
+    for name, entry in out["problems"].items():
+        if entry["kind"] != "single":
+            fronts.append((name, entry))
+            continue
+        units = {"match": "e", "min_electric_power": "W", "max_light_power": "lm"}[entry["goal"]]
+        spec = ".4f" if units == "e" else ",.1f" if units == "W" else ",.0f"
+        for m, s in entry["summary"].items():
+            final = f"{_fmt(s['median_final'], spec)} / {_fmt(s['worst_final'], spec)} {units}"
+            lines.append(
+                f"| {name} | {m} | {s['success']}/{s['runs']} "
+                f"| {_fmt(s['median_evals_to_success'])} "
+                f"| {_fmt(s['median_cpu_to_success'], '.2f')} | {final} |"
+            )
+    if fronts:
+        lines += [
+            "",
+            "| problem | method | hypervolume (median / min) | spacing (median) "
+            "| front points | evaluations (median) | CPU s (median) |",
+            "|---|---|---|---|---|---|---|",
+        ]
+        for name, entry in fronts:
+            for m, s in entry["summary"].items():
+                lines.append(
+                    f"| {name} | {m} | {s['median_hypervolume']:.3f} / {s['min_hypervolume']:.3f} "
+                    f"| {_fmt(s['median_spacing'], '.4f')} | {_fmt(s['median_points'], '.0f')} "
+                    f"| {_fmt(s['median_evaluations'])} | {_fmt(s['median_cpu_seconds'], '.1f')} |"
+                )
+    return "\n".join(lines)
+
+
+BEGIN, END = "<!-- optimizers table: begin -->", "<!-- optimizers table: end -->"
+
+
+def update(path: Path, table: str) -> None:
+    """Replace the text between the optimizers-table markers of ``path``."""
+    text = path.read_text(encoding="utf-8")
+    pattern = re.compile(re.escape(BEGIN) + ".*?" + re.escape(END), re.S)
+    if not pattern.search(text):
+        raise SystemExit(f"{path}: no {BEGIN} ... {END} markers")
+    path.write_text(pattern.sub(lambda _m: f"{BEGIN}\n{table}\n{END}", text), encoding="utf-8")
+
+
+def main() -> None:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--problems", nargs="+", choices=[*SINGLE, *FRONTS])
+    ap.add_argument("--methods", nargs="+")
+    ap.add_argument("--runs", type=int, default=10)
+    ap.add_argument("--merge", nargs="+", type=Path, help="merge benchmark JSON files")
+    ap.add_argument("--markdown", type=Path, help="print the table of a benchmark JSON")
+    ap.add_argument("--update", nargs="+", type=Path, help="with --markdown: rewrite files")
+    args = ap.parse_args()
+    if args.markdown:
+        table = markdown(json.loads(args.markdown.read_text()))
+        for path in args.update or ():
+            update(path, table)
+        print(table)
+        return
+    if args.merge:
+        parts = [json.loads(p.read_text()) for p in args.merge]
+        out = dict(parts[0], problems={})
+        for part in parts:
+            out["problems"].update(part["problems"])
+        print(json.dumps(summarise(out), indent=1))
+        return
+    with threadpool_limits(limits=1, user_api="blas"):
+        out = run(args.problems or [*SINGLE, *FRONTS], args.methods, args.runs)
+    print(json.dumps(out, indent=1))
+
+
+if __name__ == "__main__":
+    main()
