@@ -62,11 +62,10 @@ def _single_run(project, prepared, method: str, seed: int) -> dict:
     trace: list[tuple[int, float, float, float]] = []
 
     def progress(p) -> None:
-        if p.level == 1 and p.best_penalty == 0.0:
-            if not trace or p.best_goal != trace[-1][3]:
-                trace.append(
-                    (p.evaluations, time.process_time() - cpu0, p.best_penalty, p.best_goal)
-                )
+        new = not trace or p.best_goal != trace[-1][3]
+        if p.level == 1 and p.best_penalty == 0.0 and new:
+            cpu = time.process_time() - cpu0
+            trace.append((p.evaluations, cpu, p.best_penalty, p.best_goal))
 
     pr = replace(project, optimizer=replace(project.optimizer, method=method))
     cpu0 = time.process_time()
@@ -106,6 +105,9 @@ def _front_run(project, prepared, method: str, seed: int, scales) -> dict:
 
 
 def run(problems: list[str], methods: list[str] | None, runs: int) -> dict:
+    import cma  # noqa: F401  (imported before timing: not part of any run)
+    import pymoo.algorithms.moo.nsga2  # noqa: F401
+
     import cma  # noqa: F401  (imported before timing: not part of any run)
     import pymoo.algorithms.moo.nsga2  # noqa: F401
 
