@@ -118,10 +118,16 @@ class SolutionsPanel(QtWidgets.QWidget):
         self._fill_compare()
         n_front = sum(on_front)
         method = self.doc.project.pareto.method if self.doc.project.pareto else ""
+        q = self.doc.front_quality() if n_front else None
+        quality = ""
+        if q is not None:
+            spread = "–" if q.spacing is None else f"{q.spacing:.4f}"
+            quality = f"\nfront hypervolume {q.hypervolume:.4f}, spacing {spread} (normalised)"
         self.summary.setText(
             f"{len(sols)} results"
             + (f", {n_front} on the {method} front" if n_front else "")
             + (f", {sum(pinned)} pinned" if any(pinned) else "")
+            + quality
             if sols
             else "No results yet: press Run."
         )

@@ -105,10 +105,8 @@ def _front_run(project, prepared, method: str, seed: int, scales) -> dict:
 
 
 def run(problems: list[str], methods: list[str] | None, runs: int) -> dict:
-    import cma  # noqa: F401  (imported before timing: not part of any run)
-    import pymoo.algorithms.moo.nsga2  # noqa: F401
-
-    import cma  # noqa: F401  (imported before timing: not part of any run)
+    # Imported before timing: not part of any run.
+    import cma  # noqa: F401
     import pymoo.algorithms.moo.nsga2  # noqa: F401
 
     out: dict = {"runs": runs, "cores": os.cpu_count(), "blas_threads": 1, "problems": {}}

@@ -20,6 +20,7 @@ from lightinv_core.kinds import SourceKind
 from lightinv_core.light.model import LightModel
 from lightinv_core.operator.cache import get_operator
 from lightinv_core.operator.settings import OperatorSettings
+from lightinv_core.optimize.registry import method_names
 from lightinv_core.scene.builtin import BUILTIN_SCENES, builtin_scene
 from lightinv_core.scene.loading import load_scene
 from lightinv_core.scene.patches import count_patches, mesh_patches
@@ -332,12 +333,15 @@ def cmd_solve(args) -> int:
     """Optimise a project file; optionally save it with the results."""
     from dataclasses import replace
 
+    from lightinv_core.optimize.quality import front_quality, front_scales
     from lightinv_core.project import load_project, save_project
     from lightinv_core.study import prepare, solve
 
     project = load_project(args.project)
     if args.resolution is not None:
         project = replace(project, scene=replace(project.scene, resolution=args.resolution))
+    if args.method is not None:
+        project = replace(project, optimizer=replace(project.optimizer, method=args.method))
     prepared = prepare(project, progress=_progress_printer("precompute"), warn=_warn)
     result = solve(
         project,
@@ -372,6 +376,8 @@ def cmd_solve(args) -> int:
             _solution_summary(s, project.design.daylight) for s in result.pareto.solutions
         ]
         out["candidates"] = len(result.pareto.candidates)
+        scales = front_scales(project.design, prepared.light)
+        out["front_quality"] = front_quality(result.pareto.solutions, scales).to_dict()
     if args.output:
         sols = (best,) if best is not None and result.pareto is None else ()
         save_project(replace(project, solutions=sols, pareto=result.pareto), args.output)
@@ -403,8 +409,12 @@ def _solve_text(out: dict) -> str:
             f"({v['value']:.4g} vs {v['bound']:.4g} {v['units']})"
         )
     if "pareto" in out:
+        q = out["front_quality"]
+        spread = "–" if q["spacing"] is None else f"{q['spacing']:.4f}"
         lines.append(
-            f"Pareto front: {len(out['pareto'])} non-dominated of {out['candidates']} runs"
+            f"Pareto front: {len(out['pareto'])} non-dominated of {out['candidates']} "
+            f"candidates; hypervolume {q['hypervolume']:.4f}, spacing {spread} "
+            "(normalised, docs/design.md)"
         )
         for s in out["pareto"]:
             o = s["objectives"]
@@ -526,6 +536,11 @@ def build_parser() -> argparse.ArgumentParser:
     sol = add("solve", cmd_solve, "optimise a project file (inverse design)")
     sol.add_argument("project", help="project file (JSON, schema 1)")
     sol.add_argument("--seed", type=int, help="random seed (default: the project's)")
+    sol.add_argument(
+        "--method",
+        choices=method_names(),
+        help="optimisation method (default: the project's; docs/design.md compares them)",
+    )
     sol.add_argument("--max-evals", type=int, help="radiosity evaluations at most")
     sol.add_argument("--time-limit", type=_positive, help="seconds of optimisation at most")
     sol.add_argument("--resolution", type=_positive, help="override the scene's patch size (m)")

@@ -30,6 +30,7 @@ from lightinv_core.light.field import LightField
 from lightinv_core.light.model import LightModel
 from lightinv_core.operator.radiosity import RadiosityOperator
 from lightinv_core.optimize.problem import DesignProblem
+from lightinv_core.optimize.quality import FrontQuality, front_quality, front_scales
 from lightinv_core.project import (
     OperatorSettings,
     Project,
@@ -364,6 +365,15 @@ class DocumentModel:
     def results(self) -> list[tuple[str, Solution]]:
         """Every result to browse, labelled (see ``results.browse``)."""
         return _results.browse(self._project)
+
+    def front_quality(self) -> FrontQuality | None:
+        """Hypervolume and spacing of the project's front (None without a front or a
+        light model)."""
+        front = self._project.pareto if self._project is not None else None
+        if front is None or not front.solutions or self.light is None:
+            return None
+        scales = front_scales(self._project.design, self.light)
+        return front_quality(front.solutions, scales)
 
     def on_front(self, solution: Solution) -> bool:
         """Whether ``solution`` is on the project's Pareto front."""

@@ -18,6 +18,8 @@ def result_label(s: Solution) -> str:
     info = s.info
     if info.epsilon is not None:
         return f"epsilon {info.epsilon:,.0f} lm"
+    if info.method == "nsga2" and "min_electric_power" in s.objectives:
+        return f"NSGA-II {s.objectives['min_electric_power']:,.1f} W"
     if info.step1_light_power is not None:
         return f"two-step seed {'?' if info.seed is None else info.seed}"
     if info.seed is not None:

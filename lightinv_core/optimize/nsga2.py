@@ -17,7 +17,7 @@ the run's seed, and ``np.random.default_rng(seed)`` for the first population.
 from __future__ import annotations
 
 import time
-from dataclasses import replace
+from dataclasses import dataclass, replace
 from typing import TYPE_CHECKING
 
 import numpy as np
@@ -52,6 +52,20 @@ def thin(F: np.ndarray, keep: int) -> np.ndarray:
     return idx
 
 
+@dataclass(frozen=True)
+class NSGA2Run:
+    """An NSGA-II run: the archive's x (k, nvar) and normalised F (k, 2), the light
+    evaluations, why it stopped, seconds, and the candidate of least summed violation
+    seen (the answer to explain when nothing was feasible)."""
+
+    X: np.ndarray
+    F: np.ndarray
+    evaluations: int
+    status: str
+    seconds: float
+    closest: np.ndarray
+
+
 class _Archive:
     """Feasible non-dominated (x, F) seen so far, F as minimised normalised objectives."""
 
@@ -78,10 +92,8 @@ def nsga2(
     stop: StopRule | None = None,
     progress: ProgressFn | None = None,
     cancel: CancelFn | None = None,
-) -> tuple[np.ndarray, np.ndarray, int, str, float]:
-    """Run NSGA-II on ``problem`` (objectives electric power, light power); returns the
-    archive's x (k, nvar) and normalised F (k, 2), the evaluations, why it stopped and the
-    seconds."""
+) -> NSGA2Run:
+    """Run NSGA-II on ``problem`` (objectives electric power, light power)."""
     from pymoo.algorithms.moo.nsga2 import NSGA2  # lazily: only front runs need pymoo
     from pymoo.core.problem import Problem
 
@@ -120,6 +132,7 @@ def nsga2(
     algo.setup(lit, termination=("n_gen", 10**9), seed=int(seed) % 2**32, verbose=False)
     t0 = time.perf_counter()
     best_hv, last_gain, gen = 0.0, 0, 0
+    least_cv, closest = np.inf, lo + start[0] * span
     why = None
     while True:
         if cancel is not None and cancel():
@@ -137,14 +150,18 @@ def nsga2(
         algo.tell(infills=pop)
         gen += 1
         hv = archive.hypervolume()
-        if hv > best_hv:
+        cv = pop.get("CV").ravel()
+        j = int(np.argmin(cv))
+        # Before the first feasible point, less violation is progress (for ``stall``).
+        if hv > best_hv or (hv == 0.0 and cv[j] < least_cv):
             best_hv, last_gain = hv, count["evals"]
+        if cv[j] < least_cv:
+            least_cv, closest = float(cv[j]), lo + pop[j].X * span
         if progress is not None:
-            cv = pop.get("CV")
-            least = 0.0 if len(archive.F) else float(np.min(cv)) if cv is not None else np.inf
+            least = 0.0 if len(archive.F) else least_cv
             progress(Progress(gen, count["evals"], time.perf_counter() - t0, -hv, least, hv, 1))
     X = lo + archive.X * span
-    return X, archive.F, count["evals"], why, time.perf_counter() - t0
+    return NSGA2Run(X, archive.F, count["evals"], why, time.perf_counter() - t0, closest)
 
 
 class NSGA2Method:
@@ -177,18 +194,20 @@ class NSGA2Method:
             replace(design, goals=(Goal(POWER), _light_goal(design))), problem.light
         )
         scales = front_scales(mop.design, mop.light)
-        X, F, evals, why, seconds = nsga2(
-            mop, scales, settings.population, seed, stop, progress, cancel
+        run = nsga2(mop, scales, settings.population, seed, stop, progress, cancel)
+        info = SolutionInfo(
+            method=self.name, seed=seed, evaluations=run.evaluations, status=run.status
         )
-        solutions = []
-        for i in thin(F, settings.population) if len(F) else ():
-            info = SolutionInfo(method=self.name, seed=seed, evaluations=evals, status=why)
-            sol = mop.solution(X[i], info)
-            solutions.append(sol)
-            if on_solution is not None:
+        # Nothing feasible: the least violating candidate, to say what stands in the way.
+        picks = [run.X[i] for i in thin(run.F, settings.population)] if len(run.F) else []
+        solutions = [mop.solution(x, info) for x in picks or [run.closest]]
+        for sol in solutions:
+            if on_solution is not None and sol.feasible:
                 on_solution(sol)
         front = front_of(solutions, "nsga2")
         best = front.solutions[0] if front.solutions else None
-        cancelled = why == "cancelled"
-        status = "cancelled" if cancelled else ("feasible" if best is not None else "infeasible")
-        return OptimizationResult(status, best, front, evals, seconds)
+        if run.status == "cancelled":
+            status = "cancelled"
+        else:
+            status = "feasible" if best is not None else "infeasible"
+        return OptimizationResult(status, best, front, run.evaluations, run.seconds)

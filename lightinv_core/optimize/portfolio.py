@@ -108,8 +108,8 @@ class AutoMethod:
 
     name = "auto"
     label = "Auto (CMA-ES + VNS, or NSGA-II for a front)"
-    count_setting = None
-    progress_label = "objective (front: hypervolume)"
+    count_setting = ("Population", "population")  # of its front (NSGA-II)
+    progress_label = "front hypervolume"  # shown only when it finds a front
 
     @staticmethod
     def finds_front(design: Design) -> bool:

@@ -16,6 +16,7 @@ from matplotlib.figure import Figure
 from matplotlib.ticker import StrMethodFormatter
 
 from lightinv_core.design.solution import ParetoFront, Solution
+from lightinv_core.optimize.quality import FrontQuality
 from lightinv_core.report.tables import OBJECTIVES, Table
 from lightinv_core.report.views import A4_LANDSCAPE
 
@@ -219,9 +220,16 @@ def convergence_figure(solution: Solution, primary: str) -> Figure | None:
     return fig
 
 
-def pareto_figure(front: ParetoFront, chosen: Solution | None) -> Figure | None:
+MAX_LABELLED_POINTS = 20
+"""A front with more points (NSGA-II's) is drawn without a number beside each point."""
+
+
+def pareto_figure(
+    front: ParetoFront, chosen: Solution | None, quality: FrontQuality | None = None
+) -> Figure | None:
     """Reflected light power (lm) against electric power (W) of the front's solutions
-    (and the other candidates), the reported solution marked; None when empty."""
+    (and the other candidates), the reported solution marked, the front's hypervolume
+    and spacing in the title when ``quality`` is given; None when empty."""
     if not front.solutions:
         return None
 
@@ -254,7 +262,7 @@ def pareto_figure(front: ParetoFront, chosen: Solution | None) -> Figure | None:
     F = xy(front.solutions)
     order = np.argsort(F[:, 0], kind="stable")
     ax.plot(F[order, 0], F[order, 1], "-o", color="C0", ms=6, label="Pareto front", zorder=3)
-    for i, (a, b) in enumerate(F):
+    for i, (a, b) in enumerate(F if len(F) <= MAX_LABELLED_POINTS else ()):
         ax.annotate(
             str(i + 1), (a, b), xytext=(5, -12), textcoords="offset points", fontsize=9, color="C0"
         )
@@ -276,10 +284,14 @@ def pareto_figure(front: ParetoFront, chosen: Solution | None) -> Figure | None:
     ax.set_xlabel("electric power (W)")
     ax.set_ylabel("reflected light power (lm)")
     method = f" ({front.method})" if front.method else ""
-    ax.set_title(
+    title = (
         f"Pareto front{method}: {len(front.solutions)} non-dominated of "
         f"{max(len(front.candidates), len(front.solutions))} solutions"
     )
+    if quality is not None:
+        spread = "–" if quality.spacing is None else f"{quality.spacing:.4f}"
+        title += f"\nhypervolume {quality.hypervolume:.4f}, spacing {spread} (normalised)"
+    ax.set_title(title)
     ax.grid(alpha=0.3)
     ax.legend(loc="lower right")
     return fig

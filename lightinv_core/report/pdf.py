@@ -24,6 +24,7 @@ from matplotlib.figure import Figure
 
 from lightinv_core.atomic import atomic_writer
 from lightinv_core.errors import CancelledError
+from lightinv_core.optimize.quality import front_quality, front_scales
 from lightinv_core.project import Project
 from lightinv_core.report.chosen import Chosen, choose_solution, solution_field
 from lightinv_core.report.figures import (
@@ -185,7 +186,9 @@ def write_report(
     if history:
         plan.append(("convergence", lambda: convergence_figure(sol, primary)))
     if project.pareto is not None and project.pareto.solutions:
-        plan.append(("pareto", lambda: pareto_figure(project.pareto, sol)))
+        scales = front_scales(project.design, prepared.light)
+        quality = front_quality(project.pareto.solutions, scales)
+        plan.append(("pareto", lambda: pareto_figure(project.pareto, sol, quality)))
     names = ["title", *(n for n, _ in plan)]
     plan.insert(0, ("title", lambda: _title_page(project, prepared, chosen, names, intentions)))
 

@@ -179,3 +179,33 @@ def test_pareto_browser_loads_pins_and_compares_solutions(qtbot, experiment5, tm
     again = load_project(path)
     assert [s.x for s in again.solutions if s.info.pinned] == [front[0].x]
     assert len(again.pareto.solutions) == len(front)
+
+
+def test_the_run_panel_offers_every_method_and_runs_an_nsga2_front(qtbot, experiment5, tmp_path):
+    win = experiment5
+    panel = win.run_panel
+    names = [panel.method.itemData(i) for i in range(panel.method.count())]
+    assert names == ["auto", "vns", "multilevel", "cmaes", "epsilon", "two_step", "nsga2"]
+    # Choosing NSGA-II in the combo box writes it to the project; its count is the population.
+    panel.method.setCurrentIndex(names.index("nsga2"))
+    assert win.doc.project.optimizer.method == "nsga2"
+    assert panel.runs_label.text() == "Population"
+    panel.runs.setValue(24)
+    assert win.doc.project.optimizer.population == 24
+    assert not panel.goal.isEnabled()
+    assert run_and_wait(qtbot, win, timeout=180_000) == "feasible"
+    assert panel.plot.goal_plot.getPlotItem().titleLabel.text.startswith("best front hypervolume")
+    curve = panel.plot.curve(0)
+    assert len(curve) >= 2 and np.all(np.diff(curve[:, 1]) >= 0)  # hypervolume only rises
+    front = win.doc.project.pareto.solutions
+    assert 2 <= len(front) <= 24 and all(s.feasible for s in front)
+    summary = win.solutions_panel.summary.text()
+    q = win.doc.front_quality()
+    assert f"front hypervolume {q.hypervolume:.4f}" in summary
+    assert "on the nsga2 front" in summary
+    win.grab().save(str(tmp_path / "nsga2-window.png"))
+    win.tabs.setCurrentWidget(panel)
+    panel.grab().save(str(tmp_path / "nsga2-run-panel.png"))
+    # Auto on this two-goal design finds a front too (NSGA-II), and says so.
+    panel.method.setCurrentIndex(names.index("auto"))
+    assert panel.runs_label.text() == "Population" and not panel.goal.isEnabled()

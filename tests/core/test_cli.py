@@ -170,3 +170,29 @@ def test_bad_arguments_exit_2_without_traceback(capsys, argv, message):
     assert len(lines) == 1
     assert lines[0].startswith(f"lightinv-cli: error: lightinv-cli {argv[0]}: argument ")
     assert message in lines[0]
+
+
+def small_front_project(tmp_path) -> str:
+    projects = Path(__file__).resolve().parents[2] / "resources" / "projects"
+    src = json.loads((projects / "experiment5.json").read_text())
+    src["scene"]["resolution"] = 0.7
+    src["operator"] = {"rank": 150, "rays": 256}
+    path = tmp_path / "front.json"
+    path.write_text(json.dumps(src))
+    return str(path)
+
+
+def test_solve_chooses_the_method_and_reports_the_front_quality(capsys, tmp_path):
+    path = small_front_project(tmp_path)
+    out = run_json(capsys, "solve", path, "--method", "nsga2", "--max-evals", "800")
+    assert out["method"] == "nsga2" and out["status"] == "feasible"
+    q = out["front_quality"]
+    assert 0.0 < q["hypervolume"] < 1.0 and q["points"] == len(out["pareto"]) >= 2
+    assert q["spacing"] >= 0.0 and q["reference"] == [1.0, 0.0]
+    assert cli.main(["solve", path, "--method", "nsga2", "--max-evals", "800"]) == 0
+    text = capsys.readouterr().out
+    assert f"hypervolume {q['hypervolume']:.4f}" in text
+    with pytest.raises(SystemExit) as exc:
+        cli.main(["solve", path, "--method", "simplex"])
+    assert exc.value.code == 2
+    assert "--method: invalid choice: 'simplex'" in capsys.readouterr().err

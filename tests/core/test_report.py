@@ -17,6 +17,7 @@ from lightinv_core.design.model import CORNERS, Design, Goal, Intention, Rule, S
 from lightinv_core.design.solution import ParetoFront, Solution
 from lightinv_core.errors import CancelledError, LightInvError
 from lightinv_core.optimize.problem import DesignProblem
+from lightinv_core.optimize.quality import front_quality, front_scales
 from lightinv_core.optimize.search import random_start
 from lightinv_core.project import OperatorSettings, OptimizerSettings, Project, SceneSpec
 from lightinv_core.report import (
@@ -175,6 +176,8 @@ def test_multi_objective_report_marks_the_pareto_front(multi, tmp_path):
     assert pdf_page_count(info.path) == len(info.pages)
     text = squash(pdf_text(info.path))
     assert "Pareto front (test): 2 non-dominated of 3 solutions" in text
+    q = front_quality(project.pareto.solutions, front_scales(project.design, prepared.light))
+    assert f"hypervolume {q.hypervolume:.4f}, spacing {q.spacing:.4f} (normalised)" in text
     sol = project.pareto.solutions[0]
     assert "Electric power" in text and "Reflected light power" in text
     for row in source_table(sol, project.design).rows:
