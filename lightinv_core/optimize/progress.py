@@ -13,7 +13,9 @@ class Progress:
     ``iteration`` counts the method's own steps (a VNS local search, a CMA-ES generation);
     ``evaluations`` the light evaluations so far; ``elapsed`` seconds; ``best_value`` the
     best minimised value f + P, ``best_penalty`` its penalty P and ``best_goal`` its
-    primary goal in its units. ``level`` is the divisor of the patches evaluated (about
+    primary goal in its units (NSGA-II: ``best_goal`` is the front's normalised
+    hypervolume, ``best_value`` its negative, ``best_penalty`` the least summed
+    violation until a feasible point exists, then 0). ``level`` is the divisor of the patches evaluated (about
     n / level representatives; 1 = every patch). ``best_x`` is the best variable vector so
     far (the problem's own variables; a multi-objective driver's sub-problems may have
     other variables than the design's). ``run``/``runs`` say which of several runs of a
