@@ -241,7 +241,7 @@ SAVED = {
     "experiment5-skylights": "ae8bd580aeade262144aa417d153bf6dfa55aeb59a4ceccb976af0890e5c1546",
     "experiment5-twostep": "7962957b9cd8336277433827cc5944732dfa06e067a9b3eee0c9f614db7e11f0",
     "experiment5": "52e2dde92ed16508302ee42d8709f2cbc8e446066f75bfb6b45575cb08580bee",
-    "office-demo": "3c64acacaccfb986a7b872242ef00c1b1eb0958d62151b6428f8e55bdcac091f",
+    "office-demo": "cbaaf5377b272f4a4fb6582e23fdb0c42bc9be5cef733652e43804c9c123af9b",
     "with_results": "856ffb93ea5aaf1bd7ee3b512bfe60170c3373f3caa814bbd4928f23337a6f61",
     "zones": "7a80052b5cdc654c710f96acfe4d876be83c935483401f9f0a8cf9cb54251f3b",
 }
