@@ -14,6 +14,29 @@ import tempfile
 import time
 
 
+def _optimizers(light, lamp) -> dict:
+    """A short CMA-ES and NSGA-II run each (the bundle must carry cma and pymoo)."""
+    from dataclasses import replace
+
+    from lightinv_core.design.model import CORNERS, Design, Goal
+    from lightinv_core.optimize.problem import DesignProblem
+    from lightinv_core.optimize.registry import get_method
+    from lightinv_core.optimize.settings import OptimizerSettings
+    from lightinv_core.optimize.termination import StopRule
+
+    free = replace(lamp, free=CORNERS)
+    design = Design((free,), (Goal("min_electric_power"), Goal("max_light_power")))
+    out = {}
+    for name in ("cmaes", "nsga2"):
+        res = get_method(name).run(
+            DesignProblem(design, light), OptimizerSettings(population=8), StopRule(200), 0
+        )
+        if res.status != "feasible":
+            raise RuntimeError(f"{name}: a short run ended {res.status}")
+        out[name] = res.evaluations
+    return out
+
+
 def run() -> int:
     """Run the checks; returns the process exit status."""
     t0 = time.perf_counter()
@@ -44,6 +67,7 @@ def run() -> int:
         )
         if not np.all(np.isfinite(lux)) or lux.max() <= 0:
             raise RuntimeError("the evaluated lighting is empty or not finite")
+        report["optimizers"] = _optimizers(LightModel(scene, patches, op), lamp)
         import pyvista as pv
 
         vertices, faces, tri_patch = patches.triangle_mesh()
