@@ -189,25 +189,39 @@ class NSGA2Method:
     ) -> OptimizationResult:
         """One NSGA-II run of ``settings.population`` within ``stop``; the front's points
         go to ``on_solution`` once judged."""
-        design = problem.design
-        mop = DesignProblem(
-            replace(design, goals=(Goal(POWER), _light_goal(design))), problem.light
-        )
+        mop = front_problem(problem)
         scales = front_scales(mop.design, mop.light)
         run = nsga2(mop, scales, settings.population, seed, stop, progress, cancel)
-        info = SolutionInfo(
-            method=self.name, seed=seed, evaluations=run.evaluations, status=run.status
-        )
-        # Nothing feasible: the least violating candidate, to say what stands in the way.
-        picks = [run.X[i] for i in thin(run.F, settings.population)] if len(run.F) else []
-        solutions = [mop.solution(x, info) for x in picks or [run.closest]]
-        for sol in solutions:
-            if on_solution is not None and sol.feasible:
-                on_solution(sol)
-        front = front_of(solutions, "nsga2")
-        best = front.solutions[0] if front.solutions else None
-        if run.status == "cancelled":
-            status = "cancelled"
-        else:
-            status = "feasible" if best is not None else "infeasible"
-        return OptimizationResult(status, best, front, run.evaluations, run.seconds)
+        return judged_front(mop, run, settings.population, self.name, seed, on_solution)
+
+
+def front_problem(problem: DesignProblem) -> DesignProblem:
+    """``problem``'s design with the front's two goals: electric power, light power."""
+    design = problem.design
+    return DesignProblem(replace(design, goals=(Goal(POWER), _light_goal(design))), problem.light)
+
+
+def judged_front(
+    mop: DesignProblem,
+    run: NSGA2Run,
+    population: int,
+    method: str,
+    seed: int,
+    on_solution: SolutionFn | None = None,
+) -> OptimizationResult:
+    """The archive thinned to ``population`` points, each judged on every patch (sent to
+    ``on_solution``), as the run's front; the least-violating candidate when nothing was
+    feasible, to say what stands in the way."""
+    info = SolutionInfo(method=method, seed=seed, evaluations=run.evaluations, status=run.status)
+    picks = [run.X[i] for i in thin(run.F, population)] if len(run.F) else []
+    solutions = [mop.solution(x, info) for x in picks or [run.closest]]
+    for sol in solutions:
+        if on_solution is not None and sol.feasible:
+            on_solution(sol)
+    front = front_of(solutions, method)
+    best = front.solutions[0] if front.solutions else None
+    if run.status == "cancelled":
+        status = "cancelled"
+    else:
+        status = "feasible" if best is not None else "infeasible"
+    return OptimizationResult(status, best, front, run.evaluations, run.seconds)

@@ -15,11 +15,12 @@ class Progress:
     best minimised value f + P, ``best_penalty`` its penalty P and ``best_goal`` its
     primary goal in its units (NSGA-II: ``best_goal`` is the front's normalised
     hypervolume, ``best_value`` its negative, ``best_penalty`` the least summed
-    violation until a feasible point exists, then 0). ``level`` is the divisor of the patches evaluated (about
-    n / level representatives; 1 = every patch). ``best_x`` is the best variable vector so
-    far (the problem's own variables; a multi-objective driver's sub-problems may have
-    other variables than the design's). ``run``/``runs`` say which of several runs of a
-    driver (epsilon values, two-step runs, seeds) this is, counted from 0.
+    violation until a feasible point exists, then 0). ``level`` is the divisor of the
+    patches evaluated (about n / level representatives; 1 = every patch). ``best_x`` is
+    the best variable vector so far (the problem's own variables; a multi-objective
+    driver's sub-problems may have other variables than the design's; empty for
+    NSGA-II). ``run``/``runs`` say which of several runs of a driver (epsilon values,
+    two-step runs, seeds, auto's front and its two end searches) this is, from 0.
     """
 
     iteration: int
