@@ -36,6 +36,8 @@ if TYPE_CHECKING:
 
 CMA_SHARE = 0.5
 """Part of the evaluation and time budgets CMA-ES may use before VNS takes over."""
+PATIENCE = 2
+"""CMA-ES hands over early after this many restarts in a row end on the same optimum."""
 FRONT_GOALS = frozenset({GoalKind.MIN_ELECTRIC_POWER, GoalKind.MAX_LIGHT_POWER})
 
 
@@ -52,15 +54,18 @@ def cma_then_vns(
     progress: ProgressFn | None = None,
     cancel: CancelFn | None = None,
 ) -> tuple[SearchResult, int]:
-    """CMA-ES for ``CMA_SHARE`` of the budgets, then VNS from its best with the rest;
-    returns the best over both phases and the evaluations CMA-ES used. Progress is one
-    continuous curve (VNS's evaluations and seconds counted on from CMA-ES's)."""
+    """CMA-ES for at most ``CMA_SHARE`` of the budgets, then VNS with the rest: from
+    CMA-ES's best, or from a random layout when CMA-ES stagnated (``PATIENCE`` restarts
+    in a row found the same optimum: a deceptive problem, where VNS's small moves from
+    elsewhere do better). Returns the best over both phases and the evaluations CMA-ES
+    used. Progress and history are one continuous curve of the best so far (VNS's
+    evaluations and seconds counted on from CMA-ES's)."""
     first = replace(
         stop,
         max_evals=None if stop.max_evals is None else max(1, int(stop.max_evals * CMA_SHARE)),
         time_limit=None if stop.time_limit is None else stop.time_limit * CMA_SHARE,
     )
-    a = cmaes(problem, seed=seed, stop=first, progress=progress, cancel=cancel)
+    a = cmaes(problem, seed=seed, stop=first, progress=progress, cancel=cancel, patience=PATIENCE)
     if a.status in ("cancelled", "target"):
         return a, a.evaluations
     rest = replace(
@@ -74,13 +79,16 @@ def cma_then_vns(
         return a, a.evaluations
 
     def shifted(p: Progress) -> None:
-        progress(
-            replace(p, evaluations=p.evaluations + a.evaluations, elapsed=p.elapsed + a.seconds)
-        )
+        p = replace(p, evaluations=p.evaluations + a.evaluations, elapsed=p.elapsed + a.seconds)
+        if not better(p.best_value, p.best_penalty, a.value, a.penalty):
+            best_x = tuple(float(c) for c in a.x)
+            p = replace(p, best_value=a.value, best_penalty=a.penalty, best_goal=a.goal)
+            p = replace(p, best_x=best_x)
+        progress(p)
 
     b = vns(
         problem,
-        x0=a.x,
+        x0=None if a.status == "stagnated" else a.x,
         seed=seed + 104_729,
         stop=rest,
         trials=trials,
@@ -88,7 +96,11 @@ def cma_then_vns(
         cancel=cancel,
     )
     best = b if better(b.value, b.penalty, a.value, a.penalty) else a
-    history = a.history + [(e + a.evaluations, *row) for e, *row in b.history]
+    history = a.history + [
+        (e + a.evaluations, v, pen, g)
+        for e, v, pen, g in b.history
+        if better(v, pen, a.value, a.penalty)
+    ]
     total = SearchResult(
         best.x,
         best.value,
