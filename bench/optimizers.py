@@ -9,8 +9,8 @@ office demo, 10 seeds each. Prints one JSON object.
 Every method gets the project's own budget and stop rule (max_evals, stall, target).
 Single-objective problems:
 
-- success: match problems (experiment 1, three-luminaires) reach e < 0.03; the others end feasible on
-  every patch with the primary goal within 2% of the best known (the best any method
+- success: match problems (experiment 1, three-luminaires) reach e < 0.03; the others
+  end feasible on every patch with the primary goal within 2% of the best known (the best any method
   found in this benchmark run, over all seeds);
 - evaluations and CPU seconds to success: read from the progress snapshots at the full
   level (every patch), the first where P = 0 and the goal meets the success test; CPU
