@@ -56,23 +56,7 @@ TOLFUN = 1e-9
 about [0, 1])."""
 MAX_POPSIZE_FACTOR = 32
 """IPOP doubles the population at each restart up to this multiple of the default."""
-SAME_OPTIMUM = 0.01
-"""A restart that improves the best value (scaled goal + P) by less than this fraction
-found the same optimum again (measured: on a three-luminaire match, restarts kept
-ending at e = 0.0487-0.0491)."""
-RUN_STALL_MIN, RUN_STALL_PER_VAR = 1000, 100
-"""With ``patience`` (the ``auto`` portfolio): a run ends after max(1000, 100 n)
-evaluations without a gain of ``SAME_OPTIMUM`` (``cma``'s own stagnation test waited
-7,500 evaluations on a three-luminaire match)."""
 _INFEASIBLE, _REJECTED = 1e6, 1e9
-
-
-def _gained(best: tuple, before: tuple) -> bool:
-    """Whether ``best`` (value, penalty, goal) is a real gain over ``before``: feasibility
-    changed, or the value fell by at least ``SAME_OPTIMUM`` of it."""
-    if (best[1] == 0.0) != (before[1] == 0.0):
-        return True
-    return before[0] - best[0] > SAME_OPTIMUM * abs(before[0])
 
 
 def ranking_fitness(ev: Evaluation) -> np.ndarray:
@@ -95,15 +79,11 @@ def cmaes(
     popsize: int | None = None,
     progress: ProgressFn | None = None,
     cancel: CancelFn | None = None,
-    patience: int | None = None,
 ) -> SearchResult:
     """Minimise f + P by CMA-ES with IPOP restarts; returns the best solution found.
 
     ``x0`` starts the first run (later restarts start at random layouts); ``popsize``
-    is the first run's population (default ``cma``'s 4 + 3 ln n). ``patience``: end a
-    run that creeps (``RUN_STALL_*``) and stop with status "stagnated" after that many
-    restarts in a row end without a real gain (the runs keep finding the same
-    optimum); None: plain IPOP, restarting until ``stop``.
+    is the first run's population (default ``cma``'s 4 + 3 ln n).
     """
     import cma  # lazily: only CMA-ES runs need it
 
@@ -128,10 +108,7 @@ def cmaes(
     history = [(budget.evals, *budget.best)]
     iters, restarts, lam = 0, 0, lam0
     why = budget.why()
-    fruitless = 0
-    run_stall = max(RUN_STALL_MIN, RUN_STALL_PER_VAR * n)
     while why is None:
-        before = budget.best
         start = x if restarts == 0 else random_start(problem, rng)
         es = cma.CMAEvolutionStrategy(
             (start - lo) / span,
@@ -149,10 +126,7 @@ def cmaes(
                 "maxiter": np.inf,
             },
         )
-        mark = (budget.best, budget.evals)  # the run's last gain of SAME_OPTIMUM or more
         while (why := budget.why()) is None and not es.stop():
-            if patience is not None and budget.evals - mark[1] >= run_stall:
-                break  # creeping along one optimum: a restart is cheaper
             Z = np.asarray(es.ask())
             X = lo + np.clip(Z, 0.0, 1.0) * span
             ev = problem.evaluate(X, level)
@@ -165,8 +139,6 @@ def cmaes(
                 budget.best = (float(ev.value[j]), float(ev.penalty[j]), goal_of(problem, ev, j))
                 history.append((budget.evals, *budget.best))
                 budget.gain()
-                if _gained(budget.best, mark[0]):
-                    mark = (budget.best, budget.evals)
             if progress is not None:
                 progress(
                     Progress(
@@ -178,16 +150,8 @@ def cmaes(
                         tuple(float(c) for c in best_x),
                     )
                 )
-        if why is not None:
-            break
         restarts += 1
         lam = min(2 * lam, MAX_POPSIZE_FACTOR * lam0)
-        # A restart that improves the best before it by less than SAME_OPTIMUM of it
-        # found the same optimum (or a worse one) again. The first run does not count.
-        gained = _gained(budget.best, before)
-        fruitless = 0 if gained or restarts == 1 else fruitless + 1
-        if patience is not None and fruitless >= patience:
-            why = "stagnated"
     return SearchResult(best_x, *budget.best, budget.evals, iters, budget.elapsed(), why, history)
 
 
