@@ -323,11 +323,11 @@ def main() -> None:
         out = dict(parts[0], problems={})
         for part in parts:
             out["problems"].update(part["problems"])
-        print(json.dumps(summarise(out), indent=1))
+        print(json.dumps(summarise(out), separators=(",", ":")))
         return
     with threadpool_limits(limits=1, user_api="blas"):
         out = run(args.problems or [*SINGLE, *BUILT, *FRONTS], args.methods, args.runs)
-    print(json.dumps(out, indent=1))
+    print(json.dumps(out, separators=(",", ":")))
 
 
 if __name__ == "__main__":
