@@ -11,6 +11,7 @@ import argparse
 import json
 import os
 import statistics
+import tempfile
 import time
 from pathlib import Path
 
@@ -28,7 +29,10 @@ def main() -> None:
     ap.add_argument("--json", action="store_true", help="(default) print JSON")
     args = ap.parse_args()
     app = QtWidgets.QApplication.instance() or QtWidgets.QApplication([])
-    settings = QtCore.QSettings(os.devnull, QtCore.QSettings.IniFormat)
+    # A private settings file: QSettings saves by renaming a new file over its path, so
+    # os.devnull here replaced the machine's /dev/null with a regular file.
+    ini = Path(tempfile.mkdtemp()) / "settings.ini"
+    settings = QtCore.QSettings(str(ini), QtCore.QSettings.IniFormat)
     win = MainWindow(settings)
     win.ask_before_discard = False
     win.show()
