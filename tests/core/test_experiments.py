@@ -132,7 +132,7 @@ def test_experiment4_area_times_filter_is_nearly_constant(patio):
         prods.append(s.area * s.filter)
     assert np.std(prods) / np.mean(prods) < 0.1
     assert len({r.best.x for r in runs}) == 4  # four different layouts, one product
-    with pytest.raises(DesignError, match="take one best layout; .epsilon. finds a front"):
+    with pytest.raises(DesignError, match="take one best layout; 'epsilon' finds a front"):
         solve_seeds(coarse("experiment5", 0.7), patio, [0, 1])
 
 
