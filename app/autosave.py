@@ -24,6 +24,7 @@ from pathlib import Path
 
 from PySide6 import QtCore
 
+from lightinv_core.atomic import remove_stale_temporaries
 from lightinv_core.errors import LightInvError
 from lightinv_core.project import Project, project_from_dict, project_to_dict
 from lightinv_core.project.write import write_json
@@ -108,6 +109,7 @@ def read_autosave(path: Path) -> Recoverable:
 def orphaned_autosaves(directory: Path | None = None) -> list[Recoverable]:
     """Autosaves left by LightInv processes that are gone (a crash or a kill)."""
     directory = directory or autosave_dir()
+    remove_stale_temporaries(directory)  # autosaves killed while being written
     found = []
     for path in sorted(Path(directory).glob("autosave-*.json")):
         try:

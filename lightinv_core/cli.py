@@ -45,6 +45,27 @@ def _emit(text: str) -> tuple[str, float]:
         raise argparse.ArgumentTypeError(f"expected GROUP=LUMENS, got {text!r}") from None
 
 
+MAX_SEED = 2**63 - 1
+
+
+def _integer(text: str, lo: int, hi: int, what: str) -> int:
+    try:
+        v = int(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"expected {what}, got {text!r}") from None
+    if not lo <= v <= hi:
+        raise argparse.ArgumentTypeError(f"expected {what}, got {text}")
+    return v
+
+
+def _seed(text: str) -> int:
+    return _integer(text, 0, MAX_SEED, "an integer seed from 0 to 2**63 - 1")
+
+
+def _count(text: str) -> int:
+    return _integer(text, 1, 2**53, "an integer >= 1")
+
+
 def _positive(text: str) -> float:
     try:
         v = float(text)
@@ -535,13 +556,13 @@ def build_parser() -> argparse.ArgumentParser:
     )
     sol = add("solve", cmd_solve, "optimise a project file (inverse design)")
     sol.add_argument("project", help="project file (JSON, schema 1)")
-    sol.add_argument("--seed", type=int, help="random seed (default: the project's)")
+    sol.add_argument("--seed", type=_seed, help="random seed (default: the project's)")
     sol.add_argument(
         "--method",
         choices=method_names(),
         help="optimisation method (default: the project's; docs/design.md compares them)",
     )
-    sol.add_argument("--max-evals", type=int, help="radiosity evaluations at most")
+    sol.add_argument("--max-evals", type=_count, help="radiosity evaluations at most")
     sol.add_argument("--time-limit", type=_positive, help="seconds of optimisation at most")
     sol.add_argument("--resolution", type=_positive, help="override the scene's patch size (m)")
     sol.add_argument("-o", "--output", help="save the project with its results to this file")
@@ -553,7 +574,7 @@ def build_parser() -> argparse.ArgumentParser:
     scene_args(pre)
     for p in (sim, pre):
         p.add_argument("--rays", type=int, default=DEFAULT_RAYS, help="rays per patch")
-        p.add_argument("--seed", type=int, default=0, help="random seed of the form factors")
+        p.add_argument("--seed", type=_seed, default=0, help="random seed of the form factors")
         group = p.add_mutually_exclusive_group()
         group.add_argument("--rank", type=int, help="fix the low-rank operator's rank k")
         group.add_argument(
@@ -568,8 +589,8 @@ def build_parser() -> argparse.ArgumentParser:
 
 def main(argv: Sequence[str] | None = None) -> int:
     """Run the command line; returns the process exit status."""
-    args = build_parser().parse_args(argv)
     try:
+        args = build_parser().parse_args(argv)
         return args.func(args)
     except (LightInvError, OSError) as exc:
         print(f"lightinv-cli: error: {exc}", file=sys.stderr)

@@ -19,7 +19,7 @@ from pathlib import Path
 
 import numpy as np
 
-from lightinv_core.atomic import atomic_writer
+from lightinv_core.atomic import atomic_writer, remove_stale_temporaries
 from lightinv_core.errors import LightInvError
 from lightinv_core.operator.build import OPERATOR_VERSION, build_operator
 from lightinv_core.operator.lowrank import LowRank
@@ -198,6 +198,8 @@ def get_operator(
     t0 = time.perf_counter()
     key = operator_key(patches, settings)
     path = cache_dir() / f"{key[:32]}{SUFFIX}" if use_cache else None
+    if path is not None:
+        remove_stale_temporaries(path.parent)  # of builds killed while saving
     if path is not None and path.exists():
         try:
             op = load_operator(path, key)

@@ -883,13 +883,66 @@ geometric rules; *constraints* contradictory on their face are found when loadin
 """
 
 
+OUTPUT_CASES = (
+    (
+        "output path is a regular file or a new name",
+        "written to a temporary beside it, then renamed over it: all or nothing, "
+        "the old file kept on any failure",
+    ),
+    (
+        "output path is a symbolic link",
+        "the file it points to is replaced the same way; the link stays a link (a"
+        " dangling link gets its target created)",
+    ),
+    (
+        "output is a pipe, FIFO, terminal or device (`-o /dev/stdout`, "
+        "`--patches-csv /dev/stdout`, `/dev/null`)",
+        "written through in order; the device or pipe is never replaced by a file",
+    ),
+    (
+        "the program is killed (`kill -9`) while writing",
+        "the old file stays; the writer's hidden `.NAME.tmp-*` file is removed by"
+        " the next write to that folder, and the operator cache and autosave "
+        "folders are swept when opened (a leftover is recognised by its released "
+        "lock, so a reused process id cannot keep it)",
+    ),
+    (
+        "`--seed -1` or above 2**63 - 1 (`solve`, `simulate`, `precompute`)",
+        "`lightinv-cli: error: lightinv-cli solve: argument --seed: expected an "
+        "integer seed from 0 to 2**63 - 1, got -1 (see --help)`, status 2",
+    ),
+    (
+        "`--max-evals 0` or negative",
+        "`... argument --max-evals: expected an integer >= 1, got 0 (see --help)`, status 2",
+    ),
+    (
+        "`--rays 2**70`",
+        "`lightinv-cli: error: rays: expected an integer >= 1 of at most 2**53, "
+        "got a larger one`, status 2",
+    ),
+    (
+        "Ctrl-C at any moment, the start-up imports included",
+        "`lightinv-cli: cancelled` on stderr, status 130, no traceback",
+    ),
+)
+"""(case, what happens) for outputs and command-line arguments: tested in
+tests/core/test_atomic.py and tests/core/test_cli.py."""
+
+FOOTER = (
+    "\n## Outputs and the command line\n\n"
+    "Tested in `tests/core/test_atomic.py` and `tests/core/test_cli.py`:\n\n"
+    "| case | what happens |\n|---|---|\n"
+    + "".join(f"| {case} | {what} |\n" for case, what in OUTPUT_CASES)
+)
+
+
 def render(outcomes) -> str:
     rows = []
     for c in CASES:
         result, text = outcomes[c.id]
         kind = "warning" if c.expect == WARNING else f"`{type(result).__name__}`"
         rows.append(f"| {c.area} | {c.tried} | {kind} | {code(text)} |\n")
-    return HEADER + "".join(rows)
+    return HEADER + "".join(rows) + FOOTER
 
 
 def test_docs_table_matches_the_messages(outcomes):

@@ -4,6 +4,11 @@ from __future__ import annotations
 
 import csv
 import json
+import os
+import signal
+import subprocess
+import sys
+import time
 from pathlib import Path
 
 import pytest
@@ -135,6 +140,7 @@ def broken_obj(tmp_path) -> str:
         (["simulate", "cornell"], "nothing emits"),
         (["scene-info", "BROKEN"], "broken.obj line 2: vertex coordinate 'nan' is not finite"),
         (["scene-info", "MISSING"], "missing.obj' does not exist; check the path"),
+        (["precompute", "cornell", "--rays", str(2**70)], "rays: expected an integer >= 1 of"),
     ],
 )
 def test_user_errors_exit_2_with_one_line(capsys, tmp_path, argv, message):
@@ -156,6 +162,12 @@ def test_user_errors_exit_2_with_one_line(capsys, tmp_path, argv, message):
         (["simulate", "cornell", "--emit", "light=abc"], "expected GROUP=LUMENS"),
         (["scene-info", "office", "--resolution", "-0.5"], "expected a positive number"),
         (["scene-info", "office", "--resolution", "0"], "expected a positive number"),
+        (["simulate", "cornell", "--seed", "-1"], "expected an integer seed from 0"),
+        (["precompute", "cornell", "--seed", "-1"], "expected an integer seed from 0"),
+        (["solve", "project.json", "--seed", "-1"], "expected an integer seed from 0"),
+        (["solve", "project.json", "--seed", str(2**70)], "to 2**63 - 1, got 1180591"),
+        (["solve", "project.json", "--max-evals", "0"], "expected an integer >= 1, got 0"),
+        (["solve", "project.json", "--max-evals", "-5"], "expected an integer >= 1, got -5"),
     ],
 )
 def test_bad_arguments_exit_2_without_traceback(capsys, argv, message):
@@ -196,3 +208,20 @@ def test_solve_chooses_the_method_and_reports_the_front_quality(capsys, tmp_path
         cli.main(["solve", path, "--method", "simplex"])
     assert exc.value.code == 2
     assert "--method: invalid choice: 'simplex'" in capsys.readouterr().err
+
+
+@pytest.mark.parametrize("after", [0.05, 0.2, 0.4])
+def test_ctrl_c_at_any_moment_prints_one_line_not_a_traceback(tmp_path, after):
+    # The installed entry point (lightinv_core.console), as a user runs it.
+    proc = subprocess.Popen(
+        [str(Path(sys.executable).parent / "lightinv-cli"), "precompute", "cornell"],
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        text=True,
+        env={**os.environ, "LIGHTINV_CACHE_DIR": str(tmp_path / "cache")},
+    )
+    time.sleep(after)  # during the imports, then during the form factors
+    proc.send_signal(signal.SIGINT)
+    _, err = proc.communicate(timeout=60)
+    assert "Traceback" not in err
+    assert proc.returncode == 130 and err.strip() == "lightinv-cli: cancelled"
