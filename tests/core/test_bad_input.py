@@ -924,6 +924,16 @@ OUTPUT_CASES = (
         "Ctrl-C at any moment, the start-up imports included",
         "`lightinv-cli: cancelled` on stderr, status 130, no traceback",
     ),
+    (
+        "the operator cache folder cannot be created or written, or the disk is full",
+        " (`tests/core/test_operator.py`): the operator is built and used; one warning,"
+        " `could not write the operator cache PATH: REASON`; no temporary left",
+    ),
+    (
+        "two processes build the same operator at once",
+        " both finish; the cache holds one whole file (the last rename wins) and the next"
+        " run loads it",
+    ),
 )
 """(case, what happens) for outputs and command-line arguments: tested in
 tests/core/test_atomic.py and tests/core/test_cli.py."""

@@ -5,6 +5,9 @@ from __future__ import annotations
 
 import itertools
 import json
+import os
+import subprocess
+import sys
 
 import numpy as np
 import pytest
@@ -211,3 +214,55 @@ def test_an_open_scene_is_reported(tmp_path, monkeypatch):
         warn=closed.append,
     )
     assert closed == []
+
+
+def test_an_unusable_or_full_cache_folder_still_gives_the_operator(tmp_path, monkeypatch):
+    patches = mesh_patches(builtin_scene("cornell", 0.5))
+    settings = OperatorSettings(rank=40, rays=64)
+    # The cache folder is a file: it cannot be created.
+    blocker = tmp_path / "not-a-folder"
+    blocker.write_text("")
+    monkeypatch.setenv("LIGHTINV_CACHE_DIR", str(blocker / "cache"))
+    warnings: list[str] = []
+    got = oc.get_operator(patches, settings, warn=warnings.append)
+    assert got.operator.k > 0 and not got.from_cache
+    assert len(warnings) == 1 and warnings[0].startswith("could not write the operator cache")
+    # A full disk: the write fails at fsync; the build is kept, no temporary is left.
+    folder = tmp_path / "full"
+    monkeypatch.setenv("LIGHTINV_CACHE_DIR", str(folder))
+
+    def no_space(fd):
+        raise OSError(28, "No space left on device")
+
+    monkeypatch.setattr("lightinv_core.atomic.os.fsync", no_space)
+    warnings.clear()
+    got = oc.get_operator(patches, settings, warn=warnings.append)
+    assert got.operator.k > 0 and "No space left on device" in warnings[0]
+    assert list(folder.iterdir()) == []
+
+
+def test_a_killed_builds_leftover_is_swept_when_the_cache_opens(tmp_path, monkeypatch):
+    monkeypatch.setenv("LIGHTINV_CACHE_DIR", str(tmp_path))
+    leftover = tmp_path / ".0123abcd.lrr.tmp-x1y2z3"
+    leftover.write_bytes(b"half an operator")
+    os.utime(leftover, (0, 0))
+    patches = mesh_patches(builtin_scene("cornell", 0.5))
+    oc.get_operator(patches, OperatorSettings(rank=40, rays=64))
+    assert not leftover.exists() and len(list(tmp_path.glob("*.lrr"))) == 1
+
+
+def test_two_processes_building_the_same_cache_at_once(tmp_path):
+    env = {**os.environ, "LIGHTINV_CACHE_DIR": str(tmp_path)}
+    cmd = [sys.executable, "-m", "lightinv_core.console", "precompute", "cornell"]
+    cmd += ["--resolution", "0.4", "--rank", "60", "--json"]
+    procs = [
+        subprocess.Popen(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, env=env)
+        for _ in range(2)
+    ]
+    outs = [p.communicate(timeout=120) for p in procs]
+    assert [p.returncode for p in procs] == [0, 0], outs
+    assert all(not json.loads(out)["from_cache"] for out, _ in outs)  # both built
+    files = list(tmp_path.iterdir())
+    assert len(files) == 1 and files[0].suffix == ".lrr"  # one whole file, no temporary
+    again = subprocess.run(cmd, capture_output=True, text=True, env=env, timeout=120)
+    assert again.returncode == 0 and json.loads(again.stdout)["from_cache"]
