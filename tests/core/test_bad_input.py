@@ -926,12 +926,12 @@ OUTPUT_CASES = (
     ),
     (
         "the operator cache folder cannot be created or written, or the disk is full",
-        " (`tests/core/test_operator.py`): the operator is built and used; one warning,"
+        "(`tests/core/test_operator.py`): the operator is built and used; one warning,"
         " `could not write the operator cache PATH: REASON`; no temporary left",
     ),
     (
         "two processes build the same operator at once",
-        " both finish; the cache holds one whole file (the last rename wins) and the next"
+        "both finish; the cache holds one whole file (the last rename wins) and the next"
         " run loads it",
     ),
 )
