@@ -62,6 +62,16 @@ def _seed(text: str) -> int:
     return _integer(text, 0, MAX_SEED, "an integer seed from 0 to 2**63 - 1")
 
 
+MAX_RAYS = 65_536
+"""Most rays per patch the command line accepts: 64 times the default, already far past
+where the form factors' error stops mattering (docs/operator.md), and about an hour of
+ray casting on the patio scene."""
+
+
+def _rays(text: str) -> int:
+    return _integer(text, 1, MAX_RAYS, f"an integer from 1 to {MAX_RAYS:,} rays per patch")
+
+
 def _count(text: str) -> int:
     return _integer(text, 1, 2**53, "an integer >= 1")
 
@@ -573,7 +583,9 @@ def build_parser() -> argparse.ArgumentParser:
     pre = add("precompute", cmd_precompute, "build or load the radiosity operator of a scene")
     scene_args(pre)
     for p in (sim, pre):
-        p.add_argument("--rays", type=int, default=DEFAULT_RAYS, help="rays per patch")
+        p.add_argument(
+            "--rays", type=_rays, default=DEFAULT_RAYS, help=f"rays per patch (1 to {MAX_RAYS:,})"
+        )
         p.add_argument("--seed", type=_seed, default=0, help="random seed of the form factors")
         group = p.add_mutually_exclusive_group()
         group.add_argument("--rank", type=int, help="fix the low-rank operator's rank k")

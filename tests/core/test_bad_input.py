@@ -916,13 +916,18 @@ OUTPUT_CASES = (
         "`... argument --max-evals: expected an integer >= 1, got 0 (see --help)`, status 2",
     ),
     (
-        "`--rays 2**70`",
-        "`lightinv-cli: error: rays: expected an integer >= 1 of at most 2**53, "
-        "got a larger one`, status 2",
+        "`--rays 0`, `--rays 2**70` (`simulate`, `precompute`)",
+        "`... argument --rays: expected an integer from 1 to 65,536 rays per patch, got 0 "
+        "(see --help)`, status 2 (before, `simulate` with 2**70 rays gave a traceback)",
     ),
     (
         "Ctrl-C at any moment, the start-up imports included",
         "`lightinv-cli: cancelled` on stderr, status 130, no traceback",
+    ),
+    (
+        "any mix of subcommand, option and value (hypothesis, 120 cases per run; 1,500 tried once)",
+        "`tests/core/test_cli.py`: status 0 or 2 with one `lightinv-cli: error:` line or"
+        " usage, never a traceback",
     ),
     (
         "the operator cache folder cannot be created or written, or the disk is full",
