@@ -904,7 +904,10 @@ OUTPUT_CASES = (
         "the old file stays; the writer's hidden `.NAME.tmp-*` file is removed by"
         " the next write to that folder, and the operator cache and autosave "
         "folders are swept when opened (a leftover is recognised by its released "
-        "lock, so a reused process id cannot keep it)",
+        "lock, so a reused process id cannot keep it). `tests/core/test_kill_writes.py`"
+        " kills a writer 6 times at random moments for each kind (project file and"
+        " saved results, autosave, operator cache, patch CSV, PDF report): the file is"
+        " always one whole version",
     ),
     (
         "`--seed -1` or above 2**63 - 1 (`solve`, `simulate`, `precompute`)",
