@@ -28,10 +28,11 @@ import numpy as np
 from lightinv_core.errors import DesignError
 from lightinv_core.optimize.method import SolutionFn
 from lightinv_core.optimize.problem import DesignProblem, Evaluation, Level
-from lightinv_core.optimize.progress import CancelFn, Progress, ProgressFn
+from lightinv_core.optimize.progress import CancelFn, ProgressFn
 from lightinv_core.optimize.result import OptimizationResult
 from lightinv_core.optimize.search import (
     Budget,
+    OneLayoutMethod,
     SearchResult,
     best_of,
     better,
@@ -140,33 +141,17 @@ def cmaes(
                 history.append((budget.evals, *budget.best))
                 budget.gain()
             if progress is not None:
-                progress(
-                    Progress(
-                        iters,
-                        budget.evals,
-                        budget.elapsed(),
-                        *budget.best,
-                        level.divisor,
-                        tuple(float(c) for c in best_x),
-                    )
-                )
+                progress(budget.snapshot(iters, level.divisor, best_x))
         restarts += 1
         lam = min(2 * lam, MAX_POPSIZE_FACTOR * lam0)
     return SearchResult(best_x, *budget.best, budget.evals, iters, budget.elapsed(), why, history)
 
 
-class CMAESMethod:
+class CMAESMethod(OneLayoutMethod):
     """CMA-ES with IPOP restarts on every patch."""
 
     name = "cmaes"
     label = "CMA-ES (IPOP restarts)"
-    count_setting = None
-    progress_label = None
-
-    @staticmethod
-    def finds_front(design) -> bool:
-        """One best layout, never a front."""
-        return False
 
     def run(
         self,

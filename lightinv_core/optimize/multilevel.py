@@ -19,7 +19,7 @@ from lightinv_core.optimize.method import SolutionFn
 from lightinv_core.optimize.problem import DesignProblem
 from lightinv_core.optimize.progress import CancelFn, ProgressFn
 from lightinv_core.optimize.result import OptimizationResult
-from lightinv_core.optimize.search import SearchResult, judged
+from lightinv_core.optimize.search import OneLayoutMethod, SearchResult, judged
 from lightinv_core.optimize.termination import StopRule
 from lightinv_core.optimize.vns import vns
 
@@ -103,18 +103,11 @@ def multilevel(
     return total, results
 
 
-class MultilevelMethod:
+class MultilevelMethod(OneLayoutMethod):
     """VNS on coarse representative patches first, then on every patch (paper 5.2)."""
 
     name = "multilevel"
     label = "Multilevel VNS"
-    count_setting = None
-    progress_label = None
-
-    @staticmethod
-    def finds_front(design) -> bool:
-        """One best layout, never a front."""
-        return False
 
     def run(
         self,

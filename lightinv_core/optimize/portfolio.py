@@ -78,12 +78,12 @@ def cma_then_vns(
     ):
         return a, a.evaluations
 
+    a_x = tuple(float(c) for c in a.x)
+
     def shifted(p: Progress) -> None:
         p = replace(p, evaluations=p.evaluations + a.evaluations, elapsed=p.elapsed + a.seconds)
         if not better(p.best_value, p.best_penalty, a.value, a.penalty):
-            best_x = tuple(float(c) for c in a.x)
-            p = replace(p, best_value=a.value, best_penalty=a.penalty, best_goal=a.goal)
-            p = replace(p, best_x=best_x)
+            p = replace(p, best_value=a.value, best_penalty=a.penalty, best_goal=a.goal, best_x=a_x)
         progress(p)
 
     b = vns(

@@ -168,7 +168,7 @@ class DesignProblem:
         self.objectives = tuple(GoalKind(g.kind) for g in design.goals)
         self.scales = {
             GoalKind.MAX_LIGHT_POWER: light.power_scale(sources, design.daylight),
-            GoalKind.MIN_ELECTRIC_POWER: _electric_scale(design, light),
+            GoalKind.MIN_ELECTRIC_POWER: electric_scale(design, light),
             GoalKind.MATCH: 1.0,
         }
         self.constraints = self._constraint_columns()
@@ -383,7 +383,7 @@ class DesignProblem:
         )
 
 
-def _electric_scale(design: Design, light: LightModel) -> float:
+def electric_scale(design: Design, light: LightModel) -> float:
     """Largest electric power (W) of the sources: the scale of the power goal."""
     total = 0.0
     for s in design.sources:

@@ -23,6 +23,7 @@ from lightinv_core.design.solution import Solution
 from lightinv_core.kinds import GoalKind, SourceKind
 from lightinv_core.light.model import LightModel
 from lightinv_core.optimize.pareto import hypervolume_2d
+from lightinv_core.optimize.problem import electric_scale
 
 POWER, LIGHT = str(GoalKind.MIN_ELECTRIC_POWER), str(GoalKind.MAX_LIGHT_POWER)
 REFERENCE = (1.0, 0.0)
@@ -54,11 +55,10 @@ class FrontQuality:
 
 def front_scales(design: Design, light: LightModel) -> tuple[float, float]:
     """(P_max in W, L_max in lm): the normalisation of a front of ``design``."""
-    power = sum(light.emission.full_electric_power(s) for s in design.sources)
     goal = next((g for g in design.goals if g.kind == GoalKind.MAX_LIGHT_POWER), None)
     kinds = (goal.kinds if goal else ()) or tuple(SourceKind)
     counted = [s for s in design.sources if s.kind in kinds]
-    return max(power, 1e-9), light.power_scale(counted, design.daylight)
+    return electric_scale(design, light), light.power_scale(counted, design.daylight)
 
 
 def normalised(F: np.ndarray, scales: tuple[float, float]) -> np.ndarray:

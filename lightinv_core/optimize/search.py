@@ -19,7 +19,7 @@ from lightinv_core.design.solution import SolutionInfo
 from lightinv_core.errors import DesignError
 from lightinv_core.kinds import GoalKind
 from lightinv_core.optimize.problem import DesignProblem, Evaluation
-from lightinv_core.optimize.progress import CancelFn
+from lightinv_core.optimize.progress import CancelFn, Progress
 from lightinv_core.optimize.result import HistoryRow, OptimizationResult, status_of
 from lightinv_core.optimize.termination import StopRule
 
@@ -136,6 +136,17 @@ class Budget:
         t = self.stop.target
         return t is not None and self.best[1] == 0.0 and reached(self.problem, self.best[2], t)
 
+    def snapshot(self, iteration: int, divisor: int, x: np.ndarray) -> Progress:
+        """The progress report of the search now, ``x`` its best layout."""
+        return Progress(
+            iteration,
+            self.evals,
+            self.elapsed(),
+            *self.best,
+            divisor,
+            tuple(float(c) for c in x),
+        )
+
     def why(self) -> str | None:
         """ "cancelled", "max_evals", "time_limit", "target", "stall", or None to go on."""
         stop = self.stop
@@ -150,6 +161,19 @@ class Budget:
         if stop.stall is not None and self.evals - self.last_gain >= stop.stall:
             return "stall"
         return None
+
+
+class OneLayoutMethod:
+    """What every method returning one best layout (not a front) says about itself to
+    the GUI (see ``OptimizationMethod``)."""
+
+    count_setting = None
+    progress_label = None
+
+    @staticmethod
+    def finds_front(design) -> bool:
+        """One best layout, never a front."""
+        return False
 
 
 def history_rows(history) -> tuple[HistoryRow, ...]:

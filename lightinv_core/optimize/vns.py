@@ -29,10 +29,11 @@ import numpy as np
 from lightinv_core.errors import DesignError
 from lightinv_core.optimize.method import SolutionFn
 from lightinv_core.optimize.problem import DesignProblem, Level
-from lightinv_core.optimize.progress import CancelFn, Progress, ProgressFn
+from lightinv_core.optimize.progress import CancelFn, ProgressFn
 from lightinv_core.optimize.result import OptimizationResult
 from lightinv_core.optimize.search import (
     Budget,
+    OneLayoutMethod,
     SearchResult,
     best_of,
     better,
@@ -116,33 +117,15 @@ def vns(
         else:
             k = (k + 1) % len(hoods)
         if progress is not None:
-            progress(
-                Progress(
-                    iters,
-                    budget.evals,
-                    budget.elapsed(),
-                    budget.best[0],
-                    budget.best[1],
-                    budget.best[2],
-                    level.divisor,
-                    tuple(float(c) for c in x),
-                )
-            )
+            progress(budget.snapshot(iters, level.divisor, x))
     return SearchResult(x, *budget.best, budget.evals, iters, budget.elapsed(), why, history)
 
 
-class VNSMethod:
+class VNSMethod(OneLayoutMethod):
     """Variable Neighbourhood Search on every patch (paper Algorithm 1)."""
 
     name = "vns"
     label = "VNS"
-    count_setting = None
-    progress_label = None
-
-    @staticmethod
-    def finds_front(design) -> bool:
-        """One best layout, never a front."""
-        return False
 
     def run(
         self,
