@@ -271,7 +271,10 @@ COMMANDS = st.sampled_from(
     suppress_health_check=[HealthCheck.function_scoped_fixture, HealthCheck.too_slow],
 )
 @given(command=COMMANDS, pairs=st.lists(st.tuples(OPTIONS, VALUES), max_size=3))
-def test_fuzz_arguments_give_one_clear_line_never_a_traceback(capsys, tmp_path, command, pairs):
+def test_fuzz_arguments_give_one_clear_line_never_a_traceback(
+    capsys, tmp_path, monkeypatch, command, pairs
+):
+    monkeypatch.chdir(tmp_path)  # "-o 1" and "--patches-csv inf" write where they are told
     project = tmp_path / "p.json"
     if not project.exists():
         project.write_text('{"schema": 1, "scene": {"builtin": "cornell"}}')
