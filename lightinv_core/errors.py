@@ -24,3 +24,7 @@ class DesignError(LightInvError):
 
 class CancelledError(LightInvError):
     """Long work was cancelled by the caller (the cancel callback returned True)."""
+
+
+class PhotometryError(LightInvError):
+    """A photometric file (IES LM-63, EULUMDAT) or the luminaire catalogue cannot be read."""
