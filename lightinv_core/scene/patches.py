@@ -76,9 +76,13 @@ class Patches:
             raise SceneError(f"no emitter zone {name!r} in the scene (zones: {known})")
         return np.flatnonzero(self.zone_id == self.zone_names.index(name))
 
-    def triangle_mesh(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    def triangle_mesh(
+        self, center: np.ndarray | None = None
+    ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """Triangles covering the patches, for ray casting and display.
 
+        ``center`` (m, world coordinates) is subtracted in float64 before the
+        vertices are rounded to float32, so far-off models keep their precision.
         Returns ``(vertices (m, 3) float32, faces (t, 3) int32, tri_patch (t,) int32)``:
         a quad patch gives two triangles, a triangle patch one; vertices are not
         shared between patches.
@@ -86,6 +90,8 @@ class Patches:
         quads = np.flatnonzero(~self.is_triangle)
         tris = np.flatnonzero(self.is_triangle)
         o, e1, e2 = self.origin, self.edge1, self.edge2
+        if center is not None:
+            o = o - np.asarray(center, dtype=np.float64)
         qv = np.stack(
             [
                 o[quads],
