@@ -2,10 +2,15 @@
 
 While a project has unsaved changes or an optimisation runs, the window writes the
 project — with the best result of the running optimisation — to
-``<autosave dir>/autosave-<pid>.json`` every ``interval`` seconds (atomically: a
+``<autosave dir>/autosave-<pid>-<token>.json`` every ``interval`` seconds (atomically: a
 crash mid-write leaves the previous autosave). A clean exit, or a save with nothing
-running, removes the file. At start-up, autosaves whose process is gone are offered
+running, removes the file. At start-up, autosaves whose session is gone are offered
 for recovery (``offer_recovery``, ``recover``).
+
+A session is alive while it holds an exclusive ``flock`` on its ``.lock`` file beside
+the autosave; the kernel drops the lock when the process dies, however it dies. The
+process id alone cannot tell: in a container every new window gets the crashed
+one's id, and an id check deleted the crashed session's work within seconds.
 
 The directory is ``$LIGHTINV_AUTOSAVE_DIR`` or the user data folder
 (``platformdirs.user_data_dir("LightInv")/autosave``); the interval is
@@ -15,8 +20,10 @@ The directory is ``$LIGHTINV_AUTOSAVE_DIR`` or the user data folder
 from __future__ import annotations
 
 import contextlib
+import fcntl
 import json
 import os
+import secrets
 import time
 from collections.abc import Callable
 from dataclasses import dataclass, replace
@@ -30,6 +37,7 @@ from lightinv_core.project import Project, project_from_dict, project_to_dict
 from lightinv_core.project.write import write_json
 
 FORMAT = 1
+LOCK_SUFFIX = ".lock"
 DEFAULT_INTERVAL = 30.0
 
 
@@ -64,6 +72,32 @@ def write_autosave(path: Path, project: Project, original: Path | None, note: st
     }
     path.parent.mkdir(parents=True, exist_ok=True)
     write_json(data, path)
+
+
+def session_alive(autosave: Path) -> bool:
+    """Whether the session that writes ``autosave`` is still running: its lock file is
+    held. Autosaves from before lock files fall back to the process id."""
+    lock = autosave.with_suffix(LOCK_SUFFIX)
+    try:
+        fd = os.open(lock, os.O_RDONLY)
+    except FileNotFoundError:
+        parts = autosave.stem.split("-")
+        try:
+            pid = int(parts[1])
+        except (IndexError, ValueError):
+            return False
+        # Sessions with a token always have a lock file; only old ones go by pid, and
+        # this process never writes such a name, so its own pid means a dead session.
+        return len(parts) == 2 and pid != os.getpid() and pid_alive(pid)
+    except OSError:
+        return True  # cannot tell: leave it alone
+    try:
+        fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
+    except OSError:
+        return True  # held by a live session
+    finally:
+        os.close(fd)  # also releases the probe's own lock
+    return False
 
 
 def pid_alive(pid: int) -> bool:
@@ -112,12 +146,12 @@ def orphaned_autosaves(directory: Path | None = None) -> list[Recoverable]:
     remove_stale_temporaries(directory)  # autosaves killed while being written
     found = []
     for path in sorted(Path(directory).glob("autosave-*.json")):
-        try:
-            pid = int(path.stem.split("-", 1)[1])
-        except ValueError:
-            continue
-        if not pid_alive(pid):
+        if not session_alive(path):
             found.append(read_autosave(path))
+    for lock in Path(directory).glob(f"autosave-*{LOCK_SUFFIX}"):
+        # A session that ended without an autosave to recover leaves only its lock.
+        if not lock.with_suffix(".json").exists() and not session_alive(lock):
+            lock.unlink(missing_ok=True)
     return found
 
 
@@ -128,7 +162,11 @@ class Autosaver(QtCore.QObject):
         super().__init__(window)
         self.win = window
         self.folder = Path(folder) if folder is not None else autosave_dir()
-        self.path = self.folder / f"autosave-{os.getpid()}.json"
+        token = f"{os.getpid()}-{secrets.token_hex(4)}"
+        self.path = self.folder / f"autosave-{token}.json"
+        self.lock_path = self.path.with_suffix(LOCK_SUFFIX)
+        self._lock_fd: int | None = None
+        self._hold_lock()
         self.count = 0
         self.timer = QtCore.QTimer(self)
         self.timer.setInterval(int(1000 * (seconds or autosave_interval())))
@@ -155,6 +193,7 @@ class Autosaver(QtCore.QObject):
                 self.discard()
                 return False
             note = "optimisation running" if self.win.runs.running else "unsaved changes"
+            self._hold_lock()
             write_autosave(self.path, project, self.win.doc.path, note)
         except (OSError, LightInvError) as exc:
             self.win.statusBar().showMessage(f"Autosave failed: {exc}", 8000)
@@ -162,10 +201,37 @@ class Autosaver(QtCore.QObject):
         self.count += 1
         return True
 
+    def _hold_lock(self) -> None:
+        """Take this session's lock (see the module); a folder that cannot be written
+        gets no lock now, and each save tries again."""
+        if self._lock_fd is not None:
+            return
+        try:
+            self.folder.mkdir(parents=True, exist_ok=True)
+            fd = os.open(self.lock_path, os.O_RDWR | os.O_CREAT, 0o644)
+        except OSError:
+            return
+        try:
+            fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
+        except OSError:
+            os.close(fd)
+            return
+        self._lock_fd = fd
+
     def discard(self) -> None:
         """Remove this window's autosave (saved or closed cleanly)."""
         with contextlib.suppress(OSError):
             self.path.unlink()
+
+    def close(self) -> None:
+        """A clean exit: remove the autosave, then the lock file, and let the lock go."""
+        self.timer.stop()
+        self.discard()
+        if self._lock_fd is not None:
+            with contextlib.suppress(OSError):
+                self.lock_path.unlink()
+            os.close(self._lock_fd)
+            self._lock_fd = None
 
 
 def offer_recovery(window, ask: Callable[[Recoverable], str]) -> bool:

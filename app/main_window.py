@@ -362,8 +362,7 @@ class MainWindow(QtWidgets.QMainWindow):
             event.ignore()
             return
         self.stop_worker()
-        self.autosaver.timer.stop()
-        self.autosaver.discard()  # a clean exit: nothing to recover
+        self.autosaver.close()  # a clean exit: nothing to recover
         self.settings.setValue("geometry", self.saveGeometry())
         self.settings.setValue("windowState", self.saveState())
         self.viewport.close_plotter()

@@ -97,13 +97,15 @@ def test_kill_mid_run_then_recover(qtbot, make_window, tmp_path):
         stdout=subprocess.DEVNULL,
         stderr=subprocess.PIPE,
     )
-    autosave = folder / f"autosave-{proc.pid}.json"
+    autosave = None
     try:
         deadline = time.monotonic() + 90
         while True:
             assert proc.poll() is None, proc.stderr.read().decode()
             assert time.monotonic() < deadline, "no autosave of the running optimisation"
-            if autosave.exists():
+            found = list(folder.glob(f"autosave-{proc.pid}-*.json"))
+            if found:
+                autosave = found[0]
                 data = json.loads(autosave.read_text())
                 sols = data["project"].get("results", {}).get("solutions", [])
                 if sols and sols[-1]["info"]["evaluations"] >= 500:
@@ -128,3 +130,41 @@ def test_kill_mid_run_then_recover(qtbot, make_window, tmp_path):
     # Saving writes the recovered work to the original file.
     assert win.save_to(win.doc.path)
     assert json.loads(path.read_text())["results"]["solutions"][0]["info"]["status"] == "running"
+
+
+def _crashed_session(folder: Path, name: str, tmp_path: Path) -> Path:
+    """An autosave left by a session that died: the file, and its lock file unheld."""
+    folder.mkdir(parents=True, exist_ok=True)
+    path = folder / name
+    project = endless_project(tmp_path / f"{name}.project.json")
+    from app.autosave import write_autosave
+    from lightinv_core.project import load_project
+
+    write_autosave(path, load_project(project), project, "unsaved changes")
+    return path
+
+
+def test_a_new_session_with_the_crashed_ones_process_id_offers_its_work(
+    qtbot, make_window, tmp_path
+):
+    """In a container every window gets the same process id: the crashed session's
+    autosave must be offered, never taken for this session's and deleted."""
+    folder = tmp_path / "autosave"
+    pid = os.getpid()
+    locked = _crashed_session(folder, f"autosave-{pid}-0badc0de.json", tmp_path)
+    locked.with_suffix(".lock").touch()  # its lock died with it
+    legacy = _crashed_session(folder, f"autosave-{pid}.json", tmp_path)  # before lock files
+    win = make_window(folder)
+    assert win.autosaver.path not in (locked, legacy)
+    assert not win.autosaver.save_now()  # nothing unsaved: removes only its own file
+    assert locked.exists() and legacy.exists()
+    offered = {rec.path for rec in orphaned_autosaves(folder)}
+    assert offered == {locked, legacy}
+    # This live session's own autosave is never offered, to it or to another window.
+    assert win.open_path(endless_project(tmp_path / "p.json"))
+    wait_for_operator(qtbot, win)
+    win.doc.add_intention(Intention("more", "floor", min=10.0))
+    assert win.autosaver.save_now()
+    assert win.autosaver.path not in {rec.path for rec in orphaned_autosaves(folder)}
+    win.close()
+    assert not win.autosaver.path.exists() and not win.autosaver.lock_path.exists()
