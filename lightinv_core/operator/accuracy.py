@@ -63,5 +63,9 @@ def reference_reflected(
 
 
 def relative_errors(C: np.ndarray, C_ref: np.ndarray) -> np.ndarray:
-    """||C - C_ref|| / ||C_ref|| per column."""
-    return np.linalg.norm(C - C_ref, axis=0) / np.linalg.norm(C_ref, axis=0)
+    """||C - C_ref|| / ||C_ref|| per column; 0 where both are zero (a scene that reflects
+    no light, e.g. a lone patch, is reproduced exactly), inf where only C_ref is."""
+    diff = np.linalg.norm(C - C_ref, axis=0)
+    ref = np.linalg.norm(C_ref, axis=0)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        return np.where(diff == 0, 0.0, diff / ref)

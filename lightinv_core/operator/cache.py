@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import hashlib
 import json
+import math
 import os
 from collections.abc import Callable
 from dataclasses import dataclass
@@ -26,6 +27,7 @@ from lightinv_core.operator.lowrank import LowRank
 from lightinv_core.operator.radiosity import RadiosityOperator
 from lightinv_core.operator.settings import OperatorSettings
 from lightinv_core.scene.patches import Patches
+from lightinv_core.transport.formfactors import escape_warning
 
 MAGIC = b"LIGHTINV-OPERATOR 1\n"
 SUFFIX = ".lrr"
@@ -120,7 +122,12 @@ def save_operator(op: RadiosityOperator, path: str | Path, key: str) -> None:
 
 
 def load_operator(path: str | Path, key: str) -> RadiosityOperator:
-    """Read and verify an operator; CacheError if missing, stale or corrupt."""
+    """Read and verify an operator; CacheError if missing, stale or corrupt.
+
+    Nothing in the header is trusted before it is checked against the file: a header
+    claiming a petabyte payload, an array past the payload's end, an object dtype or
+    a missing array is a corrupt cache (rebuilt), not a crash on every later run.
+    """
     path = Path(path)
     try:
         with open(path, "rb") as fh:
@@ -130,28 +137,83 @@ def load_operator(path: str | Path, key: str) -> RadiosityOperator:
             if not 0 < size < 1 << 24:
                 raise CacheError(f"{path.name}: header length {size} is corrupt")
             header = json.loads(fh.read(size))
+            if not isinstance(header, dict):
+                raise CacheError(f"{path.name}: header is not an object (corrupt)")
             if header.get("key") != key or header.get("version") != OPERATOR_VERSION:
                 raise CacheError(f"{path.name}: built for other settings or version (stale)")
-            payload = np.empty(int(header["payload_bytes"]), np.uint8)
+            nbytes = header["payload_bytes"]
+            left = os.fstat(fh.fileno()).st_size - fh.tell()
+            if type(nbytes) is not int or nbytes != left:
+                raise CacheError(
+                    f"{path.name}: truncated or padded payload ({left:,} bytes, the header "
+                    f"says {nbytes!r})"
+                )
+            payload = np.empty(nbytes, np.uint8)
             got = fh.readinto(memoryview(payload))
             if got != payload.nbytes or fh.read(1):
                 raise CacheError(f"{path.name}: truncated or padded payload")
+    except CacheError:
+        raise
     except FileNotFoundError:
         raise CacheError(f"{path.name}: no cache yet") from None
-    except (OSError, ValueError, KeyError, TypeError) as exc:
-        raise CacheError(f"{path.name}: unreadable ({exc})") from None
-    if hashlib.sha256(payload).hexdigest() != header["payload_sha256"]:
+    except (OSError, ValueError, KeyError, TypeError, MemoryError) as exc:
+        raise CacheError(f"{path.name}: unreadable ({type(exc).__name__}: {exc})") from None
+    if hashlib.sha256(payload).hexdigest() != header.get("payload_sha256"):
         raise CacheError(f"{path.name}: checksum mismatch (corrupt)")
-    arrays = {}
-    for t in header["arrays"]:
-        buf = payload[t["offset"] : t["offset"] + t["nbytes"]]
-        arrays[t["name"]] = buf.view(np.dtype(t["dtype"])).reshape(t["shape"], order=t["order"])
-    lowrank = LowRank(
-        arrays["Y"], arrays["labels"], arrays["area"], arrays["rho"], arrays["cluster_area"]
-    )
-    return RadiosityOperator(
-        lowrank, arrays["zone_patches"], arrays["Phi"], header["digest"], header["info"]
-    )
+    try:
+        arrays = {t["name"]: _array(payload, t) for t in header["arrays"]}
+        _check_shapes(arrays)
+        lowrank = LowRank(
+            arrays["Y"], arrays["labels"], arrays["area"], arrays["rho"], arrays["cluster_area"]
+        )
+        info = header["info"]
+        if not isinstance(info, dict):
+            raise TypeError("info is not an object")
+        return RadiosityOperator(
+            lowrank, arrays["zone_patches"], arrays["Phi"], str(header["digest"]), info
+        )
+    except (ValueError, KeyError, TypeError, IndexError, AttributeError) as exc:
+        raise CacheError(
+            f"{path.name}: inconsistent arrays ({type(exc).__name__}: {exc})"
+        ) from None
+
+
+def _check_shapes(a: dict[str, np.ndarray]) -> None:
+    """The arrays describe one operator: n patches, k clusters, nz zone patches."""
+    n, k = a["Y"].shape
+    nz = len(a["zone_patches"])
+    want = {
+        "labels": (n,),
+        "area": (n,),
+        "rho": (n,),
+        "cluster_area": (k,),
+        "zone_patches": (nz,),
+        "Phi": (n, nz),
+    }
+    for name, shape in want.items():
+        if a[name].shape != shape:
+            raise ValueError(f"array {name!r} has shape {a[name].shape}, expected {shape}")
+    z, lab = a["zone_patches"], a["labels"]
+    if (nz and not (z.min() >= 0 and z.max() < n)) or (
+        n and not (lab.min() >= 0 and lab.max() < k)
+    ):
+        raise ValueError("zone patch or cluster indices out of range")
+
+
+def _array(payload: np.ndarray, t: dict) -> np.ndarray:
+    """One array of the payload as described by its table entry, checked against it."""
+    dtype = np.dtype(t["dtype"])
+    if dtype.kind not in "fiub":
+        raise TypeError(f"array {t['name']!r} has dtype {dtype} (numbers only)")
+    shape = tuple(int(d) for d in t["shape"])
+    start, size = int(t["offset"]), int(t["nbytes"])
+    if min(shape, default=0) < 0 or size != math.prod(shape) * dtype.itemsize:
+        raise ValueError(f"array {t['name']!r}: shape {shape} does not match {size} bytes")
+    if not 0 <= start <= start + size <= len(payload):
+        raise ValueError(f"array {t['name']!r} lies outside the payload")
+    if t["order"] not in ("C", "F"):
+        raise ValueError(f"array {t['name']!r}: order {t['order']!r}")
+    return payload[start : start + size].view(dtype).reshape(shape, order=t["order"])
 
 
 @dataclass(frozen=True)
@@ -164,19 +226,9 @@ class CachedOperator:
     seconds: float
 
 
-OPEN_SCENE_WARNING = 0.01
-
-
 def open_scene_warning(op: RadiosityOperator) -> str | None:
-    """A warning when more than 1% of the light leaving the surfaces escapes the model
-    (an open room, or faces turned the wrong way), else None."""
-    lost = float(op.info.get("lost_fraction", 0.0))
-    if lost <= OPEN_SCENE_WARNING:
-        return None
-    return (
-        f"{100 * lost:.1f}% of the light leaving the surfaces escapes the model: the room "
-        "is open or some faces face away from it (lighting will be too dark there)"
-    )
+    """The escaping-light warning of the operator's traced form factors, if any."""
+    return escape_warning(float(op.info.get("lost_fraction", 0.0)))
 
 
 def get_operator(

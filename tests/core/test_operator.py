@@ -155,6 +155,42 @@ def test_cache_round_trip_corruption_and_staleness(office, tmp_path, monkeypatch
         oc.load_operator(first.path, "another key")
 
 
+def _poison(path, edit) -> None:
+    """Rewrite a cache file's JSON header with ``edit(header)``; the payload is kept, so
+    its checksum still matches (what a buggy or hostile writer could leave)."""
+    raw = path.read_bytes()
+    start = len(oc.MAGIC) + 8
+    size = int.from_bytes(raw[len(oc.MAGIC) : start], "little")
+    header = json.loads(raw[start : start + size])
+    edit(header)
+    new = json.dumps(header).encode()
+    path.write_bytes(oc.MAGIC + len(new).to_bytes(8, "little") + new + raw[start + size :])
+
+
+POISONS = {
+    "a petabyte payload": lambda h: h.update(payload_bytes=10**15),
+    "a missing array": lambda h: h.update(arrays=[t for t in h["arrays"] if t["name"] != "Y"]),
+    "an object dtype": lambda h: h["arrays"][0].update(dtype="|O"),
+    "an array past the end": lambda h: h["arrays"][-1].update(offset=h["payload_bytes"]),
+    "a wrong shape": lambda h: [t.update(shape=[3, 7]) for t in h["arrays"] if t["name"] == "Phi"],
+    "an empty header": lambda h: h.clear(),
+    "info that is a number": lambda h: h.update(info=7),
+}
+
+
+@pytest.mark.parametrize("poison", POISONS, ids=list(POISONS))
+def test_a_poisoned_cache_header_is_rebuilt_not_a_traceback(office, tmp_path, monkeypatch, poison):
+    monkeypatch.setenv("LIGHTINV_CACHE_DIR", str(tmp_path))
+    settings = OperatorSettings(rank=120, rays=64)
+    first = oc.get_operator(office, settings)
+    _poison(first.path, POISONS[poison])
+    warnings = []
+    again = oc.get_operator(office, settings, warn=warnings.append)
+    assert not again.from_cache and len(warnings) == 1 and "rebuilding" in warnings[0]
+    np.testing.assert_array_equal(again.operator.Phi, first.operator.Phi)
+    assert oc.get_operator(office, settings).from_cache  # rewritten whole
+
+
 def test_cli_precompute_and_lrr_simulation(tmp_path, monkeypatch, capsys):
     monkeypatch.setenv("LIGHTINV_CACHE_DIR", str(tmp_path))
     args = ["precompute", "office", "--resolution", str(RES), "--json"]
