@@ -30,6 +30,8 @@ from collections.abc import Iterator
 from pathlib import Path
 from typing import IO
 
+from lightinv_core.errors import OutputError
+
 TEMP_MARK = ".tmp-"
 STALE_AGE_S = 2.0
 """A temporary younger than this is left alone: its writer may be between creating it
@@ -112,3 +114,49 @@ def atomic_writer(path: str | Path, mode: str = "w", **kwargs) -> Iterator[IO]:
         with contextlib.suppress(FileNotFoundError):
             os.unlink(tmp)
         raise
+
+
+def check_writable(path: str | Path) -> None:
+    """Raise OutputError now if ``path`` cannot be written later: a folder in the way, a
+    folder that cannot be created or written (read-only, no permission). A device or
+    pipe passes. Long work calls this first, so a typo in ``-o`` costs nothing."""
+    p = Path(path)
+    try:
+        target, through = _write_target(p)
+    except OSError as exc:  # a file where a folder should be, a loop of links
+        reason = exc.strerror or type(exc).__name__
+        raise OutputError(f"cannot write {p}: {reason}; choose another path") from None
+    if through:
+        if p.is_dir():
+            raise OutputError(f"cannot write {p}: it is a folder; give a file name")
+        return
+    folder = Path(os.path.abspath(target)).parent
+    while not folder.exists() and folder != folder.parent:
+        folder = folder.parent
+    if not folder.is_dir():
+        raise OutputError(f"cannot write {p}: {folder} is not a folder; choose another path")
+    try:
+        fd, probe = tempfile.mkstemp(prefix=f".{target.name}{TEMP_MARK}", dir=folder)
+    except OSError as exc:
+        reason = exc.strerror or type(exc).__name__
+        raise OutputError(f"cannot write {p}: {reason} in {folder}; choose another path") from None
+    os.close(fd)
+    with contextlib.suppress(OSError):
+        os.unlink(probe)
+
+
+def rescue_paths(path: str | Path) -> list[Path]:
+    """Where to put an output that could not be written to ``path``, best first: beside
+    it with ``.unsaved-TIME`` in its name, in the user's data folder, in the temp folder."""
+    p = Path(path)
+    stamp = time.strftime("%Y%m%d-%H%M%S")
+    name = f"{p.stem}.unsaved-{stamp}{p.suffix}"
+    out = [p.parent / name]
+    try:
+        from platformdirs import user_data_dir
+
+        out.append(Path(user_data_dir("lightinv")) / "unsaved" / name)
+    except ImportError:  # pragma: no cover - platformdirs is a dependency
+        pass
+    out.append(Path(tempfile.gettempdir()) / name)
+    return out

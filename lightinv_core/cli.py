@@ -13,8 +13,10 @@ import json
 import resource
 import sys
 import time
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
+from pathlib import Path
 
+from lightinv_core.atomic import check_writable, rescue_paths
 from lightinv_core.errors import CancelledError, LightInvError
 from lightinv_core.kinds import SourceKind
 from lightinv_core.light.model import LightModel
@@ -25,7 +27,14 @@ from lightinv_core.scene.builtin import BUILTIN_SCENES, builtin_scene
 from lightinv_core.scene.loading import load_scene
 from lightinv_core.scene.patches import count_patches, mesh_patches
 from lightinv_core.sources.emission import source_electric_power, source_flux
-from lightinv_core.transport.formfactors import DEFAULT_RAYS, form_factor_matrix, lost_fraction
+from lightinv_core.transport.formfactors import (
+    DEFAULT_RAYS,
+    MAX_RAYS,
+    check_formfactor_memory,
+    escape_warning,
+    form_factor_matrix,
+    lost_fraction,
+)
 from lightinv_core.transport.photometry import group_illuminance, write_patch_csv
 from lightinv_core.transport.solver import energy_balance, group_emission, solve
 
@@ -62,7 +71,6 @@ def _seed(text: str) -> int:
     return _integer(text, 0, MAX_SEED, "an integer seed from 0 to 2**63 - 1")
 
 
-MAX_RAYS = 65_536
 """Most rays per patch the command line accepts: 64 times the default, already far past
 where the form factors' error stops mattering (docs/operator.md), and about an hour of
 ray casting on the patio scene."""
@@ -173,6 +181,8 @@ def cmd_simulate(args) -> int:
     """Forward simulation: groups emit given fluxes; report illuminance per group."""
     if not args.emit:
         raise LightInvError("nothing emits: give at least one --emit GROUP=LUMENS")
+    if args.patches_csv:
+        check_writable(args.patches_csv)
     scene = _scene(args)
     p = mesh_patches(scene)
     E = group_emission(p, dict(args.emit))
@@ -181,13 +191,21 @@ def cmd_simulate(args) -> int:
         method = "lrr" if p.n > AUTO_LRR_PATCHES else "reference"
     if method == "lrr":
         return _simulate_lrr(args, scene, p, E)
+    check_formfactor_memory(p, args.rays)
     t0 = time.perf_counter()
-    F = form_factor_matrix(p, args.rays, seed=args.seed)
+    F = form_factor_matrix(p, args.rays, seed=args.seed, progress=_progress_printer("form factors"))
     t1 = time.perf_counter()
     sol = solve(F, p.rho, E)
     t2 = time.perf_counter()
+    lost = lost_fraction(F, p)
+    warnings = [w for w in [escape_warning(lost)] if w]
+    for w in warnings:
+        _warn(w)
+    failed = ""
     if args.patches_csv:
-        write_patch_csv(args.patches_csv, p, sol.E, sol.B, sol.H)
+        csv_path, failed = _write_or_rescue(
+            "patch values", args.patches_csv, lambda f: write_patch_csv(f, p, sol.E, sol.B, sol.H)
+        )
     stats = group_illuminance(p, sol.H)
     bal = energy_balance(p, sol)
     result = {
@@ -197,8 +215,9 @@ def cmd_simulate(args) -> int:
         "rays_per_patch": args.rays,
         "formfactor_seconds": t1 - t0,
         "solve_seconds": t2 - t1,
-        "lost_fraction": lost_fraction(F, p),
+        "lost_fraction": lost,
         "energy": bal,
+        "warnings": warnings,
         "groups": stats,
         "peak_rss_mb": peak_rss_mb(),
     }
@@ -214,12 +233,39 @@ def cmd_simulate(args) -> int:
         for s in stats
     ]
     if args.patches_csv:
-        lines.append(f"patch values written to {args.patches_csv}")
+        result["patches_csv"] = str(csv_path)
+        lines.append(f"patch values written to {csv_path}")
     _out(args, result, "\n".join(lines))
-    return 0
+    return _failed(failed)
+
+
+def _failed(message: str) -> int:
+    """Exit status 2 with the message when an output could not be written where asked."""
+    if not message:
+        return 0
+    print(f"lightinv-cli: error: {message}", file=sys.stderr)
+    return 2
 
 
 AUTO_LRR_PATCHES = 3000
+
+
+def _write_or_rescue(label: str, path: str, write: Callable[[Path], object]) -> tuple[Path, str]:
+    """Write an output with ``write(path)``; if that fails (disk full, folder gone), write
+    it to the first of ``rescue_paths`` that works. Returns (where it went, the failure
+    message or ""), so computed results are never thrown away."""
+    try:
+        write(Path(path))
+        return Path(path), ""
+    except (OSError, LightInvError) as exc:
+        first = str(exc)
+    for other in rescue_paths(path):
+        try:
+            write(other)
+        except (OSError, LightInvError):
+            continue
+        return other, f"could not write {label} {path}: {first}; it was written to {other} instead"
+    return Path(path), f"could not write {label} {path}: {first}, nor anywhere else"
 
 
 def _progress_printer(label: str):
@@ -259,8 +305,14 @@ def _simulate_lrr(args, scene, p, E) -> int:
     field = LightModel(scene, p, got.operator).emission_field(E)
     t2 = time.perf_counter()
     H, B = field.illuminance, field.radiosity
+    failed = ""
     if args.patches_csv:
-        write_patch_csv(args.patches_csv, p, E, B, H)
+        csv_path, failed = _write_or_rescue(
+            "patch values", args.patches_csv, lambda f: write_patch_csv(f, p, E, B, H)
+        )
+        lines_csv = [f"patch values written to {csv_path}"]
+    else:
+        lines_csv = []
     stats = group_illuminance(p, H)
     in_zones = float(E[got.operator.zone_patches] @ p.area[got.operator.zone_patches])
     emitted = float(E @ p.area)
@@ -295,8 +347,10 @@ def _simulate_lrr(args, scene, p, E) -> int:
             "note: light emitted outside the emitter zones goes through the plain "
             "low-rank operator, which blurs it over clusters (see docs/operator.md)"
         )
-    _out(args, result, "\n".join(lines))
-    return 0
+    if args.patches_csv:
+        result["patches_csv"] = str(csv_path)
+    _out(args, result, "\n".join(lines + lines_csv))
+    return _failed(failed)
 
 
 def cmd_precompute(args) -> int:
@@ -368,6 +422,8 @@ def cmd_solve(args) -> int:
     from lightinv_core.project import load_project, save_project
     from lightinv_core.study import prepare, solve
 
+    if args.output:
+        check_writable(args.output)
     project = load_project(args.project)
     if args.resolution is not None:
         project = replace(project, scene=replace(project.scene, resolution=args.resolution))
@@ -409,11 +465,18 @@ def cmd_solve(args) -> int:
         out["candidates"] = len(result.pareto.candidates)
         scales = front_scales(project.design, prepared.light)
         out["front_quality"] = front_quality(result.pareto.solutions, scales).to_dict()
+    failed = ""
     if args.output:
         sols = (best,) if best is not None and result.pareto is None else ()
-        save_project(replace(project, solutions=sols, pareto=result.pareto), args.output)
-        out["saved"] = args.output
+        solved = replace(project, solutions=sols, pareto=result.pareto)
+        saved, failed = _write_or_rescue(
+            "the project", args.output, lambda f: save_project(solved, f)
+        )
+        if not failed or saved != Path(args.output):
+            out["saved"] = str(saved)
     _out(args, out, _solve_text(out))
+    if failed:
+        return _failed(failed)
     return 0 if result.status != "cancelled" else 130
 
 
@@ -483,6 +546,9 @@ def cmd_report(args) -> int:
     from lightinv_core.report import write_report
     from lightinv_core.study import prepare
 
+    check_writable(args.output)
+    if args.png_dir:
+        check_writable(Path(args.png_dir) / "page-1.png")
     project = load_project(args.project)
     prepared = prepare(project, progress=_progress_printer("precompute"), warn=_warn)
     info = write_report(

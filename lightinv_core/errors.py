@@ -28,3 +28,7 @@ class CancelledError(LightInvError):
 
 class PhotometryError(LightInvError):
     """A photometric file (IES LM-63, EULUMDAT) or the luminaire catalogue cannot be read."""
+
+
+class OutputError(LightInvError):
+    """An output file cannot be written (checked before long work, reported after it)."""

@@ -293,3 +293,67 @@ def test_fuzz_arguments_give_one_clear_line_never_a_traceback(
     if status == 2:
         lines = err.strip().splitlines()
         assert (lines and lines[-1].startswith("lightinv-cli: error: ")) or "usage:" in err, err
+
+
+def test_an_unwritable_output_is_refused_before_any_work(capsys, tmp_path):
+    path = small_front_project(tmp_path)
+    blocker = tmp_path / "file"
+    blocker.write_text("not a folder")
+    t0 = time.perf_counter()
+    for argv in (
+        ["solve", path, "-o", str(blocker / "out.json")],  # its "folder" is a file
+        ["solve", path, "-o", str(tmp_path)],  # a folder
+        ["simulate", "cornell", "--emit", "light=100", "--patches-csv", "/proc/x.csv"],
+        ["report", path, "-o", "/proc/r.pdf"],
+        ["report", path, "-o", str(tmp_path / "r.pdf"), "--png-dir", str(blocker / "png")],
+    ):
+        assert cli.main(argv) == 2, argv
+        out, err = capsys.readouterr()
+        assert out == "" and err.startswith("lightinv-cli: error: cannot write "), err
+        assert len(err.strip().splitlines()) == 1
+    assert time.perf_counter() - t0 < 5  # refused before the operator or the optimiser ran
+
+
+def test_a_failed_final_write_keeps_the_result(capsys, tmp_path, monkeypatch):
+    """The disk fills up while the optimiser runs: the solved project goes beside the
+    asked path, the summary is printed, status 2."""
+    import errno
+
+    import lightinv_core.project as project_module
+    from lightinv_core.project import load_project
+
+    path = small_front_project(tmp_path)
+    target = tmp_path / "solved.json"
+    real_save = project_module.save_project
+
+    def full_disk(project, where):
+        if Path(where) == target:
+            raise OSError(errno.ENOSPC, "No space left on device")
+        return real_save(project, where)
+
+    monkeypatch.setattr(project_module, "save_project", full_disk)
+    argv = ["solve", path, "--method", "nsga2", "--max-evals", "800", "-o", str(target)]
+    assert cli.main([*argv, "--json"]) == 2
+    out, err = capsys.readouterr()
+    (rescued,) = tmp_path.glob("solved.unsaved-*.json")
+    summary = json.loads(out)
+    assert summary["saved"] == str(rescued) and summary["status"] == "feasible"
+    assert "No space left on device" in err and f"written to {rescued} instead" in err
+    assert not target.exists()
+    assert len(load_project(rescued).pareto.solutions) == len(summary["pareto"])
+    # The patch values of a simulation are kept the same way.
+    real_csv = cli.write_patch_csv
+
+    def csv_full(where, *rest):
+        if Path(where) == tmp_path / "p.csv":
+            raise OSError(errno.ENOSPC, "No space left on device")
+        return real_csv(where, *rest)
+
+    monkeypatch.setattr(cli, "write_patch_csv", csv_full)
+    argv = ["simulate", "cornell", "--emit", "light=100", "--patches-csv", str(tmp_path / "p.csv")]
+    assert cli.main([*argv, "--resolution", "0.5"]) == 2
+    out, err = capsys.readouterr()
+    (kept,) = tmp_path.glob("p.unsaved-*.csv")
+    assert f"patch values written to {kept}" in out and "No space left" in err
+    with open(kept) as fh:
+        assert next(csv.reader(fh)) == CSV_HEADER
