@@ -155,13 +155,16 @@ def _number(
     return x
 
 
-def _integer(v: Any, path: str, lo: int | None = None) -> int:
-    what = f"an integer >= {lo}" if lo is not None else "an integer"
+def _integer(v: Any, path: str, lo: int | None = None, hi: int | None = None) -> int:
+    if hi is not None:
+        what = f"an integer from {lo} to {hi:,}"
+    else:
+        what = f"an integer >= {lo}" if lo is not None else "an integer"
     if not _is_int(v):
         _fail(path, f"expected {what}, got {_describe(v)}")
     if abs(v) > MAX_INT:
         _fail(path, f"expected {what} of at most 2**53, got a larger one")
-    if lo is not None and v < lo:
+    if (lo is not None and v < lo) or (hi is not None and v > hi):
         _fail(path, f"expected {what}, got {int(v)}")
     return int(v)
 

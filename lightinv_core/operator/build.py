@@ -15,6 +15,7 @@ from collections.abc import Callable
 import numpy as np
 
 from lightinv_core.errors import CancelledError, LightInvError
+from lightinv_core.memory import available_memory_bytes, format_bytes
 from lightinv_core.operator.accuracy import reference_reflected, relative_errors, sample_emissions
 from lightinv_core.operator.clustering import cluster_patches
 from lightinv_core.operator.lowrank import assemble, cluster_form_factors
@@ -22,7 +23,11 @@ from lightinv_core.operator.radiosity import RadiosityOperator
 from lightinv_core.operator.settings import OperatorSettings
 from lightinv_core.operator.zone_basis import exact_bounces, zone_basis
 from lightinv_core.scene.patches import Patches
-from lightinv_core.transport.formfactors import form_factor_matrix, lost_fraction
+from lightinv_core.transport.formfactors import (
+    form_factor_matrix,
+    formfactor_bytes,
+    lost_fraction,
+)
 
 OPERATOR_VERSION = 2
 """Bump whenever the operator a given (geometry, settings) produces changes, so older
@@ -32,24 +37,12 @@ START_DIVISOR = 64
 MAX_DIVISOR = 4
 
 
-def available_memory_bytes() -> int:
-    """MemAvailable from /proc/meminfo (bytes), or a large number where unknown."""
-    try:
-        with open("/proc/meminfo") as fh:
-            for line in fh:
-                if line.startswith("MemAvailable:"):
-                    return int(line.split()[1]) * 1024
-    except OSError:
-        pass
-    return 1 << 50
-
-
 def estimate_build_bytes(patches: Patches, rays: int, k: int) -> int:
     """Upper estimate of the peak memory of a build (bytes): sparse F, the n x k
     low-rank factors, the n x nz zone basis and its float64 scratch."""
     n = patches.n
     nz = int((patches.zone_id >= 0).sum())
-    f_bytes = 16 * n * min(rays, n)  # COO assembly of F: row, col, value
+    f_bytes = formfactor_bytes(n, rays)
     lowrank = 3 * 4 * n * k
     zone = (4 + 8 + 8) * n * nz
     return int(f_bytes + lowrank + zone)
@@ -62,15 +55,10 @@ def check_memory(patches: Patches, rays: int, k: int) -> None:
     if need > 0.8 * have:
         raise LightInvError(
             f"building the operator for {patches.n:,} patches with {rays} rays and rank {k} "
-            f"needs about {_size(need)} but {_size(have)} is available (a build may use at "
-            "most 80% of it); "
+            f"needs about {format_bytes(need)} but {format_bytes(have)} is available "
+            "(a build may use at most 80% of it); "
             "use a coarser --resolution, fewer --rays or a lower --rank"
         )
-
-
-def _size(nbytes: float) -> str:
-    """Bytes as GiB, or MiB below 1 GiB (never "0.0 GiB")."""
-    return f"{nbytes / 2**30:.1f} GiB" if nbytes >= 2**30 else f"{nbytes / 2**20:.0f} MiB"
 
 
 def build_operator(

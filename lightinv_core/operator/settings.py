@@ -9,6 +9,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 from lightinv_core.fields import Field, ObjectSpec, _integer, _number, _optional
+from lightinv_core.transport.formfactors import DEFAULT_RAYS, MAX_RAYS
 
 OPERATOR = ObjectSpec(
     "operator",
@@ -29,9 +30,9 @@ OPERATOR = ObjectSpec(
         ),
         Field(
             "rays",
-            lambda v, p: _integer(v, p, lo=1),
-            1024,
-            "integer >= 1",
+            lambda v, p: _integer(v, p, lo=1, hi=MAX_RAYS),
+            DEFAULT_RAYS,
+            f"integer, 1 to {MAX_RAYS:,}",
             "rays per patch for the form factors",
         ),
         Field(

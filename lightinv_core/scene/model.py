@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import math
 import numbers
+from collections import Counter
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -196,8 +197,8 @@ class Scene:
         if not self.surfaces:
             raise SceneError(f"scene {self.name!r} has no surfaces")
         check_resolution(self.resolution)
-        names = [s.name for s in self.surfaces]
-        dup = sorted({n for n in names if names.count(n) > 1})
+        counts = Counter(s.name for s in self.surfaces)
+        dup = sorted(n for n, c in counts.items() if c > 1)
         if dup:
             raise SceneError(f"scene {self.name!r}: duplicate surface names {dup}")
         by_name = {s.name: s for s in self.surfaces}

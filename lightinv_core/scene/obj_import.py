@@ -53,9 +53,10 @@ from lightinv_core.scene.obj_parse import (
     read_text,
     zone_spec,
 )
+from lightinv_core.scene.obj_size import check_obj_size
+from lightinv_core.scene.patches import BIG_SPAN
 
 FAN_TOL = 0.01  # a polygon further than this times its size from its plane is fanned
-BIG_MODEL = 1000.0  # m; a model wider than this was probably not drawn in metres
 
 
 def load_obj(
@@ -86,7 +87,8 @@ def load_obj(
     path, res, scale = _check_options(path, resolution, scale, up)
     mats = load_materials(materials)
     fname = path.name
-    data = parse_obj(read_text(path, "OBJ file"), fname, scale, up)
+    text = read_text(path, "OBJ file", guard=check_obj_size)
+    data = parse_obj(text, fname, scale, up)
     warnings = data.warnings
     if not data.faces:
         raise ObjImportError(
@@ -96,6 +98,7 @@ def load_obj(
     kd = load_mtllibs(data.mtllibs, path.parent, fname, warnings)
     geom = face_geometry(data.vertices, data.faces)
     keep = _check_degenerate(data.faces, geom, skip_degenerate, fname, warnings)
+    keep = _drop_duplicates(data.vertices, data.faces, keep, fname, warnings)
     rho = Reflectances(mats, kd)
     groups = _build_groups(data.vertices, data.faces, geom, keep, rho, fname, warnings)
     warnings += rho.warnings()
@@ -157,6 +160,40 @@ def _check_degenerate(faces, geom: FaceGeom, skip: bool, fname: str, warnings: l
         )
     warnings.append(f"{fname}: dropped {what}")
     return ~geom.degenerate
+
+
+def _drop_duplicates(vertices, faces, keep, fname: str, warnings: list[str]) -> np.ndarray:
+    """``keep`` without faces that repeat an earlier face of the same group: the same
+    corners (to the micrometre) in the same turning order, which would count the area
+    twice and split the light between the copies. A repeat in another group is kept
+    with a warning (which one is meant is the modeller's call); the same corners in
+    reverse order (the two sides of a thin wall) are not a repeat."""
+    q = np.round(vertices * 1e6).astype(np.int64)
+    first: dict[tuple, int] = {}
+    same: list[int] = []
+    other: list[int] = []
+    for i in np.flatnonzero(keep):
+        rows = [tuple(r) for r in q[list(faces[i].index)].tolist()]
+        m = rows.index(min(rows))
+        j = first.setdefault(tuple(rows[m:] + rows[:m]), i)
+        if j != i:
+            (same if faces[j].group == faces[i].group else other).append(i)
+    if other:
+        warnings.append(
+            f"{fname}: {len(other)} face(s) at {describe_lines([faces[i].line for i in other])}"
+            " repeat a face of another group; both are kept, so that area counts twice "
+            "(delete the one not meant)"
+        )
+    if not same:
+        return keep
+    warnings.append(
+        f"{fname}: dropped {len(same)} duplicated face(s) at "
+        f"{describe_lines([faces[i].line for i in same])} (the same polygon facing the same "
+        "way as an earlier face of its group would count its area twice)"
+    )
+    out = keep.copy()
+    out[same] = False
+    return out
 
 
 @dataclass
@@ -348,7 +385,7 @@ def _names(names) -> str:
 
 def _scale_warning(vertices: np.ndarray, scale: float, fname: str, warnings: list[str]) -> None:
     span = float(np.ptp(vertices, axis=0).max())
-    if span > BIG_MODEL:
+    if span > BIG_SPAN:
         warnings.append(
             f"{fname}: the model is {span:,.0f} m across after scaling by {scale:g}; if it was "
             "drawn in millimetres pass scale=0.001 (centimetres: 0.01)"

@@ -15,6 +15,7 @@ import numbers
 import os
 import stat
 from collections import Counter
+from collections.abc import Callable
 from dataclasses import dataclass, field
 from itertools import takewhile
 from pathlib import Path
@@ -81,8 +82,12 @@ def describe_lines(lines: list[int]) -> str:
     return f"lines {shown}" + (f" and {len(lines) - LISTED} more" if len(lines) > LISTED else "")
 
 
-def read_text(path: Path, what: str) -> str:
-    """Read a regular file as UTF-8 (latin-1 if it is not); ObjImportError if impossible."""
+def read_text(path: Path, what: str, guard: Callable[[Path, str], object] | None = None) -> str:
+    """Read a regular file as text (``decode_text``); ObjImportError if impossible.
+
+    ``guard(path, name)`` runs once the path is known to be a regular file and before
+    it is read, to refuse files too big to import.
+    """
     try:
         mode = os.stat(path).st_mode
     except FileNotFoundError:
@@ -93,12 +98,32 @@ def read_text(path: Path, what: str) -> str:
         raise ObjImportError(
             f"{what} '{path}' is not a file (a folder or device); give the path of the file"
         )
+    if guard is not None:
+        guard(Path(path), Path(path).name)
     try:
         data = Path(path).read_bytes()
     except OSError as exc:
         raise ObjImportError(
             f"cannot read {what} '{path}': {_reason(exc)}; check that it is readable"
         ) from None
+    return decode_text(data)
+
+
+def decode_text(data: bytes) -> str:
+    """Text of a file: UTF-16 (with a byte-order mark, or zero bytes in every other
+    place, as Windows tools write), else UTF-8, else latin-1 (which never fails)."""
+    if data[:2] in (b"\xff\xfe", b"\xfe\xff"):
+        try:
+            return data.decode("utf-16")
+        except UnicodeDecodeError:
+            pass
+    head = data[:4096]
+    if len(head) >= 4 and head.count(0) >= 0.4 * len(head):
+        order = "utf-16-le" if head[1::2].count(0) > head[0::2].count(0) else "utf-16-be"
+        try:
+            return data[: len(data) // 2 * 2].decode(order)
+        except UnicodeDecodeError:
+            pass
     try:
         return data.decode("utf-8-sig")
     except UnicodeDecodeError:

@@ -9,6 +9,7 @@ patch is constant over it. Units: metres, m².
 from __future__ import annotations
 
 import hashlib
+import math
 from dataclasses import dataclass
 
 import numpy as np
@@ -133,16 +134,60 @@ def _subdivisions(tri: np.ndarray, resolution: float) -> np.ndarray:
     return np.maximum(1, np.ceil(longest / resolution - 1e-9)).astype(np.int64)
 
 
-def count_patches(scene: Scene) -> int:
-    """Number of patches ``mesh_patches`` would make, computed without meshing."""
+def count_patches(scene: Scene, resolution: float | None = None) -> int:
+    """Number of patches ``mesh_patches`` would make at ``resolution`` m (default the
+    scene's), computed without meshing; ``math.inf`` gives the fewest possible."""
+    res = scene.resolution if resolution is None else resolution
     total = 0
     for s in scene.surfaces:
         if s.rect is not None:
-            nu, nv = s.grid or grid_counts(*s.rect.size, scene.resolution)
+            nu, nv = s.grid or grid_counts(*s.rect.size, res)
             total += nu * nv
         else:
-            total += int((_subdivisions(s.triangles, scene.resolution) ** 2).sum())
+            total += int((_subdivisions(s.triangles, res) ** 2).sum())
     return total
+
+
+def _span(scene: Scene) -> float:
+    """Largest extent of the scene's bounding box (m)."""
+    pts = [s.rect.point(a, b) for s in scene.surfaces if s.rect is not None for a, b in CORNERS]
+    pts += [s.triangles.reshape(-1, 3) for s in scene.surfaces if s.triangles is not None]
+    allp = np.vstack([np.atleast_2d(p) for p in pts])
+    return float(np.ptp(allp, axis=0).max())
+
+
+CORNERS = ((0, 0), (1, 0), (0, 1), (1, 1))
+
+
+def too_many_patches(scene: Scene, count: int) -> str:
+    """Why ``count`` patches is over ``MAX_PATCHES`` and what would help: a coarser
+    resolution that fits, or (when each face alone is a patch too many) a simpler model."""
+    head = f"resolution {scene.resolution} m would make {count:,} patches (limit {MAX_PATCHES:,})"
+    fewest = count_patches(scene, math.inf)
+    if fewest > MAX_PATCHES:
+        advice = (
+            f"the model itself has {fewest:,} faces and each is at least one patch, so no "
+            "resolution can help; simplify it in the modeller (merge coplanar faces, drop "
+            "furniture detail) or import one floor or room at a time"
+        )
+    else:
+        res = scene.resolution * math.sqrt(count / MAX_PATCHES)
+        for _ in range(60):
+            if count_patches(scene, res) <= MAX_PATCHES:
+                break
+            res *= 1.1
+        advice = f"use a resolution of at least {res:.3g} m"
+    span = _span(scene)
+    if span > BIG_SPAN:
+        advice += (
+            f"; the model is {span:,.0f} m across: if it was drawn in millimetres import it "
+            "with scale 0.001 (--scale 0.001; centimetres 0.01)"
+        )
+    return f"{head}; {advice}"
+
+
+BIG_SPAN = 1000.0
+"""Metres; a model wider than this was probably not drawn in metres."""
 
 
 def _mesh_rect(surface: Surface, resolution: float):
@@ -196,10 +241,7 @@ def mesh_patches(scene: Scene) -> Patches:
     """Mesh every surface of ``scene`` at ``scene.resolution`` into patches."""
     n_expected = count_patches(scene)
     if n_expected > MAX_PATCHES:
-        raise SceneError(
-            f"resolution {scene.resolution} m would make {n_expected:,} patches "
-            f"(limit {MAX_PATCHES:,}); use a coarser resolution"
-        )
+        raise SceneError(too_many_patches(scene, n_expected))
     groups = scene.groups
     zone_of_surface = {z.surface: k for k, z in enumerate(scene.zones)}
     cols: dict[str, list] = {k: [] for k in ("o", "e1", "e2", "tri", "sid", "gid", "zid", "ij")}

@@ -20,11 +20,15 @@ import numpy as np
 import scipy.sparse as sp
 
 from lightinv_core.errors import CancelledError, LightInvError
+from lightinv_core.memory import available_memory_bytes, format_bytes
 from lightinv_core.scene.patches import Patches
 from lightinv_core.transport.raycast import RayCaster, sample_rays
 
 RAYS_PER_BATCH = 1 << 17
 DEFAULT_RAYS = 1024
+MAX_RAYS = 65_536
+"""Rays per patch; 64 times the default, beyond any accuracy a design needs (the
+error falls as 1/sqrt(rays)), and far from the sizes that overflow memory."""
 
 ProgressFn = Callable[[float], None]
 CancelFn = Callable[[], bool]
@@ -49,9 +53,9 @@ class RowHits:
 
 def _check_rays(rays_per_patch: int) -> int:
     r = int(rays_per_patch)
-    if r < 1 or r != rays_per_patch:
+    if not 1 <= r <= MAX_RAYS or r != rays_per_patch:
         raise LightInvError(
-            f"rays per patch must be a positive whole number, got {rays_per_patch!r}"
+            f"rays per patch must be a whole number from 1 to {MAX_RAYS:,}, got {rays_per_patch!r}"
         )
     return r
 
@@ -150,6 +154,40 @@ def form_factor_matrix(
     cols = np.concatenate(cols_out) if cols_out else np.zeros(0, index)
     vals = np.concatenate(vals_out) if vals_out else np.zeros(0)
     return sp.csr_matrix((vals, cols, indptr.astype(index)), shape=(n, n))
+
+
+def formfactor_bytes(n: int, rays: int) -> int:
+    """Upper estimate of the peak memory of ``form_factor_matrix`` (bytes): every ray
+    of every row a distinct entry, each a column index and a value, held twice while
+    the CSR arrays are joined."""
+    return 16 * n * min(rays, n)
+
+
+def check_formfactor_memory(patches: Patches, rays: int) -> None:
+    """Refuse form factors that would not fit in 80% of the memory available."""
+    need, have = formfactor_bytes(patches.n, rays), available_memory_bytes()
+    if need > 0.8 * have:
+        raise LightInvError(
+            f"the form factors of {patches.n:,} patches with {rays:,} rays per patch need up "
+            f"to {format_bytes(need)} but {format_bytes(have)} is available (at most 80% "
+            "may be used); use the low-rank method (--method lrr), a coarser --resolution "
+            "or fewer --rays"
+        )
+
+
+OPEN_MODEL = 0.01
+"""Lost fraction above which the light escaping the model is worth a warning."""
+
+
+def escape_warning(lost: float) -> str | None:
+    """A warning when more than 1% of the light leaving the surfaces escapes the model
+    (an open room, or faces turned the wrong way), else None."""
+    if not lost > OPEN_MODEL:
+        return None
+    return (
+        f"{100 * lost:.1f}% of the light leaving the surfaces escapes the model: the room "
+        "is open or some faces face away from it (lighting will be too dark there)"
+    )
 
 
 def lost_fraction(F: sp.spmatrix, patches: Patches) -> float:

@@ -92,13 +92,20 @@ def solve(F: sp.spmatrix, rho: np.ndarray, E: np.ndarray) -> Radiosity:
     return solve_iterative(F, rho, E)
 
 
+MAX_FLUX = 1e10
+"""Lumens; more than any building holds, and far from float overflow."""
+
+
 def group_emission(patches: Patches, lumens: dict[str, float]) -> np.ndarray:
     """Emission vector E (lm/m²) where each named group emits its luminous flux (lm)
     spread uniformly over its area."""
     E = np.zeros(patches.n)
     for group, flux in lumens.items():
-        if not np.isfinite(flux) or flux < 0:
-            raise LightInvError(f"flux for group {group!r} must be a non-negative number of lumens")
+        if not (0 <= flux <= MAX_FLUX):
+            raise LightInvError(
+                f"flux for group {group!r} must be between 0 and {MAX_FLUX:.0e} lumens "
+                f"(a stadium uses about 1e8), got {flux:g}"
+            )
         idx = patches.group_index(group)
         E[idx] += flux / patches.area[idx].sum()
     return E

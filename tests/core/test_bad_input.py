@@ -386,6 +386,189 @@ def _(d):
         )
 
 
+@case(
+    "obj-too-many-faces",
+    "resources",
+    "an OBJ file of 2,000,001 triangles (16 MB): more faces than patches allowed",
+    ObjImportError,
+    "room.obj: the model has 2,000,001 faces",
+    "simplify it in the modeller",
+)
+def _(d):
+    path = d / "room.obj"
+    path.write_bytes(b"v 0 0 0\nv 1 0 0\nv 0 1 0\n" + b"f 1 2 3\n" * 2_000_001)
+    return raised(lambda: load_obj(path, resolution=0.5))
+
+
+@case(
+    "obj-import-memory",
+    "resources",
+    "an OBJ file whose import would not fit in the memory available (16 KiB free; the "
+    "container's cgroup limit counts)",
+    ObjImportError,
+    "room.obj: importing",
+    "8 vertices, 6 faces",
+    "16 KiB is available (an import may use at most 80% of it)",
+)
+def _(d):
+    from unittest import mock
+
+    path = write(d, BOX)
+    with mock.patch("lightinv_core.scene.obj_size.available_memory_bytes", return_value=2**14):
+        return raised(lambda: load_obj(path, resolution=0.5))
+
+
+@case(
+    "obj-millimetres",
+    "resources",
+    "the box drawn in millimetres (4000 x 3000 x 2500) imported without a scale",
+    SceneError,
+    "would make",
+    "use a resolution of at least",
+    "if it was drawn in millimetres import it with scale 0.001",
+)
+def _(d):
+    mm = "".join(
+        "v " + " ".join(str(1000 * float(x)) for x in line.split()[1:]) + "\n"
+        for line in BOX.splitlines()
+        if line.startswith("v ")
+    )
+    faces = "".join(line + "\n" for line in BOX.splitlines() if not line.startswith("v "))
+    return raised(lambda: mesh_patches(load_obj(write(d, mm + faces), resolution=0.5)))
+
+
+@case(
+    "mesh-faces-over-limit",
+    "resources",
+    "a scene of 2,000,001 faces at any resolution (each face is at least one patch)",
+    SceneError,
+    "the model itself has 2,000,001 faces",
+    "no resolution can help",
+)
+def _(d):
+    tri = np.zeros((2_000_001, 3, 3))
+    i = np.arange(len(tri))
+    tri[:, :, 0] = (i % 1000)[:, None] * 0.01  # 1000 x 2000 small triangles, 10 x 20 m
+    tri[:, :, 1] = (i // 1000)[:, None] * 0.01
+    tri[:, 1, 0] += 0.01
+    tri[:, 2, 1] += 0.01
+    from lightinv_core.scene.model import Scene
+
+    return raised(lambda: mesh_patches(Scene("many", (Surface("t", "t", 0.5, triangles=tri),))))
+
+
+@case(
+    "reference-memory",
+    "resources",
+    "`simulate --method reference` whose form factors would not fit (1 MiB free)",
+    LightInvError,
+    "the form factors of",
+    "use the low-rank method (--method lrr)",
+)
+def _(d):
+    from unittest import mock
+
+    from lightinv_core.transport.formfactors import check_formfactor_memory
+
+    p = mesh_patches(box_scene(d))
+    with mock.patch(
+        "lightinv_core.transport.formfactors.available_memory_bytes", return_value=2**20
+    ):
+        return raised(lambda: check_formfactor_memory(p, 65_536))
+
+
+@case(
+    "obj-duplicate-face",
+    "OBJ file",
+    "the floor face written twice (the area would count twice)",
+    WARNING,
+    "room.obj: dropped 1 duplicated face(s) at line 19",
+    "count its area twice",
+)
+def _(d):
+    return obj_warning(d, BOX + "g floor\nf 2 3 4 1\n", "duplicated")
+
+
+@case(
+    "obj-repeat-other-group",
+    "OBJ file",
+    "a desk face drawn exactly on the floor (another group)",
+    WARNING,
+    "room.obj: 1 face(s) at line 19 repeat a face of another group",
+    "both are kept",
+)
+def _(d):
+    return obj_warning(d, BOX + "g desk\nf 2 3 4 1\n", "repeat")
+
+
+@case(
+    "obj-inverted",
+    "OBJ file",
+    "the box with every face turned outwards, simulated (all light escapes, 0 lux)",
+    WARNING,
+    "100.0% of the light leaving the surfaces escapes the model",
+    "face away",
+)
+def _(d):
+    from lightinv_core.transport.formfactors import (
+        escape_warning,
+        form_factor_matrix,
+        lost_fraction,
+    )
+
+    flipped = "".join(
+        "f " + " ".join(reversed(line.split()[1:])) + "\n" if line.startswith("f ") else line + "\n"
+        for line in BOX.splitlines()
+    )
+    p = mesh_patches(load_obj(write(d, flipped), resolution=0.5))
+    msg = escape_warning(lost_fraction(form_factor_matrix(p, 64), p))
+    return Warned(msg) if msg else None
+
+
+@case(
+    "emit-absurd",
+    "resources",
+    "a group emitting 1e300 lm (`--emit light=1e300`)",
+    LightInvError,
+    "flux for group 'floor' must be between 0 and 1e+10 lumens",
+)
+def _(d):
+    from lightinv_core.transport.solver import group_emission
+
+    return raised(lambda: group_emission(mesh_patches(box_scene(d)), {"floor": 1e300}))
+
+
+@case(
+    "cache-poisoned",
+    "resources",
+    "an operator cache file whose header claims a 1 PB payload",
+    WARNING,
+    "truncated or padded payload",
+    "rebuilding",
+)
+def _(d):
+    import lightinv_core.operator.cache as oc
+
+    os.environ["LIGHTINV_CACHE_DIR"] = str(d / "cache")
+    try:
+        p = mesh_patches(box_scene(d))
+        first = get_operator(p, OperatorSettings(rank=8, rays=64))
+        raw = first.path.read_bytes()
+        start = len(oc.MAGIC) + 8
+        size = int.from_bytes(raw[len(oc.MAGIC) : start], "little")
+        header = json.loads(raw[start : start + size])
+        header["payload_bytes"] = 10**15
+        new = json.dumps(header).encode()
+        first.path.write_bytes(
+            oc.MAGIC + len(new).to_bytes(8, "little") + new + raw[start + size :]
+        )
+        got: list[str] = []
+        get_operator(p, OperatorSettings(rank=8, rays=64), warn=got.append)
+    finally:
+        del os.environ["LIGHTINV_CACHE_DIR"]
+    return Warned(got[0]) if got else None
+
+
 # --- scenes and drawn zones ---------------------------------------------------------------
 
 
@@ -936,6 +1119,25 @@ OUTPUT_CASES = (
         "the operator cache folder cannot be created or written, or the disk is full",
         "(`tests/core/test_operator.py`): the operator is built and used; one warning,"
         " `could not write the operator cache PATH: REASON`; no temporary left",
+    ),
+    (
+        "`-o`, `--patches-csv` or `--png-dir` in a folder that cannot be written (read-only,"
+        " missing parent that cannot be made), or naming a folder",
+        "refused before any work: `lightinv-cli: error: cannot write PATH: Read-only file"
+        " system in FOLDER; choose another path`, status 2",
+    ),
+    (
+        "the final write fails after the work (disk full, folder removed meanwhile)",
+        "nothing computed is lost: the result goes beside the asked path as"
+        " `NAME.unsaved-TIME.EXT` (else the user data folder `lightinv/unsaved`, else the"
+        " temporary folder), the summary is printed, and `could not write the project PATH:"
+        " REASON; it was written to OTHER instead`, status 2",
+    ),
+    (
+        "the window restarted in a container after a crash, with the crashed session's process id",
+        "the crashed session's autosave is offered for recovery; sessions are told apart"
+        " by a lock each holds while it lives, not by process id (before, the new session"
+        " took the autosave for its own and deleted it; `tests/app/test_recovery.py`)",
     ),
     (
         "two processes build the same operator at once",

@@ -295,7 +295,10 @@ def test_mtl_kd_luminance_and_cap(tmp_path):
     assert rho["wall"] == KD_CAP == 0.95
     assert rho["trim"] == pytest.approx(0.3)
     assert rho["other"] == rho["bare"] == 0.5
-    assert scene.info["warnings"] == [
+    # The fixture draws every group on the same square: that repeat is warned about first.
+    repeat, *warnings = scene.info["warnings"]
+    assert "repeat a face of another group; both are kept" in repeat
+    assert warnings == [
         "material 'white': MTL Kd luminance 1 capped at 0.95 (exporters write Kd 1 1 1 for "
         "white, and a reflectance of 1 makes radiosity diverge); give its reflectance in the "
         "materials mapping to silence this",
@@ -685,3 +688,29 @@ def test_fuzz_materials_raise_only_obj_import_error(tmp_path, materials):
     path = write(tmp_path, SQUARE + "g floor\nusemtl x\nf 1 2 3\n")
     with contextlib.suppress(ObjImportError):
         load_obj(path, materials=materials if isinstance(materials, dict) else [materials])
+
+
+@pytest.mark.parametrize("encoding", ["utf-16", "utf-16-le", "utf-16-be", "utf-8-sig"])
+def test_utf16_files_from_windows_tools_are_read(tmp_path, encoding):
+    """A UTF-16 OBJ used to be reported as "no faces found"."""
+    (tmp_path / "room.obj").write_bytes(("# made on Windows\n" + BOX).encode(encoding))
+    scene = load_obj(tmp_path / "room.obj", resolution=0.5)
+    assert scene.groups == ("floor", "ceiling", "walls")
+    assert scene.area == pytest.approx(2 * (12 + 10 + 7.5))
+
+
+def test_a_repeated_face_is_dropped_but_the_two_sides_of_a_thin_wall_are_kept(tmp_path):
+    # The floor again, from another corner (same turning order), then a thin partition
+    # across the room drawn as two faces back to back.
+    extra = (
+        "g floor\nf 3 4 1 2\n"
+        "v 0 1.5 0\nv 4 1.5 0\nv 4 1.5 2.5\nv 0 1.5 2.5\n"
+        "g partition\nf 9 10 11 12\nf 12 11 10 9\n"
+    )
+    scene = load(tmp_path, BOX + extra)
+    (warning,) = scene.info["warnings"]
+    assert "dropped 1 duplicated face(s) at line 19" in warning
+    areas = {g: 0.0 for g in scene.groups}
+    for s in scene.surfaces:
+        areas[s.group] += s.area
+    assert areas["floor"] == pytest.approx(12.0) and areas["partition"] == pytest.approx(20.0)

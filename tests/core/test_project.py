@@ -369,7 +369,9 @@ def test_save_refuses_a_project_it_could_not_read_back(tmp_path):
 def test_settings_validate_when_built_in_code():
     with pytest.raises(ProjectError, match=r"^method: expected one of 'auto', 'vns'"):
         OptimizerSettings(method="ga")
-    with pytest.raises(ProjectError, match=r"^rays: expected an integer >= 1, got true"):
+    with pytest.raises(
+        ProjectError, match=r"^rays: expected an integer from 1 to 65,536, got true"
+    ):
         OperatorSettings(rays=True)
     with pytest.raises(ProjectError, match=r"^give exactly one of"):
         SceneSpec()
@@ -421,8 +423,15 @@ ERRORS = [
         _set("daylight.exterior_lux", True),
         "daylight.exterior_lux: expected a number >= 0, got true",
     ),
-    (_set("operator.rays", True), "operator.rays: expected an integer >= 1, got true"),
-    (_set("operator.rays", 512.0), "operator.rays: expected an integer >= 1, got number 512.0"),
+    (_set("operator.rays", True), "operator.rays: expected an integer from 1 to 65,536, got true"),
+    (
+        _set("operator.rays", 512.0),
+        "operator.rays: expected an integer from 1 to 65,536, got number 512.0",
+    ),
+    (
+        _set("operator.rays", 10_000_000),
+        "operator.rays: expected an integer from 1 to 65,536, got 10000000",
+    ),
     (_set("optimizer.trials", "16"), "optimizer.trials: expected an integer >= 1, got string '16'"),
     (
         _set("optimizer.divisors[1]", False),
