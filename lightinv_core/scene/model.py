@@ -104,8 +104,10 @@ class Surface:
     Exactly one of ``rect`` (a planar rectangle, meshed as a regular grid) or
     ``triangles`` ((t, 3, 3) corner coordinates, meshed by regular subdivision)
     is given. ``grid`` fixes a rectangle's cell counts (nu, nv) regardless of
-    the scene resolution. ``group`` is the lighting group the patches belong to (floor,
-    walls, ceiling, desks, panels, ...); several surfaces may share a group.
+    the scene resolution; ``subdivide=False`` makes each triangle one patch (the
+    importer's polygon mesher has already sized them). ``group`` is the lighting
+    group the patches belong to (floor, walls, ceiling, desks, panels, ...); several
+    surfaces may share a group.
     """
 
     name: str
@@ -114,6 +116,7 @@ class Surface:
     rect: Rect | None = None
     triangles: np.ndarray | None = None
     grid: tuple[int, int] | None = None
+    subdivide: bool = True
 
     def __post_init__(self) -> None:
         if self.grid is not None:

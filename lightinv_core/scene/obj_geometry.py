@@ -12,7 +12,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from lightinv_core.errors import ObjImportError, SceneError
+from lightinv_core.errors import ObjImportError
 from lightinv_core.scene.model import Rect
 
 RIGHT_ANGLE_TOL = 1e-6  # |cos| of a rectangle's corner angles, relative
@@ -92,22 +92,20 @@ def fan(p: np.ndarray) -> np.ndarray:
     return np.stack([np.broadcast_to(p[0], (len(p) - 2, 3)), p[1:-1], p[2:]], axis=1)
 
 
-def as_rect(p: np.ndarray) -> Rect | None:
-    """Quad ``p`` (4, 3) as a Rect with the same corners and front side, if it is a rectangle."""
-    e = np.roll(p, -1, axis=0) - p
-    length = np.linalg.norm(e, axis=1)
-    cos = np.abs((e * np.roll(e, -1, axis=0)).sum(axis=1))
-    if np.any(cos > RIGHT_ANGLE_TOL * length * np.roll(length, -1)):
-        return None
-    if np.linalg.norm(e[0] + e[2]) > RIGHT_ANGLE_TOL * length[0]:
-        return None
-    u, v = e[0], p[3] - p[0]
-    # Exactly orthogonal edges: Rect checks orthogonality with the same 1e-6 tolerance.
-    v = v - (v @ u) / (u @ u) * u
-    try:
-        return Rect(p[0], u, v)
-    except SceneError:
-        return None
+def rect_quads(p: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Which quads ``p`` (m, 4, 3) are rectangles, all at once: (mask, u, v), where a
+    rectangle is ``p[0] + s*u + t*v`` with the same corners and front side (v made
+    exactly orthogonal to u: Rect checks orthogonality with the same 1e-6 tolerance)."""
+    e = np.roll(p, -1, axis=1) - p
+    length = np.linalg.norm(e, axis=2)
+    cos = np.abs((e * np.roll(e, -1, axis=1)).sum(axis=2))
+    ok = (cos <= RIGHT_ANGLE_TOL * length * np.roll(length, -1, axis=1)).all(axis=1)
+    ok &= np.linalg.norm(e[:, 0] + e[:, 2], axis=1) <= RIGHT_ANGLE_TOL * length[:, 0]
+    u, v = e[:, 0], p[:, 3] - p[:, 0]
+    uu = np.einsum("ij,ij->i", u, u)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        v = v - (np.einsum("ij,ij->i", v, u) / uu)[:, None] * u
+    return ok & (uu > 0), u, v
 
 
 def perpendicular(n: np.ndarray) -> np.ndarray:

@@ -104,8 +104,15 @@ def test_rectangles_become_grids_other_quads_triangles(tmp_path):
     rect = scene.surface("rect")
     assert rect.rect is not None
     assert np.allclose(rect.rect.normal, [0, 0, 1])
-    assert mesh_patches(scene).grid_shape == {"rect": (4, 4)}
-    trap = scene.surface("trapezoid")
+    assert mesh_patches(scene).grid_shape["rect"] == (4, 4)
+    # At 0.25 m the trapezoid's two triangles, subdivided, would make 4 times the
+    # patches of a grid: it is cut into rectangles and border triangles instead.
+    pieces = [s for s in scene.surfaces if s.group == "trapezoid"]
+    assert sum(s.area for s in pieces) == pytest.approx(1.5)
+    p = mesh_patches(scene)
+    assert (p.group_id == p.group_names.index("trapezoid")).sum() <= 2 * 1.5 / 0.25**2
+    # Coarse enough, it stays two triangles.
+    trap = load(tmp_path, text, resolution=COARSE).surface("trapezoid")
     assert trap.triangles is not None and len(trap.triangles) == 2
     assert trap.area == pytest.approx(1.5)
 
@@ -119,6 +126,11 @@ def test_rotated_rectangle_becomes_a_rect(tmp_path):
     assert scene.surfaces[0].area == pytest.approx(2.0)
 
 
+COARSE = 10.0
+"""m; a resolution at which small polygons keep their ear-clip triangles (finer, the
+importer cuts polygons whose triangles would be too many patches into a grid)."""
+
+
 @pytest.mark.parametrize("start", range(6))
 def test_l_shaped_polygon_is_ear_clipped(tmp_path, start):
     ring = [(0, 0), (2, 0), (2, 1), (1, 1), (1, 2), (0, 2)]
@@ -127,7 +139,8 @@ def test_l_shaped_polygon_is_ear_clipped(tmp_path, start):
     rot = np.linalg.qr(np.array([[1.0, 0.3, 0.2], [0.1, 1.0, 0.4], [0.3, 0.2, 1.0]]))[0]
     pts = np.array([(x, y, 0.0) for x, y in ring]) @ rot.T
     text = vertices(pts) + "g L\nf 1 2 3 4 5 6\n"
-    scene = load(tmp_path, text)
+    # Coarse: finer, the L is cut into a grid (tests/core/test_polygon_mesh.py).
+    scene = load(tmp_path, text, resolution=COARSE)
     tri = tris_of(scene, "L")
     assert len(tri) == 4
     assert scene.area == pytest.approx(3.0)
@@ -161,7 +174,7 @@ def test_star_shaped_polygons_triangulate_exactly(tmp_path, shape):
     area = 0.5 * np.sum(ring[:, 0] * np.roll(ring[:, 1], -1) - np.roll(ring[:, 0], -1) * ring[:, 1])
     pts = np.column_stack([ring, np.full(len(ring), 1.5)])
     face = " ".join(str(k) for k in range(1, len(ring) + 1))
-    (surface,) = load(tmp_path, vertices(pts) + f"f {face}\n").surfaces
+    (surface,) = load(tmp_path, vertices(pts) + f"f {face}\n", resolution=COARSE).surfaces
     tri = surface.triangles
     if surface.rect is not None:  # a square: split it to check it the same way
         o, u, v = surface.rect.origin, surface.rect.u, surface.rect.v
@@ -183,7 +196,7 @@ def test_self_intersecting_polygon_is_fanned_with_a_warning(tmp_path):
 
 def test_polygon_with_collinear_vertices(tmp_path):
     text = "v 0 0 0\nv 1 0 0\nv 2 0 0\nv 2 1 0\nv 0 1 0\ng strip\nf 1 2 3 4 5\n"
-    tri = tris_of(load(tmp_path, text), "strip")
+    tri = tris_of(load(tmp_path, text, resolution=COARSE), "strip")
     normals = np.cross(tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0])
     assert np.all(normals[:, 2] > 0) and np.allclose(normals[:, :2], 0)
     assert 0.5 * normals[:, 2].sum() == pytest.approx(2.0)
