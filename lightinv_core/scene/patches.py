@@ -138,14 +138,35 @@ def count_patches(scene: Scene, resolution: float | None = None) -> int:
     """Number of patches ``mesh_patches`` would make at ``resolution`` m (default the
     scene's), computed without meshing; ``math.inf`` gives the fewest possible."""
     res = scene.resolution if resolution is None else resolution
-    total = 0
+    _, nu, nv = _rect_grids(scene, res)
+    total = int((nu * nv).sum())
     for s in scene.surfaces:
-        if s.rect is not None:
-            nu, nv = s.grid or grid_counts(*s.rect.size, res)
-            total += nu * nv
+        if s.triangles is None:
+            continue
+        if not s.subdivide:
+            total += len(s.triangles)
         else:
             total += int((_subdivisions(s.triangles, res) ** 2).sum())
     return total
+
+
+def _rect_grids(scene: Scene, res: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Indices of the rectangle surfaces and their cell counts (nu, nv) at ``res``, all
+    at once (``grid_counts`` per surface was most of the meshing of a big model)."""
+    rows = np.array([k for k, s in enumerate(scene.surfaces) if s.rect is not None], dtype=int)
+    if len(rows) == 0:
+        return rows, np.zeros(0, np.int64), np.zeros(0, np.int64)
+    rects = [scene.surfaces[k].rect for k in rows]
+    lu = np.linalg.norm(np.array([r.u for r in rects]), axis=1)
+    lv = np.linalg.norm(np.array([r.v for r in rects]), axis=1)
+    with np.errstate(invalid="ignore"):
+        nu = np.maximum(1, np.round(lu / res)).astype(np.int64)
+        nv = np.maximum(1, np.round(lv / res)).astype(np.int64)
+    for k, row in enumerate(rows):
+        grid = scene.surfaces[row].grid
+        if grid is not None:
+            nu[k], nv[k] = grid
+    return rows, nu, nv
 
 
 def _span(scene: Scene) -> float:
@@ -190,51 +211,74 @@ BIG_SPAN = 1000.0
 """Metres; a model wider than this was probably not drawn in metres."""
 
 
-def _mesh_rect(surface: Surface, resolution: float):
-    r = surface.rect
-    nu, nv = surface.grid or grid_counts(*r.size, resolution)
-    e1, e2 = r.u / nu, r.v / nv
-    i, j = np.meshgrid(np.arange(nu), np.arange(nv), indexing="ij")
-    i, j = i.ravel(), j.ravel()
-    origin = r.origin + i[:, None] * e1 + j[:, None] * e2
-    m = len(i)
-    return (
-        origin,
-        np.tile(e1, (m, 1)),
-        np.tile(e2, (m, 1)),
-        np.zeros(m, bool),
-        np.stack([i, j], 1),
-        (nu, nv),
-    )
+def _mesh_rects(scene: Scene, res: float, slots: np.ndarray, out: dict[str, np.ndarray]) -> dict:
+    """Write the grid cells of every rectangle surface into ``out`` at the surfaces'
+    ``slots`` (first patch of each surface); returns {surface name: (nu, nv)}.
+
+    Rectangles with the same grid are meshed together, each cell written where a
+    surface-by-surface loop would have put it (``i`` along u slowest, then ``j``)."""
+    rows, nu, nv = _rect_grids(scene, res)
+    if len(rows) == 0:
+        return {}
+    rects = [scene.surfaces[k].rect for k in rows]
+    org = np.array([r.origin for r in rects])
+    U = np.array([r.u for r in rects])
+    V = np.array([r.v for r in rects])
+    shapes = np.column_stack([nu, nv])
+    for shape in np.unique(shapes, axis=0):
+        a, b = int(shape[0]), int(shape[1])
+        sel = np.flatnonzero((nu == a) & (nv == b))
+        e1, e2 = U[sel] / a, V[sel] / b
+        i, j = np.meshgrid(np.arange(a), np.arange(b), indexing="ij")
+        i, j = i.ravel(), j.ravel()
+        where = (slots[rows[sel]][:, None] + np.arange(a * b)[None]).ravel()
+        out["origin"][where] = (
+            org[sel][:, None] + i[None, :, None] * e1[:, None] + j[None, :, None] * e2[:, None]
+        ).reshape(-1, 3)
+        out["e1"][where] = np.repeat(e1, a * b, axis=0)
+        out["e2"][where] = np.repeat(e2, a * b, axis=0)
+        out["ij"][where] = np.tile(np.column_stack([i, j]), (len(sel), 1))
+    names = [scene.surfaces[k].name for k in rows]
+    return dict(zip(names, zip(nu.tolist(), nv.tolist(), strict=True), strict=True))
 
 
-def _subdivide_triangle(a, b, c, m: int):
-    """Regular subdivision of triangle abc into m² triangles (origin, e1, e2 each (m², 3))."""
-    d1, d2 = (b - a) / m, (c - a) / m
+def _subdivision_template(m: int) -> tuple[np.ndarray, np.ndarray]:
+    """For m² sub-triangles of a triangle with edges d1 = (b - a)/m, d2 = (c - a)/m:
+    origin coefficients (m², 2) on (d1, d2) and edge signs (m²,) (+1 up, -1 down)."""
     i, j = np.meshgrid(np.arange(m), np.arange(m), indexing="ij")
     up = (i + j) <= m - 1
-    iu, ju = i[up], j[up]
-    up_o = a + iu[:, None] * d1 + ju[:, None] * d2
     down = (i + j) <= m - 2
-    idn, jdn = i[down], j[down]
     # The inverted triangle of a cell has corners (i+1, j), (i+1, j+1)... written
     # from (i+1, j+1) with edges -d1, -d2 so its normal matches the parent's.
-    dn_o = a + (idn[:, None] + 1) * d1 + (jdn[:, None] + 1) * d2
-    origin = np.concatenate([up_o, dn_o])
-    e1 = np.concatenate([np.tile(d1, (len(iu), 1)), np.tile(-d1, (len(idn), 1))])
-    e2 = np.concatenate([np.tile(d2, (len(iu), 1)), np.tile(-d2, (len(idn), 1))])
-    return origin, e1, e2
+    coef = np.concatenate(
+        [np.stack([i[up], j[up]], 1), np.stack([i[down] + 1, j[down] + 1], 1)]
+    ).astype(float)
+    sign = np.concatenate([np.ones(up.sum()), -np.ones(down.sum())])
+    return coef, sign
 
 
 def _mesh_triangles(surface: Surface, resolution: float):
     tri = surface.triangles
-    ms = _subdivisions(tri, resolution)
-    parts = [_subdivide_triangle(t[0], t[1], t[2], int(m)) for t, m in zip(tri, ms, strict=True)]
-    origin = np.concatenate([p[0] for p in parts])
-    e1 = np.concatenate([p[1] for p in parts])
-    e2 = np.concatenate([p[2] for p in parts])
-    m = len(origin)
-    return origin, e1, e2, np.ones(m, bool), np.full((m, 2), -1), None
+    ms = _subdivisions(tri, resolution) if surface.subdivide else np.ones(len(tri), np.int64)
+    counts = ms * ms
+    start = np.concatenate([[0], np.cumsum(counts)[:-1]])
+    total = int(counts.sum())
+    origin, e1, e2 = np.empty((total, 3)), np.empty((total, 3)), np.empty((total, 3))
+    # Triangles of one subdivision level at a time, each written to its own slots, so
+    # patches keep the order of a triangle-by-triangle loop.
+    for m in np.unique(ms):
+        rows = np.flatnonzero(ms == m)
+        coef, sign = _subdivision_template(int(m))
+        a = tri[rows, 0]
+        d1 = (tri[rows, 1] - a) / m
+        d2 = (tri[rows, 2] - a) / m
+        slots = (start[rows][:, None] + np.arange(len(sign))[None]).ravel()
+        origin[slots] = (
+            a[:, None] + coef[None, :, :1] * d1[:, None] + coef[None, :, 1:] * d2[:, None]
+        ).reshape(-1, 3)
+        e1[slots] = (sign[None, :, None] * d1[:, None]).reshape(-1, 3)
+        e2[slots] = (sign[None, :, None] * d2[:, None]).reshape(-1, 3)
+    return origin, e1, e2, np.ones(total, bool), np.full((total, 2), -1), None
 
 
 def mesh_patches(scene: Scene) -> Patches:
@@ -243,39 +287,52 @@ def mesh_patches(scene: Scene) -> Patches:
     if n_expected > MAX_PATCHES:
         raise SceneError(too_many_patches(scene, n_expected))
     groups = scene.groups
+    res = scene.resolution
+    group_of = {g: k for k, g in enumerate(groups)}
     zone_of_surface = {z.surface: k for k, z in enumerate(scene.zones)}
-    cols: dict[str, list] = {k: [] for k in ("o", "e1", "e2", "tri", "sid", "gid", "zid", "ij")}
-    grid_shape = {}
+    # Patches per surface, then each surface's first slot: rectangles and triangles are
+    # written in place, in surface order.
+    _, nu, nv = _rect_grids(scene, res)
+    counts = np.zeros(len(scene.surfaces), np.int64)
+    tri_parts = {}
+    rect_k = 0
     for sid, s in enumerate(scene.surfaces):
-        mesher = _mesh_rect if s.rect is not None else _mesh_triangles
-        o, e1, e2, tri, ij, shape = mesher(s, scene.resolution)
-        if shape is not None:
-            grid_shape[s.name] = shape
-        m = len(o)
-        cols["o"].append(o)
-        cols["e1"].append(e1)
-        cols["e2"].append(e2)
-        cols["tri"].append(tri)
-        cols["sid"].append(np.full(m, sid))
-        cols["gid"].append(np.full(m, groups.index(s.group)))
-        cols["zid"].append(np.full(m, zone_of_surface.get(s.name, -1)))
-        cols["ij"].append(ij)
-    origin = np.concatenate(cols["o"])
-    e1 = np.concatenate(cols["e1"])
-    e2 = np.concatenate(cols["e2"])
-    is_tri = np.concatenate(cols["tri"])
+        if s.rect is not None:
+            counts[sid] = nu[rect_k] * nv[rect_k]
+            rect_k += 1
+        else:
+            tri_parts[sid] = _mesh_triangles(s, res)
+            counts[sid] = len(tri_parts[sid][0])
+    slots = np.concatenate([[0], np.cumsum(counts)[:-1]])
+    n = int(counts.sum())
+    out = {
+        "origin": np.empty((n, 3)),
+        "e1": np.empty((n, 3)),
+        "e2": np.empty((n, 3)),
+        "ij": np.full((n, 2), -1, np.int64),
+    }
+    grid_shape = _mesh_rects(scene, res, slots, out)
+    is_tri = np.zeros(n, bool)
+    for sid, (o, t1, t2, *_rest) in tri_parts.items():
+        part = slice(slots[sid], slots[sid] + counts[sid])
+        out["origin"][part], out["e1"][part], out["e2"][part] = o, t1, t2
+        is_tri[part] = True
+    origin, e1, e2 = out["origin"], out["e1"], out["e2"]
+    surface_id = np.repeat(np.arange(len(scene.surfaces)), counts)
+    group_id = np.repeat([group_of[s.group] for s in scene.surfaces], counts)
+    zone_id = np.repeat([zone_of_surface.get(s.name, -1) for s in scene.surfaces], counts)
     cross = np.cross(e1, e2)
     norm = np.linalg.norm(cross, axis=1)
     area = np.where(is_tri, 0.5, 1.0) * norm
     bad = np.flatnonzero(area <= 1e-14)
     if len(bad):
-        sid = int(np.concatenate(cols["sid"])[bad[0]])
+        sid = int(surface_id[bad[0]])
         raise SceneError(
             f"surface {scene.surfaces[sid].name!r} has {len(bad)} zero-area patch(es); "
             "remove degenerate faces"
         )
     centroid = origin + np.where(is_tri, 1.0 / 3.0, 0.5)[:, None] * (e1 + e2)
-    surface_id = np.concatenate(cols["sid"]).astype(np.int32)
+    surface_id = surface_id.astype(np.int32)
     rho = np.array([s.reflectance for s in scene.surfaces])[surface_id]
     return Patches(
         origin=origin,
@@ -287,9 +344,9 @@ def mesh_patches(scene: Scene) -> Patches:
         normal=cross / norm[:, None],
         rho=rho,
         surface_id=surface_id,
-        group_id=np.concatenate(cols["gid"]).astype(np.int32),
-        zone_id=np.concatenate(cols["zid"]).astype(np.int32),
-        grid_ij=np.concatenate(cols["ij"]).astype(np.int32),
+        group_id=group_id.astype(np.int32),
+        zone_id=zone_id.astype(np.int32),
+        grid_ij=out["ij"].astype(np.int32),
         surface_names=tuple(s.name for s in scene.surfaces),
         group_names=groups,
         zone_names=tuple(z.name for z in scene.zones),
