@@ -13,6 +13,7 @@ import json
 import resource
 import sys
 import time
+import warnings
 from collections.abc import Callable, Sequence
 from pathlib import Path
 
@@ -665,11 +666,19 @@ def build_parser() -> argparse.ArgumentParser:
     return ap
 
 
+def _show_warning(message, category, filename, lineno, file=None, line=None) -> None:
+    """Any Python warning (numpy's RuntimeWarning on a bad number) as one line on
+    stderr, never the source line of a library: a number the engine did not catch."""
+    _warn(f"warning: {category.__name__}: {message} (please report it with the input used)")
+
+
 def main(argv: Sequence[str] | None = None) -> int:
     """Run the command line; returns the process exit status."""
     try:
         args = build_parser().parse_args(argv)
-        return args.func(args)
+        with warnings.catch_warnings():
+            warnings.showwarning = _show_warning
+            return args.func(args)
     except (LightInvError, OSError) as exc:
         print(f"lightinv-cli: error: {exc}", file=sys.stderr)
         return 2

@@ -357,3 +357,23 @@ def test_a_failed_final_write_keeps_the_result(capsys, tmp_path, monkeypatch):
     assert f"patch values written to {kept}" in out and "No space left" in err
     with open(kept) as fh:
         assert next(csv.reader(fh)) == CSV_HEADER
+
+
+def test_a_stray_numpy_warning_is_one_line(capsys, monkeypatch):
+    """A number the engine did not catch reaches the user as one line, not numpy's
+    two-line warning with a library's source line."""
+    import numpy as np
+
+    real = cli.cmd_scenes
+
+    def noisy(args):
+        np.log(np.zeros(1))  # RuntimeWarning: divide by zero
+        return real(args)
+
+    monkeypatch.setattr(cli, "cmd_scenes", noisy)
+    parser = cli.build_parser()
+    monkeypatch.setattr(cli, "build_parser", lambda: parser)
+    parser._subparsers._group_actions[0].choices["scenes"].set_defaults(func=noisy)
+    assert cli.main(["scenes"]) == 0
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "RuntimeWarning: divide by zero" in err
