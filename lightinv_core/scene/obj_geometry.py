@@ -75,11 +75,17 @@ def face_geometry(vertices: np.ndarray, faces) -> FaceGeom:
 def has_repeats(pts: np.ndarray) -> np.ndarray:
     """Whether each polygon of ``pts`` (m, k, 3) has two vertices at the same position."""
     m, k, _ = pts.shape
-    if m * k * k > 4_000_000:
+    if k * k > 4_000_000:  # one huge polygon: sort its vertices instead
         return np.array([len(np.unique(p, axis=0)) < k for p in pts])
-    same = (pts[:, :, None, :] == pts[:, None, :, :]).all(axis=3)
-    same[:, np.arange(k), np.arange(k)] = False
-    return same.any(axis=(1, 2))
+    # Pairwise comparison in blocks of about 4 million pairs (bounded memory, linear time).
+    step = max(1, 4_000_000 // (k * k))
+    out = np.empty(m, bool)
+    for a in range(0, m, step):
+        block = pts[a : a + step]
+        same = (block[:, :, None, :] == block[:, None, :, :]).all(axis=3)
+        same[:, np.arange(k), np.arange(k)] = False
+        out[a : a + step] = same.any(axis=(1, 2))
+    return out
 
 
 def triangle_areas(tris: np.ndarray) -> np.ndarray:
