@@ -28,6 +28,7 @@ from lightinv_core.scene.builtin import BUILTIN_SCENES, builtin_scene
 from lightinv_core.scene.loading import load_scene
 from lightinv_core.scene.patches import count_patches, mesh_patches
 from lightinv_core.sources.emission import source_electric_power, source_flux
+from lightinv_core.sources.luminaire_csv import read_luminaire_csv
 from lightinv_core.transport.formfactors import (
     DEFAULT_RAYS,
     MAX_RAYS,
@@ -37,7 +38,16 @@ from lightinv_core.transport.formfactors import (
     lost_fraction,
 )
 from lightinv_core.transport.photometry import group_illuminance, write_patch_csv
-from lightinv_core.transport.solver import energy_balance, group_emission, solve
+from lightinv_core.transport.raycast import RayCaster
+from lightinv_core.transport.scene_light import light_grid, light_scene, write_grid_csv
+from lightinv_core.transport.solver import group_emission
+from lightinv_core.transport.workplane import (
+    DEFAULT_BORDER,
+    DEFAULT_HEIGHT,
+    WorkPlane,
+    grid_statistics,
+    work_plane_grid,
+)
 
 
 def peak_rss_mb() -> float:
@@ -92,6 +102,16 @@ def _positive(text: str) -> float:
         raise argparse.ArgumentTypeError(f"expected a number, got {text!r}") from None
     if not v > 0:
         raise argparse.ArgumentTypeError(f"expected a positive number, got {text!r}")
+    return v
+
+
+def _non_negative(text: str) -> float:
+    try:
+        v = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"expected a number, got {text!r}") from None
+    if not 0 <= v <= 1e4:
+        raise argparse.ArgumentTypeError(f"expected a length from 0 to 10,000 m, got {text!r}")
     return v
 
 
@@ -179,36 +199,75 @@ def cmd_scene_info(args) -> int:
 
 
 def cmd_simulate(args) -> int:
-    """Forward simulation: groups emit given fluxes; report illuminance per group."""
-    if not args.emit:
-        raise LightInvError("nothing emits: give at least one --emit GROUP=LUMENS")
-    if args.patches_csv:
-        check_writable(args.patches_csv)
+    """Forward simulation: groups emit given fluxes, photometric luminaires shine; report
+    illuminance per group and on a work-plane grid."""
+    if not args.emit and not args.luminaires:
+        raise LightInvError(
+            "nothing emits: give --emit GROUP=LUMENS or --luminaires SCHEDULE.csv (or both)"
+        )
+    if args.workplane is None and (args.grid_csv or args.border is not None):
+        raise LightInvError("--grid-csv and --border describe a work plane: add --workplane 0.8")
+    for out in (args.patches_csv, args.grid_csv):
+        if out:
+            check_writable(out)
+    luminaires = read_luminaire_csv(args.luminaires) if args.luminaires else []
     scene = _scene(args)
     p = mesh_patches(scene)
     E = group_emission(p, dict(args.emit))
     method = args.method
+    plain = not luminaires and args.workplane is None
+    if method == "lrr" and not plain:
+        raise LightInvError(
+            "luminaires and work planes are simulated with the reference solver; leave out "
+            "--method lrr (or use --method reference)"
+        )
     if method == "auto":
-        method = "lrr" if p.n > AUTO_LRR_PATCHES else "reference"
+        method = "lrr" if plain and p.n > AUTO_LRR_PATCHES else "reference"
     if method == "lrr":
         return _simulate_lrr(args, scene, p, E)
+    return _simulate_reference(args, scene, p, E, luminaires)
+
+
+def _simulate_reference(args, scene, p, E, luminaires) -> int:
     check_formfactor_memory(p, args.rays)
     t0 = time.perf_counter()
-    F = form_factor_matrix(p, args.rays, seed=args.seed, progress=_progress_printer("form factors"))
+    caster = RayCaster(p)
+    F = form_factor_matrix(
+        p, args.rays, seed=args.seed, progress=_progress_printer("form factors"), caster=caster
+    )
     t1 = time.perf_counter()
-    sol = solve(F, p.rho, E)
+    light = light_scene(p, F, caster, E, luminaires, seed=args.seed)
     t2 = time.perf_counter()
     lost = lost_fraction(F, p)
     warnings = [w for w in [escape_warning(lost)] if w]
+    grid = None
+    if args.workplane is not None:
+        border = DEFAULT_BORDER if args.border is None else args.border
+        plane = WorkPlane(args.workplane, border, args.workplane_group)
+        grid = work_plane_grid(p, caster, plane)
+        grid_light = light_grid(grid, light, caster, luminaires, args.rays, seed=args.seed)
     for w in warnings:
         _warn(w)
-    failed = ""
+    failed = []
     if args.patches_csv:
-        csv_path, failed = _write_or_rescue(
-            "patch values", args.patches_csv, lambda f: write_patch_csv(f, p, sol.E, sol.B, sol.H)
+        csv_path, msg = _write_or_rescue(
+            "patch values", args.patches_csv, lambda f: write_patch_csv(f, p, E, light.B, light.H)
         )
-    stats = group_illuminance(p, sol.H)
-    bal = energy_balance(p, sol)
+        failed.append(msg)
+    if args.grid_csv:
+        grid_path, msg = _write_or_rescue(
+            "grid values",
+            args.grid_csv,
+            lambda f: write_grid_csv(f, grid_light.points, grid_light.lux),
+        )
+        failed.append(msg)
+    stats = group_illuminance(p, light.H)
+    bal = {
+        "emitted_lm": light.emitted_lm,
+        "absorbed_lm": light.absorbed_lm,
+        "lost_lm": light.emitted_lm - light.absorbed_lm,
+        "imbalance": light.imbalance,
+    }
     result = {
         "scene": scene.name,
         "patches": p.n,
@@ -227,17 +286,62 @@ def cmd_simulate(args) -> int:
         f"({args.rays} rays/patch), solve {t2 - t1:.2f} s",
         f"emitted {bal['emitted_lm']:.0f} lm, absorbed {bal['absorbed_lm']:.0f} lm "
         f"(imbalance {100 * bal['imbalance']:+.2f}%)",
-        f"{'group':<14} {'min lux':>10} {'avg lux':>10} {'max lux':>10}",
     ]
+    if luminaires:
+        result["luminaires"] = _luminaire_summary(luminaires)
+        watts = sum(x["watts"] or 0.0 for x in result["luminaires"])
+        lines.append(
+            f"{len(luminaires)} luminaire(s): {sum(x.lumens for x in luminaires):.0f} lm, "
+            f"{watts:.1f} W"
+        )
+    lines.append(f"{'group':<14} {'min lux':>10} {'avg lux':>10} {'max lux':>10}")
     lines += [
         f"{s['group']:<14} {s['min_lux']:10.1f} {s['avg_lux']:10.1f} {s['max_lux']:10.1f}"
         for s in stats
     ]
+    if grid is not None:
+        g = grid_statistics(grid_light.lux)
+        result["grid"] = {
+            **g,
+            "height_m": plane.height,
+            "border_m": plane.border,
+            "group": plane.group,
+            "spacing_m": list(grid.spacing),
+            "rule_spacing_m": grid.rule_spacing,
+            "counts": list(grid.counts),
+            "dropped": grid.dropped,
+        }
+        lines.append(
+            f"work plane {plane.height:g} m over {plane.group!r}, border {plane.border:g} m: "
+            f"{g['points']} points ({grid.spacing[0]:.2f} x {grid.spacing[1]:.2f} m; "
+            f"EN 12464-1 p = {grid.rule_spacing:.2f} m)"
+        )
+        lines.append(
+            f"Em {g['Em']:.1f} lux, Emin {g['Emin']:.1f} lux, Emax {g['Emax']:.1f} lux, "
+            f"U0 {g['U0']:.2f}"
+        )
     if args.patches_csv:
         result["patches_csv"] = str(csv_path)
         lines.append(f"patch values written to {csv_path}")
+    if args.grid_csv:
+        result["grid_csv"] = str(grid_path)
+        lines.append(f"grid values written to {grid_path}")
     _out(args, result, "\n".join(lines))
-    return _failed(failed)
+    return _failed("; ".join(m for m in failed if m))
+
+
+def _luminaire_summary(luminaires) -> list[dict]:
+    return [
+        {
+            "name": x.name,
+            "position_m": x.position.tolist(),
+            "file": x.photometry.source,
+            "lumens": x.lumens,
+            "watts": x.photometry.input_watts,
+            "dimming": x.dimming,
+        }
+        for x in luminaires
+    ]
 
 
 def _failed(message: str) -> int:
@@ -623,6 +727,29 @@ def build_parser() -> argparse.ArgumentParser:
         metavar="GROUP=LUMENS",
         help="a group emitting this luminous flux (lm), uniformly over its area",
     )
+    sim.add_argument(
+        "--luminaires",
+        metavar="CSV",
+        help="photometric luminaires, one per row: name,x,y,z,ies,aim_x,aim_y,aim_z,"
+        "c0_x,c0_y,c0_z[,dimming] (IES/LDT paths relative to the CSV; docs/photometry.md)",
+    )
+    sim.add_argument(
+        "--workplane",
+        type=_non_negative,
+        nargs="?",
+        const=DEFAULT_HEIGHT,
+        metavar="HEIGHT",
+        help=f"an EN 12464-1 grid this high above the floor (m; {DEFAULT_HEIGHT} if no value)",
+    )
+    sim.add_argument(
+        "--border",
+        type=_non_negative,
+        help=f"work plane: band left out along the walls (m, default {DEFAULT_BORDER})",
+    )
+    sim.add_argument(
+        "--workplane-group", default="floor", help="work plane: the floor group it lies over"
+    )
+    sim.add_argument("--grid-csv", metavar="FILE", help="work plane: write x,y,z,lux per point")
     sim.add_argument("--patches-csv", metavar="FILE", help="write one CSV row per patch")
     sim.add_argument(
         "--method",

@@ -122,8 +122,10 @@ def form_factor_matrix(
     workers: int | None = None,
     progress: ProgressFn | None = None,
     cancel: CancelFn | None = None,
+    caster: RayCaster | None = None,
 ) -> sp.csr_matrix:
-    """The sparse form-factor matrix F (n x n, float64, row i = patch i's view).
+    """The sparse form-factor matrix F (n x n, float64, row i = patch i's view);
+    ``caster`` reuses a RayCaster of the same patches.
 
     Memory grows with the number of distinct (i, j) pairs hit, at most
     n * rays_per_patch; use the low-rank operator for large scenes instead of F.
@@ -132,7 +134,13 @@ def form_factor_matrix(
     index = np.int32 if n * _check_rays(rays_per_patch) < 2**31 - 1 else np.int64
     counts_out, cols_out, vals_out = [], [], []
     for batch in trace_rows(
-        patches, rays_per_patch, seed, workers=workers, progress=progress, cancel=cancel
+        patches,
+        rays_per_patch,
+        seed,
+        workers=workers,
+        progress=progress,
+        cancel=cancel,
+        caster=caster,
     ):
         local = np.repeat(np.arange(len(batch.rows)), batch.hits.shape[1])
         flat = batch.hits.ravel()

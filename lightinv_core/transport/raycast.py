@@ -65,8 +65,19 @@ class RayCaster:
         front = np.einsum("ij,ij->i", d, self._normal[np.maximum(hit, 0)]) < 0.0
         return np.where(front, hit, -1)
 
+    def occluded(
+        self, origins: np.ndarray, directions: np.ndarray, lengths: np.ndarray
+    ) -> np.ndarray:
+        """Whether anything (either face of any patch) lies on each segment from
+        ``origins`` (world coordinates, m) along unit ``directions`` for ``lengths`` m:
+        a shadow ray's answer."""
+        o = np.ascontiguousarray(np.asarray(origins, dtype=np.float64) - self.center, np.float32)
+        d = np.ascontiguousarray(directions, dtype=np.float32)
+        t = np.ascontiguousarray(lengths, dtype=np.float32)
+        return self._scene.run(o, d, dists=t, query="OCCLUDED") == 0
 
-def _stratified_unit_square(
+
+def stratified_unit_square(
     rng: np.random.Generator, rows: int, count: int, shuffle: bool
 ) -> np.ndarray:
     """(rows, count, 2) points in [0, 1)², one per stratum, optionally shuffled per row.
@@ -89,6 +100,21 @@ def _stratified_unit_square(
     return np.take_along_axis(pts, order[..., None], axis=1)
 
 
+def patch_points(
+    patches: Patches, rows: np.ndarray, count: int, rng: np.random.Generator
+) -> np.ndarray:
+    """(len(rows), count, 3) points spread uniformly and stratified over each patch of
+    ``rows`` (world coordinates, m): for sampling what arrives on a patch."""
+    pos = stratified_unit_square(rng, len(rows), count, shuffle=False)
+    s, t = pos[..., 0], pos[..., 1]
+    tri = patches.is_triangle[rows][:, None]
+    fold = tri & (s + t > 1.0)
+    s = np.where(fold, 1.0 - s, s)
+    t = np.where(fold, 1.0 - t, t)
+    e1, e2 = patches.edge1[rows], patches.edge2[rows]
+    return patches.origin[rows][:, None] + s[..., None] * e1[:, None] + t[..., None] * e2[:, None]
+
+
 def sample_rays(
     patches: Patches, rows: np.ndarray, count: int, rng: np.random.Generator, offset: float
 ) -> tuple[np.ndarray, np.ndarray]:
@@ -104,18 +130,11 @@ def sample_rays(
     them to its local frame), directions float32.
     """
     b = len(rows)
-    pos = _stratified_unit_square(rng, b, count, shuffle=False)
-    s, t = pos[..., 0], pos[..., 1]
-    tri = patches.is_triangle[rows][:, None]
-    fold = tri & (s + t > 1.0)
-    s = np.where(fold, 1.0 - s, s)
-    t = np.where(fold, 1.0 - t, t)
-    e1, e2 = patches.edge1[rows], patches.edge2[rows]
-    n = patches.normal[rows]
-    p = patches.origin[rows][:, None] + s[..., None] * e1[:, None] + t[..., None] * e2[:, None]
+    p = patch_points(patches, rows, count, rng)
+    e1, n = patches.edge1[rows], patches.normal[rows]
     p += offset * n[:, None]
 
-    dirs = _stratified_unit_square(rng, b, count, shuffle=True)
+    dirs = stratified_unit_square(rng, b, count, shuffle=True)
     r = np.sqrt(dirs[..., 0])
     phi = 2.0 * np.pi * dirs[..., 1]
     cz = np.sqrt(np.maximum(0.0, 1.0 - dirs[..., 0]))
