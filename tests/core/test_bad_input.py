@@ -17,7 +17,7 @@ import numpy as np
 import pytest
 
 from lightinv_core.design.model import Design, DesignError, Goal, Intention, Rule, Source
-from lightinv_core.errors import LightInvError, ObjImportError, SceneError
+from lightinv_core.errors import LightInvError, ObjImportError, PhotometryError, SceneError
 from lightinv_core.operator.cache import get_operator
 from lightinv_core.operator.settings import OperatorSettings
 from lightinv_core.optimize.problem import DesignProblem
@@ -567,6 +567,64 @@ def _(d):
     finally:
         del os.environ["LIGHTINV_CACHE_DIR"]
     return Warned(got[0]) if got else None
+
+
+LUMINAIRE_HEADER = "name,x,y,z,ies,aim_x,aim_y,aim_z,c0_x,c0_y,c0_z\n"
+
+
+def schedule_error(d: Path, rows: str) -> BaseException | None:
+    from lightinv_core.luminaires.analytic import downlight
+    from lightinv_core.luminaires.formats import write_photometry
+    from lightinv_core.sources.luminaire_csv import read_luminaire_csv
+
+    write_photometry(downlight(2000.0, watts=20.0), d / "down.ldt")
+    (d / "lums.csv").write_text(rows)
+    return raised(lambda: read_luminaire_csv(d / "lums.csv"))
+
+
+@case(
+    "schedule-missing-column",
+    "luminaire schedule",
+    "a schedule CSV without the aim and c0 columns",
+    PhotometryError,
+    "lums.csv line 1: missing column(s) aim_x",
+)
+def _(d):
+    return schedule_error(d, "name,x,y,z,ies\nD1,1,1,2.9,down.ldt\n")
+
+
+@case(
+    "schedule-bad-number",
+    "luminaire schedule",
+    "a position written with a word (`x = left`)",
+    PhotometryError,
+    "lums.csv line 2: x 'left' is not a number",
+)
+def _(d):
+    return schedule_error(d, LUMINAIRE_HEADER + "D1,left,1,2.9,down.ldt,0,0,-1,1,0,0\n")
+
+
+@case(
+    "schedule-c0-along-aim",
+    "luminaire schedule",
+    "a C0 direction parallel to the aim (`c0 = 0,0,1`)",
+    PhotometryError,
+    "lums.csv line 2: luminaire 'D1': c0 [0.0, 0.0, 1.0] is parallel to the aim",
+)
+def _(d):
+    return schedule_error(d, LUMINAIRE_HEADER + "D1,1,1,2.9,down.ldt,0,0,-1,0,0,1\n")
+
+
+@case(
+    "schedule-missing-file",
+    "luminaire schedule",
+    "a photometric file that does not exist",
+    PhotometryError,
+    "lums.csv line 2:",
+    "nowhere.ies",
+)
+def _(d):
+    return schedule_error(d, LUMINAIRE_HEADER + "D1,1,1,2.9,nowhere.ies,0,0,-1,1,0,0\n")
 
 
 # --- scenes and drawn zones ---------------------------------------------------------------
@@ -1156,17 +1214,43 @@ FOOTER = (
 )
 
 
-def render(outcomes) -> str:
+def photometry_rows(folder: Path) -> str:
+    """The photometric-file section: every case of ``BAD_PHOTOMETRY_CASES``
+    (tests/core/test_photometry.py) read once, its message as the user sees it."""
+    from lightinv_core.luminaires import read_photometry
+    from tests.core.test_photometry import BAD_PHOTOMETRY_CASES
+
+    rows = []
+    for description, text, _ in BAD_PHOTOMETRY_CASES:
+        kind, _, what = description.partition(": ")
+        path = folder / ("case.ldt" if kind == "LDT" else "case.ies")
+        path.write_bytes(text.encode("utf-8"))
+        got = raised(lambda path=path: read_photometry(path))
+        message = str(got).replace(str(folder), "<dir>")
+        rows.append(f"| {kind} | {what} | `{type(got).__name__}` | {code(message)} |\n")
+    return (
+        "\n## Photometric files\n\n"
+        "IES LM-63 and EULUMDAT files (`lightinv_core/luminaires`, docs/photometry.md), from"
+        " `BAD_PHOTOMETRY_CASES` in `tests/core/test_photometry.py`, which also fuzzes"
+        " mutated files (400 per run; 20,000 tried once): only `PhotometryError` or a valid"
+        " table, never another exception. A luminaire schedule naming a bad file gives the"
+        " same message after the schedule's own file and line.\n\n"
+        "| format | input tried | raises | what the user sees |\n|---|---|---|---|\n"
+        + "".join(rows)
+    )
+
+
+def render(outcomes, photometry: str = "") -> str:
     rows = []
     for c in CASES:
         result, text = outcomes[c.id]
         kind = "warning" if c.expect == WARNING else f"`{type(result).__name__}`"
         rows.append(f"| {c.area} | {c.tried} | {kind} | {code(text)} |\n")
-    return HEADER + "".join(rows) + FOOTER
+    return HEADER + "".join(rows) + photometry + FOOTER
 
 
-def test_docs_table_matches_the_messages(outcomes):
-    text = render(outcomes)
+def test_docs_table_matches_the_messages(outcomes, tmp_path):
+    text = render(outcomes, photometry_rows(tmp_path))
     if os.environ.get("LIGHTINV_WRITE_DOCS") == "1":
         DOC.write_text(text, encoding="utf-8")
         return
