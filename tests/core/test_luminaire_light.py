@@ -231,3 +231,28 @@ def test_cli_refuses_lrr_with_luminaires_and_a_border_without_a_plane(tmp_path, 
     assert "nothing emits" in capsys.readouterr().err
     with pytest.raises(LightInvError, match="parallel to the aim"):
         PlacedLuminaire("L", (0, 0, 1), isotropic(1.0), DOWN, (0, 0, 3))
+
+
+def test_a_linear_luminaire_is_split_along_its_length():
+    """A 1.2 m batwing as 6 point sources, against 120 (converged) and against one."""
+    import dataclasses
+
+    wing = batwing_linear(4000.0, watts=32.0)  # opening 0.15 x 1.2 m
+    point = dataclasses.replace(wing, opening=(0.0, 0.0, 0.0))
+    lum = PlacedLuminaire("W", (0, 0, 0), wing, DOWN, (1, 0, 0))
+    assert len(lum.segments) == 6
+    fine = [
+        PlacedLuminaire(f"s{k}", (x, 0, 0), point, DOWN, (1, 0, 0), dimming=1 / 120)
+        for k, x in enumerate((np.arange(120) + 0.5) / 120 * 1.2 - 0.6)
+    ]
+    one = PlacedLuminaire("P", (0, 0, 0), point, DOWN, (1, 0, 0))
+    for depth in (1.0, 2.0):
+        pts = np.array([[x, y, -depth] for x in (-0.6, 0.0, 0.9) for y in (0.0, 0.5)])
+        up = np.tile([0.0, 0.0, 1.0], (len(pts), 1))
+        ref = sum(f.illuminance(pts, up, None) for f in fine)
+        np.testing.assert_allclose(lum.illuminance(pts, up, None), ref, rtol=0.01)
+    near = np.array([[0.6, 0.0, -0.5]])
+    up = np.array([[0.0, 0.0, 1.0]])
+    ref = sum(f.illuminance(near, up, None) for f in fine)
+    # One point source at the centre is far off near the end of the tube.
+    assert abs(one.illuminance(near, up, None)[0] / ref[0] - 1) > 0.1
