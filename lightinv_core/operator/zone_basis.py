@@ -72,8 +72,20 @@ def exact_bounces(
     and the last bounce, whose reflection the low-rank remainder carries on.
     ``cancel()`` is polled during each bounce; True raises ``CancelledError``."""
     F32 = F.astype(np.float32)
+    return more_bounces(F32, rho, F32[:, zone_patches].toarray(), bounces, cancel)
+
+
+def more_bounces(
+    F32: sp.csr_matrix,
+    rho: np.ndarray,
+    first: np.ndarray,
+    bounces: int = EXACT_BOUNCES,
+    cancel: Callable[[], bool] | None = None,
+) -> tuple[np.ndarray, np.ndarray]:
+    """(first + D2 + ... + D_bounces, D_bounces) from the first bounce's illuminance
+    ``first`` (n, m) float32, with D(b+1) = F R D(b) on float32 ``F32``."""
     r = rho.astype(np.float32)[:, None]
-    bounce = F32[:, zone_patches].toarray()
+    bounce = first
     total = bounce.copy()
     for _ in range(bounces - 1):
         bounce = sparse_dense_product(F32, r * bounce, cancel=cancel)
