@@ -17,6 +17,8 @@ import warnings
 from collections.abc import Callable, Sequence
 from pathlib import Path
 
+import numpy as np
+
 from lightinv_core.atomic import check_writable, rescue_paths
 from lightinv_core.errors import CancelledError, LightInvError
 from lightinv_core.kinds import SourceKind
@@ -37,6 +39,7 @@ from lightinv_core.transport.formfactors import (
     form_factor_matrix,
     lost_fraction,
 )
+from lightinv_core.transport.glazing import glazing_emission
 from lightinv_core.transport.photometry import group_illuminance, write_patch_csv
 from lightinv_core.transport.raycast import RayCaster
 from lightinv_core.transport.scene_light import light_grid, light_scene, write_grid_csv
@@ -113,6 +116,39 @@ def _non_negative(text: str) -> float:
     if not 0 <= v <= 1e4:
         raise argparse.ArgumentTypeError(f"expected a length from 0 to 10,000 m, got {text!r}")
     return v
+
+
+def _lux(text: str) -> float:
+    try:
+        v = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"expected a number of lux, got {text!r}") from None
+    if not 0 < v <= 2e5:
+        raise argparse.ArgumentTypeError(f"expected from 0 to 200,000 lux, got {text!r}")
+    return v
+
+
+def _fraction(text: str) -> float:
+    try:
+        v = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"expected a number from 0 to 1, got {text!r}") from None
+    if not 0 <= v < 1:
+        raise argparse.ArgumentTypeError(f"expected a number from 0 to below 1, got {text!r}")
+    return v
+
+
+def _transmittance(text: str) -> tuple[str, float]:
+    group, sep, value = text.partition("=")
+    try:
+        t = float(value)
+        if not sep or not group or not 0 <= t <= 1:
+            raise ValueError
+    except ValueError:
+        raise argparse.ArgumentTypeError(
+            f"expected GROUP=TRANSMITTANCE with a transmittance from 0 to 1, got {text!r}"
+        ) from None
+    return group, t
 
 
 def _out(args, payload: dict, text: str) -> None:
@@ -201,9 +237,15 @@ def cmd_scene_info(args) -> int:
 def cmd_simulate(args) -> int:
     """Forward simulation: groups emit given fluxes, photometric luminaires shine; report
     illuminance per group and on a work-plane grid."""
-    if not args.emit and not args.luminaires:
+    if not args.emit and not args.luminaires and not args.sky:
         raise LightInvError(
-            "nothing emits: give --emit GROUP=LUMENS or --luminaires SCHEDULE.csv (or both)"
+            "nothing emits: give --emit GROUP=LUMENS, --luminaires SCHEDULE.csv or "
+            "--sky cie-overcast with --glazing GROUP=TRANSMITTANCE"
+        )
+    if bool(args.sky) != bool(args.glazing):
+        raise LightInvError(
+            "a sky lights the room through glazing: give both --sky cie-overcast and "
+            "--glazing GROUP=TRANSMITTANCE (the glazing's patches emit what they let in)"
         )
     if args.workplane is None and (args.grid_csv or args.border is not None):
         raise LightInvError("--grid-csv and --border describe a work plane: add --workplane 0.8")
@@ -215,11 +257,11 @@ def cmd_simulate(args) -> int:
     p = mesh_patches(scene)
     E = group_emission(p, dict(args.emit))
     method = args.method
-    plain = not luminaires and args.workplane is None
+    plain = not luminaires and args.workplane is None and not args.sky
     if method == "lrr" and not plain:
         raise LightInvError(
-            "luminaires and work planes are simulated with the reference solver; leave out "
-            "--method lrr (or use --method reference)"
+            "luminaires, skies and work planes are simulated with the reference solver; "
+            "leave out --method lrr (or use --method reference)"
         )
     if method == "auto":
         method = "lrr" if plain and p.n > AUTO_LRR_PATCHES else "reference"
@@ -236,7 +278,15 @@ def _simulate_reference(args, scene, p, E, luminaires) -> int:
         p, args.rays, seed=args.seed, progress=_progress_printer("form factors"), caster=caster
     )
     t1 = time.perf_counter()
-    light = light_scene(p, F, caster, E, luminaires, seed=args.seed)
+    lit = p
+    if args.sky:
+        glass, lit = glazing_emission(
+            p, dict(args.glazing), args.exterior_lux, args.ground_reflectance
+        )
+        E = E + glass
+    light = light_scene(lit, F, caster, E, luminaires, seed=args.seed)
+    # Daylight factor (%): illuminance over the unobstructed exterior horizontal one.
+    df = (lambda lux: 100.0 * lux / args.exterior_lux) if args.sky and args.exterior_lux else None
     t2 = time.perf_counter()
     lost = lost_fraction(F, p)
     warnings = [w for w in [escape_warning(lost)] if w]
@@ -250,15 +300,20 @@ def _simulate_reference(args, scene, p, E, luminaires) -> int:
         _warn(w)
     failed = []
     if args.patches_csv:
+        patch_df = df(light.H) if df else None
         csv_path, msg = _write_or_rescue(
-            "patch values", args.patches_csv, lambda f: write_patch_csv(f, p, E, light.B, light.H)
+            "patch values",
+            args.patches_csv,
+            lambda f: write_patch_csv(f, lit, E, light.B, light.H, patch_df),
         )
         failed.append(msg)
     if args.grid_csv:
         grid_path, msg = _write_or_rescue(
             "grid values",
             args.grid_csv,
-            lambda f: write_grid_csv(f, grid_light.points, grid_light.lux),
+            lambda f: write_grid_csv(
+                f, grid_light.points, grid_light.lux, df(grid_light.lux) if df else None
+            ),
         )
         failed.append(msg)
     stats = group_illuminance(p, light.H)
@@ -320,6 +375,26 @@ def _simulate_reference(args, scene, p, E, luminaires) -> int:
             f"Em {g['Em']:.1f} lux, Emin {g['Emin']:.1f} lux, Emax {g['Emax']:.1f} lux, "
             f"U0 {g['U0']:.2f}"
         )
+        if df:
+            d = df(grid_light.lux)
+            result["grid"]["df"] = {
+                "mean": float(d.mean()),
+                "median": float(np.median(d)),
+                "min": float(d.min()),
+            }
+            lines.append(
+                f"daylight factor (CIE overcast, {args.exterior_lux:g} lux outside): mean "
+                f"{d.mean():.2f}%, median {np.median(d):.2f}%, min {d.min():.2f}%"
+            )
+    if df:
+        result["sky"] = {
+            "model": args.sky,
+            "exterior_lux": args.exterior_lux,
+            "ground_reflectance": args.ground_reflectance,
+            "glazing": dict(args.glazing),
+        }
+        for s in stats:
+            s["avg_df"] = 100.0 * s["avg_lux"] / args.exterior_lux
     if args.patches_csv:
         result["patches_csv"] = str(csv_path)
         lines.append(f"patch values written to {csv_path}")
@@ -750,6 +825,31 @@ def build_parser() -> argparse.ArgumentParser:
         "--workplane-group", default="floor", help="work plane: the floor group it lies over"
     )
     sim.add_argument("--grid-csv", metavar="FILE", help="work plane: write x,y,z,lux per point")
+    sim.add_argument(
+        "--sky",
+        choices=("cie-overcast",),
+        help="light the glazing groups with this sky (docs/daylight.md); adds df (%%) outputs",
+    )
+    sim.add_argument(
+        "--exterior-lux",
+        type=_lux,
+        default=10000.0,
+        help="unobstructed horizontal illuminance outside (lux, default 10000)",
+    )
+    sim.add_argument(
+        "--glazing",
+        type=_transmittance,
+        action="append",
+        default=[],
+        metavar="GROUP=TRANSMITTANCE",
+        help="a group of diffusing glazing and its visible transmittance (0 to 1)",
+    )
+    sim.add_argument(
+        "--ground-reflectance",
+        type=_fraction,
+        default=0.2,
+        help="reflectance of the ground outside (default 0.2)",
+    )
     sim.add_argument("--patches-csv", metavar="FILE", help="write one CSV row per patch")
     sim.add_argument(
         "--method",

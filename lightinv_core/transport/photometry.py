@@ -37,12 +37,18 @@ CSV_COLUMNS = ("id", "group", "cx", "cy", "cz", "nx", "ny", "nz", "area", "rho",
 
 
 def write_patch_csv(
-    path: str | Path, patches: Patches, E: np.ndarray, B: np.ndarray, H: np.ndarray
+    path: str | Path,
+    patches: Patches,
+    E: np.ndarray,
+    B: np.ndarray,
+    H: np.ndarray,
+    df: np.ndarray | None = None,
 ) -> None:
-    """One row per patch (columns ``CSV_COLUMNS``; E and B in lm/m², lux = illuminance)."""
+    """One row per patch (columns ``CSV_COLUMNS``; E and B in lm/m², lux = illuminance),
+    and a last column ``df`` (daylight factor, %) when given."""
     with atomic_writer(path, "w", newline="") as fh:
         w = csv.writer(fh)
-        w.writerow(CSV_COLUMNS)
+        w.writerow(CSV_COLUMNS + (("df",) if df is not None else ()))
         names = patches.group_names
         for i in range(patches.n):
             c, nrm = patches.centroid[i], patches.normal[i]
@@ -57,5 +63,6 @@ def write_patch_csv(
                     f"{E[i]:.6g}",
                     f"{B[i]:.6g}",
                     f"{H[i]:.6g}",
+                    *((f"{df[i]:.6g}",) if df is not None else ()),
                 ]
             )

@@ -98,9 +98,10 @@ def light_grid(
     return GridLight(grid.points, direct, R @ light.B)
 
 
-def write_grid_csv(path, points: np.ndarray, lux: np.ndarray) -> None:
-    """One row per grid point: ``x,y,z`` (m) and ``lux``."""
+def write_grid_csv(path, points: np.ndarray, lux: np.ndarray, df: np.ndarray | None = None) -> None:
+    """One row per grid point: ``x,y,z`` (m) and ``lux``, and ``df`` (%) when given."""
     with atomic_writer(path, "w", newline="") as fh:
-        fh.write("x,y,z,lux\n")
-        for (x, y, z), e in zip(points, lux, strict=True):
-            fh.write(f"{x:.6g},{y:.6g},{z:.6g},{e:.6g}\n")
+        fh.write("x,y,z,lux" + (",df" if df is not None else "") + "\n")
+        for k, ((x, y, z), e) in enumerate(zip(points, lux, strict=True)):
+            extra = f",{df[k]:.6g}" if df is not None else ""
+            fh.write(f"{x:.6g},{y:.6g},{z:.6g},{e:.6g}{extra}\n")

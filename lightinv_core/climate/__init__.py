@@ -1,0 +1,1 @@
+"""Skies and climate: the exterior light that glazing lets in (docs/daylight.md)."""
