@@ -20,6 +20,8 @@ from pathlib import Path
 import numpy as np
 
 from lightinv_core.atomic import check_writable, rescue_paths
+from lightinv_core.climate.metrics import daylight_metrics, dimming_energy
+from lightinv_core.climate.weather import read_weather
 from lightinv_core.errors import CancelledError, LightInvError
 from lightinv_core.kinds import SourceKind
 from lightinv_core.light.model import LightModel
@@ -31,6 +33,7 @@ from lightinv_core.scene.loading import load_scene
 from lightinv_core.scene.patches import count_patches, mesh_patches
 from lightinv_core.sources.emission import source_electric_power, source_flux
 from lightinv_core.sources.luminaire_csv import read_luminaire_csv
+from lightinv_core.transport.annual import annual_daylight
 from lightinv_core.transport.formfactors import (
     DEFAULT_RAYS,
     MAX_RAYS,
@@ -42,6 +45,7 @@ from lightinv_core.transport.formfactors import (
 from lightinv_core.transport.glazing import glazing_emission
 from lightinv_core.transport.photometry import group_illuminance, write_patch_csv
 from lightinv_core.transport.raycast import RayCaster
+from lightinv_core.transport.receivers import receiver_factors
 from lightinv_core.transport.scene_light import light_grid, light_scene, write_grid_csv
 from lightinv_core.transport.solver import group_emission
 from lightinv_core.transport.workplane import (
@@ -136,6 +140,29 @@ def _fraction(text: str) -> float:
     if not 0 <= v < 1:
         raise argparse.ArgumentTypeError(f"expected a number from 0 to below 1, got {text!r}")
     return v
+
+
+def _angle(text: str) -> float:
+    try:
+        v = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"expected an angle in degrees, got {text!r}") from None
+    if not -360 <= v <= 360:
+        raise argparse.ArgumentTypeError(f"expected an angle from -360 to 360, got {text!r}")
+    return v
+
+
+def _hours(text: str) -> tuple[float, float]:
+    start, sep, end = text.partition("-")
+    try:
+        a, b = float(start), float(end)
+        if not sep or not 0 <= a < b <= 24:
+            raise ValueError
+    except ValueError:
+        raise argparse.ArgumentTypeError(
+            f"expected START-END hours with 0 <= START < END <= 24 (e.g. 8-18), got {text!r}"
+        ) from None
+    return a, b
 
 
 def _transmittance(text: str) -> tuple[str, float]:
@@ -237,16 +264,20 @@ def cmd_scene_info(args) -> int:
 def cmd_simulate(args) -> int:
     """Forward simulation: groups emit given fluxes, photometric luminaires shine; report
     illuminance per group and on a work-plane grid."""
-    if not args.emit and not args.luminaires and not args.sky:
+    if not args.emit and not args.luminaires and not args.sky and args.weather is None:
         raise LightInvError(
-            "nothing emits: give --emit GROUP=LUMENS, --luminaires SCHEDULE.csv or "
-            "--sky cie-overcast with --glazing GROUP=TRANSMITTANCE"
+            "nothing emits: give --emit GROUP=LUMENS, --luminaires SCHEDULE.csv, or "
+            "--sky cie-overcast or --weather FILE with --glazing GROUP=TRANSMITTANCE"
         )
-    if bool(args.sky) != bool(args.glazing):
+    daylit = bool(args.sky) or args.weather is not None
+    if daylit != bool(args.glazing):
         raise LightInvError(
-            "a sky lights the room through glazing: give both --sky cie-overcast and "
-            "--glazing GROUP=TRANSMITTANCE (the glazing's patches emit what they let in)"
+            "a sky lights the room through glazing: give both --sky cie-overcast (or "
+            "--weather FILE) and --glazing GROUP=TRANSMITTANCE (the glazing's patches emit "
+            "what they let in)"
         )
+    if args.weather is not None and args.workplane is None:
+        raise LightInvError("annual daylight is measured on a work plane: add --workplane 0.8")
     if args.workplane is None and (args.grid_csv or args.border is not None):
         raise LightInvError("--grid-csv and --border describe a work plane: add --workplane 0.8")
     for out in (args.patches_csv, args.grid_csv):
@@ -257,7 +288,7 @@ def cmd_simulate(args) -> int:
     p = mesh_patches(scene)
     E = group_emission(p, dict(args.emit))
     method = args.method
-    plain = not luminaires and args.workplane is None and not args.sky
+    plain = not luminaires and args.workplane is None and not daylit
     if method == "lrr" and not plain:
         raise LightInvError(
             "luminaires, skies and work planes are simulated with the reference solver; "
@@ -279,9 +310,9 @@ def _simulate_reference(args, scene, p, E, luminaires) -> int:
     )
     t1 = time.perf_counter()
     lit = p
-    if args.sky:
+    if args.glazing:  # black inside; it emits only under a design sky
         glass, lit = glazing_emission(
-            p, dict(args.glazing), args.exterior_lux, args.ground_reflectance
+            p, dict(args.glazing), args.exterior_lux if args.sky else 0.0, args.ground_reflectance
         )
         E = E + glass
     light = light_scene(lit, F, caster, E, luminaires, seed=args.seed)
@@ -295,7 +326,12 @@ def _simulate_reference(args, scene, p, E, luminaires) -> int:
         border = DEFAULT_BORDER if args.border is None else args.border
         plane = WorkPlane(args.workplane, border, args.workplane_group)
         grid = work_plane_grid(p, caster, plane)
-        grid_light = light_grid(grid, light, caster, luminaires, args.rays, seed=args.seed)
+        factors = receiver_factors(grid.points, grid.normals, caster, p.n, args.rays, args.seed)
+        grid_light = light_grid(grid, light, caster, luminaires, args.rays, factors=factors)
+        columns = {"df": df(grid_light.lux)} if df else {}
+        if args.weather is not None:
+            annual = _annual(args, lit, F, caster, grid, factors, luminaires, plane)
+            columns.update(annual.pop("columns"))
     for w in warnings:
         _warn(w)
     failed = []
@@ -311,9 +347,7 @@ def _simulate_reference(args, scene, p, E, luminaires) -> int:
         grid_path, msg = _write_or_rescue(
             "grid values",
             args.grid_csv,
-            lambda f: write_grid_csv(
-                f, grid_light.points, grid_light.lux, df(grid_light.lux) if df else None
-            ),
+            lambda f: write_grid_csv(f, grid_light.points, grid_light.lux, columns),
         )
         failed.append(msg)
     stats = group_illuminance(p, light.H)
@@ -386,6 +420,9 @@ def _simulate_reference(args, scene, p, E, luminaires) -> int:
                 f"daylight factor (CIE overcast, {args.exterior_lux:g} lux outside): mean "
                 f"{d.mean():.2f}%, median {np.median(d):.2f}%, min {d.min():.2f}%"
             )
+    if args.weather is not None:
+        result["annual"] = annual
+        lines += _annual_lines(annual)
     if df:
         result["sky"] = {
             "model": args.sky,
@@ -403,6 +440,95 @@ def _simulate_reference(args, scene, p, E, luminaires) -> int:
         lines.append(f"grid values written to {grid_path}")
     _out(args, result, "\n".join(lines))
     return _failed("; ".join(m for m in failed if m))
+
+
+def _annual(args, lit, F, caster, grid, factors, luminaires, plane) -> dict:
+    """Annual daylight metrics on the grid (and dimming energy with luminaires)."""
+    weather = read_weather(args.weather)
+    year = annual_daylight(
+        lit,
+        F,
+        caster,
+        dict(args.glazing),
+        weather,
+        grid,
+        factors,
+        args.ground_reflectance,
+        args.north,
+    )
+    start, end = args.occupancy
+    occupied = weather.occupied(start, end)
+    lux = year.lux[:, occupied]
+    metrics = daylight_metrics(lux)
+    out = {
+        "weather": {
+            "site": weather.name,
+            "latitude": weather.latitude,
+            "longitude": weather.longitude,
+            "file": weather.source,
+        },
+        "occupied_hours": int(occupied.sum()),
+        "occupancy": [start, end],
+        "north_deg": args.north,
+        "panes": [
+            {"group": q.group, "outward": q.outward.round(4).tolist(), "patches": len(q.idx)}
+            for q in year.panes
+        ],
+        **metrics.summary(),
+        "columns": {
+            "da300": metrics.da,
+            "udi_n": metrics.udi[:, 0],
+            "udi_s": metrics.udi[:, 1],
+            "udi_a": metrics.udi[:, 2],
+            "udi_x": metrics.udi[:, 3],
+        },
+    }
+    if luminaires:
+        electric = light_scene(lit, F, caster, np.zeros(lit.n), luminaires, seed=args.seed)
+        em_elec = float(
+            light_grid(grid, electric, caster, luminaires, args.rays, factors=factors).lux.mean()
+        )
+        watts = sum((x.photometry.input_watts or 0.0) * x.dimming for x in luminaires)
+        floor = float(lit.area[lit.group_index(plane.group)].sum())
+        dim = dimming_energy(
+            lux.mean(axis=0),
+            em_elec,
+            args.target_lux,
+            watts,
+            floor,
+            args.min_dimming,
+            args.standby_w,
+        )
+        out["dimming"] = {
+            "target_lux": args.target_lux,
+            "electric_em_lux": em_elec,
+            "installed_w": watts,
+            "min_level": args.min_dimming,
+            "standby_w": args.standby_w,
+            "mean_level": float(dim.levels.mean()),
+            "energy_kwh": dim.energy_kwh,
+            "undimmed_kwh": dim.full_power_kwh,
+            "leni_kwh_m2": dim.leni,
+            "floor_m2": floor,
+        }
+    return out
+
+
+def _annual_lines(a: dict) -> list[str]:
+    lines = [
+        f"annual daylight ({a['weather']['site']}, {a['occupied_hours']} occupied hours, "
+        f"weekdays {a['occupancy'][0]:g}-{a['occupancy'][1]:g} h): DA300 mean "
+        f"{100 * a['da300_mean']:.0f}%, sDA300/50% {100 * a['sda300_50']:.0f}%",
+        f"UDI <100 {100 * a['udi_n']:.0f}%, 100-300 {100 * a['udi_s']:.0f}%, 300-3000 "
+        f"{100 * a['udi_a']:.0f}%, >3000 {100 * a['udi_x']:.0f}% of occupied hours",
+    ]
+    if "dimming" in a:
+        d = a["dimming"]
+        lines.append(
+            f"daylight-linked dimming to {d['target_lux']:g} lux: {d['energy_kwh']:.0f} kWh a year "
+            f"(undimmed {d['undimmed_kwh']:.0f} kWh), LENI {d['leni_kwh_m2']:.2f} kWh/m² a"
+        )
+    return lines
 
 
 def _luminaire_summary(luminaires) -> list[dict]:
@@ -843,6 +969,43 @@ def build_parser() -> argparse.ArgumentParser:
         default=[],
         metavar="GROUP=TRANSMITTANCE",
         help="a group of diffusing glazing and its visible transmittance (0 to 1)",
+    )
+    sim.add_argument(
+        "--weather",
+        metavar="FILE",
+        help="EPW or TMY3 weather file ('builtin': Greensboro NC) for annual daylight on the "
+        "work plane through the glazing (DA300, sDA, UDI; dimming energy with luminaires)",
+    )
+    sim.add_argument(
+        "--north",
+        type=_angle,
+        default=0.0,
+        help="compass bearing of the scene's +y axis (deg; 0: +y is north, 90: +y is east)",
+    )
+    sim.add_argument(
+        "--occupancy",
+        type=_hours,
+        default=(8.0, 18.0),
+        metavar="START-END",
+        help="occupied hours on weekdays, local time (default 8-18)",
+    )
+    sim.add_argument(
+        "--target-lux",
+        type=_lux,
+        default=500.0,
+        help="dimming: the grid's mean illuminance to keep (lux, default 500)",
+    )
+    sim.add_argument(
+        "--min-dimming",
+        type=_fraction,
+        default=0.1,
+        help="dimming: lowest level of the luminaires (default 0.1)",
+    )
+    sim.add_argument(
+        "--standby-w",
+        type=_non_negative,
+        default=0.0,
+        help="dimming: standby power of the controls, drawn all year (W, default 0)",
     )
     sim.add_argument(
         "--ground-reflectance",

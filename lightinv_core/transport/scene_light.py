@@ -91,17 +91,25 @@ def light_grid(
     luminaires: list[PlacedLuminaire],
     rays: int,
     seed: int = 0,
+    factors: sp.spmatrix | None = None,
 ) -> GridLight:
-    """The grid's illuminance in the solved scene ``light``."""
-    R = receiver_factors(grid.points, grid.normals, caster, len(light.B), rays, seed)
+    """The grid's illuminance in the solved scene ``light``; ``factors`` reuses the
+    grid's traced form factors (``receiver_factors``) from an earlier call."""
+    R = factors
+    if R is None:
+        R = receiver_factors(grid.points, grid.normals, caster, len(light.B), rays, seed)
     direct = direct_at_points(grid.points, grid.normals, luminaires, caster)
     return GridLight(grid.points, direct, R @ light.B)
 
 
-def write_grid_csv(path, points: np.ndarray, lux: np.ndarray, df: np.ndarray | None = None) -> None:
-    """One row per grid point: ``x,y,z`` (m) and ``lux``, and ``df`` (%) when given."""
+def write_grid_csv(
+    path, points: np.ndarray, lux: np.ndarray, columns: dict[str, np.ndarray] | None = None
+) -> None:
+    """One row per grid point: ``x,y,z`` (m), ``lux``, then any further ``columns``
+    (name -> one value per point, e.g. ``df`` in %)."""
+    extra = columns or {}
     with atomic_writer(path, "w", newline="") as fh:
-        fh.write("x,y,z,lux" + (",df" if df is not None else "") + "\n")
+        fh.write(",".join(["x", "y", "z", "lux", *extra]) + "\n")
         for k, ((x, y, z), e) in enumerate(zip(points, lux, strict=True)):
-            extra = f",{df[k]:.6g}" if df is not None else ""
-            fh.write(f"{x:.6g},{y:.6g},{z:.6g},{e:.6g}{extra}\n")
+            more = "".join(f",{v[k]:.6g}" for v in extra.values())
+            fh.write(f"{x:.6g},{y:.6g},{z:.6g},{e:.6g}{more}\n")
