@@ -117,7 +117,7 @@ def test_cli_writes_daylight_factors(tmp_path, capsys, monkeypatch):
     header = (tmp_path / "p.csv").read_text().splitlines()[0].split(",")
     assert header[-1] == "df" and {"group", "area", "lux"} <= set(header)
     for bad, message in (
-        (["--sky", "cie-overcast"], "give both --sky cie-overcast and --glazing"),
+        (["--sky", "cie-overcast"], "give both --sky cie-overcast (or --weather FILE) and"),
         (["--glazing", "roof=0.5", "--emit", "floor=1"], "give both"),
         (["--sky", "cie-overcast", "--glazing", "roof=1.5"], "transmittance from 0 to 1"),
     ):
