@@ -84,10 +84,36 @@ def file_menu(win, bar: QtWidgets.QMenuBar) -> None:
 
 
 def view_menu(win, bar: QtWidgets.QMenuBar) -> None:
-    """View: the camera presets."""
+    """View: the camera presets, then every panel and the toolbar (shown when ticked,
+    so a closed panel comes back from here)."""
     view = bar.addMenu("&View")
     for act in win.camera_actions.values():
         view.addAction(act)
+    view.addSeparator()
+    win.panel_actions = {}
+    for dock in win.findChildren(QtWidgets.QDockWidget):
+        act = dock.toggleViewAction()
+        act.setText(f"{dock.windowTitle()} panel")
+        win.panel_actions[dock.objectName()] = act
+        view.addAction(act)
+    view.addSeparator()
+    win.act_restore_layout = action(win, "Restore the panel layout", win.restore_layout)
+    view.addAction(win.act_restore_layout)
+
+
+def help_menu(win, bar: QtWidgets.QMenuBar) -> None:
+    """Help: the user guide, the documentation folder, about."""
+    help_ = bar.addMenu("&Help")
+    win.help_actions = {
+        "guide": action(win, "User guide (the window)", lambda _=False: win.open_doc("app.md")),
+        "docs": action(win, "All documentation", lambda _=False: win.open_doc("")),
+        "inputs": action(
+            win, "Messages and what they mean", lambda _=False: win.open_doc("bad-input.md")
+        ),
+        "about": action(win, "About LightInv", lambda _=False: win.about()),
+    }
+    for act in win.help_actions.values():
+        help_.addAction(act)
 
 
 def design_menu(win, bar: QtWidgets.QMenuBar) -> None:
@@ -125,9 +151,12 @@ def main_toolbar(win) -> QtWidgets.QToolBar:
 def build_menus(win) -> None:
     """The menu bar and the toolbar of ``win`` (its actions made first)."""
     bar = win.menuBar()
-    for menu in (file_menu, view_menu, design_menu, compute_menu):
+    tools = main_toolbar(win)
+    for menu in (file_menu, view_menu, design_menu, compute_menu, help_menu):
         menu(win, bar)
-    main_toolbar(win)
+    win.panel_actions["toolbar"] = tools.toggleViewAction()
+    win.panel_actions["toolbar"].setText("Toolbar")
+    bar.actions()[1].menu().insertAction(win.act_restore_layout, win.panel_actions["toolbar"])
 
 
 def fill_recent(win, paths: list[str]) -> None:

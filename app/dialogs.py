@@ -28,9 +28,17 @@ def open_file(parent, caption: str, file_filter: str = PROJECT_FILTER) -> str:
     return path
 
 
-def save_file(parent, caption: str, file_filter: str = PROJECT_FILTER) -> str:
-    """A file to write ("" if cancelled)."""
+def save_file(parent, caption: str, file_filter: str = PROJECT_FILTER, suffix: str = "") -> str:
+    """A file to write ("" if cancelled); ``suffix`` (".pdf") is added when the name
+    typed has none (the file dialogs of some desktops do not add it)."""
     path, _ = QtWidgets.QFileDialog.getSaveFileName(parent, caption, "", file_filter)
+    return with_suffix(path, suffix)
+
+
+def with_suffix(path: str, suffix: str) -> str:
+    """``path`` ending in ``suffix`` (any case); "" stays ""."""
+    if path and suffix and not path.lower().endswith(suffix.lower()):
+        return path + suffix
     return path
 
 
@@ -49,15 +57,30 @@ def error(parent, what: str, message: str) -> None:
     QtWidgets.QMessageBox.critical(parent, f"{TITLE}: {what}", message)
 
 
-def confirm_discard(parent) -> bool:
-    """Whether unsaved changes may be discarded."""
-    answer = QtWidgets.QMessageBox.question(
-        parent,
-        TITLE,
-        "The project has unsaved changes. Discard them?",
-        QtWidgets.QMessageBox.Discard | QtWidgets.QMessageBox.Cancel,
-    )
-    return answer == QtWidgets.QMessageBox.Discard
+def unsaved_box(parent) -> tuple[QtWidgets.QMessageBox, dict]:
+    """The unsaved-changes question: Save (the default, so Enter keeps the work),
+    Discard, Cancel; with its buttons by answer."""
+    box = QtWidgets.QMessageBox(parent)
+    box.setWindowTitle(TITLE)
+    box.setIcon(QtWidgets.QMessageBox.Warning)
+    box.setText("The project has unsaved changes.")
+    box.setInformativeText("Save them before going on?")
+    buttons = {
+        "save": box.addButton(QtWidgets.QMessageBox.Save),
+        "discard": box.addButton(QtWidgets.QMessageBox.Discard),
+        "cancel": box.addButton(QtWidgets.QMessageBox.Cancel),
+    }
+    box.setDefaultButton(buttons["save"])
+    box.setEscapeButton(buttons["cancel"])
+    return box, buttons
+
+
+def ask_unsaved(parent) -> str:
+    """What to do with unsaved changes: "save", "discard" or "cancel"."""
+    box, buttons = unsaved_box(parent)
+    box.exec()
+    clicked = box.clickedButton()
+    return next((k for k, b in buttons.items() if b is clicked), "cancel")
 
 
 def ask_recovery(parent, rec: Recoverable) -> str:

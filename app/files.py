@@ -17,6 +17,16 @@ from lightinv_core.errors import LightInvError
 from lightinv_core.project import Project, load_project
 
 MAX_RECENT = 8
+SHIPPED = Path(__file__).resolve().parent.parent / "resources"
+"""The installation's own files (demo projects): opened as untitled copies."""
+
+
+def is_shipped(path: Path) -> bool:
+    """Whether ``path`` lies in the installation's resources folder."""
+    try:
+        return path.resolve().is_relative_to(SHIPPED)
+    except OSError:
+        return False
 
 
 class ProjectFiles(QtCore.QObject):
@@ -32,7 +42,10 @@ class ProjectFiles(QtCore.QObject):
         d = self.doc
         if d.project is None or not d.dirty or not self.win.ask_before_discard:
             return True
-        return dialogs.confirm_discard(self.win)
+        answer = dialogs.ask_unsaved(self.win)
+        if answer == "save":
+            return self.save()  # Save As when untitled; cancelling it keeps the project
+        return answer == "discard"
 
     def load_project(self, project: Project, path: Path | None = None) -> bool:
         """Open a project (its scene loaded and meshed); errors shown, nothing half-done."""
@@ -56,6 +69,15 @@ class ProjectFiles(QtCore.QObject):
             project = load_project(path)
         except LightInvError as exc:
             dialogs.error(self.win, "cannot open", str(exc))
+            return False
+        if is_shipped(Path(path)):
+            # A demo in the installation: open an untitled copy, so Save asks where to
+            # keep the work and the demo stays as shipped.
+            if self.load_project(project, None):
+                self.win.statusBar().showMessage(
+                    f"Opened a copy of {Path(path).name}; Save asks where to keep it", 8000
+                )
+                return True
             return False
         if self.load_project(project, Path(path)):
             self.remember(Path(path))
@@ -96,16 +118,16 @@ class ProjectFiles(QtCore.QObject):
         return True
 
     def save_as_dialog(self) -> bool:
-        path = dialogs.save_file(self.win, "Save project")
+        path = dialogs.save_file(self.win, "Save project", suffix=".json")
         return bool(path) and self.save_to(path)
 
     def export_png_dialog(self) -> None:
-        path = dialogs.save_file(self.win, "Export viewport", "PNG image (*.png)")
+        path = dialogs.save_file(self.win, "Export viewport", "PNG image (*.png)", suffix=".png")
         if path:
             self.win.viewport.screenshot(path)
 
     def export_report_dialog(self) -> None:
-        path = dialogs.save_file(self.win, "Export report", "PDF (*.pdf)")
+        path = dialogs.save_file(self.win, "Export report", "PDF (*.pdf)", suffix=".pdf")
         if path:
             self.win.export_report(path)
 

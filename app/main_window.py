@@ -37,6 +37,8 @@ __all__ = ["COLORMAPS", "MAX_RECENT", "MainWindow"]
 
 COLORMAPS = ("inferno", "viridis", "plasma", "coolwarm", "gray")
 MIN_ZONE = 0.05  # m: a drawn zone narrower than this is a slip of the mouse
+DOCS = Path(__file__).resolve().parent.parent / "docs"
+"""The documentation pages (docs/ in the source tree and in the bundle)."""
 
 
 class MainWindow(QtWidgets.QMainWindow):
@@ -74,15 +76,24 @@ class MainWindow(QtWidgets.QMainWindow):
         self._status()
         self._connect()
         self.resize(1400, 900)
+        self._initial_state = self.saveState()  # View > Restore the panel layout
         geometry = self.settings.value("geometry")
         if geometry is not None:
             self.restoreGeometry(geometry)
             self.restoreState(self.settings.value("windowState"))
 
     # -- layout --------------------------------------------------------------------------------
-    def _dock(self, title: str, name: str, widget, area) -> None:
+    def _dock(self, title: str, name: str, widget, area, scroll: bool = False) -> None:
         dock = QtWidgets.QDockWidget(title, self)
         dock.setObjectName(name)
+        if scroll:
+            # A panel taller than the screen scrolls instead of making the window taller
+            # than a laptop's (1366 x 768) screen.
+            area_ = QtWidgets.QScrollArea()
+            area_.setWidgetResizable(True)
+            area_.setFrameShape(QtWidgets.QFrame.NoFrame)
+            area_.setWidget(widget)
+            widget = area_
         dock.setWidget(widget)
         self.addDockWidget(area, dock)
 
@@ -94,13 +105,16 @@ class MainWindow(QtWidgets.QMainWindow):
         lay.addWidget(self.zone_panel)
         lay.addWidget(self._view_options())
         lay.addStretch(1)
-        self._dock("Properties", "properties", box, QtCore.Qt.RightDockWidgetArea)
+        self._dock("Properties", "properties", box, QtCore.Qt.RightDockWidgetArea, scroll=True)
         self.tabs = QtWidgets.QTabWidget()
         self.tabs.addTab(self.run_panel, "Run")
         self.tabs.addTab(self.solutions_panel, "Solutions")
         self.tabs.addTab(self.violations_panel, "Violations")
-        self.tabs.setMinimumHeight(self.run_panel.sizeHint().height() + 40)
-        self._dock("Optimisation", "optimisation", self.tabs, QtCore.Qt.BottomDockWidgetArea)
+        self._dock(
+            "Optimisation", "optimisation", self.tabs, QtCore.Qt.BottomDockWidgetArea, scroll=True
+        )
+        for tab in (self.run_panel, self.solutions_panel, self.violations_panel):
+            tab.setMinimumHeight(0)
 
     def _view_options(self) -> QtWidgets.QGroupBox:
         group = QtWidgets.QGroupBox("View")
@@ -291,6 +305,41 @@ class MainWindow(QtWidgets.QMainWindow):
     def cancel_precompute(self) -> None:
         """Cancel the precompute (or report) worker."""
         self.tasks.cancel()
+
+    # -- help and layout ----------------------------------------------------------------------
+    def doc_url(self, name: str) -> QtCore.QUrl:
+        """The URL of a documentation page (``""``: the folder), in the source tree or
+        the bundle."""
+        return QtCore.QUrl.fromLocalFile(str(DOCS / name) if name else str(DOCS))
+
+    def open_doc(self, name: str) -> bool:
+        """Open a documentation page in the desktop's viewer; a message if none opens."""
+        url = self.doc_url(name)
+        if not (DOCS / name).exists() or not QtGui.QDesktopServices.openUrl(url):
+            dialogs.inform(self, f"The documentation is in {url.toLocalFile()}")
+            return False
+        return True
+
+    def about(self) -> None:
+        """Version, licence and where the documentation is."""
+        from importlib.metadata import PackageNotFoundError, version
+
+        try:
+            v = version("lightinv")
+        except PackageNotFoundError:
+            v = "(source tree)"
+        dialogs.inform(
+            self,
+            f"LightInv {v}\nInverse lighting design for building interiors.\n"
+            f"MIT licence. Documentation: {DOCS}",
+        )
+
+    def restore_layout(self) -> None:
+        """Every panel shown and docked where it starts."""
+        for dock in self.findChildren(QtWidgets.QDockWidget):
+            dock.setFloating(False)
+            dock.show()
+        self.restoreState(self._initial_state)
 
     def export_report(self, path: str | Path) -> bool:
         """Write the PDF report of the project's results in a worker (see tasks.py)."""

@@ -14,6 +14,7 @@ from PySide6 import QtCore
 
 from app import dialogs
 from app.workers import PrecomputeWorker, ReportWorker, Worker, stop_and_wait
+from lightinv_core.errors import LightInvError
 
 
 class BackgroundTasks(QtCore.QObject):
@@ -62,18 +63,18 @@ class BackgroundTasks(QtCore.QObject):
 
     # -- the report ----------------------------------------------------------------------------
     def export_report(self, path: str | Path) -> bool:
-        """Write the PDF report of the project's saved solution in a worker (progress bar,
-        Cancel); needs the operator and a solution saved by a run."""
+        """Write the PDF report of the design on screen (as edited or as a result loaded
+        into it) in a worker (progress bar, Cancel); needs the operator."""
         d = self.doc
         if d.operator is None or self.worker is not None:
             dialogs.inform(self.win, "Wait for the radiosity operator first.")
             return False
-        if not d.project.solutions and d.project.pareto is None:
-            dialogs.inform(
-                self.win, "The project has no results yet: press Run (Optimisation panel) first."
-            )
+        try:
+            solution = d.design_solution()
+        except LightInvError as exc:
+            dialogs.error(self.win, "cannot report", str(exc))
             return False
-        worker = ReportWorker(d.project, d.prepared(), Path(path), self)
+        worker = ReportWorker(d.project, d.prepared(), Path(path), solution, self)
         worker.succeeded.connect(
             lambda info: self._say(f"Report written: {info.path} ({len(info.pages)} pages)", 8000)
         )

@@ -99,11 +99,14 @@ class PrecomputeWorker(Worker):
 
 
 class ReportWorker(Worker):
-    """Writes the PDF report of the open project (its saved solution) off the GUI thread."""
+    """Writes the PDF report of ``solution`` (the design on screen) off the GUI thread."""
 
-    def __init__(self, project, prepared, path, parent: QtCore.QObject | None = None):
+    def __init__(
+        self, project, prepared, path, solution=None, parent: QtCore.QObject | None = None
+    ):
         super().__init__(parent)
         self.project, self.prepared, self.path = project, prepared, path
+        self.solution = solution
 
     def work(self):
         from lightinv_core.report import write_report
@@ -112,6 +115,8 @@ class ReportWorker(Worker):
             self.project,
             self.prepared,
             self.path,
+            solution=self.solution,
+            label="the design on screen",
             progress=self.progress.emit,
             cancel=self.is_cancelled,
         )

@@ -18,7 +18,7 @@ from pathlib import Path
 import numpy as np
 
 from lightinv_core.design.model import Design, Goal, Intention, Source
-from lightinv_core.design.solution import ParetoFront, Solution
+from lightinv_core.design.solution import ParetoFront, Solution, SolutionInfo
 from lightinv_core.editing import results as _results
 from lightinv_core.editing import rules
 from lightinv_core.editing import zones as _zones
@@ -277,6 +277,14 @@ class DocumentModel:
         if self._problem is None:
             self._problem = DesignProblem(self.design, self.light)
         return self._problem
+
+    def design_solution(self) -> Solution:
+        """The design on screen judged as a solution (its achieved values and violations),
+        for a report of a hand-tuned design; DesignError before the operator exists."""
+        problem = self.problem()
+        if problem is None:
+            raise DesignError("the radiosity operator is not ready yet")
+        return problem.solution(problem.vars.initial(), SolutionInfo(status="design"))
 
     def effective_sources(self) -> tuple[Source, ...]:
         """The design's sources as lit: mirrored and centred ones placed by their rules."""

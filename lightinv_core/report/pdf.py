@@ -12,6 +12,7 @@ any of its PNG pages behind, and an older file at ``path`` is kept untouched.
 from __future__ import annotations
 
 import contextlib
+import dataclasses
 import datetime
 import math
 import time
@@ -142,6 +143,7 @@ def write_report(
     path: str | Path,
     solution=None,
     png_dir: str | Path | None = None,
+    label: str | None = None,
     progress: Callable[[float], None] | None = None,
     cancel: Callable[[], bool] | None = None,
 ) -> ReportInfo:
@@ -150,12 +152,15 @@ def write_report(
 
     ``prepared`` is ``lightinv_core.study.prepare(project)`` (scene, patches and
     operator). With ``png_dir`` each page is also saved as ``NN-name.png``. ``progress``
-    gets the fraction done after each page; ``cancel`` is polled between pages and a
-    True answer raises ``CancelledError`` (nothing is left on disk).
+    gets the fraction done after each page; ``label`` names where the solution came
+    from on the title page (default: as ``choose_solution`` says); ``cancel`` is polled
+    between pages and a True answer raises ``CancelledError`` (nothing is left on disk).
     """
     t0 = time.perf_counter()
     path = Path(path)
     chosen = choose_solution(project, solution)
+    if label is not None:  # e.g. "the design on screen" rather than "given solution"
+        chosen = dataclasses.replace(chosen, label=label)
     sol = chosen.solution
     patches, design = prepared.patches, project.design
     field = solution_field(project, prepared, sol)
