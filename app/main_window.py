@@ -150,7 +150,15 @@ class MainWindow(QtWidgets.QMainWindow):
         self.progress.setRange(0, 1000)
         self.progress.setMaximumWidth(220)
         self.progress.hide()
-        for w in (self.status_patches, self.status_rank, self.status_eval, self.progress):
+        # Warnings of the scene import and the operator stay here until the next scene:
+        # a status message alone would be gone in seconds.
+        self.warnings_button = QtWidgets.QToolButton()
+        self.warnings_button.setAutoRaise(True)
+        self.warnings_button.clicked.connect(self.show_warnings)
+        self.warnings_button.hide()
+        self._warnings: dict[str, list[str]] = {}
+        widgets = (self.warnings_button, self.status_patches, self.status_rank, self.status_eval)
+        for w in (*widgets, self.progress):
             self.statusBar().addPermanentWidget(w)
 
     def _connect(self) -> None:
@@ -173,8 +181,27 @@ class MainWindow(QtWidgets.QMainWindow):
         )
 
     # -- document -> views ---------------------------------------------------------------------
+    def set_warnings(self, source: str, messages: list[str]) -> None:
+        """Keep the warnings of one ``source`` ("scene", "operator") for the status bar's
+        warnings button; an empty list clears them."""
+        self._warnings[source] = list(messages)
+        every = self.warnings()
+        self.warnings_button.setVisible(bool(every))
+        self.warnings_button.setText(f"\u26a0 {len(every)} warning{'s' * (len(every) != 1)}")
+        self.warnings_button.setToolTip("\n\n".join(every))
+
+    def warnings(self) -> list[str]:
+        """Every warning kept, scene first."""
+        return [m for msgs in self._warnings.values() for m in msgs]
+
+    def show_warnings(self) -> None:
+        """The warnings in full (the status bar's button)."""
+        dialogs.inform(self, "\n\n".join(self.warnings()) or "No warnings.")
+
     def _scene_changed(self) -> None:
         d = self.doc
+        self.set_warnings("scene", list(d.scene.info.get("warnings", [])))
+        self.set_warnings("operator", [])
         self.viewport.set_scene(d.patches, [z.name for z in d.scene.zones])
         self.viewport.set_values(None)
         self.status_patches.setText(f"{d.patches.n:,} patches")

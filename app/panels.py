@@ -158,25 +158,39 @@ class SourcePanel(QtWidgets.QGroupBox):
             self.mirror.setCurrentIndex(max(0, self.mirror.findData(tie[0])) if tie else 0)
             self.mirror_axis.setCurrentText(tie[1] if tie else "u")
             w, h = self.doc.zone_size(s.zone)
-            for box, value, top in zip(self.corners, s.rect, (w, h, w, h), strict=True):
-                box.setEnabled(True)
+            # Show the source as lit: a mirror's copy and a centred source's far corner
+            # follow their rule, so those fields show the rule's numbers, read-only.
+            light = self.doc.light  # the layout of the design now (the view may lag)
+            lit = light.layout(self.doc.design) if light is not None else self.doc.design.sources
+            shown = {x.name: x for x in lit}.get(name, s)
+            tied = {0, 1, 2, 3} if self.doc.mirror_of(name) else set()
+            if self.doc.centred(name):
+                tied |= {2, 3}
+            for k, (box, value, top) in enumerate(
+                zip(self.corners, shown.rect, (w, h, w, h), strict=True)
+            ):
+                box.setEnabled(k not in tied)
                 box.setMaximum(top)
                 box.setValue(value)
-            self.strength.setEnabled(True)
+            self.strength.setEnabled(not self.doc.mirror_of(name))
+            s = shown
             if s.kind == SourceKind.SKYLIGHT:
                 self.strength_label.setText("filter (0-1)")
+                self.strength.setDecimals(3)
                 self.strength.setRange(0.0, 1.0)
                 self.strength.setSingleStep(0.05)
                 self.strength.setSuffix("")
                 self.strength.setValue(s.filter)
             elif s.flux is not None:
                 self.strength_label.setText("flux")
+                self.strength.setDecimals(0)  # whole lumens: what a datasheet gives
                 self.strength.setRange(0.0, 1e7)
                 self.strength.setSingleStep(100.0)
                 self.strength.setSuffix(" lm")
                 self.strength.setValue(s.flux)
             else:
                 self.strength_label.setText("exitance")
+                self.strength.setDecimals(1)
                 self.strength.setRange(0.0, 1e7)
                 self.strength.setSuffix(" lm/m²")
                 self.strength.setValue(s.exitance)

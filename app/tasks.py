@@ -58,8 +58,9 @@ class BackgroundTasks(QtCore.QObject):
         self.win.status_rank.setText(f"rank k = {got.operator.k} (error {100 * err:.2f}%)")
         how = "loaded from the cache" if got.from_cache else "built"
         self._say(f"Operator {how} in {got.seconds:.1f} s", 6000)
-        for w in self.worker.warnings:
-            self._say(w, 8000)
+        self.win.set_warnings("operator", self.worker.warnings)
+        if self.worker.warnings:
+            self._say(self.worker.warnings[0], 8000)
 
     # -- the report ----------------------------------------------------------------------------
     def export_report(self, path: str | Path) -> bool:

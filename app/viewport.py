@@ -272,10 +272,15 @@ class Viewport(QtWidgets.QWidget):
         """Patch ids visible in a display rectangle (hardware selection: hidden ones excluded)."""
         if self.mesh is None:
             return np.zeros(0, np.int64)
+        # A drag may end outside the view (negative or beyond its size): the selector
+        # takes unsigned pixel coordinates inside the window, so clip to it.
+        w, h = self.plotter.render_window.GetSize()
+        xs = sorted(min(max(int(x), 0), max(w - 1, 0)) for x in (x0, x1))
+        ys = sorted(min(max(int(y), 0), max(h - 1, 0)) for y in (y0, y1))
         sel = vtk.vtkHardwareSelector()
         sel.SetRenderer(self.plotter.renderer)
         sel.SetFieldAssociation(vtk.vtkDataObject.FIELD_ASSOCIATION_CELLS)
-        sel.SetArea(min(x0, x1), min(y0, y1), max(x0, x1), max(y0, y1))
+        sel.SetArea(xs[0], ys[0], xs[1], ys[1])
         result = sel.Select()
         scene_actor = self.plotter.actors.get("scene")
         ids = []

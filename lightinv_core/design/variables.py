@@ -117,7 +117,13 @@ class Variables:
         rect, flux, filt = self.decode(np.asarray(x, dtype=float)[None])
         out = []
         for j, s in enumerate(self.design.sources):
-            kw = {"rect": tuple(float(c) for c in rect[0, j]), "filter": float(filt[0, j])}
+            # Corners reported low to high (u0 <= u1, v0 <= v1): the same rectangle, in
+            # the order people read (an optimiser or a mirror may swap them).
+            u0, v0, u1, v1 = (float(c) for c in rect[0, j])
+            kw = {
+                "rect": (min(u0, u1), min(v0, v1), max(u0, u1), max(v0, v1)),
+                "filter": float(filt[0, j]),
+            }
             if s.flux is not None:
                 kw["flux"] = float(flux[0, j])
             out.append(replace(s, **kw))

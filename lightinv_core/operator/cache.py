@@ -231,6 +231,23 @@ def open_scene_warning(op: RadiosityOperator) -> str | None:
     return escape_warning(float(op.info.get("lost_fraction", 0.0)))
 
 
+def accuracy_warning(op: RadiosityOperator) -> str | None:
+    """A warning when the build stopped at its largest rank above the target error."""
+    info = op.info
+    if info.get("tol_met", True):
+        return None
+    return (
+        f"the radiosity operator's estimated error is {100 * info['estimated_rel_error']:.1f}% "
+        f"(target {100 * info['tol']:.1f}%) at its largest rank, k = {op.k}: reflected light "
+        "may be off by about that much; fix a higher rank (--rank) or use a coarser resolution"
+    )
+
+
+def operator_warnings(op: RadiosityOperator) -> list[str]:
+    """Everything worth telling the user about an operator: escaping light, accuracy."""
+    return [w for w in (open_scene_warning(op), accuracy_warning(op)) if w]
+
+
 def get_operator(
     patches: Patches,
     settings: OperatorSettings | None = None,
@@ -257,14 +274,14 @@ def get_operator(
             op = load_operator(path, key)
             if op.digest != patches.digest():
                 raise CacheError(f"{path.name}: geometry digest differs (stale)")
-            if warn is not None and (msg := open_scene_warning(op)):
+            for msg in operator_warnings(op) if warn is not None else ():
                 warn(msg)
             return CachedOperator(op, True, path, time.perf_counter() - t0)
         except CacheError as exc:
             if warn is not None:
                 warn(f"operator cache {exc}; rebuilding")
     op = build_operator(patches, settings, progress=progress, cancel=cancel)
-    if warn is not None and (msg := open_scene_warning(op)):
+    for msg in operator_warnings(op) if warn is not None else ():
         warn(msg)
     if path is not None:
         try:

@@ -9,7 +9,7 @@ import subprocess
 from pathlib import Path
 
 import pytest
-from PySide6 import QtGui, QtWidgets
+from PySide6 import QtCore, QtGui, QtWidgets
 
 from app import dialogs
 from app.__main__ import DEMO
@@ -147,3 +147,78 @@ def test_the_window_fits_a_laptop_screen(qtbot, window, tmp_path):
         assert widget.isVisible() and inside.contains(top_left) and inside.contains(bottom_right)
     assert window.run_panel.run_button.visibleRegion().boundingRect().height() > 10
     window.grab().save(str(tmp_path / "laptop.png"))
+
+
+def test_a_drag_ending_outside_the_view_selects_without_error(qtbot, window):
+    """It printed an OverflowError (negative pixel coordinates) to the terminal."""
+    from tests.app.test_main_window import send_mouse
+
+    assert window.new_project("cornell", 0.5)
+    wait_for_operator(qtbot, window)
+    window.viewport.camera("top")
+    window.set_mode("select")
+    iw = window.viewport.plotter.interactor
+    inside = QtCore.QPointF(iw.width() * 0.5, iw.height() * 0.5)
+    for outside in (QtCore.QPointF(-80, -60), QtCore.QPointF(iw.width() + 90, iw.height() + 70)):
+        send_mouse(iw, QtCore.QEvent.Type.MouseButtonPress, inside)
+        send_mouse(iw, QtCore.QEvent.Type.MouseMove, outside)
+        send_mouse(iw, QtCore.QEvent.Type.MouseButtonRelease, outside)
+        assert len(window.doc.selection) > 10  # a quarter of the view, clipped to it
+
+
+def test_violations_tell_value_and_bound_apart():
+    from app.results_panel import distinct
+
+    assert distinct(0.593, 0.6) == ("0.593", "0.600")
+    assert distinct(498.7, 500.0) == ("498.7", "500.0")
+    assert distinct(499.96, 500.0) == ("499.96", "500.00")
+    assert distinct(1.25, 1.25) == ("1.25", "1.25")
+    assert distinct(float("nan"), 1.0) == ("-", "1.0")
+
+
+def test_properties_show_a_tied_source_as_lit(qtbot, window):
+    """A mirrored copy's and a centred source's fields showed stale numbers; optimised
+    corners came out reversed with three-decimal lumens."""
+    assert window.new_project("office", 0.5)
+    wait_for_operator(qtbot, window)
+    d, panel = window.doc, window.source_panel
+    a = d.add_source("lum_west")
+    b = d.add_source("lum_east")
+    d.update_source(a.name, rect=(0.2, 1.0, 0.8, 2.0), flux=12345.678)
+    d.set_current_source(b.name)
+    panel.mirror.setCurrentIndex(panel.mirror.findData(a.name))
+    assert d.mirror_of(b.name) == (a.name, "u")
+    lit = {s.name: s for s in d.effective_sources()}[b.name]
+    shown = tuple(box.value() for box in panel.corners)
+    assert shown == pytest.approx(lit.rect, abs=1e-3) and shown[0] <= shown[2]
+    assert not any(box.isEnabled() for box in panel.corners) and not panel.strength.isEnabled()
+    d.set_current_source(a.name)
+    panel.centred.setChecked(True)
+    assert [box.isEnabled() for box in panel.corners] == [True, True, False, False]
+    lit = {s.name: s for s in d.effective_sources()}[a.name]
+    assert tuple(box.value() for box in panel.corners) == pytest.approx(lit.rect, abs=1e-3)
+    assert panel.strength.decimals() == 0 and panel.strength.text() == "12346 lm"
+    window.grab().save("/tmp/properties-tied.png")
+
+
+def test_warnings_stay_in_the_status_bar(qtbot, window, tmp_path, monkeypatch):
+    """The CLI's warnings (light escaping, a face dropped) never reached the window."""
+    from tests.core.test_obj_import import BOX
+
+    open_box = BOX.replace("g ceiling\nf 5 8 7 6\n", "")  # no ceiling: light escapes
+    (tmp_path / "room.obj").write_text(open_box + "g floor\nf 2 3 4 1\n")
+    assert window.import_obj(tmp_path / "room.obj")
+    wait_for_operator(qtbot, window)
+    every = window.warnings()
+    assert any("dropped 1 duplicated face" in w for w in every)
+    assert any("escapes the model" in w for w in every)
+    assert window.warnings_button.isVisible()
+    assert f"{len(every)} warnings" in window.warnings_button.text()
+    shown = []
+    monkeypatch.setattr(dialogs, "inform", lambda parent, text: shown.append(text))
+    window.warnings_button.click()
+    assert shown and all(w in shown[0] for w in every)
+    window.statusBar().grab().save("/tmp/warnings-status.png")
+    assert window.new_project("cornell", 0.5)  # a closed box: nothing to warn about
+    wait_for_operator(qtbot, window)
+    assert window.warnings() == [] and not window.warnings_button.isVisible()

@@ -234,3 +234,16 @@ def test_invalid_designs_are_refused_clearly(office):
 def test_model_values_are_validated(build, message):
     with pytest.raises(DesignError, match=message):
         build()
+
+
+def test_reported_corners_run_low_to_high():
+    """An optimiser (or a mirror) may swap a rectangle's corners; solutions report them
+    low to high, the same rectangle."""
+    from lightinv_core.design.model import CORNERS, Design, Goal, Source
+    from lightinv_core.design.variables import Variables
+
+    src = Source("L", "z", "luminaire", (0.5, 0.5, 1.0, 1.0), free=CORNERS, flux=1000.0)
+    design = Design((src,), (Goal("min_electric_power"),))
+    v = Variables(design, {"z": (4.0, 3.0)})
+    (s,) = v.sources_at(np.array([2.0, 1.5, 0.5, 0.25]))
+    assert s.rect == (0.5, 0.25, 2.0, 1.5) and s.flux == 1000.0
