@@ -83,6 +83,17 @@ def file_menu(win, bar: QtWidgets.QMenuBar) -> None:
     file.addAction(win.act_quit)
 
 
+def edit_menu(win, bar: QtWidgets.QMenuBar) -> None:
+    """Edit: undo and redo every edit of the design, the drawn zones and the run settings."""
+    edit = bar.addMenu("&Edit")
+    win.act_undo = win.undo_stack.createUndoAction(win, "&Undo")
+    win.act_undo.setShortcut(QtGui.QKeySequence.Undo)
+    win.act_redo = win.undo_stack.createRedoAction(win, "&Redo")
+    win.act_redo.setShortcut(QtGui.QKeySequence.Redo)
+    edit.addAction(win.act_undo)
+    edit.addAction(win.act_redo)
+
+
 def view_menu(win, bar: QtWidgets.QMenuBar) -> None:
     """View: the camera presets, then every panel and the toolbar (shown when ticked,
     so a closed panel comes back from here)."""
@@ -152,11 +163,12 @@ def build_menus(win) -> None:
     """The menu bar and the toolbar of ``win`` (its actions made first)."""
     bar = win.menuBar()
     tools = main_toolbar(win)
-    for menu in (file_menu, view_menu, design_menu, compute_menu, help_menu):
+    for menu in (file_menu, edit_menu, view_menu, design_menu, compute_menu, help_menu):
         menu(win, bar)
     win.panel_actions["toolbar"] = tools.toggleViewAction()
     win.panel_actions["toolbar"].setText("Toolbar")
-    bar.actions()[1].menu().insertAction(win.act_restore_layout, win.panel_actions["toolbar"])
+    view = next(a.menu() for a in bar.actions() if a.text() == "&View")
+    view.insertAction(win.act_restore_layout, win.panel_actions["toolbar"])
 
 
 def fill_recent(win, paths: list[str]) -> None:

@@ -57,6 +57,7 @@ class ProjectFiles(QtCore.QObject):
         except LightInvError as exc:
             dialogs.error(self.win, "cannot open", str(exc))
             return False
+        self.win.undo_stack.clear()  # another project: earlier edits are not undoable
         return True
 
     def new_project(self, scene: str, resolution: float | None = None) -> bool:

@@ -27,6 +27,7 @@ from app.results_panel import SolutionsPanel, ViolationsPanel
 from app.run_control import RunController
 from app.run_panel import RunPanel
 from app.tasks import BackgroundTasks
+from app.undo import undo_stack
 from app.viewport import Viewport, ZoneFrame
 from app.workers import Worker
 from lightinv_core.errors import LightInvError
@@ -68,6 +69,7 @@ class MainWindow(QtWidgets.QMainWindow):
         self._docks()
         self.files = ProjectFiles(self)
         self.tasks = BackgroundTasks(self)
+        self.undo_stack = undo_stack(self)
         actions.create_actions(self)
         self.runs = RunController(self)
         self.autosaver = Autosaver(self, autosave_seconds, autosave_folder)

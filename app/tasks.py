@@ -52,7 +52,7 @@ class BackgroundTasks(QtCore.QObject):
 
     def _precomputed(self, got) -> None:
         if got.operator.digest != self.doc.patches.digest():
-            return  # the scene changed while the worker ran
+            return  # the scene changed while the worker ran: _done builds for the new one
         self.doc.set_operator(got.operator)
         err = got.operator.info["estimated_rel_error"]
         self.win.status_rank.setText(f"rank k = {got.operator.k} (error {100 * err:.2f}%)")
@@ -99,8 +99,19 @@ class BackgroundTasks(QtCore.QObject):
         win.progress.hide()
         win.act_cancel.setEnabled(False)
         win.act_precompute.setEnabled(True)
+        finished = self.worker
         self.worker.deleteLater()
         self.worker = None
+        changed = (
+            isinstance(finished, PrecomputeWorker)
+            and self.doc.patches is not None
+            and finished.patches is not self.doc.patches
+            and self.doc.operator is None
+        )
+        if changed and not finished.is_cancelled():
+            # The scene changed while it ran (a zone drawn, an undo): build for this one.
+            self.start_precompute()
+            return
         if win.run_after_precompute and self.doc.operator is not None:
             win.run_after_precompute = False  # lightinv --run: start once the operator is there
             win.runs.start()

@@ -12,6 +12,7 @@ for the difference view.
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import replace
 from pathlib import Path
 
@@ -63,6 +64,9 @@ class DocumentModel:
         self._problem: DesignProblem | None = None
         self._light_shown: ShownLight | None = None  # the light model and the light shown
         self._preview: tuple[Source, ...] | None = None  # a running best's sources, as lit
+        # Called after every edit with (label, project before, project after): the app
+        # keeps them for undo and redo (a QUndoStack); ``restore`` puts a state back.
+        self.on_edit: Callable[[str, Project, Project], None] | None = None
 
     # -- the project --------------------------------------------------------------------------
     @property
@@ -140,13 +144,36 @@ class DocumentModel:
         return Prepared(self.scene, self.patches, self.operator, True, 0.0)
 
     # -- design edits ---------------------------------------------------------------------------
-    def _set_design(self, design: Design) -> None:
+    def _set_design(self, design: Design, label: str = "edit the design") -> None:
+        before = self._project
         self._project = replace(self._project, design=design)
         self._problem = None
         self.shown = None  # an edited design is no longer the loaded result
         self.dirty = True
         self.events.emit("design")
         self._relight()
+        self._edited(label, before)
+
+    def _edited(self, label: str, before: Project) -> None:
+        if self.on_edit is not None and self._project is not before:
+            self.on_edit(label, before, self._project)
+
+    def restore(self, project: Project) -> None:
+        """Make ``project``, an earlier (undo) or later (redo) state of the open one,
+        current: its design, run settings, results and drawn zones. A change of drawn
+        zones re-meshes the scene (the operator is built again or loaded from the cache);
+        anything else just relights. Not itself an edit."""
+        if project.scene != self._project.scene:
+            self.set_project(project, self.path)
+        else:
+            self._project, self._problem, self.shown, self._preview = project, None, None, None
+            names = [x.name for x in project.design.sources]
+            if self.current_source not in names:
+                self.current_source = names[0] if names else None
+            self.events.emit("design")
+            self.events.emit("results")
+            self._relight()
+        self.mark_dirty()
 
     def zone_kind(self, zone: str) -> str:
         """The kind of source ("skylight" or "luminaire") an emitter zone takes."""
@@ -164,34 +191,43 @@ class DocumentModel:
         src = rules.new_source(self.design, zone, self.zone_kind(zone), self.zone_size(zone), name)
         design = rules.with_source(self.design, src)
         self.current_source = src.name
-        self._set_design(design)
+        self._set_design(design, f"add source {src.name}")
         return src
 
     def update_source(self, name: str, **fields) -> None:
         """Change fields of a source (rect, flux, filter, free, ...); DesignError on a bad
         value, leaving the design unchanged."""
-        self._set_design(rules.with_source_fields(self.design, name, **fields))
+        self._set_design(
+            rules.with_source_fields(self.design, name, **fields), f"edit source {name}"
+        )
 
     def move_source(self, name: str, du: float, dv: float) -> None:
         """Shift a source by (du, dv) metres, kept inside its zone."""
         s = self.design.source(name)
-        self.update_source(name, rect=rules.moved_rect(s, du, dv, self.zone_size(s.zone)))
+        rect = rules.moved_rect(s, du, dv, self.zone_size(s.zone))
+        self._set_design(rules.with_source_fields(self.design, name, rect=rect), f"move {name}")
 
     def remove_source(self, name: str) -> None:
         """Delete a source and the rules that name it."""
         design = rules.without_source(self.design, name)
         if self.current_source == name:
             self.current_source = design.sources[0].name if design.sources else None
-        self._set_design(design)
+        self._set_design(design, f"remove source {name}")
 
     def set_centred(self, name: str, centred: bool) -> None:
         """Tie (or untie) a source to the centre of its zone."""
-        self._set_design(rules.with_centred(self.design, name, centred))
+        self._set_design(
+            rules.with_centred(self.design, name, centred),
+            f"{'centre' if centred else 'free'} {name}",
+        )
 
     def set_mirror(self, name: str, original: str | None, axis: str = "u") -> None:
         """Make source ``name`` the mirror image of ``original`` along a zone axis (None:
         free again)."""
-        self._set_design(rules.with_mirror(self.design, name, original, axis))
+        self._set_design(
+            rules.with_mirror(self.design, name, original, axis),
+            f"mirror {name}" if original else f"unmirror {name}",
+        )
 
     def centred(self, name: str) -> bool:
         """Whether a centred rule ties ``name``."""
@@ -203,26 +239,31 @@ class DocumentModel:
 
     def add_intention(self, intention: Intention) -> None:
         """Append a lighting intention (DesignError if its name is taken)."""
-        self._set_design(replace(self.design, intentions=(*self.design.intentions, intention)))
+        self._set_design(
+            replace(self.design, intentions=(*self.design.intentions, intention)),
+            f"add intention {intention.name}",
+        )
 
     def remove_intention(self, name: str) -> None:
         """Delete a lighting intention."""
         its = tuple(i for i in self.design.intentions if i.name != name)
-        self._set_design(replace(self.design, intentions=its))
+        self._set_design(replace(self.design, intentions=its), f"remove intention {name}")
 
     def set_primary_goal(self, kind: str) -> None:
         """Make ``kind`` the goal a single-objective run optimises (the others stay)."""
         design = rules.with_primary_goal(self.design, kind)
         if design is not self.design:
-            self._set_design(design)
+            self._set_design(design, f"goal {kind}")
 
     def set_optimizer(self, **fields) -> None:
         """Change run settings (method, seed, max_evals, time_limit, ...); ProjectError on
         a bad value, leaving the project unchanged."""
         opt = replace(self._project.optimizer, **fields)
         if opt != self._project.optimizer:
+            before = self._project
             self._project = replace(self._project, optimizer=opt)
             self.mark_dirty()
+            self._edited("run settings", before)
 
     def set_selection(self, patch_ids) -> None:
         """Replace the picked patches (ids, any order, repeats dropped)."""
@@ -259,8 +300,10 @@ class DocumentModel:
             scene=replace(self._project.scene, zones=zones),
             design=rules.only_in_zones(self.design, names),
         )
+        before = self._project
         self.set_project(project, self.path)  # loads the scene first: an error changes nothing
         self.mark_dirty()
+        self._edited("drawn zones", before)
 
     def add_user_zone(self, name: str, kind: str, surface: str, rect) -> ZoneEdit:
         """Draw a new zone ``name`` of ``kind`` on ``surface`` at ``rect`` (u0, v0, u1, v1)
@@ -360,7 +403,7 @@ class DocumentModel:
             for s in self.design.sources
         )
         self._preview = None
-        self._set_design(replace(self.design, sources=sources))
+        self._set_design(replace(self.design, sources=sources), "load a result")
         self.shown = solution
         self.events.emit("results")
 

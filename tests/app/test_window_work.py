@@ -222,3 +222,48 @@ def test_warnings_stay_in_the_status_bar(qtbot, window, tmp_path, monkeypatch):
     assert window.new_project("cornell", 0.5)  # a closed box: nothing to warn about
     wait_for_operator(qtbot, window)
     assert window.warnings() == [] and not window.warnings_button.isVisible()
+
+
+def test_undo_and_redo_every_edit(qtbot, window):
+    assert window.new_project("office", 0.5)
+    wait_for_operator(qtbot, window)
+    d, stack = window.doc, window.undo_stack
+    assert stack.count() == 0
+    a = d.add_source("lum_west")
+    d.update_source(a.name, flux=5000.0)
+    for _ in range(5):  # a drag: many moves, one undo step
+        d.move_source(a.name, 0.1, 0.0)
+    from lightinv_core.design.model import Intention
+
+    d.add_intention(Intention("desks", "desks", average=300.0))
+    d.set_optimizer(seed=7)
+    assert [stack.text(i) for i in range(stack.count())] == [
+        f"add source {a.name}",
+        f"edit source {a.name}",
+        f"move {a.name}",
+        "add intention desks",
+        "run settings",
+    ]
+    assert window.act_undo.text() == "&Undo run settings"
+    moved = d.design.source(a.name).rect
+    window.act_undo.trigger()
+    window.act_undo.trigger()
+    assert d.project.optimizer.seed != 7 and not d.design.intentions
+    window.act_undo.trigger()  # the whole drag
+    assert d.design.source(a.name).rect[0] == pytest.approx(moved[0] - 0.5)
+    window.act_undo.trigger()
+    window.act_undo.trigger()
+    assert d.design.sources == ()
+    for _ in range(5):
+        window.act_redo.trigger()
+    assert d.design.source(a.name).rect == moved and d.design.intentions[0].name == "desks"
+    assert d.project.optimizer.seed == 7 and d.dirty and d.lighting() is not None
+    # Drawn zones: undo re-meshes the scene back.
+    zones = len(d.scene.zones)
+    surface, _ = d.drawable_surface(int(d.patches.group_index("floor")[0]))
+    d.add_user_zone("Z1", "luminaire", surface, (0.5, 0.5, 1.5, 1.5))
+    assert len(d.scene.zones) == zones + 1
+    window.act_undo.trigger()
+    assert len(d.scene.zones) == zones
+    wait_for_operator(qtbot, window)
+    assert window.new_project("cornell", 0.5) and stack.count() == 0  # a new history

@@ -3,6 +3,7 @@ light it shows, checked against an independent ``LightModel`` of the same scene.
 
 from __future__ import annotations
 
+import itertools
 from dataclasses import replace
 
 import numpy as np
@@ -400,3 +401,29 @@ def test_editing_rules_are_pure_functions_of_the_design():
     d3 = edit_rules.with_mirror(edit_rules.with_source(d2, t), "T", "L1")
     assert edit_rules.only_in_zones(d3, {"z"}).rules == ()  # T's zone went, and its rule
     assert edit_rules.only_in_zones(d3, {"z", "y"}) == d3
+
+
+def test_every_edit_is_reported_with_its_before_and_after(lit):
+    """What the window's undo stack is built on (app/undo.py)."""
+    edits = []
+    lit.on_edit = lambda label, before, after: edits.append((label, before, after))
+    start = lit.project
+    src = lit.add_source("lum_west")
+    lit.update_source(src.name, flux=4321.0)
+    lit.add_intention(Intention("desks", "desks", average=200.0))
+    lit.set_optimizer(seed=3)
+    assert [e[0] for e in edits] == [
+        f"add source {src.name}",
+        f"edit source {src.name}",
+        "add intention desks",
+        "run settings",
+    ]
+    assert edits[0][1] is start and edits[-1][2] is lit.project
+    assert all(b is a for (_, _, a), (_, b, _) in itertools.pairwise(edits))
+    events = []
+    lit.events.connect("design", lambda: events.append("design"))
+    lit.restore(edits[1][1])  # back to just after adding the source
+    assert lit.design.source(src.name).flux != 4321.0 and not lit.design.intentions
+    assert lit.project.optimizer.seed != 3 and lit.dirty and events == ["design"]
+    assert len(edits) == 4  # restoring is not itself an edit
+    assert lit.lighting() is not None  # relit, same scene: the operator stays
