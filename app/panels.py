@@ -9,7 +9,7 @@ from __future__ import annotations
 from PySide6 import QtCore, QtWidgets
 
 from app.document import Document
-from lightinv_core.design.model import DesignError, Intention
+from lightinv_core.design.model import CORNERS, DesignError, Intention
 from lightinv_core.errors import LightInvError
 from lightinv_core.kinds import Bound, Quantity, SourceKind
 
@@ -109,6 +109,32 @@ class SourcePanel(QtWidgets.QGroupBox):
         self.strength.valueChanged.connect(self._strength_edited)
         self.strength_label = QtWidgets.QLabel("flux")
         form.addRow(self.strength_label, self.strength)
+        # What the optimiser may change, and within what: without these a luminaire kept
+        # its 3,000 lm and a least-power run could not reach the target.
+        self.free_place = QtWidgets.QCheckBox("position and size")
+        self.free_strength = QtWidgets.QCheckBox("flux")
+        frow = QtWidgets.QHBoxLayout()
+        frow.addWidget(self.free_place)
+        frow.addWidget(self.free_strength)
+        form.addRow("Optimise", frow)
+        self.free_place.toggled.connect(self._free_edited)
+        self.free_strength.toggled.connect(self._free_edited)
+        self.flux_min = QtWidgets.QDoubleSpinBox(decimals=0, singleStep=500.0, suffix=" lm")
+        self.flux_max = QtWidgets.QDoubleSpinBox(decimals=0, singleStep=500.0, suffix=" lm")
+        rrow = QtWidgets.QHBoxLayout()
+        for box in (self.flux_min, self.flux_max):
+            box.setRange(0.0, 1e7)
+            box.setKeyboardTracking(False)
+            box.valueChanged.connect(self._range_edited)
+            rrow.addWidget(box)
+        self.range_label = QtWidgets.QLabel("flux range")
+        form.addRow(self.range_label, rrow)
+        self.efficacy = QtWidgets.QDoubleSpinBox(decimals=1, singleStep=10.0, suffix=" lm/W")
+        self.efficacy.setRange(0.1, 1000.0)
+        self.efficacy.setKeyboardTracking(False)
+        self.efficacy.valueChanged.connect(lambda v: self._apply(efficacy=v))
+        self.efficacy_label = QtWidgets.QLabel("efficacy")
+        form.addRow(self.efficacy_label, self.efficacy)
         self.centred = QtWidgets.QCheckBox("centred in its zone")
         self.centred.toggled.connect(self._centred_edited)
         form.addRow("Rule", self.centred)
@@ -134,7 +160,18 @@ class SourcePanel(QtWidgets.QGroupBox):
 
     def refresh(self) -> None:
         name = self.doc.current_source
-        boxes = [*self.corners, self.strength, self.centred, self.mirror, self.mirror_axis]
+        boxes = [
+            *self.corners,
+            self.strength,
+            self.centred,
+            self.mirror,
+            self.mirror_axis,
+            self.free_place,
+            self.free_strength,
+            self.flux_min,
+            self.flux_max,
+            self.efficacy,
+        ]
         for b in boxes:
             b.blockSignals(True)
         try:
@@ -173,6 +210,7 @@ class SourcePanel(QtWidgets.QGroupBox):
                 box.setMaximum(top)
                 box.setValue(value)
             self.strength.setEnabled(not self.doc.mirror_of(name))
+            self._show_freedom(s, tied=bool(self.doc.mirror_of(name)))
             s = shown
             if s.kind == SourceKind.SKYLIGHT:
                 self.strength_label.setText("filter (0-1)")
@@ -197,6 +235,40 @@ class SourcePanel(QtWidgets.QGroupBox):
         finally:
             for b in boxes:
                 b.blockSignals(False)
+
+    def _show_freedom(self, s, tied: bool) -> None:
+        """The optimiser's freedom over source ``s`` (as written), its flux range and
+        efficacy; a mirror's copy follows its original and has none of its own."""
+        light = s.kind == SourceKind.LUMINAIRE
+        strength = "flux" if light else "filter"
+        self.free_strength.setText(strength)
+        self.free_place.setChecked(any(v in s.free for v in CORNERS))
+        self.free_strength.setChecked(strength in s.free)
+        self.free_place.setEnabled(not tied)
+        self.free_strength.setEnabled(not tied and (not light or s.flux is not None))
+        self.flux_min.setValue(s.flux_range[0])
+        self.flux_max.setValue(s.flux_range[1])
+        self.efficacy.setValue(s.efficacy)
+        for w in (self.flux_min, self.flux_max, self.range_label):
+            w.setVisible(light)
+            w.setEnabled(not tied and light and strength in s.free)
+        for w in (self.efficacy, self.efficacy_label):
+            w.setVisible(light)
+            w.setEnabled(not tied and light)
+
+    def _free_edited(self) -> None:
+        name = self.doc.current_source
+        if name is None:
+            return
+        s = self.doc.design.source(name)
+        strength = "flux" if s.kind == SourceKind.LUMINAIRE else "filter"
+        free = (CORNERS if self.free_place.isChecked() else ()) + (
+            (strength,) if self.free_strength.isChecked() else ()
+        )
+        self._apply(free=tuple(free))
+
+    def _range_edited(self) -> None:
+        self._apply(flux_range=(self.flux_min.value(), self.flux_max.value()))
 
     def _apply(self, **fields) -> None:
         try:

@@ -30,8 +30,10 @@ def new_source(
     design: Design, zone: str, kind: str, size: tuple[float, float], name: str | None = None
 ) -> Source:
     """A source centred in ``zone`` (``size`` (w, h) m): a 1 x 1 m (or smaller)
-    rectangle with its corners free, a 3,000 lm luminaire or a skylight with filter 1.
-    Unnamed, it takes the first free name L1, L2, ... (luminaires) or S1, ... (skylights)."""
+    rectangle, a 3,000 lm luminaire or a skylight with filter 1, whose corners and flux
+    (or filter) the optimiser may change: a fixed flux would leave a least-power run
+    unable to reach its targets. Unnamed, it takes the first free name L1, L2, ...
+    (luminaires) or S1, ... (skylights)."""
     w, h = size
     sw, sh = min(NEW_SOURCE_SIZE, w), min(NEW_SOURCE_SIZE, h)
     rect = ((w - sw) / 2, (h - sh) / 2, (w + sw) / 2, (h + sh) / 2)
@@ -39,8 +41,9 @@ def new_source(
         stem = "L" if kind == SourceKind.LUMINAIRE else "S"
         name = free_name(stem, {s.name for s in design.sources})
     if kind == SourceKind.LUMINAIRE:
-        return Source(name, zone, kind, rect, free=CORNERS, flux=NEW_LUMINAIRE_FLUX)
-    return Source(name, zone, kind, rect, free=CORNERS)
+        free = (*CORNERS, "flux")
+        return Source(name, zone, kind, rect, free=free, flux=NEW_LUMINAIRE_FLUX)
+    return Source(name, zone, kind, rect, free=(*CORNERS, "filter"))
 
 
 def with_source(design: Design, source: Source) -> Design:

@@ -267,3 +267,31 @@ def test_undo_and_redo_every_edit(qtbot, window):
     assert len(d.scene.zones) == zones
     wait_for_operator(qtbot, window)
     assert window.new_project("cornell", 0.5) and stack.count() == 0  # a new history
+
+
+def test_what_the_optimiser_may_change_is_edited_in_properties(qtbot, window):
+    """A luminaire added in the window had a locked 3000 lm: a least-power run could not
+    reach its target, and nothing showed why."""
+    assert window.new_project("office", 0.5)
+    wait_for_operator(qtbot, window)
+    d, panel = window.doc, window.source_panel
+    lum = d.add_source("lum_west")
+    assert set(d.design.source(lum.name).free) == {"u0", "v0", "u1", "v1", "flux"}
+    assert panel.free_place.isChecked() and panel.free_strength.isChecked()
+    assert panel.free_strength.text() == "flux" and panel.flux_max.isEnabled()
+    panel.flux_max.setValue(9000.0)
+    panel.efficacy.setValue(140.0)
+    s = d.design.source(lum.name)
+    assert s.flux_range == (0.0, 9000.0) and s.efficacy == 140.0
+    panel.free_strength.setChecked(False)
+    assert d.design.source(lum.name).free == ("u0", "v0", "u1", "v1")
+    assert not panel.flux_max.isEnabled()
+    panel.free_place.setChecked(False)
+    assert d.design.source(lum.name).free == ()
+    window.grab().save("/tmp/properties-freedom.png")
+    sky = d.add_source("skylight")
+    assert "filter" in d.design.source(sky.name).free
+    assert panel.free_strength.text() == "filter" and not panel.flux_max.isVisible()
+    window.act_undo.trigger()  # undo works on these too
+    window.act_undo.trigger()
+    assert d.design.source(lum.name).free == ("u0", "v0", "u1", "v1")

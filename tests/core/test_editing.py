@@ -107,9 +107,10 @@ def test_new_sources_are_centred_named_and_current(lit):
     assert lum.name == "L1" and lum.kind == SourceKind.LUMINAIRE and lum.flux == 3000.0
     w, h = lit.zone_size("lum_west")
     assert lum.rect == pytest.approx(((w - 1) / 2, (h - 1) / 2, (w + 1) / 2, (h + 1) / 2))
-    assert lum.free == ("u0", "v0", "u1", "v1")
+    assert lum.free == ("u0", "v0", "u1", "v1", "flux")  # a least-power run may dim it
     sky = lit.add_source("skylight")
     assert sky.name == "S1" and sky.kind == SourceKind.SKYLIGHT and sky.filter == 1.0
+    assert sky.free == ("u0", "v0", "u1", "v1", "filter")
     assert lit.current_source == "S1"
     assert lit.add_source("lum_east").name == "L2"
     lit.set_current_source("L1")
