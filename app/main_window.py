@@ -11,6 +11,7 @@ are what menus, ``python -m app``, tests and scripts call.
 from __future__ import annotations
 
 import time
+from dataclasses import replace
 from pathlib import Path
 
 import numpy as np
@@ -175,6 +176,8 @@ class MainWindow(QtWidgets.QMainWindow):
         self.viewport.zoneDrawn.connect(self._zone_drawn)
         self.viewport.surface_frame = self._surface_frame
         self.tree.groupActivated.connect(self.add_intention_on_group)
+        self.tree.intentionActivated.connect(self.edit_intention)
+        self.tree.intentionDeleted.connect(self.delete_intention)
         self.run_panel.runRequested.connect(self.runs.start)
         self.run_panel.cancelRequested.connect(self.runs.cancel)
         self.solutions_panel.compareChanged.connect(self._recolour)
@@ -309,6 +312,30 @@ class MainWindow(QtWidgets.QMainWindow):
     def add_intention_on_group(self, group: str, dialog: IntentionDialog | None = None) -> bool:
         """Ask for bounds and add an intention on a group's patches."""
         return self._add_intention(group, group, None, dialog)
+
+    def edit_intention(self, name: str, dialog: IntentionDialog | None = None) -> bool:
+        """Change an intention's name, quantity or bounds in the intention dialog."""
+        old = next((i for i in self.doc.design.intentions if i.name == name), None)
+        if old is None:
+            return False
+        target = old.group if old.group is not None else f"{len(old.patches)} patches"
+        if dialog is None:
+            dialog = IntentionDialog(target, self)
+            dialog.load(old)
+        if not dialogs.accepted(dialog):
+            return False
+        try:
+            new = dialog.intention(group=old.group, patches=old.patches)
+            self.doc.replace_intention(name, replace(new, weight=old.weight))
+        except LightInvError as exc:
+            dialogs.warn(self, str(exc))
+            return False
+        return True
+
+    def delete_intention(self, name: str) -> None:
+        """Remove a lighting intention (Edit > Undo brings it back)."""
+        self.doc.remove_intention(name)
+        self.statusBar().showMessage(f"Deleted intention {name} (Edit > Undo to restore)", 6000)
 
     def _add_intention(self, label, group, patches, dialog) -> bool:
         dialog = dialog or IntentionDialog(label, self)

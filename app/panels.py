@@ -6,7 +6,7 @@ its fields) and writes back only through the document's setters.
 
 from __future__ import annotations
 
-from PySide6 import QtCore, QtWidgets
+from PySide6 import QtCore, QtGui, QtWidgets
 
 from app.document import Document
 from lightinv_core.design.model import CORNERS, DesignError, Intention
@@ -18,6 +18,8 @@ class DesignTree(QtWidgets.QTreeWidget):
     """Surfaces (groups), emitter zones, sources, lighting intentions and goals."""
 
     groupActivated = QtCore.Signal(str)
+    intentionActivated = QtCore.Signal(str)  # edit it
+    intentionDeleted = QtCore.Signal(str)
 
     def __init__(self, doc: Document, parent: QtWidgets.QWidget | None = None):
         super().__init__(parent)
@@ -28,6 +30,8 @@ class DesignTree(QtWidgets.QTreeWidget):
             sig.connect(self.refresh)
         self.itemClicked.connect(self._clicked)
         self.itemDoubleClicked.connect(self._double_clicked)
+        self.setContextMenuPolicy(QtCore.Qt.CustomContextMenu)
+        self.customContextMenuRequested.connect(self._context_menu)
 
     def refresh(self) -> None:
         self.clear()
@@ -77,6 +81,35 @@ class DesignTree(QtWidgets.QTreeWidget):
         data = item.data(0, 256)
         if data and data[0] == "group":
             self.groupActivated.emit(data[1])
+        elif data and data[0] == "intention":
+            self.intentionActivated.emit(data[1])
+
+    def intention_menu(self, name: str) -> QtWidgets.QMenu:
+        """The menu of an intention's item: edit it, delete it."""
+        menu = QtWidgets.QMenu(self)
+        menu.addAction("Edit...", lambda: self.intentionActivated.emit(name))
+        menu.addAction("Delete", lambda: self.intentionDeleted.emit(name))
+        return menu
+
+    def _context_menu(self, pos: QtCore.QPoint) -> None:
+        item = self.itemAt(pos)
+        data = item.data(0, 256) if item is not None else None
+        if data and data[0] == "intention":
+            self.intention_menu(data[1]).exec(self.viewport().mapToGlobal(pos))
+        elif data and data[0] == "group":
+            menu = QtWidgets.QMenu(self)
+            menu.addAction("Add a lighting intention...", lambda: self.groupActivated.emit(data[1]))
+            menu.exec(self.viewport().mapToGlobal(pos))
+
+    def keyPressEvent(self, event: QtGui.QKeyEvent) -> None:
+        """Delete removes the selected intention."""
+        item = self.currentItem()
+        data = item.data(0, 256) if item is not None else None
+        deleting = event.key() in (QtCore.Qt.Key_Delete, QtCore.Qt.Key_Backspace)
+        if deleting and data and data[0] == "intention":
+            self.intentionDeleted.emit(data[1])
+            return
+        super().keyPressEvent(event)
 
 
 class SourcePanel(QtWidgets.QGroupBox):
@@ -363,6 +396,13 @@ class IntentionDialog(QtWidgets.QDialog):
         buttons.accepted.connect(self.accept)
         buttons.rejected.connect(self.reject)
         form.addRow(buttons)
+
+    def load(self, intention: Intention) -> None:
+        """Show an existing intention's name, quantity and bounds (to edit it)."""
+        self.setWindowTitle(f"Edit lighting intention {intention.name}")
+        self.name.setText(intention.name)
+        self.quantity.setCurrentIndex(max(0, self.quantity.findData(str(intention.quantity))))
+        self.set_values(**{str(b): getattr(intention, str(b)) for b in Bound})
 
     def set_values(self, **values) -> None:
         """Pre-fill bounds (tests, scripted use): key=None unticks a bound."""

@@ -244,6 +244,17 @@ class DocumentModel:
             f"add intention {intention.name}",
         )
 
+    def replace_intention(self, name: str, intention: Intention) -> None:
+        """Put ``intention`` in place of the one called ``name`` (same position);
+        DesignError if there is none or the new name is another intention's."""
+        names = [i.name for i in self.design.intentions]
+        if name not in names:
+            raise DesignError(f"no lighting intention {name!r}")
+        if intention.name != name and intention.name in names:
+            raise DesignError(f"another lighting intention is already called {intention.name!r}")
+        its = tuple(intention if i.name == name else i for i in self.design.intentions)
+        self._set_design(replace(self.design, intentions=its), f"edit intention {name}")
+
     def remove_intention(self, name: str) -> None:
         """Delete a lighting intention."""
         its = tuple(i for i in self.design.intentions if i.name != name)

@@ -9,7 +9,7 @@ import subprocess
 from pathlib import Path
 
 import pytest
-from PySide6 import QtCore, QtGui, QtWidgets
+from PySide6 import QtCore, QtGui, QtTest, QtWidgets
 
 from app import dialogs
 from app.__main__ import DEMO
@@ -295,3 +295,47 @@ def test_what_the_optimiser_may_change_is_edited_in_properties(qtbot, window):
     window.act_undo.trigger()  # undo works on these too
     window.act_undo.trigger()
     assert d.design.source(lum.name).free == ("u0", "v0", "u1", "v1")
+
+
+def test_intentions_are_edited_and_deleted_from_the_tree(qtbot, window):
+    from app.panels import IntentionDialog
+    from lightinv_core.design.model import Intention
+
+    assert window.new_project("office", 0.5)
+    wait_for_operator(qtbot, window)
+    d, tree = window.doc, window.tree
+    d.add_intention(Intention("desks", "desks", average=500.0, uniformity=0.6))
+    d.add_intention(Intention("walls", "walls", min=50.0))
+    dialog = IntentionDialog("desks", window)
+    dialog.load(d.design.intentions[0])
+    assert (
+        dialog.fields["average"][1].value() == 500.0 and dialog.fields["uniformity"][0].isChecked()
+    )
+    assert not dialog.fields["min"][0].isChecked()
+    dialog.grab().save("/tmp/intention-edit.png")
+    dialog.name.setText("task area")
+    dialog.set_values(average=300.0, uniformity=0.7)
+    dialog.setResult(QtWidgets.QDialog.Accepted)
+    assert window.edit_intention("desks", dialog)
+    first = d.design.intentions[0]
+    assert (first.name, first.group, first.average, first.uniformity) == (
+        "task area",
+        "desks",
+        300.0,
+        0.7,
+    )
+    menu = tree.intention_menu("walls")
+    assert [a.text() for a in menu.actions()] == ["Edit...", "Delete"]
+    menu.actions()[1].trigger()
+    assert [i.name for i in d.design.intentions] == ["task area"]
+    (item,) = [
+        i
+        for i in tree.findItems("task area", QtCore.Qt.MatchRecursive)
+        if i.data(0, 256) == ("intention", "task area")
+    ]
+    tree.setCurrentItem(item)
+    QtTest.QTest.keyClick(tree, QtCore.Qt.Key_Delete)
+    assert d.design.intentions == ()
+    window.act_undo.trigger()
+    window.act_undo.trigger()
+    assert [i.name for i in d.design.intentions] == ["task area", "walls"]

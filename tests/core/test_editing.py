@@ -428,3 +428,15 @@ def test_every_edit_is_reported_with_its_before_and_after(lit):
     assert lit.project.optimizer.seed != 3 and lit.dirty and events == ["design"]
     assert len(edits) == 4  # restoring is not itself an edit
     assert lit.lighting() is not None  # relit, same scene: the operator stays
+
+
+def test_an_intention_is_replaced_in_place(lit):
+    lit.add_intention(Intention("a", "desks", average=300.0))
+    lit.add_intention(Intention("b", "walls", min=20.0))
+    lit.replace_intention("a", Intention("a2", "desks", average=500.0, uniformity=0.6))
+    assert [i.name for i in lit.design.intentions] == ["a2", "b"]
+    with pytest.raises(DesignError, match="already called 'b'"):
+        lit.replace_intention("a2", Intention("b", "desks", average=1.0))
+    with pytest.raises(DesignError, match="no lighting intention 'zz'"):
+        lit.replace_intention("zz", Intention("zz", "desks", average=1.0))
+    assert [i.name for i in lit.design.intentions] == ["a2", "b"]
