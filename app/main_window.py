@@ -18,6 +18,7 @@ import numpy as np
 from PySide6 import QtCore, QtGui, QtWidgets
 
 from app import actions, dialogs
+from app.achieved_panel import AchievedPanel
 from app.autosave import Autosaver, Recoverable
 from app.autosave import offer_recovery as _offer_recovery
 from app.autosave import recover as _recover
@@ -67,6 +68,7 @@ class MainWindow(QtWidgets.QMainWindow):
         self.run_panel = RunPanel(self.doc)
         self.solutions_panel = SolutionsPanel(self.doc)
         self.violations_panel = ViolationsPanel(self.doc)
+        self.achieved_panel = AchievedPanel(self.doc)
         self._docks()
         self.files = ProjectFiles(self)
         self.tasks = BackgroundTasks(self)
@@ -111,6 +113,7 @@ class MainWindow(QtWidgets.QMainWindow):
         self._dock("Properties", "properties", box, QtCore.Qt.RightDockWidgetArea, scroll=True)
         self.tabs = QtWidgets.QTabWidget()
         self.tabs.addTab(self.run_panel, "Run")
+        self.tabs.addTab(self.achieved_panel, "Achieved")
         self.tabs.addTab(self.solutions_panel, "Solutions")
         self.tabs.addTab(self.violations_panel, "Violations")
         self._dock(

@@ -339,3 +339,26 @@ def test_intentions_are_edited_and_deleted_from_the_tree(qtbot, window):
     window.act_undo.trigger()
     window.act_undo.trigger()
     assert [i.name for i in d.design.intentions] == ["task area", "walls"]
+
+
+def test_achieved_values_follow_the_design_on_screen(qtbot, window):
+    """A hand-placed design showed no achieved values; now every bound is listed live."""
+    from lightinv_core.design.model import Intention
+
+    assert window.new_project("office", 0.5)
+    wait_for_operator(qtbot, window)
+    d, panel = window.doc, window.achieved_panel
+    assert "No lighting intentions" in panel.summary.text()
+    d.add_intention(Intention("desks", "desks", average=300.0, uniformity=0.6))
+    lum = d.add_source("lum_west")
+    rows = panel.rows()
+    assert [r[1] for r in rows] == ["average ≥", "U0 ≥"]
+    field = d.design_field()
+    stats = field.intention(d.design.intentions[0]).stats
+    assert float(rows[0][3]) == pytest.approx(float(stats.average[0]), abs=0.05)
+    assert "misses" in panel.summary.text() and panel.table.rowCount() == 2
+    before = rows[0][3]
+    d.update_source(lum.name, flux=40000.0)  # brighter: the average follows at once
+    assert float(panel.rows()[0][3]) > float(before)
+    window.tabs.setCurrentWidget(panel)
+    window.grab().save("/tmp/achieved.png")
