@@ -10,6 +10,7 @@ from __future__ import annotations
 import argparse
 import dataclasses
 import json
+import math
 import resource
 import sys
 import time
@@ -102,54 +103,29 @@ def _count(text: str) -> int:
     return _integer(text, 1, 2**53, "an integer >= 1")
 
 
-def _positive(text: str) -> float:
-    try:
-        v = float(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"expected a number, got {text!r}") from None
-    if not v > 0:
-        raise argparse.ArgumentTypeError(f"expected a positive number, got {text!r}")
-    return v
+def _number_in(lo: float, hi: float, what: str, open_lo: bool = False, open_hi: bool = False):
+    """An argparse type: a number from ``lo`` to ``hi`` (``open_*``: that end excluded);
+    ``what`` says so in the message."""
+
+    def parse(text: str) -> float:
+        try:
+            v = float(text)
+        except ValueError:
+            v = math.nan
+        above = v > lo if open_lo else v >= lo
+        below = v < hi if open_hi else v <= hi
+        if not (above and below):
+            raise argparse.ArgumentTypeError(f"expected {what}, got {text!r}")
+        return v
+
+    return parse
 
 
-def _non_negative(text: str) -> float:
-    try:
-        v = float(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"expected a number, got {text!r}") from None
-    if not 0 <= v <= 1e4:
-        raise argparse.ArgumentTypeError(f"expected a length from 0 to 10,000 m, got {text!r}")
-    return v
-
-
-def _lux(text: str) -> float:
-    try:
-        v = float(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"expected a number of lux, got {text!r}") from None
-    if not 0 < v <= 2e5:
-        raise argparse.ArgumentTypeError(f"expected from 0 to 200,000 lux, got {text!r}")
-    return v
-
-
-def _fraction(text: str) -> float:
-    try:
-        v = float(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"expected a number from 0 to 1, got {text!r}") from None
-    if not 0 <= v < 1:
-        raise argparse.ArgumentTypeError(f"expected a number from 0 to below 1, got {text!r}")
-    return v
-
-
-def _angle(text: str) -> float:
-    try:
-        v = float(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"expected an angle in degrees, got {text!r}") from None
-    if not -360 <= v <= 360:
-        raise argparse.ArgumentTypeError(f"expected an angle from -360 to 360, got {text!r}")
-    return v
+_positive = _number_in(0.0, 1e12, "a positive number", open_lo=True)
+_non_negative = _number_in(0.0, 1e4, "a length from 0 to 10,000 m")
+_lux = _number_in(0.0, 2e5, "from 0 to 200,000 lux", open_lo=True)
+_fraction = _number_in(0.0, 1.0, "a number from 0 to below 1", open_hi=True)
+_angle = _number_in(-360.0, 360.0, "an angle from -360 to 360 degrees")
 
 
 def _hours(text: str) -> tuple[float, float]:
