@@ -127,11 +127,37 @@ def help_menu(win, bar: QtWidgets.QMenuBar) -> None:
         help_.addAction(act)
 
 
+GOALS = (
+    ("min_electric_power", "Least electric power (W)"),
+    ("max_light_power", "Most reflected light power (lm)"),
+)
+
+
 def design_menu(win, bar: QtWidgets.QMenuBar) -> None:
-    """Design: intentions on the selection, clearing it, the viewport's modes."""
+    """Design: intentions on the selection, rules, goals, the viewport's modes."""
     design = bar.addMenu("&Design")
-    for act in (win.act_intention, win.act_clear, *win.mode_actions.values()):
+    for act in (win.act_intention, win.act_clear):
         design.addAction(act)
+    win.act_add_rule = action(win, "Add a geometric &rule...", lambda _=False: win.add_rule())
+    design.addAction(win.act_add_rule)
+    goals = design.addMenu("&Goals (both: a Pareto front)")
+    win.goal_actions = {}
+    for kind, text in GOALS:
+        act = action(win, text, lambda on, k=kind: win.set_goal(k, on), checkable=True)
+        win.goal_actions[kind] = act
+        goals.addAction(act)
+    design.addSeparator()
+    for act in win.mode_actions.values():
+        design.addAction(act)
+
+
+def check_goals(win) -> None:
+    """Tick the Design > Goals entries as the design has them."""
+    kinds = {g.kind for g in win.doc.design.goals} if win.doc.project is not None else set()
+    for kind, act in getattr(win, "goal_actions", {}).items():
+        act.blockSignals(True)
+        act.setChecked(kind in kinds)
+        act.blockSignals(False)
 
 
 def compute_menu(win, bar: QtWidgets.QMenuBar) -> None:

@@ -24,7 +24,14 @@ from app.autosave import offer_recovery as _offer_recovery
 from app.autosave import recover as _recover
 from app.document import Document
 from app.files import MAX_RECENT, ProjectFiles
-from app.panels import DesignTree, IntentionDialog, SourcePanel, ZoneDialog, ZonePanel
+from app.panels import (
+    DesignTree,
+    IntentionDialog,
+    RuleDialog,
+    SourcePanel,
+    ZoneDialog,
+    ZonePanel,
+)
 from app.results_panel import SolutionsPanel, ViolationsPanel
 from app.run_control import RunController
 from app.run_panel import RunPanel
@@ -181,6 +188,8 @@ class MainWindow(QtWidgets.QMainWindow):
         self.tree.groupActivated.connect(self.add_intention_on_group)
         self.tree.intentionActivated.connect(self.edit_intention)
         self.tree.intentionDeleted.connect(self.delete_intention)
+        self.tree.ruleDeleted.connect(self.delete_rule)
+        d.designChanged.connect(lambda: actions.check_goals(self))
         self.run_panel.runRequested.connect(self.runs.start)
         self.run_panel.cancelRequested.connect(self.runs.cancel)
         self.solutions_panel.compareChanged.connect(self._recolour)
@@ -334,6 +343,35 @@ class MainWindow(QtWidgets.QMainWindow):
             dialogs.warn(self, str(exc))
             return False
         return True
+
+    def add_rule(self, dialog=None) -> bool:
+        """Ask for a geometric rule (area, aspect, spacing, align) and add it."""
+        names = [x.name for x in self.doc.design.sources] if self.doc.project else []
+        if not names:
+            dialogs.inform(self, "Add sources first: rules bind sources.")
+            return False
+        dialog = dialog or RuleDialog(names, self)
+        if not dialogs.accepted(dialog):
+            return False
+        try:
+            self.doc.add_rule(dialog.rule())
+        except LightInvError as exc:
+            dialogs.warn(self, str(exc))
+            return False
+        return True
+
+    def delete_rule(self, index: int) -> None:
+        """Remove a geometric rule (Edit > Undo brings it back)."""
+        self.doc.remove_rule(index)
+        self.statusBar().showMessage("Deleted a rule (Edit > Undo to restore)", 6000)
+
+    def set_goal(self, kind: str, on: bool) -> None:
+        """Add or remove a goal (Design > Goals); both power goals give a Pareto front."""
+        try:
+            self.doc.set_goal(kind, on)
+        except LightInvError as exc:
+            dialogs.warn(self, str(exc))
+        actions.check_goals(self)
 
     def delete_intention(self, name: str) -> None:
         """Remove a lighting intention (Edit > Undo brings it back)."""

@@ -9,7 +9,8 @@ from __future__ import annotations
 from PySide6 import QtCore, QtGui, QtWidgets
 
 from app.document import Document
-from lightinv_core.design.model import CORNERS, DesignError, Intention
+from lightinv_core.design.model import CORNERS, DesignError, Intention, Rule
+from lightinv_core.editing.rules import rule_text
 from lightinv_core.errors import LightInvError
 from lightinv_core.kinds import Bound, Quantity, SourceKind
 
@@ -20,6 +21,7 @@ class DesignTree(QtWidgets.QTreeWidget):
     groupActivated = QtCore.Signal(str)
     intentionActivated = QtCore.Signal(str)  # edit it
     intentionDeleted = QtCore.Signal(str)
+    ruleDeleted = QtCore.Signal(int)
 
     def __init__(self, doc: Document, parent: QtWidgets.QWidget | None = None):
         super().__init__(parent)
@@ -67,6 +69,10 @@ class DesignTree(QtWidgets.QTreeWidget):
             QtWidgets.QTreeWidgetItem(its, [it.name, f"{target}: {bounds} {it.quantity}"]).setData(
                 0, 256, ("intention", it.name)
             )
+        rules_item = QtWidgets.QTreeWidgetItem(self, ["Rules", str(len(d.design.rules))])
+        for k, rule in enumerate(d.design.rules):
+            what, bounds = rule_text(rule)
+            QtWidgets.QTreeWidgetItem(rules_item, [what, bounds]).setData(0, 256, ("rule", k))
         goals = QtWidgets.QTreeWidgetItem(self, ["Goals", ""])
         for g in d.design.goals:
             QtWidgets.QTreeWidgetItem(goals, [g.kind, ", ".join(g.kinds)])
@@ -96,6 +102,10 @@ class DesignTree(QtWidgets.QTreeWidget):
         data = item.data(0, 256) if item is not None else None
         if data and data[0] == "intention":
             self.intention_menu(data[1]).exec(self.viewport().mapToGlobal(pos))
+        elif data and data[0] == "rule":
+            menu = QtWidgets.QMenu(self)
+            menu.addAction("Delete", lambda: self.ruleDeleted.emit(data[1]))
+            menu.exec(self.viewport().mapToGlobal(pos))
         elif data and data[0] == "group":
             menu = QtWidgets.QMenu(self)
             menu.addAction("Add a lighting intention...", lambda: self.groupActivated.emit(data[1]))
@@ -108,6 +118,9 @@ class DesignTree(QtWidgets.QTreeWidget):
         deleting = event.key() in (QtCore.Qt.Key_Delete, QtCore.Qt.Key_Backspace)
         if deleting and data and data[0] == "intention":
             self.intentionDeleted.emit(data[1])
+            return
+        if deleting and data and data[0] == "rule":
+            self.ruleDeleted.emit(data[1])
             return
         super().keyPressEvent(event)
 
@@ -530,3 +543,100 @@ class ZoneDialog(QtWidgets.QDialog):
         buttons.accepted.connect(self.accept)
         buttons.rejected.connect(self.reject)
         form.addRow(buttons)
+
+
+RULE_KINDS = {
+    "area": "area of each source (m²)",
+    "aspect": "aspect ratio of each source (long / short side)",
+    "spacing": "gap between two sources in one zone (m)",
+    "align": "sources on one line along a zone axis",
+}
+
+
+class RuleDialog(QtWidgets.QDialog):
+    """A new geometric rule: its kind, the sources it binds, its bounds or axis.
+    (Mirror and centred rules are set in the Properties panel.)"""
+
+    def __init__(self, sources: list[str], parent: QtWidgets.QWidget | None = None):
+        super().__init__(parent)
+        self.setWindowTitle("Add a geometric rule")
+        form = QtWidgets.QFormLayout(self)
+        self.kind = QtWidgets.QComboBox()
+        for key, text in RULE_KINDS.items():
+            self.kind.addItem(text, key)
+        form.addRow("Rule", self.kind)
+        self.sources = QtWidgets.QListWidget()
+        for name in sources:
+            item = QtWidgets.QListWidgetItem(name)
+            item.setFlags(item.flags() | QtCore.Qt.ItemIsUserCheckable)
+            item.setCheckState(QtCore.Qt.Checked)
+            self.sources.addItem(item)
+        self.sources.setMaximumHeight(110)
+        form.addRow("Sources", self.sources)
+        self.bounds = {}
+        for key, label, value in (("min", "at least", 0.5), ("max", "at most", 4.0)):
+            check = QtWidgets.QCheckBox()
+            box = QtWidgets.QDoubleSpinBox(decimals=2, singleStep=0.25)
+            box.setRange(0.0, 1e4)
+            box.setValue(value)
+            check.toggled.connect(box.setEnabled)
+            row = QtWidgets.QHBoxLayout()
+            row.addWidget(check)
+            row.addWidget(box)
+            form.addRow(label, row)
+            self.bounds[key] = (check, box)
+        self.bounds["max"][0].setChecked(True)
+        self.bounds["min"][1].setEnabled(False)
+        self.axis = QtWidgets.QComboBox()
+        self.axis.addItems(["u", "v"])
+        form.addRow("Axis", self.axis)
+        buttons = QtWidgets.QDialogButtonBox(
+            QtWidgets.QDialogButtonBox.Ok | QtWidgets.QDialogButtonBox.Cancel
+        )
+        buttons.accepted.connect(self.accept)
+        buttons.rejected.connect(self.reject)
+        form.addRow(buttons)
+        self.kind.currentIndexChanged.connect(self._kind_changed)
+        self._kind_changed()
+
+    def _kind_changed(self) -> None:
+        kind = self.kind.currentData()
+        for key, (check, box) in self.bounds.items():
+            usable = kind in ("area", "spacing") or (kind == "aspect" and key == "max")
+            check.setEnabled(usable)
+            box.setEnabled(usable and check.isChecked())
+        self.axis.setEnabled(kind == "align")
+
+    def set_rule(self, kind: str, sources: list[str], **bounds) -> None:
+        """Fill the dialog (tests, scripts): ``bounds`` min / max / axis, None unticks."""
+        self.kind.setCurrentIndex(self.kind.findData(kind))
+        for i in range(self.sources.count()):
+            item = self.sources.item(i)
+            item.setCheckState(QtCore.Qt.Checked if item.text() in sources else QtCore.Qt.Unchecked)
+        for key, value in bounds.items():
+            if key == "axis":
+                self.axis.setCurrentText(value)
+                continue
+            check, box = self.bounds[key]
+            check.setChecked(value is not None)
+            if value is not None:
+                box.setValue(value)
+
+    def rule(self) -> Rule:
+        """The rule described (DesignError if it cannot hold, e.g. no source ticked)."""
+        kind = self.kind.currentData()
+        names = [
+            self.sources.item(i).text()
+            for i in range(self.sources.count())
+            if self.sources.item(i).checkState() == QtCore.Qt.Checked
+        ]
+        if not names:
+            raise DesignError("tick at least one source")
+        fields = {}
+        if kind == "align":
+            fields["axis"] = self.axis.currentText()
+        else:
+            for key, (check, box) in self.bounds.items():
+                if check.isEnabled() and check.isChecked():
+                    fields[key] = box.value()
+        return Rule(kind, tuple(names), **fields)

@@ -18,7 +18,7 @@ from pathlib import Path
 
 import numpy as np
 
-from lightinv_core.design.model import Design, Goal, Intention, Source
+from lightinv_core.design.model import Design, Goal, Intention, Rule, Source
 from lightinv_core.design.solution import ParetoFront, Solution, SolutionInfo
 from lightinv_core.editing import results as _results
 from lightinv_core.editing import rules
@@ -236,6 +236,28 @@ class DocumentModel:
     def mirror_of(self, name: str) -> tuple[str, str] | None:
         """(original, axis) if ``name`` mirrors another source."""
         return rules.mirror_of(self.design, name)
+
+    def add_rule(self, rule: Rule) -> None:
+        """Append a geometric rule (DesignError if it names unknown sources or clashes)."""
+        self._set_design(
+            replace(self.design, rules=(*self.design.rules, rule)),
+            f"add rule {rules.rule_text(rule)[0]}",
+        )
+
+    def remove_rule(self, index: int) -> None:
+        """Delete the rule at ``index`` of the design's rules."""
+        rule = self.design.rules[index]
+        kept = self.design.rules[:index] + self.design.rules[index + 1 :]
+        self._set_design(
+            replace(self.design, rules=kept), f"remove rule {rules.rule_text(rule)[0]}"
+        )
+
+    def set_goal(self, kind: str, on: bool) -> None:
+        """Add goal ``kind`` (both power goals give a Pareto front) or remove it;
+        DesignError when no goal would be left."""
+        design = rules.with_goal(self.design, kind, on)
+        if design != self.design:
+            self._set_design(design, f"{'add' if on else 'remove'} goal {kind}")
 
     def add_intention(self, intention: Intention) -> None:
         """Append a lighting intention (DesignError if its name is taken)."""

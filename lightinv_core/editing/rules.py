@@ -13,6 +13,7 @@ from dataclasses import replace
 import numpy as np
 
 from lightinv_core.design.model import CORNERS, Design, Goal, Rule, Source
+from lightinv_core.errors import DesignError
 from lightinv_core.kinds import RuleKind, SourceKind
 
 NEW_SOURCE_SIZE = 1.0
@@ -126,3 +127,29 @@ def with_primary_goal(design: Design, kind: str) -> Design:
     if goals and goals[0] == first:
         return design
     return replace(design, goals=(first, *(g for g in goals if g != first)))
+
+
+def with_goal(design: Design, kind: str, on: bool) -> Design:
+    """``design`` with goal ``kind`` added (after the others) or removed; DesignError
+    when that would leave no goal."""
+    goals = tuple(g for g in design.goals if g.kind != kind)
+    if on:
+        goals = (*goals, next((g for g in design.goals if g.kind == kind), None) or Goal(kind))
+    if not goals:
+        raise DesignError("a design needs at least one goal")
+    return replace(design, goals=goals)
+
+
+def rule_text(rule) -> tuple[str, str]:
+    """(what, bounds) of a rule for a list: ("area L1, L2", "0.5 to 4 m²") and so on."""
+    names = ", ".join(rule.sources)
+    if rule.kind == "mirror":
+        return f"mirror {rule.sources[0]}", f"of {rule.sources[1]} along {rule.axis}"
+    if rule.kind == "align":
+        return f"align {names}", f"along {rule.axis}"
+    if rule.kind == "centred":
+        return f"centred {names}", "in their zones"
+    units = {"area": " m²", "spacing": " m", "aspect": ""}[rule.kind]
+    lo = f"at least {rule.min:g}{units}" if rule.min is not None else ""
+    hi = f"at most {rule.max:g}{units}" if rule.max is not None else ""
+    return f"{rule.kind} {names}", " and ".join(x for x in (lo, hi) if x)

@@ -362,3 +362,61 @@ def test_achieved_values_follow_the_design_on_screen(qtbot, window):
     assert float(panel.rows()[0][3]) > float(before)
     window.tabs.setCurrentWidget(panel)
     window.grab().save("/tmp/achieved.png")
+
+
+def test_rules_and_goals_are_seen_and_edited(qtbot, window):
+    """Rules could not be created or even seen (the demo's aspect rule was invisible);
+    a second goal needed editing the file."""
+    from app.panels import RuleDialog
+
+    assert window.open_path(DEMO)
+    wait_for_operator(qtbot, window)
+    d, tree = window.doc, window.tree
+    shown = [
+        i.text(0)
+        for i in tree.findItems("", QtCore.Qt.MatchContains | QtCore.Qt.MatchRecursive)
+        if i.data(0, 256) and i.data(0, 256)[0] == "rule"
+    ]
+    assert len(shown) == len(d.design.rules) > 0
+    tree.grab().save("/tmp/tree-rules.png")
+    dialog = RuleDialog([s.name for s in d.design.sources], window)
+    dialog.set_rule("area", ["L1"], min=1.0, max=3.0)
+    dialog.grab().save("/tmp/rule-dialog.png")
+    dialog.setResult(QtWidgets.QDialog.Accepted)
+    n = len(d.design.rules)
+    assert window.add_rule(dialog)
+    rule = d.design.rules[-1]
+    assert (rule.kind, rule.sources, rule.min, rule.max) == ("area", ("L1",), 1.0, 3.0)
+    (item,) = [
+        i
+        for i in tree.findItems("area L1", QtCore.Qt.MatchRecursive)
+        if i.data(0, 256) == ("rule", n)
+    ]
+    assert item.text(1) == "at least 1 m² and at most 3 m²"
+    tree.setCurrentItem(item)
+    QtTest.QTest.keyClick(tree, QtCore.Qt.Key_Delete)
+    assert len(d.design.rules) == n
+    bad = RuleDialog(["L1"], window)
+    bad.set_rule("spacing", ["L1"], min=1.0)  # spacing binds two sources
+    bad.setResult(QtWidgets.QDialog.Accepted)
+    warned = []
+    import app.dialogs as dialogs_module
+
+    original = dialogs_module.warn
+    dialogs_module.warn = lambda parent, text: warned.append(text)
+    try:
+        assert not window.add_rule(bad) and warned
+    finally:
+        dialogs_module.warn = original
+    # Goals: both power goals make a Pareto front; the last one cannot go.
+    window.goal_actions["max_light_power"].trigger()
+    assert [g.kind for g in d.design.goals] == ["min_electric_power", "max_light_power"]
+    window.goal_actions["min_electric_power"].trigger()
+    assert [g.kind for g in d.design.goals] == ["max_light_power"]
+    dialogs_module.warn = lambda parent, text: warned.append(text)
+    try:
+        window.goal_actions["max_light_power"].trigger()  # the last goal: refused
+    finally:
+        dialogs_module.warn = original
+    assert [g.kind for g in d.design.goals] == ["max_light_power"]
+    assert window.goal_actions["max_light_power"].isChecked()

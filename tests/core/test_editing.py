@@ -440,3 +440,22 @@ def test_an_intention_is_replaced_in_place(lit):
     with pytest.raises(DesignError, match="no lighting intention 'zz'"):
         lit.replace_intention("zz", Intention("zz", "desks", average=1.0))
     assert [i.name for i in lit.design.intentions] == ["a2", "b"]
+
+
+def test_rules_and_goals_are_added_and_removed(lit):
+    lit.add_source("lum_west")
+    lit.add_source("lum_east")
+    lit.add_rule(Rule("aspect", ("L1",), max=3.0))
+    lit.add_rule(Rule("align", ("L1", "L2"), axis="v"))
+    assert edit_rules.rule_text(lit.design.rules[0]) == ("aspect L1", "at most 3")
+    assert edit_rules.rule_text(lit.design.rules[1]) == ("align L1, L2", "along v")
+    with pytest.raises(DesignError):
+        lit.add_rule(Rule("area", ("nope",), max=1.0))
+    lit.remove_rule(0)
+    assert [r.kind for r in lit.design.rules] == ["align"]
+    lit.set_goal("max_light_power", True)
+    assert [g.kind for g in lit.design.goals] == ["min_electric_power", "max_light_power"]
+    lit.set_goal("min_electric_power", False)
+    with pytest.raises(DesignError, match="at least one goal"):
+        lit.set_goal("max_light_power", False)
+    assert [g.kind for g in lit.design.goals] == ["max_light_power"]
