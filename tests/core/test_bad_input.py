@@ -16,6 +16,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+from lightinv_core.climate.weather import WeatherError
 from lightinv_core.design.model import Design, DesignError, Goal, Intention, Rule, Source
 from lightinv_core.errors import LightInvError, ObjImportError, PhotometryError, SceneError
 from lightinv_core.operator.cache import get_operator
@@ -625,6 +626,47 @@ def _(d):
 )
 def _(d):
     return schedule_error(d, LUMINAIRE_HEADER + "D1,1,1,2.9,nowhere.ies,0,0,-1,1,0,0\n")
+
+
+@case(
+    "weather-missing",
+    "weather file",
+    "a weather file that does not exist (`--weather nowhere.epw`)",
+    WeatherError,
+    "weather file",
+    "does not exist",
+)
+def _(d):
+    from lightinv_core.climate.weather import read_weather
+
+    return raised(lambda: read_weather(d / "nowhere.epw"))
+
+
+@case(
+    "weather-garbage",
+    "weather file",
+    "a text file that is not an EPW (`--weather notes.epw`)",
+    WeatherError,
+    "notes.epw: not a readable EPW or TMY3 weather file",
+)
+def _(d):
+    from lightinv_core.climate.weather import read_weather
+
+    (d / "notes.epw").write_text("meeting notes\nnothing hourly here\n")
+    return raised(lambda: read_weather(d / "notes.epw"))
+
+
+@case(
+    "weather-occupancy",
+    "weather file",
+    "an occupancy schedule ending before it starts (18 to 8 h)",
+    WeatherError,
+    "occupancy must be 0 <= start < end <= 24 h",
+)
+def _(d):
+    from lightinv_core.climate.weather import read_weather
+
+    return raised(lambda: read_weather("builtin").occupied(18, 8))
 
 
 # --- scenes and drawn zones ---------------------------------------------------------------
