@@ -374,6 +374,29 @@ BOUND_FIELDS = {
 """Each bound of an intention: its label and the value the dialog offers."""
 
 
+def optional_number(
+    form: QtWidgets.QFormLayout,
+    label: str,
+    value: float,
+    hi: float,
+    decimals: int = 2,
+    step: float = 1.0,
+) -> tuple[QtWidgets.QCheckBox, QtWidgets.QDoubleSpinBox]:
+    """A form row "label [x] [value]": a bound that counts when ticked (unticked, its
+    number is greyed out)."""
+    check = QtWidgets.QCheckBox()
+    box = QtWidgets.QDoubleSpinBox(decimals=decimals, singleStep=step)
+    box.setRange(0.0, hi)
+    box.setValue(value)
+    box.setEnabled(False)
+    check.toggled.connect(box.setEnabled)
+    row = QtWidgets.QHBoxLayout()
+    row.addWidget(check)
+    row.addWidget(box)
+    form.addRow(label, row)
+    return check, box
+
+
 class IntentionDialog(QtWidgets.QDialog):
     """Name, quantity and bounds of a new lighting intention on a group or the selection."""
 
@@ -390,17 +413,9 @@ class IntentionDialog(QtWidgets.QDialog):
         self.fields = {}
         for bound, (label, default) in BOUND_FIELDS.items():
             key, u0 = str(bound), bound == Bound.UNIFORMITY
-            check = QtWidgets.QCheckBox()
-            box = QtWidgets.QDoubleSpinBox(decimals=2 if u0 else 1)
-            box.setRange(0.0, 1.0 if u0 else 1e6)
-            box.setValue(default)
-            box.setEnabled(False)
-            check.toggled.connect(box.setEnabled)
-            row = QtWidgets.QHBoxLayout()
-            row.addWidget(check)
-            row.addWidget(box)
-            form.addRow(label, row)
-            self.fields[key] = (check, box)
+            self.fields[key] = optional_number(
+                form, label, default, 1.0 if u0 else 1e6, decimals=2 if u0 else 1
+            )
         self.fields[str(Bound.AVERAGE)][0].setChecked(True)
         self.fields[str(Bound.UNIFORMITY)][0].setChecked(True)
         buttons = QtWidgets.QDialogButtonBox(
@@ -575,18 +590,8 @@ class RuleDialog(QtWidgets.QDialog):
         form.addRow("Sources", self.sources)
         self.bounds = {}
         for key, label, value in (("min", "at least", 0.5), ("max", "at most", 4.0)):
-            check = QtWidgets.QCheckBox()
-            box = QtWidgets.QDoubleSpinBox(decimals=2, singleStep=0.25)
-            box.setRange(0.0, 1e4)
-            box.setValue(value)
-            check.toggled.connect(box.setEnabled)
-            row = QtWidgets.QHBoxLayout()
-            row.addWidget(check)
-            row.addWidget(box)
-            form.addRow(label, row)
-            self.bounds[key] = (check, box)
+            self.bounds[key] = optional_number(form, label, value, 1e4, step=0.25)
         self.bounds["max"][0].setChecked(True)
-        self.bounds["min"][1].setEnabled(False)
         self.axis = QtWidgets.QComboBox()
         self.axis.addItems(["u", "v"])
         form.addRow("Axis", self.axis)
