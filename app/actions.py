@@ -41,7 +41,7 @@ def create_actions(win) -> None:
     win.act_open = action(win, "&Open project...", win.open_dialog, ks.Open)
     win.act_save = action(win, "&Save", win.save, ks.Save)
     win.act_save_as = action(win, "Save &As...", win.save_as_dialog, ks.SaveAs)
-    win.act_import = action(win, "&Import OBJ...", win.import_obj_dialog)
+    win.act_import = action(win, "&Import OBJ...", lambda _=False: win.import_obj_dialog())
     win.act_png = action(win, "Export viewport &PNG...", win.export_png_dialog)
     win.act_report = action(win, "Export &report (PDF)...", win.export_report_dialog)
     win.act_quit = action(win, "&Quit", win.close, ks.Quit)

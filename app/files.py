@@ -85,19 +85,33 @@ class ProjectFiles(QtCore.QObject):
             return True
         return False
 
-    def import_obj(self, path: str | Path) -> bool:
-        """A new project on an OBJ model (groups, materials and zones from the file)."""
-        return self.load_project(obj_project(path))
+    def import_obj(self, path: str | Path, **options) -> bool:
+        """A new project on an OBJ model (groups, materials and zones from the file) with
+        import ``options`` (scale, up, materials, resolution, skip_degenerate)."""
+        try:
+            project = obj_project(path, **options)
+        except LightInvError as exc:
+            dialogs.error(self.win, "cannot import", str(exc))
+            return False
+        return self.load_project(project)
 
     def open_dialog(self) -> None:
         path = dialogs.open_file(self.win, "Open project")
         if path:
             self.open_path(path)
 
-    def import_obj_dialog(self) -> None:
-        path = dialogs.open_file(self.win, "Import OBJ model", "Wavefront OBJ (*.obj)")
-        if path:
-            self.import_obj(path)
+    def import_obj_dialog(self, dialog=None) -> bool:
+        """Choose an OBJ file, then its import options (units, up axis, materials)."""
+        if dialog is None:
+            path = dialogs.open_file(self.win, "Import OBJ model", "Wavefront OBJ (*.obj)")
+            if not path:
+                return False
+            from app.import_dialog import ImportDialog
+
+            dialog = ImportDialog(Path(path), self.win)
+        if not dialogs.accepted(dialog):
+            return False
+        return self.import_obj(dialog.path, **dialog.options())
 
     # -- saving and exporting ------------------------------------------------------------------
     def save(self) -> bool:

@@ -461,9 +461,9 @@ class MainWindow(QtWidgets.QMainWindow):
         """Open a project file."""
         return self.files.open_path(path)
 
-    def import_obj(self, path: str | Path) -> bool:
-        """A new project on an OBJ model."""
-        return self.files.import_obj(path)
+    def import_obj(self, path: str | Path, **options) -> bool:
+        """A new project on an OBJ model, with import options (files.py)."""
+        return self.files.import_obj(path, **options)
 
     def save(self) -> bool:
         """Save to the project's file (Save As when it has none)."""
@@ -480,8 +480,8 @@ class MainWindow(QtWidgets.QMainWindow):
     def open_dialog(self) -> None:
         self.files.open_dialog()
 
-    def import_obj_dialog(self) -> None:
-        self.files.import_obj_dialog()
+    def import_obj_dialog(self, dialog=None) -> bool:
+        return self.files.import_obj_dialog(dialog)
 
     def save_as_dialog(self) -> bool:
         return self.files.save_as_dialog()

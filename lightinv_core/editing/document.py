@@ -487,10 +487,15 @@ def blank_project(scene_name: str, resolution: float | None = None) -> Project:
     )
 
 
-def obj_project(path: str | Path) -> Project:
-    """A new project on an OBJ model (groups, materials and zones from the file)."""
+def obj_project(path: str | Path, **options) -> Project:
+    """A new project on an OBJ model (groups, materials and zones from the file);
+    ``options`` are the scene's import settings: ``scale`` (metres per model unit),
+    ``up`` ("z" or "y"), ``materials`` (a reflectance JSON file), ``resolution`` (m),
+    ``skip_degenerate`` (ProjectError on a bad value)."""
+    if options.get("materials"):
+        options["materials"] = str(Path(options["materials"]).resolve())
     return Project(
         name=Path(path).stem,
-        scene=SceneSpec(obj=str(Path(path).resolve())),
+        scene=SceneSpec(obj=str(Path(path).resolve()), **options),
         design=Design((), (Goal(GoalKind.MIN_ELECTRIC_POWER),)),
     )

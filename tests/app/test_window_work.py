@@ -420,3 +420,32 @@ def test_rules_and_goals_are_seen_and_edited(qtbot, window):
         dialogs_module.warn = original
     assert [g.kind for g in d.design.goals] == ["max_light_power"]
     assert window.goal_actions["max_light_power"].isChecked()
+
+
+def test_importing_an_obj_asks_units_and_up_axis(qtbot, window, tmp_path):
+    """A millimetre model imported asking nothing was meshed as a 4 km room."""
+    from app.import_dialog import ImportDialog
+    from tests.core.test_obj_import import BOX
+
+    mm = "".join(
+        "v " + " ".join(str(1000 * float(x)) for x in line.split()[1:]) + "\n"
+        if line.startswith("v ")
+        else line + "\n"
+        for line in BOX.splitlines()
+    )
+    path = tmp_path / "room-mm.obj"
+    path.write_text(mm)
+    dialog = ImportDialog(path, window)
+    assert dialog.units.currentText() == "millimetres"  # 4,000 units across: guessed
+    assert dialog.size.text() == "4.00 m across"
+    dialog.units.setCurrentIndex(0)
+    assert "too big for a building" in dialog.size.text()
+    dialog.units.setCurrentIndex(2)
+    dialog.resolution.setValue(0.5)
+    dialog.grab().save("/tmp/import-dialog.png")
+    dialog.setResult(QtWidgets.QDialog.Accepted)
+    assert window.import_obj_dialog(dialog)
+    scene = window.doc.project.scene
+    assert (scene.scale, scene.up, scene.resolution) == (0.001, "z", 0.5)
+    assert window.doc.scene.area == pytest.approx(2 * (12 + 10 + 7.5))
+    assert window.doc.patches.n < 300
