@@ -24,6 +24,7 @@ from app.autosave import offer_recovery as _offer_recovery
 from app.autosave import recover as _recover
 from app.document import Document
 from app.files import MAX_RECENT, ProjectFiles
+from app.materials_panel import MaterialsPanel
 from app.panels import (
     DesignTree,
     IntentionDialog,
@@ -76,6 +77,7 @@ class MainWindow(QtWidgets.QMainWindow):
         self.solutions_panel = SolutionsPanel(self.doc)
         self.violations_panel = ViolationsPanel(self.doc)
         self.achieved_panel = AchievedPanel(self.doc)
+        self.materials_panel = MaterialsPanel(self.doc)
         self._docks()
         self.files = ProjectFiles(self)
         self.tasks = BackgroundTasks(self)
@@ -115,6 +117,7 @@ class MainWindow(QtWidgets.QMainWindow):
         lay = QtWidgets.QVBoxLayout(box)
         lay.addWidget(self.source_panel)
         lay.addWidget(self.zone_panel)
+        lay.addWidget(self.materials_panel)
         lay.addWidget(self._view_options())
         lay.addStretch(1)
         self._dock("Properties", "properties", box, QtCore.Qt.RightDockWidgetArea, scroll=True)

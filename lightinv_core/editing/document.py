@@ -338,6 +338,31 @@ class DocumentModel:
         self.mark_dirty()
         self._edited("drawn zones", before)
 
+    def reflectance(self, group: str) -> float:
+        """The area-weighted reflectance of a lighting group's surfaces (0 to 1)."""
+        surfaces = [x for x in self.scene.surfaces if x.group == group]
+        if not surfaces:
+            raise DesignError(f"no lighting group {group!r} in the scene")
+        area = sum(x.area for x in surfaces)
+        return sum(x.reflectance * x.area for x in surfaces) / area
+
+    def set_reflectance(self, group: str, value: float | None) -> None:
+        """Give a lighting group's surfaces ``value`` (None: the scene's own again). The
+        patches change, so the operator is built again (or loaded from the cache);
+        SceneError or ProjectError on a bad value, leaving the project unchanged."""
+        current = dict(self._project.scene.reflectances)
+        if value is None:
+            current.pop(group, None)
+        else:
+            current[group] = float(value)
+        spec = replace(self._project.scene, reflectances=tuple(sorted(current.items())))
+        if spec == self._project.scene:
+            return
+        before = self._project
+        self.set_project(replace(self._project, scene=spec), self.path)
+        self.mark_dirty()
+        self._edited(f"reflectance of {group}", before)
+
     def add_user_zone(self, name: str, kind: str, surface: str, rect) -> ZoneEdit:
         """Draw a new zone ``name`` of ``kind`` on ``surface`` at ``rect`` (u0, v0, u1, v1)
         metres of the surface; SceneError on a bad zone, leaving the project unchanged."""

@@ -8,7 +8,7 @@ writing and docs tables come.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from pathlib import Path
 from typing import Any
 
@@ -98,6 +98,32 @@ def _zone_edits(v: Any, path: str) -> tuple[ZoneEdit, ...]:
     return zones
 
 
+def _reflectances(v: Any, path: str) -> tuple[tuple[str, float], ...]:
+    """{group: reflectance} as sorted (group, reflectance) pairs (pairs pass as they are:
+    the default, and a SceneSpec made in code)."""
+    if isinstance(v, tuple):
+        v = dict(v) if all(isinstance(p, tuple) and len(p) == 2 for p in v) else v
+    if not isinstance(v, dict):
+        _fail(path, 'expected an object of reflectances by group, e.g. {"floor": 0.3}')
+    return tuple((k, _number(x, _join(path, k), lo=0.0, lt=1.0)) for k, x in sorted(v.items()))
+
+
+def with_reflectances(scene: Scene, reflectances) -> Scene:
+    """``scene`` with the surfaces of each named group given that reflectance; a
+    SceneError names a group the scene does not have."""
+    wanted = dict(reflectances)
+    unknown = sorted(set(wanted) - set(scene.groups))
+    if unknown:
+        raise SceneError(
+            f"scene {scene.name!r} has no group {unknown[0]!r} to give a reflectance "
+            f"(groups: {', '.join(scene.groups)})"
+        )
+    surfaces = tuple(
+        replace(s, reflectance=wanted[s.group]) if s.group in wanted else s for s in scene.surfaces
+    )
+    return replace(scene, surfaces=surfaces)
+
+
 def _scene_not_taken(kind: str, field: str) -> str:
     # Materials, scale and up are properties a built-in scene already has; skipping
     # degenerate faces is an import option with nothing to apply to.
@@ -167,6 +193,15 @@ SCENE = ObjectSpec(
             OBJ,
         ),
         Field(
+            "reflectances",
+            _reflectances,
+            (),
+            "object",
+            "reflectance (0 to below 1) by lighting group, replacing the scene's own "
+            '(`{"floor": 0.3}`); written only when not empty',
+            encode=dict,
+        ),
+        Field(
             "zones",
             _zone_edits,
             (),
@@ -193,8 +228,9 @@ class SceneSpec:
     0.25 m for OBJ files). ``materials`` (a reflectance JSON file), ``scale`` (metres
     per model unit), ``up`` ("z" or "y") and ``skip_degenerate`` apply to OBJ files only.
     Relative ``obj``/``materials`` paths are resolved against ``base_dir`` in ``load``.
-    ``zones`` are new emitter zones drawn on rectangular surfaces of the scene
-    (``ZoneEdit``), applied by ``load`` with ``apply_zone_edits``.
+    ``reflectances`` are (group, reflectance) pairs replacing the scene's own (the
+    window's materials panel). ``zones`` are new emitter zones drawn on rectangular
+    surfaces of the scene (``ZoneEdit``), applied by ``load`` with ``apply_zone_edits``.
     """
 
     builtin: str | None = SCENE.field("builtin").default
@@ -204,6 +240,7 @@ class SceneSpec:
     scale: float = SCENE.field("scale").default
     up: str = SCENE.field("up").default
     skip_degenerate: bool = SCENE.field("skip_degenerate").default
+    reflectances: tuple[tuple[str, float], ...] = SCENE.field("reflectances").default
     zones: tuple[ZoneEdit, ...] = SCENE.field("zones").default
 
     def __post_init__(self) -> None:
@@ -235,4 +272,6 @@ class SceneSpec:
                 up=self.up,
                 skip_degenerate=self.skip_degenerate,
             )
+        if self.reflectances:
+            scene = with_reflectances(scene, self.reflectances)
         return apply_zone_edits(scene, self.zones) if self.zones else scene

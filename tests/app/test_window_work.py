@@ -449,3 +449,32 @@ def test_importing_an_obj_asks_units_and_up_axis(qtbot, window, tmp_path):
     assert (scene.scale, scene.up, scene.resolution) == (0.001, "z", 0.5)
     assert window.doc.scene.area == pytest.approx(2 * (12 + 10 + 7.5))
     assert window.doc.patches.n < 300
+
+
+def test_reflectances_are_edited_in_the_materials_panel(qtbot, window, tmp_path):
+    """Reflectances could not be edited in the window."""
+    assert window.new_project("cornell", 0.5)
+    wait_for_operator(qtbot, window)
+    d, panel = window.doc, window.materials_panel
+    panel.group.setCurrentIndex(panel.group.findText("floor"))
+    own = d.reflectance("floor")
+    panel.value.setValue(0.2)
+    wait_for_operator(qtbot, window)
+    assert d.reflectance("floor") == pytest.approx(0.2) and d.dirty
+    assert dict(d.project.scene.reflectances) == {"floor": 0.2}
+    assert d.patches.rho[d.patches.group_index("floor")].max() == pytest.approx(0.2)
+    panel.preset.activated.emit(panel.preset.findData(0.85))
+    wait_for_operator(qtbot, window)
+    assert d.reflectance("floor") == pytest.approx(0.85)
+    window.grab().save("/tmp/materials.png")
+    panel.grab().save("/tmp/materials-panel.png")
+    assert window.save_to(tmp_path / "m.json")
+    from lightinv_core.project import load_project
+
+    assert dict(load_project(tmp_path / "m.json").scene.reflectances) == {"floor": 0.85}
+    panel.reset.click()
+    wait_for_operator(qtbot, window)
+    assert d.reflectance("floor") == pytest.approx(own) and not d.project.scene.reflectances
+    window.act_undo.trigger()  # back to 0.85
+    wait_for_operator(qtbot, window)
+    assert d.reflectance("floor") == pytest.approx(0.85)

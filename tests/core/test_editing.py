@@ -459,3 +459,17 @@ def test_rules_and_goals_are_added_and_removed(lit):
     with pytest.raises(DesignError, match="at least one goal"):
         lit.set_goal("max_light_power", False)
     assert [g.kind for g in lit.design.goals] == ["max_light_power"]
+
+
+def test_a_groups_reflectance_is_set_and_reset(doc):
+    own = doc.reflectance("walls")
+    doc.set_reflectance("walls", 0.33)
+    assert doc.reflectance("walls") == pytest.approx(0.33) and doc.operator is None
+    assert doc.patches.rho[doc.patches.group_index("walls")] == pytest.approx(0.33)
+    with pytest.raises(LightInvError):
+        doc.set_reflectance("walls", 1.5)
+    with pytest.raises(LightInvError, match="no group 'nope'"):
+        doc.set_reflectance("nope", 0.5)
+    assert doc.reflectance("walls") == pytest.approx(0.33)
+    doc.set_reflectance("walls", None)
+    assert doc.reflectance("walls") == pytest.approx(own) and not doc.project.scene.reflectances
