@@ -40,8 +40,10 @@ class AchievedPanel(QtWidgets.QWidget):
         self.table.setEditTriggers(QtWidgets.QAbstractItemView.NoEditTriggers)
         self.table.verticalHeader().hide()
         lay.addWidget(self.table)
+        # Every design edit relights once an operator exists (lightingChanged follows
+        # designChanged); before it, only the scene's arrival matters.
         doc.lightingChanged.connect(self.refresh)
-        doc.designChanged.connect(self.refresh)
+        doc.sceneChanged.connect(self.refresh)
         self.refresh()
 
     def rows(self) -> list[tuple[str, str, str, str, str, bool]]:

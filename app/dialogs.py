@@ -15,6 +15,16 @@ PROJECT_FILTER = "LightInv project (*.json)"
 TITLE = "LightInv"
 
 
+def ok_cancel(dialog: QtWidgets.QDialog) -> QtWidgets.QDialogButtonBox:
+    """OK and Cancel buttons that accept and reject ``dialog`` (to add to its layout)."""
+    buttons = QtWidgets.QDialogButtonBox(
+        QtWidgets.QDialogButtonBox.Ok | QtWidgets.QDialogButtonBox.Cancel
+    )
+    buttons.accepted.connect(dialog.accept)
+    buttons.rejected.connect(dialog.reject)
+    return buttons
+
+
 def accepted(dialog: QtWidgets.QDialog) -> bool:
     """Whether ``dialog`` was accepted: already (a test or script set its result) or once
     shown."""

@@ -85,12 +85,7 @@ class ImportDialog(QtWidgets.QDialog):
         form.addRow("Patch size", self.resolution)
         self.skip = QtWidgets.QCheckBox("drop degenerate faces (with a warning) instead of failing")
         form.addRow("", self.skip)
-        buttons = QtWidgets.QDialogButtonBox(
-            QtWidgets.QDialogButtonBox.Ok | QtWidgets.QDialogButtonBox.Cancel
-        )
-        buttons.accepted.connect(self.accept)
-        buttons.rejected.connect(self.reject)
-        form.addRow(buttons)
+        form.addRow(dialogs.ok_cancel(self))
         self.units.currentIndexChanged.connect(self._show_size)
         if self.extent is not None and self.extent > 1000:  # probably millimetres
             self.units.setCurrentIndex(2)

@@ -8,6 +8,7 @@ from __future__ import annotations
 
 from PySide6 import QtCore, QtGui, QtWidgets
 
+from app import dialogs
 from app.document import Document
 from lightinv_core.design.model import CORNERS, DesignError, Intention, Rule
 from lightinv_core.editing.rules import rule_text
@@ -418,12 +419,7 @@ class IntentionDialog(QtWidgets.QDialog):
             )
         self.fields[str(Bound.AVERAGE)][0].setChecked(True)
         self.fields[str(Bound.UNIFORMITY)][0].setChecked(True)
-        buttons = QtWidgets.QDialogButtonBox(
-            QtWidgets.QDialogButtonBox.Ok | QtWidgets.QDialogButtonBox.Cancel
-        )
-        buttons.accepted.connect(self.accept)
-        buttons.rejected.connect(self.reject)
-        form.addRow(buttons)
+        form.addRow(dialogs.ok_cancel(self))
 
     def load(self, intention: Intention) -> None:
         """Show an existing intention's name, quantity and bounds (to edit it)."""
@@ -552,12 +548,7 @@ class ZoneDialog(QtWidgets.QDialog):
         self.kind = QtWidgets.QComboBox()
         self.kind.addItems([str(k) for k in SourceKind])
         form.addRow("Kind", self.kind)
-        buttons = QtWidgets.QDialogButtonBox(
-            QtWidgets.QDialogButtonBox.Ok | QtWidgets.QDialogButtonBox.Cancel
-        )
-        buttons.accepted.connect(self.accept)
-        buttons.rejected.connect(self.reject)
-        form.addRow(buttons)
+        form.addRow(dialogs.ok_cancel(self))
 
 
 RULE_KINDS = {
@@ -595,12 +586,7 @@ class RuleDialog(QtWidgets.QDialog):
         self.axis = QtWidgets.QComboBox()
         self.axis.addItems(["u", "v"])
         form.addRow("Axis", self.axis)
-        buttons = QtWidgets.QDialogButtonBox(
-            QtWidgets.QDialogButtonBox.Ok | QtWidgets.QDialogButtonBox.Cancel
-        )
-        buttons.accepted.connect(self.accept)
-        buttons.rejected.connect(self.reject)
-        form.addRow(buttons)
+        form.addRow(dialogs.ok_cancel(self))
         self.kind.currentIndexChanged.connect(self._kind_changed)
         self._kind_changed()
 
