@@ -385,7 +385,7 @@ class DocumentModel:
         problem = self.problem()
         if problem is None:
             raise DesignError("the radiosity operator is not ready yet")
-        return problem.solution(problem.vars.initial(), SolutionInfo(status="design"))
+        return problem.solution(problem.vars.initial(), SolutionInfo())
 
     def effective_sources(self) -> tuple[Source, ...]:
         """The design's sources as lit: mirrored and centred ones placed by their rules."""

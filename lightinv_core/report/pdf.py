@@ -106,7 +106,12 @@ def _solution_lines(project: Project, chosen: Chosen) -> list[str]:
         run.append(f"seed {info.seed}")
     if info.status:
         run.append(f"stopped by {info.status}")
-    lines.append(f"Optimiser: {project.optimizer.method}" + (f"; {', '.join(run)}" if run else ""))
+    if not info.method and not run:  # a layout given by hand, never optimised
+        lines.append("Optimiser: none (the layout as given)")
+    else:
+        lines.append(
+            f"Optimiser: {project.optimizer.method}" + (f"; {', '.join(run)}" if run else "")
+        )
     return lines
 
 
