@@ -306,7 +306,9 @@ def _simulate_reference(args, scene, p, E, luminaires) -> int:
         grid_light = light_grid(grid, light, caster, luminaires, args.rays, factors=factors)
         columns = {"df": df(grid_light.lux)} if df else {}
         if args.weather is not None:
-            annual = _annual(args, lit, F, caster, grid, factors, luminaires, plane)
+            # Without luminous groups or a design sky, the grid's light is the luminaires'.
+            electric = grid_light.lux if not args.emit and not args.sky else None
+            annual = _annual(args, lit, F, caster, grid, factors, luminaires, plane, electric)
             columns.update(annual.pop("columns"))
     for w in warnings:
         _warn(w)
@@ -418,8 +420,9 @@ def _simulate_reference(args, scene, p, E, luminaires) -> int:
     return _failed("; ".join(m for m in failed if m))
 
 
-def _annual(args, lit, F, caster, grid, factors, luminaires, plane) -> dict:
-    """Annual daylight metrics on the grid (and dimming energy with luminaires)."""
+def _annual(args, lit, F, caster, grid, factors, luminaires, plane, electric=None) -> dict:
+    """Annual daylight metrics on the grid (and dimming energy with luminaires);
+    ``electric`` is the grid's light from the luminaires alone when already solved."""
     weather = read_weather(args.weather)
     year = annual_daylight(
         lit,
@@ -460,10 +463,10 @@ def _annual(args, lit, F, caster, grid, factors, luminaires, plane) -> dict:
         },
     }
     if luminaires:
-        electric = light_scene(lit, F, caster, np.zeros(lit.n), luminaires, seed=args.seed)
-        em_elec = float(
-            light_grid(grid, electric, caster, luminaires, args.rays, factors=factors).lux.mean()
-        )
+        if electric is None:
+            alone = light_scene(lit, F, caster, np.zeros(lit.n), luminaires, seed=args.seed)
+            electric = light_grid(grid, alone, caster, luminaires, args.rays, factors=factors).lux
+        em_elec = float(electric.mean())
         watts = sum((x.photometry.input_watts or 0.0) * x.dimming for x in luminaires)
         floor = float(lit.area[lit.group_index(plane.group)].sum())
         dim = dimming_energy(
