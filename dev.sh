@@ -52,7 +52,7 @@ setup_python() {
   if [ "$(cat .venv/.lightinv-stamp 2>/dev/null)" != "$stamp" ]; then
     say "installing Python packages into .venv"
     .venv/bin/python -m pip install -q --upgrade pip
-    .venv/bin/python -m pip install -q -e '.[dev,climate]'
+    .venv/bin/python -m pip install -q -e '.[dev,climate,ifc,cluster]'
     echo "$stamp" > .venv/.lightinv-stamp
   fi
 }
