@@ -1,7 +1,11 @@
 """Benchmark: build the radiosity operator of a built-in scene and time its evaluations.
 
 Prints one JSON object. Candidates are what the optimizer evaluates: one random
-rectangle (2-20% of a random emitter zone) per candidate at 1,000 lm/m².
+rectangle (2-20% of a random emitter zone) per candidate at 1,000 lm/m². "full" is the
+light on every patch, made from the operator's factors (sparse products over F);
+"full_rows" the same through Phi's rows for every patch, made once (what a light model
+keeps when they fit, and what an intention on every patch reads); the optimiser reads
+"partial" (Phi's rows at p patches, made once).
 
     python bench/operator.py --scene patio --json
 """
@@ -23,10 +27,10 @@ from lightinv_core.operator.accuracy import (
     sample_emissions,
 )
 from lightinv_core.operator.build import build_operator
+from lightinv_core.operator.settings import OperatorSettings
 from lightinv_core.scene.builtin import builtin_scene
 from lightinv_core.scene.patches import mesh_patches
 from lightinv_core.scene.zone_grid import random_zone_emissions
-from lightinv_core.transport.formfactors import form_factor_matrix
 
 
 def batch_matrix(op, cands) -> tuple[np.ndarray, np.ndarray]:
@@ -66,7 +70,7 @@ def main() -> None:
 
     patches = mesh_patches(builtin_scene(args.scene, args.resolution))
     t0 = time.perf_counter()
-    op = build_operator(patches, rank=args.rank, tol=args.tol)
+    op = build_operator(patches, OperatorSettings(rank=args.rank, tol=args.tol))
     build = time.perf_counter() - t0
     rss_build = peak_rss_mb()
     n, b = patches.n, args.batch
@@ -83,9 +87,21 @@ def main() -> None:
     op.total_power(*obj)
     target = op.match_target(*obj)
     target.error(idx, V)
+    t1 = time.perf_counter()
+    every = op.phi_rows()  # what a light model keeps when it fits (LightModel.field)
+    basis_seconds = time.perf_counter() - t1
+
+    def through_rows(i, v):
+        cols = op.zone_columns(i)
+        return every[:, cols] @ np.asarray(v, np.float32)
+
     results = {
         "full_single_per_s": rate(lambda: op.zone_illuminance(*one()), 1),
         "full_batched_per_s": rate(lambda: op.zone_illuminance(idx, V), b),
+        "full_rows_single_per_s": rate(lambda: through_rows(*one()), 1),
+        "full_rows_batched_per_s": rate(lambda: through_rows(idx, V), b),
+        "basis_all_rows_seconds": basis_seconds,
+        "basis_all_rows_mib": every.nbytes / 2**20,
         "partial_single_per_s": rate(lambda: part.zone_illuminance(*one()), 1),
         "partial_batched_per_s": rate(lambda: part.zone_illuminance(idx, V), b),
         "total_power_per_s": rate(lambda: op.total_power(*one()), 1),
@@ -93,8 +109,9 @@ def main() -> None:
         "match_error_per_s": rate(lambda: target.error(*one()), 1),
         "match_error_batched_per_s": rate(lambda: target.error(idx, V), b),
     }
-    # Accuracy against the reference solver on independent sampled emissions.
-    F = form_factor_matrix(patches, op.info["rays"], seed=op.info["seed"])
+    # Accuracy against the reference solver (on the operator's own traced F) on
+    # independent sampled emissions.
+    F = op.F
     E = sample_emissions(patches, 8, seed=1234)
     err = relative_errors(
         patches.rho[:, None] * op.illuminance(E), reference_reflected(F, patches.rho, E)

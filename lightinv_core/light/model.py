@@ -11,7 +11,10 @@ daylight condition) into illuminance and everything derived from it, in two form
   scalar goals that need no field: ``reflected_power`` (O(nz)) and ``electric_power``.
 
 Light is linear in the emission and every source lives in an emitter zone, so H =
-Phi[:, cols] @ V over the zone columns the layout touches (see docs/operator.md).
+Phi[:, cols] @ V over the zone columns the layout touches (see docs/operator.md). The
+operator keeps Phi as factors: a batch reads Phi's rows at its receivers, made once per
+receiver set (``receivers``); one layout on every patch comes from sparse products
+(``RadiosityOperator.zone_field``), so memory grows with n k + receivers x nz, not n nz.
 """
 
 from __future__ import annotations
@@ -25,17 +28,23 @@ from lightinv_core.design.model import Daylight, Design, Source
 from lightinv_core.design.variables import Variables
 from lightinv_core.errors import DesignError
 from lightinv_core.light.field import LightField
-from lightinv_core.operator.radiosity import MatchTarget, RadiosityOperator
+from lightinv_core.operator.radiosity import BASIS_BYTES, MatchTarget, RadiosityOperator
 from lightinv_core.scene.model import Scene
 from lightinv_core.scene.patches import Patches
 from lightinv_core.sources.emission import ZoneEmission, electric_power, source_stack
+
+DISPLAY_BYTES = 1 << 30
+"""Largest whole zone basis (n x nz float32) a light model keeps for showing one layout on
+every patch (1 GiB: office takes 30 MB, patio about 300 MB, the 200,000-patch building
+would take 19 GB and is lit from the factors instead)."""
 
 
 @dataclass(frozen=True)
 class Receivers:
     """Patches at which a batch's illuminance is wanted: ``rows`` (p,) patch ids, and the
     zone-basis rows (p, nz) float32 Fortran-ordered so a batch's columns are contiguous
-    (None when every patch is a receiver)."""
+    (None when they would exceed ``BASIS_BYTES``: each batch is then lit from the
+    operator's factors, O(nnz(F) + n k) per candidate)."""
 
     rows: np.ndarray
     Phi_rows: np.ndarray | None
@@ -49,6 +58,7 @@ class LightModel:
             raise DesignError("the radiosity operator was built for another scene")
         self.scene, self.patches, self.op = scene, patches, operator
         self.emission = ZoneEmission(scene, patches, operator)
+        self._every: Receivers | None = None
 
     @property
     def n(self) -> int:
@@ -79,18 +89,30 @@ class LightModel:
         return self.emission.matrix(sources, rect, flux, filt, daylight, split_kinds)
 
     def receivers(self, rows: np.ndarray) -> Receivers:
-        """A receiver set for ``illuminance`` at patches ``rows``."""
+        """A receiver set for ``illuminance`` at patches ``rows``: Phi's rows there, made
+        once (O(nnz(F)) per row or per zone patch, whichever side is smaller), unless
+        they would exceed ``BASIS_BYTES`` (then None: lit from the factors per batch).
+        The set of every patch is kept for the model's lifetime."""
         rows = np.asarray(rows, dtype=np.int64)
-        # Column-major so a batch's columns are contiguous; None when every row is needed.
-        Phi_rows = None if len(rows) == self.n else np.asfortranarray(self.op.Phi[rows])
-        return Receivers(rows, Phi_rows)
+        every = len(rows) == self.n and np.array_equal(rows, np.arange(self.n))
+        if every and self._every is not None:
+            return self._every
+        fits = 4 * len(rows) * len(self.op.zone_patches) <= BASIS_BYTES
+        got = Receivers(rows, self.op.phi_rows(rows) if fits else None)
+        if every:
+            self._every = got
+        return got
 
     def illuminance(
         self, V: np.ndarray, receivers: Receivers | None = None, cols: np.ndarray | None = None
     ) -> np.ndarray:
-        """H (lux) at the receivers (default: every patch) for the batch V (nz, m), one GEMM.
-        ``cols`` are the zone columns any candidate emits from (found when not given)."""
-        Phi = self.op.Phi if receivers is None or receivers.Phi_rows is None else receivers.Phi_rows
+        """H (lux) at the receivers (default: every patch) for the batch V (nz, m), one GEMM
+        over Phi's rows (or sparse products over the factors when those rows were not
+        made). ``cols`` are the zone columns any candidate emits from (found when not given)."""
+        receivers = receivers or self.receivers(np.arange(self.n))
+        Phi = receivers.Phi_rows
+        if Phi is None:
+            return self.op.zone_field(V, receivers.rows)
         if cols is None:
             cols = np.flatnonzero(np.any(V != 0, axis=1))
         if 3 * len(cols) > V.shape[0]:
@@ -125,7 +147,7 @@ class LightModel:
         e_obj = self.zone_emission(sources, *source_stack(sources), daylight)[:, 0]
         return (
             self.op.match_target(self.op.zone_patches, e_obj),
-            self.op.rho * (self.op.Phi @ e_obj),
+            self.op.rho * self.op.zone_field(e_obj),
         )
 
     # -- one layout (views, reports, diagnostics) ---------------------------------------------
@@ -137,10 +159,19 @@ class LightModel:
         if not sources:
             return LightField(sources, daylight, self.patches, np.zeros(self.n), E)
         V = self.zone_emission(sources, *source_stack(sources), daylight)[:, 0]
-        cols = np.flatnonzero(V)
-        H = self.op.Phi[:, cols] @ V[cols]
+        H = self._whole_field(V)
         E[self.op.zone_patches] = V
         return LightField(sources, daylight, self.patches, H.astype(np.float64), E)
+
+    def _whole_field(self, V: np.ndarray) -> np.ndarray:
+        """H (n,) lux of zone emission V (nz,): through the whole basis kept in memory when
+        it is at most ``DISPLAY_BYTES`` (an editor relights on every edit: 1 ms instead of
+        the factors' 30 ms on office), else from the factors."""
+        if 4 * self.n * len(self.op.zone_patches) > DISPLAY_BYTES:
+            return self.op.zone_field(V)
+        Phi = self.receivers(np.arange(self.n)).Phi_rows
+        cols = np.flatnonzero(V)
+        return Phi[:, cols] @ V[cols]
 
     def emission_field(self, E: np.ndarray) -> LightField:
         """The light of a dense emission E (n,) in lm/m² on any patches (not sources):
@@ -158,7 +189,8 @@ class LightModel:
             return ()
         design = design if sources == design.sources else _with_sources(design, sources)
         self.check(sources)
-        vars_ = Variables(design, {s.zone: self.zone_size(s.zone) for s in sources})
+        zones = {s.zone for s in sources} | {a.zone for a in design.arrays}
+        vars_ = Variables(design, {z: self.zone_size(z) for z in zones})
         return vars_.sources_at(vars_.initial())
 
     def design_field(self, design: Design, sources: Sequence[Source] | None = None) -> LightField:

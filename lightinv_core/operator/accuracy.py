@@ -14,6 +14,7 @@ import numpy as np
 import scipy.sparse as sp
 
 from lightinv_core.errors import CancelledError
+from lightinv_core.operator.zone_basis import sparse_dense_product
 from lightinv_core.scene.patches import Patches
 from lightinv_core.scene.zone_grid import random_rectangles, rectangle_emission, zone_grid
 
@@ -46,7 +47,7 @@ def reference_reflected(
     """C = B - E of the reference (Jacobi on the sparse F, float32 products) for a stack
     of emission vectors (n, m), to ``tol`` relative per column. ``cancel()`` is polled
     every sweep; True raises ``CancelledError``."""
-    F32 = F.astype(np.float32)
+    F32 = F.astype(np.float32, copy=False)
     B = E.astype(np.float32)
     E32 = B.copy()
     r = rho.astype(np.float32)[:, None]
@@ -54,7 +55,7 @@ def reference_reflected(
     for _ in range(max_iter):
         if cancel is not None and cancel():
             raise CancelledError("operator build cancelled")
-        B_new = E32 + r * (F32 @ B)
+        B_new = E32 + r * sparse_dense_product(F32, B)
         delta = (np.abs(B_new - B).max(axis=0) / scale).max()
         B = B_new
         if delta <= tol:

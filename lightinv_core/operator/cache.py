@@ -19,6 +19,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
+import scipy.sparse as sp
 
 from lightinv_core.atomic import atomic_writer, remove_stale_temporaries
 from lightinv_core.errors import LightInvError
@@ -72,7 +73,11 @@ def _arrays(op: RadiosityOperator) -> dict[str, np.ndarray]:
         "rho": lr.rho,
         "cluster_area": lr.cluster_area,
         "zone_patches": op.zone_patches,
-        "Phi": op.Phi,
+        "G": op.G,
+        "power": op.power,
+        "F_data": op.F.data,
+        "F_indices": op.F.indices,
+        "F_indptr": op.F.indptr,
     }
 
 
@@ -169,8 +174,19 @@ def load_operator(path: str | Path, key: str) -> RadiosityOperator:
         info = header["info"]
         if not isinstance(info, dict):
             raise TypeError("info is not an object")
+        n = lowrank.n
+        F = sp.csr_matrix(
+            (arrays["F_data"], arrays["F_indices"], arrays["F_indptr"]), shape=(n, n), copy=False
+        )
+        F.check_format(full_check=True)  # indices in range, indptr ordered
         return RadiosityOperator(
-            lowrank, arrays["zone_patches"], arrays["Phi"], str(header["digest"]), info
+            lowrank,
+            arrays["zone_patches"],
+            F,
+            arrays["G"],
+            arrays["power"],
+            str(header["digest"]),
+            info,
         )
     except (ValueError, KeyError, TypeError, IndexError, AttributeError) as exc:
         raise CacheError(
@@ -179,17 +195,24 @@ def load_operator(path: str | Path, key: str) -> RadiosityOperator:
 
 
 def _check_shapes(a: dict[str, np.ndarray]) -> None:
-    """The arrays describe one operator: n patches, k clusters, nz zone patches."""
+    """The arrays describe one operator: n patches, k clusters, nz zone patches, a CSR
+    form-factor matrix of float32 values."""
     n, k = a["Y"].shape
     nz = len(a["zone_patches"])
+    nnz = len(a["F_data"])
     want = {
         "labels": (n,),
         "area": (n,),
         "rho": (n,),
         "cluster_area": (k,),
         "zone_patches": (nz,),
-        "Phi": (n, nz),
+        "G": (k, nz),
+        "power": (nz,),
+        "F_indices": (nnz,),
+        "F_indptr": (n + 1,),
     }
+    if a["F_data"].dtype != np.float32 or a["F_indices"].dtype.kind != "i":
+        raise ValueError("form factors must be float32 values with integer indices")
     for name, shape in want.items():
         if a[name].shape != shape:
             raise ValueError(f"array {name!r} has shape {a[name].shape}, expected {shape}")
@@ -255,9 +278,11 @@ def get_operator(
     progress: Callable[[float], None] | None = None,
     cancel: Callable[[], bool] | None = None,
     warn: Callable[[str], None] | None = None,
+    scheduler: str | None = None,
 ) -> CachedOperator:
     """Load the operator built with ``settings`` (default ``OperatorSettings()``) from the
-    cache, or build it (and cache it).
+    cache, or build it (and cache it); ``scheduler`` (``tcp://host:port``) builds it on
+    that Dask cluster (the same operator, so it is not part of the cache key).
 
     A stale or corrupt cache file is reported through ``warn`` and rebuilt.
     """
@@ -280,7 +305,7 @@ def get_operator(
         except CacheError as exc:
             if warn is not None:
                 warn(f"operator cache {exc}; rebuilding")
-    op = build_operator(patches, settings, progress=progress, cancel=cancel)
+    op = build_operator(patches, settings, progress=progress, cancel=cancel, scheduler=scheduler)
     for msg in operator_warnings(op) if warn is not None else ():
         warn(msg)
     if path is not None:

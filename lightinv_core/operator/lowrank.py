@@ -17,13 +17,19 @@ Units: E, B, C in lm/m² (exitance), H in lux, powers in lm.
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass
 
 import numpy as np
 import scipy.linalg as la
 import scipy.sparse as sp
 
-from lightinv_core.errors import LightInvError
+from lightinv_core.errors import CancelledError, LightInvError
+
+CLUSTER_BLOCK = 1024
+"""Rows of F tallied by cluster at once (float64 scratch: rows x k)."""
+ASSEMBLE_BLOCK = 2048
+"""Rows of W summed per cluster at once (float64 scratch: rows x k)."""
 
 
 @dataclass(eq=False)
@@ -73,11 +79,12 @@ class LowRank:
 
 
 def cluster_form_factors(
-    F: sp.csr_matrix, labels: np.ndarray, k: int, block: int = 4096
+    F: sp.csr_matrix, labels: np.ndarray, k: int, block: int | None = None
 ) -> np.ndarray:
     """W[i, c] = sum_{j in c} F_ij as a dense (n, k) float32 array, built in row blocks
     so the float64 scratch stays at ``block * k`` values."""
     n = F.shape[0]
+    block = block or CLUSTER_BLOCK
     W = np.empty((n, k), np.float32)
     for start in range(0, n, block):
         part = F[start : start + block]
@@ -89,25 +96,148 @@ def cluster_form_factors(
     return W
 
 
-def assemble(
-    W: np.ndarray,
-    labels: np.ndarray,
-    area: np.ndarray,
-    rho: np.ndarray,
-) -> LowRank:
-    """Y = W (I_k - V^T R W)^-1 from the cluster form factors W (n, k)."""
-    n, k = W.shape
+def cluster_weights(
+    labels: np.ndarray, area: np.ndarray, rho: np.ndarray, k: int
+) -> tuple[np.ndarray, np.ndarray]:
+    """(cluster areas (k,) m², each patch's weight A_i rho_i / A_c in V^T R)."""
     cluster_area = np.bincount(labels, weights=area, minlength=k)
     if np.any(cluster_area <= 0):
         raise LightInvError("every cluster needs at least one patch")
-    VT = sp.csr_matrix((area / cluster_area[labels], (labels, np.arange(n))), shape=(k, n))
-    M = np.eye(k) - VT @ (rho[:, None] * W.astype(np.float64))
-    Minv = la.inv(M)
-    Y = W @ Minv.astype(np.float32)
+    return cluster_area, area / cluster_area[labels] * rho
+
+
+def cluster_sums(
+    W_rows: np.ndarray, labels_rows: np.ndarray, weight_rows: np.ndarray
+) -> tuple[np.ndarray, np.ndarray]:
+    """(cluster ids, float64 sums) of weight * W over a block of rows, per cluster: the
+    block's share of V^T R W."""
+    order = np.argsort(labels_rows, kind="stable")
+    lab = labels_rows[order]
+    starts = np.flatnonzero(np.r_[True, lab[1:] != lab[:-1]])
+    part = weight_rows[order, None] * W_rows[order].astype(np.float64)
+    return lab[starts], np.add.reduceat(part, starts, axis=0)
+
+
+def _blocks(a: int, b: int, size: int) -> list[tuple[int, int]]:
+    return [(s, min(b, s + size)) for s in range(a, b, size)]
+
+
+def cluster_piece(
+    rows: range, F: sp.csr_matrix, labels: np.ndarray, weight: np.ndarray, k: int
+) -> tuple[np.ndarray, list[tuple[np.ndarray, np.ndarray]]]:
+    """W over ``rows`` (a multiple of ``ASSEMBLE_BLOCK`` from a block start) and the
+    cluster sums of each of its ``ASSEMBLE_BLOCK`` row blocks: one piece of a build."""
+    a, b = rows.start, rows.stop
+    W = cluster_form_factors(F[a:b], labels, k)
+    sums = [
+        cluster_sums(W[s - a : e - a], labels[s:e], weight[s:e])
+        for s, e in _blocks(a, b, ASSEMBLE_BLOCK)
+    ]
+    return W, sums
+
+
+def times_inverse(W_rows: np.ndarray, Minv: np.ndarray) -> np.ndarray:
+    """W_rows @ Minv (float32) by ``ASSEMBLE_BLOCK`` row blocks: rows of Y."""
+    out = np.empty((W_rows.shape[0], Minv.shape[1]), np.float32)
+    for s, e in _blocks(0, W_rows.shape[0], ASSEMBLE_BLOCK):
+        out[s:e] = W_rows[s:e] @ Minv
+    return out
+
+
+def factor(
+    F: sp.csr_matrix,
+    labels: np.ndarray,
+    k: int,
+    area: np.ndarray,
+    rho: np.ndarray,
+    run=None,
+    progress: Callable[[float], None] | None = None,
+    cancel: Callable[[], bool] | None = None,
+    blocks_per_piece: int = 1,
+) -> LowRank:
+    """The low-rank factors on the traced F: W by row pieces (with their cluster sums
+    M = I - V^T R W, added in row order), M^-1, then Y = W M^-1 by row pieces written
+    over W. ``run`` (``operator.distributed``; default here) runs the pieces; the same
+    pieces anywhere give the same Y bit for bit. ``progress`` gets 0-1."""
+    from lightinv_core.operator.distributed import LocalRunner, pieces
+
+    run = run or LocalRunner()
+    n = F.shape[0]
+    cluster_area, weight = cluster_weights(labels, area, rho, k)
+    W = np.empty((n, k), np.float32)
+    M = np.eye(k)
+    row_pieces = pieces(n, ASSEMBLE_BLOCK * blocks_per_piece)
+
+    def put(i: int, got) -> None:
+        r = row_pieces[i]
+        W[r.start : r.stop] = got[0]
+        for ids, sums in got[1]:
+            M[ids] -= sums
+
+    shared = [run.share(x) for x in (F, labels, weight)]
+    run.map(
+        cluster_piece,
+        row_pieces,
+        *shared,
+        k,
+        on_result=put,
+        progress=None if progress is None else lambda f: progress(0.6 * f),
+        cancel=cancel,
+    )
+    _check(cancel)
+    Minv = run.share(la.inv(M).astype(np.float32))
+
+    def put_y(i: int, got: np.ndarray) -> None:
+        r = row_pieces[i]
+        W[r.start : r.stop] = got
+
+    run.map(
+        times_inverse,
+        [W[r.start : r.stop] for r in row_pieces],
+        Minv,
+        on_result=put_y,
+        progress=None if progress is None else lambda f: progress(0.6 + 0.4 * f),
+        cancel=cancel,
+    )
     return LowRank(
-        Y=Y,
+        Y=W,
         labels=labels.astype(np.int32),
         area=area.astype(np.float64),
         rho=rho.astype(np.float64),
         cluster_area=cluster_area,
     )
+
+
+def assemble(
+    W: np.ndarray,
+    labels: np.ndarray,
+    area: np.ndarray,
+    rho: np.ndarray,
+    cancel: Callable[[], bool] | None = None,
+) -> LowRank:
+    """Y = W (I_k - V^T R W)^-1 from the cluster form factors W (n, k) float32, by the
+    same row blocks as ``factor``; Y is written over W (its buffer is reused), so the
+    build holds one (n, k) array, not three. ``cancel()`` is polled between blocks."""
+    n, k = W.shape
+    cluster_area, weight = cluster_weights(labels, area, rho, k)
+    M = np.eye(k)
+    for s, e in _blocks(0, n, ASSEMBLE_BLOCK):
+        _check(cancel)
+        ids, sums = cluster_sums(W[s:e], labels[s:e], weight[s:e])
+        M[ids] -= sums
+    Minv = la.inv(M).astype(np.float32)
+    for s, e in _blocks(0, n, ASSEMBLE_BLOCK):
+        _check(cancel)
+        W[s:e] = W[s:e] @ Minv
+    return LowRank(
+        Y=W,
+        labels=labels.astype(np.int32),
+        area=area.astype(np.float64),
+        rho=rho.astype(np.float64),
+        cluster_area=cluster_area,
+    )
+
+
+def _check(cancel: Callable[[], bool] | None) -> None:
+    if cancel is not None and cancel():
+        raise CancelledError("operator build cancelled")

@@ -1,4 +1,4 @@
-"""Built-in parametric scenes: cornell, office, patio, corridor.
+"""Built-in parametric scenes: cornell, office, patio, corridor, building.
 
 Each takes ``resolution`` (target patch edge in metres; ``None`` for the
 scene's default) and returns a closed ``Scene`` with named groups and emitter
@@ -23,6 +23,7 @@ from lightinv_core.scene.builders import (
     room_faces,
     split_rect,
 )
+from lightinv_core.scene.building import building
 from lightinv_core.scene.model import EmitterZone, Rect, Scene, Surface, check_resolution
 
 FLOOR, WALL, CEILING = 0.3, 0.6, 0.8
@@ -218,6 +219,7 @@ BUILTIN_SCENES: dict[str, Callable[..., Scene]] = {
     "office": office,
     "patio": patio,
     "corridor": corridor,
+    "building": building,  # scene/building.py: 4 storeys, ~200,000 patches
 }
 
 

@@ -60,6 +60,62 @@ def _check_rays(rays_per_patch: int) -> int:
     return r
 
 
+def rows_per_batch(rays_per_patch: int) -> int:
+    """Rows traced in one batch (about ``RAYS_PER_BATCH`` rays): batch b holds rows
+    ``b * rows_per_batch`` onwards and draws its rays from (seed, b)."""
+    return max(1, RAYS_PER_BATCH // _check_rays(rays_per_patch))
+
+
+def trace_batch(
+    patches: Patches, caster: RayCaster, rows: np.ndarray, count: int, seed: int, batch: int
+) -> RowHits:
+    """The rays of batch number ``batch`` (rows ``rows``, ``count`` rays each) from the
+    random stream (seed, batch): the same hits on any machine, thread or process."""
+    rng = np.random.default_rng([seed, batch])
+    o, d = sample_rays(patches, rows, count, rng, caster.offset)
+    return RowHits(rows, caster.hit_patches(o, d).reshape(len(rows), count))
+
+
+def batch_entries(batch: RowHits, n: int, index: type = np.int32) -> FormFactorRows:
+    """The CSR entries of a batch's rows: (entries per row, columns, values)."""
+    local = np.repeat(np.arange(len(batch.rows)), batch.hits.shape[1])
+    flat = batch.hits.ravel()
+    ok = flat >= 0
+    keys = local[ok].astype(np.int64) * n + flat[ok]
+    uniq, counts = np.unique(keys, return_counts=True)
+    r, c = np.divmod(uniq, n)
+    return FormFactorRows(
+        np.bincount(r, minlength=len(batch.rows)), c.astype(index), counts / batch.hits.shape[1]
+    )
+
+
+@dataclass(frozen=True)
+class FormFactorRows:
+    """Consecutive rows of F in CSR pieces: entries per row, their columns and values."""
+
+    counts: np.ndarray
+    cols: np.ndarray
+    vals: np.ndarray
+
+
+def index_dtype(n: int, rays_per_patch: int) -> type:
+    """Index type of F's CSR arrays: int32 while n * rays fits."""
+    return np.int32 if n * _check_rays(rays_per_patch) < 2**31 - 1 else np.int64
+
+
+def join_rows(pieces: list[FormFactorRows], n: int, index: type) -> sp.csr_matrix:
+    """F (n x n, float64 CSR) from its row pieces in row order."""
+    # Pieces come in row order and each is sorted by (row, column), so the CSR arrays are
+    # just the pieces concatenated: no sort of all of F at the end (seconds on large
+    # scenes, during which a cancel would go unheard).
+    indptr = np.zeros(n + 1, np.int64)
+    if pieces:
+        np.cumsum(np.concatenate([p.counts for p in pieces]), out=indptr[1:])
+    cols = np.concatenate([p.cols for p in pieces]) if pieces else np.zeros(0, index)
+    vals = np.concatenate([p.vals for p in pieces]) if pieces else np.zeros(0)
+    return sp.csr_matrix((vals, cols, indptr.astype(index)), shape=(n, n))
+
+
 def trace_rows(
     patches: Patches,
     rays_per_patch: int = DEFAULT_RAYS,
@@ -80,15 +136,12 @@ def trace_rows(
     count = _check_rays(rays_per_patch)
     rows = np.arange(patches.n) if rows is None else np.asarray(rows, dtype=np.int64)
     caster = caster or RayCaster(patches)
-    per_batch = max(1, RAYS_PER_BATCH // count)
+    per_batch = rows_per_batch(count)
     starts = range(0, len(rows), per_batch)
     workers = workers or default_workers()
 
     def run(k: int, start: int) -> RowHits:
-        chunk = rows[start : start + per_batch]
-        rng = np.random.default_rng([seed, k])
-        o, d = sample_rays(patches, chunk, count, rng, caster.offset)
-        return RowHits(chunk, caster.hit_patches(o, d).reshape(len(chunk), count))
+        return trace_batch(patches, caster, rows[start : start + per_batch], count, seed, k)
 
     done = 0
     with ThreadPoolExecutor(max_workers=workers, thread_name_prefix="lightinv-rays") as pool:
@@ -131,37 +184,48 @@ def form_factor_matrix(
     n * rays_per_patch; use the low-rank operator for large scenes instead of F.
     """
     n = patches.n
-    index = np.int32 if n * _check_rays(rays_per_patch) < 2**31 - 1 else np.int64
-    counts_out, cols_out, vals_out = [], [], []
-    for batch in trace_rows(
-        patches,
-        rays_per_patch,
-        seed,
-        workers=workers,
-        progress=progress,
-        cancel=cancel,
-        caster=caster,
-    ):
-        local = np.repeat(np.arange(len(batch.rows)), batch.hits.shape[1])
-        flat = batch.hits.ravel()
-        ok = flat >= 0
-        keys = local[ok].astype(np.int64) * n + flat[ok]
-        uniq, counts = np.unique(keys, return_counts=True)
-        r, c = np.divmod(uniq, n)
-        # Batches come in row order and ``uniq`` is sorted by (row, column), so the CSR
-        # arrays are just the batches' entries concatenated: no sort of all of F at the
-        # end (seconds on large scenes, during which a cancel would go unheard).
-        counts_out.append(np.bincount(r, minlength=len(batch.rows)))
-        cols_out.append(c.astype(index))
-        vals_out.append(counts / batch.hits.shape[1])
+    index = index_dtype(n, rays_per_patch)
+    pieces = [
+        batch_entries(batch, n, index)
+        for batch in trace_rows(
+            patches,
+            rays_per_patch,
+            seed,
+            workers=workers,
+            progress=progress,
+            cancel=cancel,
+            caster=caster,
+        )
+    ]
     if cancel is not None and cancel():
         raise CancelledError("form-factor computation cancelled")
-    indptr = np.zeros(n + 1, np.int64)
-    if counts_out:
-        np.cumsum(np.concatenate(counts_out), out=indptr[1:])
-    cols = np.concatenate(cols_out) if cols_out else np.zeros(0, index)
-    vals = np.concatenate(vals_out) if vals_out else np.zeros(0)
-    return sp.csr_matrix((vals, cols, indptr.astype(index)), shape=(n, n))
+    return join_rows(pieces, n, index)
+
+
+def batch_count(n: int, rays_per_patch: int) -> int:
+    """Number of ray batches over all n rows."""
+    return -(-n // rows_per_batch(rays_per_patch))
+
+
+def trace_pieces(
+    patches: Patches,
+    rays_per_patch: int,
+    seed: int,
+    batches: range,
+    caster: RayCaster | None = None,
+) -> list[FormFactorRows]:
+    """The rows of F of batch numbers ``batches`` (over all rows, as ``trace_rows``
+    numbers them): a share of the tracing for another process or machine, giving the
+    same entries as the local trace."""
+    count = _check_rays(rays_per_patch)
+    caster = caster or RayCaster(patches)
+    per_batch, n = rows_per_batch(count), patches.n
+    index = index_dtype(n, count)
+    out = []
+    for b in batches:
+        rows = np.arange(b * per_batch, min(n, (b + 1) * per_batch))
+        out.append(batch_entries(trace_batch(patches, caster, rows, count, seed, b), n, index))
+    return out
 
 
 def formfactor_bytes(n: int, rays: int) -> int:

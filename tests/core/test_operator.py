@@ -19,6 +19,7 @@ from lightinv_core.operator import cache as oc
 from lightinv_core.operator.accuracy import sample_emissions
 from lightinv_core.operator.build import build_operator
 from lightinv_core.operator.settings import OperatorSettings
+from lightinv_core.operator.zone_basis import exact_bounces, zone_basis
 from lightinv_core.scene.builtin import builtin_scene
 from lightinv_core.scene.patches import mesh_patches
 from lightinv_core.scene.zone_grid import random_zone_emissions
@@ -92,6 +93,57 @@ def test_fast_paths_equal_the_full_path(office, office_op):
     assert target.relative_error(*obj) < 1e-3
 
 
+def test_the_factored_basis_equals_the_dense_basis(office, office_op):
+    """Phi made densely as before (all zone columns through the exact bounces, then the
+    low-rank remainder) equals its rows read from the left (fewer rows than zone
+    patches), from the right (all rows), the field of a batch and the power weights,
+    to 1e-5 of the largest entry (float32 products summed in another order)."""
+    op = office_op
+    exact, last = exact_bounces(op.F, office.rho, op.zone_patches)
+    Phi = zone_basis(exact, last, op.lowrank)
+    scale = np.abs(Phi).max()
+    rows = np.arange(3, office.n, 17)
+    assert len(rows) < op.nz < office.n
+    np.testing.assert_allclose(op.phi_rows(rows), Phi[rows], rtol=0, atol=1e-5 * scale)
+    np.testing.assert_allclose(op.phi_rows(), Phi, rtol=0, atol=1e-5 * scale)
+    V = np.random.default_rng(3).random((op.nz, 4)).astype(np.float32)
+    want = Phi @ V
+    np.testing.assert_allclose(op.zone_field(V), want, rtol=0, atol=1e-5 * np.abs(want).max())
+    np.testing.assert_allclose(
+        op.zone_field(V, rows), want[rows], rtol=0, atol=1e-5 * np.abs(want).max()
+    )
+    power = (office.area * office.rho) @ Phi.astype(np.float64)
+    np.testing.assert_allclose(op.power, power, rtol=1e-5)
+    # What the operator holds: F, F[:, zone], Y (n x k), G (k x nz) and, once a match
+    # goal asked for it, the nz x nz Gram matrix: no n x nz array.
+    sparse = sum(m.data.nbytes + m.indices.nbytes + m.indptr.nbytes for m in (op.F, op.Fz))
+    held = sparse + op.lowrank.Y.nbytes + op.G.nbytes + op.power.nbytes
+    assert op.nbytes() - held in (0, 8 * op.nz**2) and op.G.shape == (op.k, op.nz)
+
+
+def test_over_the_basis_budget_receivers_are_lit_from_the_factors(office, office_op, monkeypatch):
+    from lightinv_core.light.model import LightModel
+    from lightinv_core.operator import radiosity
+
+    scene = builtin_scene("office", RES)
+    light = LightModel(scene, office, office_op)
+    rows = np.arange(0, office.n, 5)
+    made = light.receivers(rows)
+    V = np.random.default_rng(4).random((office_op.nz, 3)).astype(np.float32)
+    monkeypatch.setattr("lightinv_core.light.model.BASIS_BYTES", 1000)
+    monkeypatch.setattr(radiosity, "BASIS_BYTES", 1000)
+    lazy = light.receivers(rows)
+    assert made.Phi_rows is not None and lazy.Phi_rows is None
+    want = light.illuminance(V, made)
+    np.testing.assert_allclose(light.illuminance(V, lazy), want, atol=1e-5 * np.abs(want).max())
+    op = office_op
+    fresh = radiosity.RadiosityOperator(op.lowrank, op.zone_patches, op.F, op.G, op.power, "")
+    with pytest.raises(LightInvError, match=r"Gram matrix needs the zone basis.*limit"):
+        _ = fresh.gram
+    with pytest.raises(LightInvError, match="whole zone basis"):
+        _ = fresh.Phi
+
+
 def test_emission_outside_zones_uses_the_coarser_low_rank_path(office, office_op, office_F):
     E = group_emission(office, {"floor": 10000.0})
     ref = solve_dense(office_F, office.rho, E)
@@ -132,9 +184,8 @@ def test_cache_round_trip_corruption_and_staleness(office, tmp_path, monkeypatch
     assert not first.from_cache and first.path.exists()
     second = oc.get_operator(office, OperatorSettings(rank=120, rays=64), warn=warnings.append)
     assert second.from_cache and second.path == first.path and not warnings
-    np.testing.assert_array_equal(second.operator.Phi, first.operator.Phi)
-    np.testing.assert_array_equal(second.operator.lowrank.Y, first.operator.lowrank.Y)
-    assert second.operator.Phi.flags.f_contiguous
+    _assert_same_operator(second.operator, first.operator)
+    assert second.operator.phi_rows(np.arange(5)).flags.f_contiguous
     assert second.operator.info == json.loads(json.dumps(first.operator.info))
     # Flip one payload byte: detected by the checksum, rebuilt, rewritten.
     raw = bytearray(first.path.read_bytes())
@@ -155,6 +206,14 @@ def test_cache_round_trip_corruption_and_staleness(office, tmp_path, monkeypatch
         oc.load_operator(first.path, "another key")
 
 
+def _assert_same_operator(a, b) -> None:
+    """Every stored array of two operators is equal, bit for bit."""
+    for name in ("G", "power", "zone_patches"):
+        np.testing.assert_array_equal(getattr(a, name), getattr(b, name))
+    np.testing.assert_array_equal(a.lowrank.Y, b.lowrank.Y)
+    assert (a.F != b.F).nnz == 0 and a.F.dtype == b.F.dtype == np.float32
+
+
 def _poison(path, edit) -> None:
     """Rewrite a cache file's JSON header with ``edit(header)``; the payload is kept, so
     its checksum still matches (what a buggy or hostile writer could leave)."""
@@ -172,7 +231,7 @@ POISONS = {
     "a missing array": lambda h: h.update(arrays=[t for t in h["arrays"] if t["name"] != "Y"]),
     "an object dtype": lambda h: h["arrays"][0].update(dtype="|O"),
     "an array past the end": lambda h: h["arrays"][-1].update(offset=h["payload_bytes"]),
-    "a wrong shape": lambda h: [t.update(shape=[3, 7]) for t in h["arrays"] if t["name"] == "Phi"],
+    "a wrong shape": lambda h: [t.update(shape=[3, 7]) for t in h["arrays"] if t["name"] == "G"],
     "an empty header": lambda h: h.clear(),
     "info that is a number": lambda h: h.update(info=7),
 }
@@ -187,8 +246,31 @@ def test_a_poisoned_cache_header_is_rebuilt_not_a_traceback(office, tmp_path, mo
     warnings = []
     again = oc.get_operator(office, settings, warn=warnings.append)
     assert not again.from_cache and len(warnings) == 1 and "rebuilding" in warnings[0]
-    np.testing.assert_array_equal(again.operator.Phi, first.operator.Phi)
+    _assert_same_operator(again.operator, first.operator)
     assert oc.get_operator(office, settings).from_cache  # rewritten whole
+
+
+def test_form_factor_indices_out_of_range_are_a_corrupt_cache(office, tmp_path, monkeypatch):
+    """A payload whose checksum matches but whose sparse F points past the patches (what
+    a buggy writer could leave) is refused by the CSR check, not used."""
+    import hashlib
+
+    monkeypatch.setenv("LIGHTINV_CACHE_DIR", str(tmp_path))
+    settings = OperatorSettings(rank=120, rays=64)
+    first = oc.get_operator(office, settings)
+    raw = bytearray(first.path.read_bytes())
+    start = len(oc.MAGIC) + 8
+    size = int.from_bytes(raw[len(oc.MAGIC) : start], "little")
+    header = json.loads(raw[start : start + size])
+    entry = next(t for t in header["arrays"] if t["name"] == "F_indices")
+    at = start + size + entry["offset"]
+    raw[at : at + 4] = np.array([office.n + 5], dtype=entry["dtype"]).tobytes()[:4]
+    payload = bytes(raw[start + size :])
+    header["payload_sha256"] = hashlib.sha256(payload).hexdigest()
+    new = json.dumps(header).encode()
+    first.path.write_bytes(oc.MAGIC + len(new).to_bytes(8, "little") + new + payload)
+    with pytest.raises(oc.CacheError, match="inconsistent arrays"):
+        oc.load_operator(first.path, oc.operator_key(office, settings))
 
 
 def test_cli_precompute_and_lrr_simulation(tmp_path, monkeypatch, capsys):

@@ -12,7 +12,13 @@ from lightinv_core.scene.patches import count_patches, mesh_patches
 from lightinv_core.transport.formfactors import form_factor_matrix, lost_fraction
 
 # Default patch counts the issue asks for, within 10%.
-TARGETS = {"cornell": 1000, "office": 5000, "patio": 24000, "corridor": 16700}
+TARGETS = {
+    "cornell": 1000,
+    "office": 5000,
+    "patio": 24000,
+    "corridor": 16700,
+    "building": 200_000,
+}
 
 
 @pytest.mark.parametrize("name", list(BUILTIN_SCENES))
@@ -22,7 +28,8 @@ def test_default_patch_counts(name):
 
 
 @pytest.mark.parametrize(
-    "name,res", [("cornell", 0.3), ("office", 0.6), ("patio", 1.0), ("corridor", 0.8)]
+    "name,res",
+    [("cornell", 0.3), ("office", 0.6), ("patio", 1.0), ("corridor", 0.8), ("building", 1.0)],
 )
 def test_builtin_scenes_are_closed_and_consistent(name, res):
     scene = builtin_scene(name, res)
