@@ -86,8 +86,9 @@ class ProjectFiles(QtCore.QObject):
         return False
 
     def import_obj(self, path: str | Path, **options) -> bool:
-        """A new project on an OBJ model (groups, materials and zones from the file) with
-        import ``options`` (scale, up, materials, resolution, skip_degenerate)."""
+        """A new project on a model file, OBJ, glTF/GLB, PLY or IFC (groups, materials and
+        zones from the file) with import ``options`` (scale, up, materials, resolution,
+        skip_degenerate, group_by)."""
         try:
             project = obj_project(path, **options)
         except LightInvError as exc:
@@ -101,12 +102,14 @@ class ProjectFiles(QtCore.QObject):
             self.open_path(path)
 
     def import_obj_dialog(self, dialog=None) -> bool:
-        """Choose an OBJ file, then its import options (units, up axis, materials)."""
+        """Choose a model file (OBJ, glTF, GLB, PLY, IFC), then its import options (units,
+        up axis, group names, materials)."""
         if dialog is None:
-            path = dialogs.open_file(self.win, "Import OBJ model", "Wavefront OBJ (*.obj)")
+            from app.import_dialog import MODEL_FILTER, ImportDialog
+
+            path = dialogs.open_file(self.win, "Import model", MODEL_FILTER)
             if not path:
                 return False
-            from app.import_dialog import ImportDialog
 
             dialog = ImportDialog(Path(path), self.win)
         if not dialogs.accepted(dialog):

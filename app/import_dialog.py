@@ -1,9 +1,11 @@
-"""File > Import OBJ: the model's units, up axis, materials and patch size, asked once.
+"""File > Import model: the model's units, up axis, materials and patch size, asked once.
 
 Models come in millimetres from some tools and with y up from others; asked nothing,
 a millimetre model was meshed as a 4 km room. The dialog counts the file's vertices
-and faces (the streaming size check, no parse) and shows the model's extent in metres
-for the units chosen, so a wrong unit shows before the import.
+and faces (OBJ: the streaming size check, no parse; glTF and PLY: trimesh reads them)
+and shows the model's extent in metres for the units chosen, so a wrong unit shows
+before the import. glTF files are y-up and in metres by their specification; IFC files
+carry their own unit (converted to metres on import), so the units are not asked.
 """
 
 from __future__ import annotations
@@ -15,6 +17,7 @@ from PySide6 import QtWidgets
 
 from app import dialogs
 from lightinv_core.errors import LightInvError
+from lightinv_core.scene.loading import MODEL_SUFFIXES, default_up
 from lightinv_core.scene.obj_size import count_obj_lines
 
 UNITS = (
@@ -25,6 +28,11 @@ UNITS = (
     ("feet", 0.3048),
 )
 MAX_PREVIEW_BYTES = 200 * 2**20
+MODEL_FILTER = (
+    "Models (" + " ".join(f"*{s}" for s in MODEL_SUFFIXES) + ");;Wavefront OBJ (*.obj);;"
+    "glTF (*.gltf *.glb);;PLY (*.ply);;IFC (*.ifc)"
+)
+"""The file dialog's filter for File > Import model."""
 
 
 def raw_extent(path: Path) -> float | None:
@@ -45,22 +53,40 @@ def raw_extent(path: Path) -> float | None:
     return float((hi - lo).max()) if np.all(np.isfinite(lo)) else None
 
 
+def mesh_preview(path: Path) -> tuple[str, float | None]:
+    """Summary ("1,204 vertices, 2,310 triangles") and extent in model units of a glTF
+    or PLY file, read with trimesh (node transforms applied); the extent is None when
+    the file is too big to preview. LightInvError if trimesh cannot read it."""
+    import trimesh
+
+    if path.stat().st_size > MAX_PREVIEW_BYTES:
+        return f"{path.stat().st_size / 2**20:,.0f} MB (too big to preview)", None
+    try:
+        scene = trimesh.load_scene(str(path), process=False)
+    except Exception as exc:  # trimesh raises many kinds on a damaged file
+        raise LightInvError(f"cannot read it: {type(exc).__name__}") from None
+    nv = nf = 0
+    for node in scene.graph.nodes_geometry:
+        geom = scene.geometry[scene.graph[node][1]]
+        nv += len(getattr(geom, "vertices", ()))
+        nf += len(getattr(geom, "faces", ()))
+    bounds = scene.bounds if nv else None
+    extent = float(np.ptp(bounds, axis=0).max()) if bounds is not None else None
+    return f"{nv:,} vertices, {nf:,} triangles", extent
+
+
 class ImportDialog(QtWidgets.QDialog):
-    """Units, up axis, materials file and patch size for an OBJ import."""
+    """Units, up axis, group names, materials file and patch size for a model import."""
 
     def __init__(self, path: Path, parent: QtWidgets.QWidget | None = None):
         super().__init__(parent)
         self.path = Path(path)
+        self.suffix = self.path.suffix.lower()
         self.setWindowTitle(f"Import {self.path.name}")
         form = QtWidgets.QFormLayout(self)
-        try:
-            counts = count_obj_lines(self.path)
-            self.extent = raw_extent(self.path)
-            summary = f"{counts.vertices:,} vertices, {counts.faces:,} faces"
-        except OSError as exc:
-            counts, self.extent = None, None
-            summary = f"cannot read it: {exc.strerror}"
-        form.addRow("File", QtWidgets.QLabel(summary))
+        summary, self.extent = self._preview()
+        self.summary = QtWidgets.QLabel(summary)
+        form.addRow("File", self.summary)
         self.units = QtWidgets.QComboBox()
         for name, scale in UNITS:
             self.units.addItem(name, scale)
@@ -68,11 +94,23 @@ class ImportDialog(QtWidgets.QDialog):
         self.size = QtWidgets.QLabel()
         form.addRow("Model size", self.size)
         self.up = QtWidgets.QComboBox()
-        self.up.addItem("z (SketchUp, Rhino, Revit)", "z")
-        self.up.addItem("y (Blender export default, 3ds Max, glTF)", "y")
+        self.up.addItem("z (SketchUp, Rhino, Revit, IFC)", "z")
+        self.up.addItem("y (glTF, Blender OBJ export default, 3ds Max)", "y")
+        self.up.setCurrentIndex(self.up.findData(default_up(self.path)))
         form.addRow("Up axis", self.up)
+        self.group_by = QtWidgets.QComboBox()
+        self.group_by.addItem("node names", "node")
+        self.group_by.addItem("material names", "material")
+        if self.suffix in (".gltf", ".glb"):
+            form.addRow("Lighting groups", self.group_by)
+        else:
+            self.group_by.hide()
         self.materials = QtWidgets.QLineEdit()
-        self.materials.setPlaceholderText("none: MTL colours, else reflectance 0.5")
+        self.materials.setPlaceholderText(
+            "none: EN 12464-1 defaults by role (floor 0.2, walls 0.5, ceiling 0.7)"
+            if self.suffix == ".ifc"
+            else "none: the materials' colours, else reflectance 0.5"
+        )
         browse = QtWidgets.QPushButton("Choose...")
         browse.clicked.connect(self._browse)
         mrow = QtWidgets.QHBoxLayout()
@@ -87,9 +125,30 @@ class ImportDialog(QtWidgets.QDialog):
         form.addRow("", self.skip)
         form.addRow(dialogs.ok_cancel(self))
         self.units.currentIndexChanged.connect(self._show_size)
-        if self.extent is not None and self.extent > 1000:  # probably millimetres
+        if self.suffix == ".ifc":
+            # IFC files state their length unit; ifcopenshell converts it to metres.
+            self.units.setEnabled(False)
+            self.units.setToolTip("IFC files carry their unit; lengths are read in metres")
+        elif self.extent is not None and self.extent > 1000:  # probably millimetres
             self.units.setCurrentIndex(2)
         self._show_size()
+
+    def _preview(self) -> tuple[str, float | None]:
+        """What the file holds and its extent in model units (None: unknown)."""
+        try:
+            if self.suffix == ".obj":
+                counts = count_obj_lines(self.path)
+                return f"{counts.vertices:,} vertices, {counts.faces:,} faces", raw_extent(
+                    self.path
+                )
+            if self.suffix == ".ifc":
+                size = self.path.stat().st_size
+                return f"IFC model, {size / 1024:,.0f} kB (elements read on import)", None
+            return mesh_preview(self.path)
+        except OSError as exc:
+            return f"cannot read it: {exc.strerror}", None
+        except LightInvError as exc:
+            return str(exc), None
 
     def _browse(self) -> None:
         path = dialogs.open_file(self, "Materials mapping", "Materials JSON (*.json)")
@@ -98,7 +157,7 @@ class ImportDialog(QtWidgets.QDialog):
 
     def _show_size(self) -> None:
         if self.extent is None:
-            self.size.setText("unknown")
+            self.size.setText("unknown" if self.suffix != ".ifc" else "read from the file")
             return
         metres = self.extent * self.units.currentData()
         warn = "  (too big for a building: check the units)" if metres > 1000 else ""
@@ -107,11 +166,13 @@ class ImportDialog(QtWidgets.QDialog):
     def options(self) -> dict:
         """The scene's import settings (obj_project's options)."""
         out = {
-            "scale": float(self.units.currentData()),
+            "scale": float(self.units.currentData()) if self.suffix != ".ifc" else 1.0,
             "up": self.up.currentData(),
             "resolution": float(self.resolution.value()),
             "skip_degenerate": self.skip.isChecked(),
         }
+        if self.suffix in (".gltf", ".glb"):
+            out["group_by"] = self.group_by.currentData()
         if self.materials.text().strip():
             out["materials"] = self.materials.text().strip()
         return out

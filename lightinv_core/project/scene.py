@@ -1,9 +1,9 @@
 """The scene a project is on, and the fields of its JSON form, declared once.
 
-``SceneSpec`` names a built-in scene or an OBJ file (with its import options) and the new
-emitter zones drawn on it; ``SCENE`` and ``ZONE`` declare the fields of the ``scene``
-object and of each of its ``zones``, from which the project file's reading, messages,
-writing and docs tables come.
+``SceneSpec`` names a built-in scene or a model file (OBJ, glTF/GLB, PLY or IFC, with its
+import options) and the new emitter zones drawn on it; ``SCENE`` and ``ZONE`` declare the
+fields of the ``scene`` object and of each of its ``zones``, from which the project
+file's reading, messages, writing and docs tables come.
 """
 
 from __future__ import annotations
@@ -30,9 +30,12 @@ from lightinv_core.fields import (
 )
 from lightinv_core.scene.builtin import BUILTIN_SCENES
 from lightinv_core.scene.edits import ZoneEdit, apply_zone_edits
-from lightinv_core.scene.loading import load_scene
+from lightinv_core.scene.loading import MODEL_SUFFIXES, default_up, load_scene
 from lightinv_core.scene.model import MIN_RESOLUTION, ZONE_KINDS, Scene
 from lightinv_core.scene.obj_parse import UP_AXES
+
+GROUP_BY = ("node", "material")
+"""What names a glTF model's lighting groups (``mesh_import.GROUP_BY``)."""
 
 
 def resolve_path(p: str | None, base_dir: Path | None) -> str | None:
@@ -47,8 +50,9 @@ def resolve_path(p: str | None, base_dir: Path | None) -> str | None:
 
 def _obj_path(v: Any, path: str) -> str:
     s = _path_string(v, path)
-    if not s.lower().endswith(".obj"):
-        _fail(path, f"expected the path of an .obj file, got {s!r}")
+    if not s.lower().endswith(MODEL_SUFFIXES):
+        kinds = ", ".join(MODEL_SUFFIXES[:-1]) + " or " + MODEL_SUFFIXES[-1]
+        _fail(path, f"expected the path of a model file ({kinds}), got {s!r}")
     return s
 
 
@@ -126,8 +130,8 @@ def with_reflectances(scene: Scene, reflectances) -> Scene:
 
 def _scene_not_taken(kind: str, field: str) -> str:
     # Materials, scale and up are properties a built-in scene already has; skipping
-    # degenerate faces is an import option with nothing to apply to.
-    own = "" if field == "skip_degenerate" else "; a built-in scene has its own"
+    # degenerate faces and naming groups are import options with nothing to apply to.
+    own = "" if field in ("skip_degenerate", "group_by") else "; a built-in scene has its own"
     return "only an OBJ scene takes this" + own
 
 
@@ -148,14 +152,16 @@ SCENE = ObjectSpec(
             _optional(_obj_path),
             None,
             "string",
-            "path of a Wavefront `.obj` room model (see [obj-import.md](obj-import.md))",
+            "path of a room model: Wavefront `.obj`, glTF `.gltf`/`.glb`, `.ply` or IFC "
+            "`.ifc` (see [obj-import.md](obj-import.md); the field keeps its name for every "
+            "format)",
         ),
         Field(
             "resolution",
             _optional(lambda v, p: _number(v, p, lo=MIN_RESOLUTION)),
             None,
             f"number >= {MIN_RESOLUTION:g}",
-            "target patch size in metres; null: the scene's default (0.25 m for OBJ files)",
+            "target patch size in metres; null: the scene's default (0.25 m for model files)",
             always=True,
         ),
         Field(
@@ -177,10 +183,11 @@ SCENE = ObjectSpec(
         ),
         Field(
             "up",
-            lambda v, p: _choice(v, p, UP_AXES),
-            "z",
+            _optional(lambda v, p: _choice(v, p, UP_AXES)),
+            None,
             " or ".join(f'`"{a}"`' for a in UP_AXES),
-            "the model's up axis",
+            'the model\'s up axis; none: its format\'s (`"y"` for glTF, `"z"` for OBJ, PLY '
+            "and IFC), written as the axis taken",
             OBJ,
             always=True,
         ),
@@ -190,6 +197,14 @@ SCENE = ObjectSpec(
             False,
             "boolean",
             "drop degenerate faces (with a warning) instead of failing",
+            OBJ,
+        ),
+        Field(
+            "group_by",
+            lambda v, p: _choice(v, p, GROUP_BY),
+            "node",
+            " or ".join(f'`"{g}"`' for g in GROUP_BY),
+            "glTF files: what names the lighting groups, the nodes' names or the materials'",
             OBJ,
         ),
         Field(
@@ -214,7 +229,7 @@ SCENE = ObjectSpec(
     kind_field="kind",
     not_taken=_scene_not_taken,
     default_anywhere=True,
-    kinds_doc="OBJ only",
+    kinds_doc="model files only",
 )
 """The scene fields, declared once (exactly one of builtin and obj; the kind of a scene
 is the one given)."""
@@ -222,12 +237,15 @@ is the one given)."""
 
 @dataclass(frozen=True)
 class SceneSpec:
-    """The scene a project is on: a built-in scene or an OBJ file (exactly one).
+    """The scene a project is on: a built-in scene or a model file (exactly one).
 
-    ``resolution`` is the target patch size in metres (None: the scene's default,
-    0.25 m for OBJ files). ``materials`` (a reflectance JSON file), ``scale`` (metres
-    per model unit), ``up`` ("z" or "y") and ``skip_degenerate`` apply to OBJ files only.
-    Relative ``obj``/``materials`` paths are resolved against ``base_dir`` in ``load``.
+    ``obj`` is the path of the model file: OBJ, glTF/GLB, PLY or IFC (the field keeps
+    its first name). ``resolution`` is the target patch size in metres (None: the
+    scene's default, 0.25 m for model files). ``materials`` (a reflectance JSON file),
+    ``scale`` (metres per model unit), ``up`` ("z" or "y"; None on input: the format's,
+    "y" for glTF) and ``skip_degenerate`` apply to model files only, ``group_by``
+    ("node" or "material") to glTF files only. Relative ``obj``/``materials`` paths are
+    resolved against ``base_dir`` in ``load``.
     ``reflectances`` are (group, reflectance) pairs replacing the scene's own (the
     window's materials panel). ``zones`` are new emitter zones drawn on rectangular
     surfaces of the scene (``ZoneEdit``), applied by ``load`` with ``apply_zone_edits``.
@@ -238,8 +256,9 @@ class SceneSpec:
     resolution: float | None = SCENE.field("resolution").default
     materials: str | None = SCENE.field("materials").default
     scale: float = SCENE.field("scale").default
-    up: str = SCENE.field("up").default
+    up: str | None = SCENE.field("up").default
     skip_degenerate: bool = SCENE.field("skip_degenerate").default
+    group_by: str = SCENE.field("group_by").default
     reflectances: tuple[tuple[str, float], ...] = SCENE.field("reflectances").default
     zones: tuple[ZoneEdit, ...] = SCENE.field("zones").default
 
@@ -249,9 +268,14 @@ class SceneSpec:
             _fail(
                 "",
                 'give exactly one of "builtin" (a built-in scene name) '
-                'or "obj" (the path of an .obj file)',
+                'or "obj" (the path of a model file)',
             )
         SCENE.check_kinds(self)
+        if self.obj is not None and self.up is None:
+            object.__setattr__(self, "up", default_up(self.obj))
+        glb = self.obj is not None and self.obj.lower().endswith((".gltf", ".glb"))
+        if self.group_by != "node" and not glb:
+            _fail("group_by", "only a glTF scene (.gltf or .glb) takes this")
 
     @property
     def kind(self) -> str:
@@ -271,6 +295,7 @@ class SceneSpec:
                 scale=self.scale,
                 up=self.up,
                 skip_degenerate=self.skip_degenerate,
+                group_by=self.group_by,
             )
         if self.reflectances:
             scene = with_reflectances(scene, self.reflectances)

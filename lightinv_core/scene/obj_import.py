@@ -9,6 +9,8 @@ becomes the emitter zone NAME. The user guide is docs/obj-import.md.
 
 This module assembles the scene: options, MTL libraries, reflectances, groups, zones and
 surfaces. Text parsing is in ``obj_parse`` and polygon geometry in ``obj_geometry``.
+``assemble_scene`` is the part every importer shares: the glTF/PLY and IFC readers
+(``mesh_import``, ``ifc_import``) hand it the same polygons, groups and materials.
 """
 
 from __future__ import annotations
@@ -45,6 +47,7 @@ from lightinv_core.scene.obj_parse import (
     LISTED,
     UP_AXES,
     MaterialMap,
+    ObjData,
     clip,
     describe_lines,
     load_materials,
@@ -85,41 +88,90 @@ def load_obj(
     Returns a Scene whose ``info`` holds ``"source"`` (the path) and ``"warnings"`` (list of
     str). Raises ObjImportError for anything wrong with the file, materials or options.
     """
-    path, res, scale = _check_options(path, resolution, scale, up)
+    path, res, scale = check_options(path, resolution, scale, up, "OBJ")
     mats = load_materials(materials)
     fname = path.name
     text = read_text(path, "OBJ file", guard=check_obj_size)
     data = parse_obj(text, fname, scale, up)
-    warnings = data.warnings
     if not data.faces:
         raise ObjImportError(
             f"{fname}: no faces found ({len(data.vertices)} vertices); check that it is a "
             "Wavefront OBJ file and export the model as polygon faces (not lines, points or NURBS)"
         )
-    kd = load_mtllibs(data.mtllibs, path.parent, fname, warnings)
+    kd = load_mtllibs(data.mtllibs, path.parent, fname, data.warnings)
+    return assemble_scene(data, Places(path), mats, kd, res, scale, skip_degenerate, name)
+
+
+class Places:
+    """How messages name the model file and places in it: OBJ line numbers.
+
+    ``ObjFace.line`` is a line of the file here; other readers number their faces
+    instead and say where a face is in their own terms (``mesh_import.FacePlaces``).
+    """
+
+    what = "OBJ file"  # "... do not occur in the OBJ file"
+    colour = "MTL Kd"  # where a material's colour comes from
+
+    def __init__(self, path: Path):
+        self.path = path
+        self.fname = path.name
+
+    def at(self, line: int) -> str:
+        """Where face ``line`` is, after the file name: ``" line 12"``."""
+        return f" line {line}"
+
+    def within(self, line: int) -> str:
+        """The same in brackets, after a group name: ``" (line 12)"``."""
+        return f" (line {line})"
+
+    def many(self, lines: list[int]) -> str:
+        """Where several faces are: ``"lines 7, 9"``."""
+        return describe_lines(lines)
+
+
+def assemble_scene(
+    data: ObjData,
+    places: Places,
+    mats: MaterialMap,
+    kd: dict[str, float],
+    res: float,
+    scale: float,
+    skip_degenerate: bool,
+    name: str | None,
+) -> Scene:
+    """The Scene of parsed polygons ``data`` (metres, z up): degenerate and repeated
+    faces, rectangles, triangulation, zones and reflectances, as for an OBJ file.
+
+    ``kd`` is each material's colour as a reflectance guess (MTL Kd, glTF baseColor);
+    ``places`` names the file and its faces in messages. Raises ObjImportError.
+    """
+    fname = places.fname
+    warnings = data.warnings
     geom = face_geometry(data.vertices, data.faces)
-    keep = _check_degenerate(data.faces, geom, skip_degenerate, fname, warnings)
-    keep = _drop_duplicates(data.vertices, data.faces, keep, fname, warnings)
-    rho = Reflectances(mats, kd)
-    groups = _build_groups(data.vertices, data.faces, geom, keep, rho, fname, warnings, res)
+    keep = _check_degenerate(data.faces, geom, skip_degenerate, places, warnings)
+    keep = _drop_duplicates(data.vertices, data.faces, keep, places, warnings)
+    rho = Reflectances(mats, kd, places)
+    groups = _build_groups(data.vertices, data.faces, geom, keep, rho, places, warnings, res)
     warnings += rho.warnings()
     _scale_warning(data.vertices, scale, fname, warnings)
-    info = {"source": str(path), "warnings": warnings}
+    info = {"source": str(places.path), "warnings": warnings}
     try:
         surfaces, zones = _surfaces(groups)
         desc = f"Imported from {fname}: {int(keep.sum())} faces, {len(zones)} emitter zones."
-        return Scene(name or path.stem, tuple(surfaces), tuple(zones), res, desc, info)
+        return Scene(name or places.path.stem, tuple(surfaces), tuple(zones), res, desc, info)
     except SceneError as exc:
         # A safety net: the checks above should leave nothing the model can reject.
         raise ObjImportError(f"{fname}: {exc}") from None
 
 
-def _check_options(path, resolution, scale, up) -> tuple[Path, float, float]:
+def check_options(path, resolution, scale, up, fmt: str) -> tuple[Path, float, float]:
+    """The path, resolution (m) and scale of an import of format ``fmt`` ("OBJ", "glTF",
+    ...), checked; ObjImportError saying what to give instead."""
     try:
         path = Path(os.fspath(path))
     except TypeError:
         kind = type(path).__name__
-        raise ObjImportError(f"the OBJ path must be a str or PathLike, not {kind}") from None
+        raise ObjImportError(f"the {fmt} path must be a str or PathLike, not {kind}") from None
     try:
         res = check_resolution(resolution)
     except SceneError as exc:
@@ -142,12 +194,13 @@ def _check_options(path, resolution, scale, up) -> tuple[Path, float, float]:
     return path, res, float(scale)
 
 
-def _check_degenerate(faces, geom: FaceGeom, skip: bool, fname: str, warnings: list[str]):
+def _check_degenerate(faces, geom: FaceGeom, skip: bool, places: Places, warnings: list[str]):
     """Mask of the faces to keep; ObjImportError on degenerate faces unless ``skip``."""
     bad = np.flatnonzero(geom.degenerate)
     if len(bad) == 0:
         return np.ones(len(faces), bool)
-    where = describe_lines([faces[i].line for i in bad])
+    fname = places.fname
+    where = places.many([faces[i].line for i in bad])
     what = f"{len(bad)} degenerate face(s) (repeated vertices or zero area) at {where}"
     if not skip:
         raise ObjImportError(
@@ -163,12 +216,13 @@ def _check_degenerate(faces, geom: FaceGeom, skip: bool, fname: str, warnings: l
     return ~geom.degenerate
 
 
-def _drop_duplicates(vertices, faces, keep, fname: str, warnings: list[str]) -> np.ndarray:
+def _drop_duplicates(vertices, faces, keep, places: Places, warnings: list[str]) -> np.ndarray:
     """``keep`` without faces that repeat an earlier face of the same group: the same
     corners (to the micrometre) in the same turning order, which would count the area
     twice and split the light between the copies. A repeat in another group is kept
     with a warning (which one is meant is the modeller's call); the same corners in
     reverse order (the two sides of a thin wall) are not a repeat."""
+    fname = places.fname
     q = np.round(vertices * 1e6).astype(np.int64)
     first: dict[tuple, int] = {}
     same: list[int] = []
@@ -181,7 +235,7 @@ def _drop_duplicates(vertices, faces, keep, fname: str, warnings: list[str]) -> 
             (same if faces[j].group == faces[i].group else other).append(i)
     if other:
         warnings.append(
-            f"{fname}: {len(other)} face(s) at {describe_lines([faces[i].line for i in other])}"
+            f"{fname}: {len(other)} face(s) at {places.many([faces[i].line for i in other])}"
             " repeat a face of another group; both are kept, so that area counts twice "
             "(delete the one not meant)"
         )
@@ -189,7 +243,7 @@ def _drop_duplicates(vertices, faces, keep, fname: str, warnings: list[str]) -> 
         return keep
     warnings.append(
         f"{fname}: dropped {len(same)} duplicated face(s) at "
-        f"{describe_lines([faces[i].line for i in same])} (the same polygon facing the same "
+        f"{places.many([faces[i].line for i in same])} (the same polygon facing the same "
         "way as an earlier face of its group would count its area twice)"
     )
     out = keep.copy()
@@ -208,15 +262,16 @@ class _Group:
     cut: dict[float, tuple[str | None, list[np.ndarray]]] = field(default_factory=dict)
 
 
-def _build_groups(vertices, faces, geom: FaceGeom, keep, rho, fname, warnings, res):
+def _build_groups(vertices, faces, geom: FaceGeom, keep, rho, places: Places, warnings, res):
     """Lighting group name -> _Group, in order of first appearance in the file."""
+    fname = places.fname
     groups: dict[str, _Group] = {}
     zone_faces: dict[str, list[int]] = {}
     odd: dict[str, list[int]] = {"non-planar": [], "self-intersecting": []}
     rects = _rectangles(vertices, faces, keep)
     for i in np.flatnonzero(keep):
         f = faces[i]
-        spec = zone_spec(f.group, f.line, fname)
+        spec = zone_spec(f.group, f"{fname}{places.at(f.line)}")
         if spec is not None:
             groups.setdefault(spec[0], _Group())
             zone_faces.setdefault(f.group, []).append(i)
@@ -235,11 +290,11 @@ def _build_groups(vertices, faces, geom: FaceGeom, keep, rho, fname, warnings, r
     for kind, lines in odd.items():
         if lines:
             warnings.append(
-                f"{fname}: {len(lines)} {kind} polygon(s) at {describe_lines(lines)} were "
+                f"{fname}: {len(lines)} {kind} polygon(s) at {places.many(lines)} were "
                 "split into a fan of triangles, which may not follow the intended surface; fix "
                 "them in the modeller or triangulate them on export"
             )
-    _add_zones(zone_faces, vertices, faces, geom, rho, groups, fname, warnings)
+    _add_zones(zone_faces, vertices, faces, geom, rho, groups, places, warnings)
     return groups
 
 
@@ -307,12 +362,14 @@ def _patches_of(tris: np.ndarray, res: float) -> int:
     return int((m * m).sum())
 
 
-def _add_zones(zone_faces, vertices, faces, geom, rho, groups, fname, warnings) -> None:
+def _add_zones(zone_faces, vertices, faces, geom, rho, groups, places: Places, warnings) -> None:
     """Fit each zone group's rectangle and add it to its _Group."""
     seen: dict[str, str] = {}
+    fname = places.fname
     for label, rows in zone_faces.items():
-        name, kind = zone_spec(label, faces[rows[0]].line, fname)
-        where = f"{fname}: zone group {clip(label)} (line {faces[rows[0]].line})"
+        line = faces[rows[0]].line
+        name, kind = zone_spec(label, f"{fname}{places.at(line)}")
+        where = f"{fname}: zone group {clip(label)}{places.within(line)}"
         if name in seen:
             raise ObjImportError(
                 f"{where}: zone {clip(name)} is already defined by group {clip(seen[name])}; "
@@ -388,10 +445,11 @@ def load_mtllibs(refs: list[tuple[str, int]], folder: Path, fname: str, warnings
 
 
 class Reflectances:
-    """Reflectance of a (group, material): mapping by group, by material, MTL Kd, default."""
+    """Reflectance of a (group, material): mapping by group, by material, the material's
+    colour (MTL Kd, glTF baseColor), default."""
 
-    def __init__(self, mats: MaterialMap, kd: dict[str, float]):
-        self.mats, self.kd = mats, kd
+    def __init__(self, mats: MaterialMap, kd: dict[str, float], places: Places):
+        self.mats, self.kd, self.places = mats, kd, places
         self.capped: dict[str, float] = {}
         self.defaulted: set[str] = set()
         self.groups: set[str] = set()
@@ -415,25 +473,32 @@ class Reflectances:
 
     def warnings(self) -> list[str]:
         """One warning per capped material, defaulted materials and unused mapping names."""
+        colour = self.places.colour
         out = [
-            f"material {clip(m)}: MTL Kd luminance {lum:.3g} capped at {KD_CAP} (exporters "
-            "write Kd 1 1 1 for white, and a reflectance of 1 makes radiosity diverge); give "
-            "its reflectance in the materials mapping to silence this"
+            f"material {clip(m)}: {colour} luminance {lum:.3g} capped at {KD_CAP} (exporters "
+            f"write {WHITE.get(colour, colour + ' 1 1 1')} for white, and a reflectance of 1 "
+            "makes radiosity diverge); give its reflectance in the materials mapping to "
+            "silence this"
             for m, lum in self.capped.items()
         ]
         if self.defaulted:
+            where = "an MTL file" if colour == "MTL Kd" else f"its {colour}"
             out.append(
                 f"no reflectance for material(s) {_names(self.defaulted)} (not in the materials "
-                f"mapping or an MTL file); they use the default {self.mats.default:g}"
+                f"mapping or {where}); they use the default {self.mats.default:g}"
             )
         for key, seen in (("groups", self.groups), ("materials", self.materials)):
             unused = set(getattr(self.mats, key)) - seen
             if unused:
                 out.append(
-                    f"{self.mats.source}: {key} {_names(unused)} do not occur in the OBJ file "
-                    "and are ignored; check the spelling"
+                    f"{self.mats.source}: {key} {_names(unused)} do not occur in the "
+                    f"{self.places.what} and are ignored; check the spelling"
                 )
         return out
+
+
+WHITE = {"MTL Kd": "Kd 1 1 1"}
+"""How white is written in each colour source, for the capping warning."""
 
 
 def _names(names) -> str:

@@ -365,19 +365,20 @@ def _rho(value, where: str) -> float:
         raise ObjImportError(f"{where}: reflectance {shown} is outside [0, 1); {hint}") from None
 
 
-def zone_spec(group: str, line: int, fname: str) -> tuple[str, str] | None:
-    """(NAME, KIND) of a ``zone:NAME:KIND`` group, None for other groups."""
+def zone_spec(group: str, where: str) -> tuple[str, str] | None:
+    """(NAME, KIND) of a ``zone:NAME:KIND`` group, None for other groups; errors start
+    with ``where`` (the file and line, ``"room.obj line 12"``)."""
     if not group.lower().startswith("zone:"):
         return None
     name, sep, kind = group[5:].rpartition(":")
     if not sep or not name:
         raise ObjImportError(
-            f"{fname} line {line}: group {clip(group)} is not a valid zone group; "
+            f"{where}: group {clip(group)} is not a valid zone group; "
             "name it zone:NAME:skylight or zone:NAME:luminaire"
         )
     if kind.lower() not in ZONE_KINDS:
         raise ObjImportError(
-            f"{fname} line {line}: group {clip(group)}: zone kind {clip(kind)} is not one of "
+            f"{where}: group {clip(group)}: zone kind {clip(kind)} is not one of "
             f"skylight, luminaire; name the group zone:{name}:skylight or zone:{name}:luminaire"
         )
     return name, kind.lower()

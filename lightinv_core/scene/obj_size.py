@@ -78,7 +78,13 @@ def count_obj_lines(path: str | os.PathLike) -> ObjCounts:
 def check_obj_size(path: Path, fname: str) -> ObjCounts:
     """Raise ObjImportError if the OBJ file has more faces than patches allowed, or if
     importing it would take more than 80% of the memory available; else its counts."""
-    counts = count_obj_lines(path)
+    return check_counts(count_obj_lines(path), fname)
+
+
+def check_counts(counts: ObjCounts, fname: str) -> ObjCounts:
+    """``counts`` if a model of that many faces and vertices may be imported, else
+    ObjImportError (the faces over the patch limit, or the import over 80% of the
+    memory available). Other formats count their faces from their headers."""
     if counts.faces > MAX_PATCHES:
         raise ObjImportError(
             f"{fname}: the model has {counts.faces:,} faces and each becomes at least one "

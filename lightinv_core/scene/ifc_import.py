@@ -1,0 +1,342 @@
+"""Import an IFC (BIM) model as a LightInv scene, through ifcopenshell (optional extra).
+
+ifcopenshell turns every building element into triangles in world coordinates (metres,
+z up), with the voids of its openings cut. BIM elements are solids, while LightInv
+needs the room surfaces: so the faces of each element are merged per plane, the parts
+where two elements touch (a wall standing on a slab, a window in its opening) or run
+into each other are cut away, and faces that look out of the building (most rays from
+their front escape the model or start inside another element) are left out
+(``ifc_geometry``). Windows become glazing zones
+(skylight kind), ceiling coverings luminaire zones; what remains goes through the OBJ
+importer's ``assemble_scene``. The user guide is docs/obj-import.md.
+
+ifcopenshell and shapely (which it installs) are imported only here and only when an
+IFC file is read: the core works without them.
+"""
+
+from __future__ import annotations
+
+import os
+from collections.abc import Iterator
+from pathlib import Path
+
+import numpy as np
+
+from lightinv_core.errors import ObjImportError
+from lightinv_core.scene.facets import row_ids
+from lightinv_core.scene.ifc_geometry import (
+    GRID,
+    Element,
+    Plane,
+    centre_of,
+    cull_outside,
+    cut_contacts,
+    cut_sections,
+    planes_of,
+    rectangles,
+)
+from lightinv_core.scene.mesh_import import FacePlaces
+from lightinv_core.scene.model import Scene
+from lightinv_core.scene.obj_geometry import z_up
+from lightinv_core.scene.obj_import import assemble_scene, check_options
+from lightinv_core.scene.obj_parse import LISTED, MAX_COORD, ObjData, ObjFace, clip, load_materials
+
+MISSING = "IFC import needs the optional extra: pip install 'lightinv[ifc]'"
+IFC_SUFFIXES = (".ifc",)
+SKIPPED = (
+    "IfcSpace",  # the room's air, not a surface
+    "IfcOpeningElement",  # voids, already cut from their walls and slabs
+    "IfcSite",  # terrain around the building
+    "IfcAnnotation",
+    "IfcGrid",
+    "IfcVirtualElement",
+)
+ROLE_REFLECTANCE = {"floor": 0.2, "wall": 0.5, "ceiling": 0.7, "furniture": 0.2, "glazing": 0.1}
+"""Default reflectance by role: the lower end of the ranges EN 12464-1:2011 (4.2.2)
+recommends (ceiling 0.7-0.9, walls 0.5-0.8, floor 0.2-0.4, major objects such as
+furniture 0.2-0.7), so finishes lighter than specified never flatter a design; clear
+glazing 0.1 (each glass surface reflects about 4 % at normal incidence, more at grazing
+angles). The materials mapping's ``"materials"`` keys are these roles."""
+FURNITURE = ("IfcFurnishingElement", "IfcFurniture", "IfcSystemFurnitureElement")
+UPWARD = 0.7  # a face whose normal has a z component above this faces up (a floor)
+RECTANGLE = 0.99  # a zone's face must fill this share of its smallest enclosing rectangle
+
+
+def _libraries():
+    """ifcopenshell, its geometry module and shapely, or ObjImportError naming the extra."""
+    try:
+        import ifcopenshell
+        import ifcopenshell.geom
+        import shapely
+        import shapely.affinity
+    except ImportError:
+        raise ObjImportError(MISSING) from None
+    return ifcopenshell, shapely
+
+
+def load_ifc(
+    path: str | os.PathLike,
+    materials: dict | str | os.PathLike | None = None,
+    resolution: float = 0.25,
+    scale: float = 1.0,
+    up: str = "z",
+    skip_degenerate: bool = False,
+    name: str | None = None,
+) -> Scene:
+    """Import the IFC file ``path`` as a Scene (metres, z up).
+
+    ifcopenshell converts the file's length unit to metres; ``scale`` multiplies on top
+    (leave it 1). Lighting groups are ``CLASS:NAME`` of each element (``IfcWall:North``);
+    reflectances come from the materials mapping, else from ``ROLE_REFLECTANCE`` by
+    role (floor, wall, ceiling by the face's direction; furniture; glazing). Each
+    window's largest room-side rectangle becomes a skylight-kind emitter zone named
+    after it, each ceiling covering's largest downward rectangle a luminaire zone.
+    ``info["ifc"]`` records the elements, spaces, zones and the area left out.
+
+    Raises ObjImportError for a missing extra, a file ifcopenshell cannot read, no
+    building elements, or bad options.
+    """
+    path, res, scale = check_options(path, resolution, scale, up, "IFC")
+    ifcopenshell, shapely = _libraries()
+    mats = load_materials(materials)
+    fname = path.name
+    model = _open(ifcopenshell, path)
+    elements, spaces = _elements(ifcopenshell, model, fname)
+    planes = planes_of(elements, _role, shapely)
+    contact = cut_contacts(planes, shapely) + cut_sections(planes, elements, shapely)
+    centre = centre_of(elements)
+    exterior = cull_outside(planes, elements, centre, shapely)
+    warnings: list[str] = []
+    zones = _zones(planes, elements, shapely, warnings, fname)
+    data, places, counts = _faces(planes, elements, zones, scale, up, path)
+    data.warnings.extend(warnings)
+    scene = assemble_scene(
+        data, places, mats, dict(ROLE_REFLECTANCE), res, scale, skip_degenerate, name
+    )
+    wall = sum(1 for z in zones.values() if z[1] == "wall window")
+    info = {
+        "elements": len(elements),
+        "spaces": spaces,
+        "zones": {z: kind for z, (_, kind) in zones.items()},
+        "contact_m2": contact,
+        "exterior_m2": exterior,
+    }
+    scene.info["ifc"] = info
+    desc = (
+        f"Imported from {fname}: {len(elements)} elements ({counts} faces), "
+        f"{len(scene.zones)} emitter zones ({wall} wall windows); {contact:.1f} m² where "
+        f"elements touch and {exterior:.1f} m² facing outside left out."
+    )
+    return Scene(scene.name, scene.surfaces, scene.zones, scene.resolution, desc, scene.info)
+
+
+def _open(ifcopenshell, path: Path):
+    fname = path.name
+    if not path.exists():
+        raise ObjImportError(f"IFC file '{path}' does not exist; check the path")
+    if not path.is_file():
+        raise ObjImportError(
+            f"IFC file '{path}' is not a file (a folder or device); give the path of the file"
+        )
+    try:
+        return ifcopenshell.open(str(path))
+    except Exception as exc:  # ifcopenshell raises its own and plain errors on bad files
+        text = " ".join(str(exc).split())[:80] or type(exc).__name__
+        raise ObjImportError(
+            f"{fname}: cannot read it as IFC ({text}); export the model as IFC2X3 or IFC4 "
+            "(STEP, .ifc)"
+        ) from None
+
+
+def _elements(ifcopenshell, model, fname: str) -> tuple[list[Element], list[str]]:
+    """The building elements with geometry, ordered by their id in the file, and the
+    names of the spaces."""
+    settings = ifcopenshell.geom.settings()
+    settings.set("use-world-coords", True)
+    # Elements are meshed in parallel, leaving a core for the window (on this 2-core
+    # machine, two threads took twice as long as one while other work ran).
+    threads = max(1, min((os.cpu_count() or 2) - 1, 8))
+    it = ifcopenshell.geom.iterator(settings, model, threads, exclude=list(SKIPPED))
+    out = []
+    for shape in _shapes(it):
+        entity = model.by_id(shape.id)
+        v = np.asarray(shape.geometry.verts, float).reshape(-1, 3)
+        t = np.asarray(shape.geometry.faces, np.int64).reshape(-1, 3)
+        if len(t) == 0:
+            continue
+        # One vertex per position (sections walk shared edges from face to face).
+        ids = row_ids(np.round(v / GRID).astype(np.int64))
+        welded = np.zeros((ids.max() + 1, 3))
+        welded[ids] = v
+        v, t = welded, ids[t]
+        cls = entity.is_a()
+        label = entity.Name if isinstance(entity.Name, str) and entity.Name.strip() else None
+        out.append(
+            Element(
+                shape.id,
+                cls,
+                (label or entity.GlobalId).strip(),
+                v,
+                t,
+                ceiling=cls == "IfcCovering" and _predefined(entity) == "CEILING",
+                roof_host=cls == "IfcWindow" and _in_roof(entity),
+            )
+        )
+    if not out:
+        raise ObjImportError(
+            f"{fname}: no building elements with geometry (walls, slabs, roofs, ...); "
+            "export the model with its 3D body representations"
+        )
+    out.sort(key=lambda e: e.id)
+    spaces = sorted((s.Name or s.LongName or s.GlobalId) for s in model.by_type("IfcSpace"))
+    return out, spaces
+
+
+def _shapes(it) -> Iterator:
+    if not it.initialize():
+        return
+    while True:
+        yield it.get()
+        if not it.next():
+            break
+
+
+def _predefined(entity) -> str | None:
+    """An element's PredefinedType, or its type object's when it says USERDEFINED or
+    NOTDEFINED."""
+    own = getattr(entity, "PredefinedType", None)
+    if own not in (None, "NOTDEFINED", "USERDEFINED"):
+        return own
+    for rel in getattr(entity, "IsTypedBy", ()) or ():
+        kind = getattr(rel.RelatingType, "PredefinedType", None)
+        if kind not in (None, "NOTDEFINED", "USERDEFINED"):
+            return kind
+    return own
+
+
+def _in_roof(window) -> bool:
+    """Whether a window fills an opening of an IfcRoof or of a slab of type ROOF (or a
+    slab that is part of a roof)."""
+    for fill in getattr(window, "FillsVoids", ()) or ():
+        voids = getattr(fill.RelatingOpeningElement, "VoidsElements", ()) or ()
+        for rel in voids:
+            host = rel.RelatingBuildingElement
+            if host.is_a("IfcRoof") or (host.is_a("IfcSlab") and _predefined(host) == "ROOF"):
+                return True
+            for agg in getattr(host, "Decomposes", ()) or ():
+                if agg.RelatingObject.is_a("IfcRoof"):
+                    return True
+    return False
+
+
+# --- zones and faces ----------------------------------------------------------------------
+
+
+def _zones(planes, elements, shapely, warnings, fname) -> dict[str, tuple[object, str]]:
+    """Zone name -> (the rectangle piece, "roof window" / "wall window" / "ceiling"), its
+    piece replaced in its plane by the rectangle; windows and ceiling coverings whose
+    largest face is not a rectangle get a warning instead."""
+    names = _group_names(elements)
+    by_element: dict[int, list[tuple[Plane, object]]] = {}
+    for p in planes:
+        for poly in p.pieces:
+            by_element.setdefault(p.element, []).append((p, poly))
+    out: dict[str, tuple[object, str]] = {}
+    odd = []
+    for k, e in enumerate(elements):
+        if e.ifc_class != "IfcWindow" and not e.ceiling:
+            continue
+        found = [
+            (p, poly) for p, poly in by_element.get(k, []) if not e.ceiling or p.normal[2] < -UPWARD
+        ]
+        if not found:
+            continue
+        plane, poly = max(found, key=lambda f: f[1].area)
+        rect = poly.minimum_rotated_rectangle
+        if poly.area < RECTANGLE * rect.area:
+            odd.append(names[k])
+            continue
+        plane.pieces = [q for q in plane.pieces if q is not poly] + [rect]
+        if e.ceiling:
+            kind = "ceiling"
+        elif e.roof_host or abs(plane.normal[2]) > UPWARD:
+            kind = "roof window"
+        else:
+            kind = "wall window"
+        out[names[k]] = (rect, kind)
+    if odd:
+        shown = ", ".join(clip(n) for n in odd[:LISTED]) + (", ..." if len(odd) > LISTED else "")
+        warnings.append(
+            f"{fname}: {len(odd)} window(s) or ceiling(s) ({shown}) have no rectangular face "
+            "towards the room, so they are plain surfaces and not emitter zones; draw zones "
+            "on them in the window or split them in the model"
+        )
+    return out
+
+
+def _group_names(elements: list[Element]) -> list[str]:
+    """``CLASS:NAME`` per element; windows and ceilings (which become zones) sharing one
+    get their file id appended (``IfcWindow:W #212``)."""
+    base = [f"{e.ifc_class}:{e.name}" for e in elements]
+    zoned = [e.ifc_class == "IfcWindow" or e.ceiling for e in elements]
+    seen: dict[str, int] = {}
+    for b, z in zip(base, zoned, strict=True):
+        if z:
+            seen[b] = seen.get(b, 0) + 1
+    return [
+        f"{b} #{e.id}" if z and seen[b] > 1 else b
+        for b, z, e in zip(base, zoned, elements, strict=True)
+    ]
+
+
+def _faces(planes, elements, zones, scale, up, path: Path):
+    """The kept pieces as the OBJ importer's polygon faces (holes cut into strips)."""
+    import shapely
+
+    fname = path.name
+    names = _group_names(elements)
+    zone_of = {id(rect): name for name, (rect, _) in zones.items()}
+    kinds = {"ceiling": "luminaire"}
+    vertices, faces, starts, labels = [], [], [], []
+    count = nv = 0
+    for p in planes:
+        e = elements[p.element]
+        group = names[p.element]
+        for poly in p.pieces:
+            zname = zone_of.get(id(poly))
+            if zname is not None:
+                label = f"zone:{zname}:{kinds.get(zones[zname][1], 'skylight')}"
+                parts = [poly]
+            else:
+                label = group
+                parts = rectangles(poly, shapely)
+            for part in parts:
+                ring = np.array(shapely.orient_polygons(part).exterior.coords)[:-1]
+                xyz = p.offset * p.normal + ring[:, :1] * p.u + ring[:, 1:2] * p.v
+                vertices.append(xyz)
+                count += 1
+                starts.append(count)
+                labels.append(f"{e.ifc_class} {clip(e.name)}")
+                faces.append(ObjFace(tuple(range(nv, nv + len(xyz))), count, label, p.role))
+                nv += len(xyz)
+    if not faces:
+        raise ObjImportError(
+            f"{fname}: no faces look into the building (all face outside or lie where "
+            "elements touch); check that the model has closed rooms"
+        )
+    v = z_up(np.concatenate(vertices) * scale, up)
+    if not np.all(np.abs(v) <= MAX_COORD):
+        raise ObjImportError(
+            f"{fname}: a coordinate is larger than {MAX_COORD:g} m after scaling by "
+            f"{scale:g}; check the scale"
+        )
+    places = FacePlaces(path, starts, labels, "IFC role", noun="face")
+    return ObjData(v, faces, []), places, count
+
+
+def _role(e: Element, n: np.ndarray) -> str:
+    if e.ifc_class == "IfcWindow":
+        return "glazing"
+    if e.ifc_class in FURNITURE:
+        return "furniture"
+    return "floor" if n[2] > UPWARD else "ceiling" if n[2] < -UPWARD else "wall"
