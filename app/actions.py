@@ -41,7 +41,7 @@ def create_actions(win) -> None:
     win.act_open = action(win, "&Open project...", win.open_dialog, ks.Open)
     win.act_save = action(win, "&Save", win.save, ks.Save)
     win.act_save_as = action(win, "Save &As...", win.save_as_dialog, ks.SaveAs)
-    win.act_import = action(win, "&Import OBJ...", lambda _=False: win.import_obj_dialog())
+    win.act_import = action(win, "&Import model...", lambda _=False: win.import_obj_dialog())
     win.act_png = action(win, "Export viewport &PNG...", win.export_png_dialog)
     win.act_report = action(win, "Export &report (PDF)...", win.export_report_dialog)
     win.act_quit = action(win, "&Quit", win.close, ks.Quit)
@@ -61,6 +61,12 @@ def create_actions(win) -> None:
         win.mode_group.addAction(act)
         win.mode_actions[mode] = act
     win.mode_actions["navigate"].setChecked(True)
+    # What Draw zone makes: it decides the surface too (a luminaire zone drawn in Top
+    # view goes on the ceiling the view looks through, not on the floor it sees).
+    win.zone_kind_box = QtWidgets.QComboBox()
+    for kind in ("luminaire", "skylight"):
+        win.zone_kind_box.addItem(f"{kind} zone", kind)
+    win.zone_kind_box.setToolTip("The kind of zone Draw zone makes")
     win.camera_actions = {
         name: action(win, f"{name.title()} view", lambda _=False, n=name: win.viewport.camera(n))
         for name in CAMERAS
@@ -168,20 +174,24 @@ def compute_menu(win, bar: QtWidgets.QMenuBar) -> None:
 
 
 def main_toolbar(win) -> QtWidgets.QToolBar:
-    """The toolbar: files, precompute, run, modes, intention, cameras."""
+    """The toolbar: files, precompute, run, modes (and the kind of zone drawn),
+    intention, cameras."""
     tools = win.addToolBar("Main")
     tools.setObjectName("main toolbar")
     groups = (
         (win.act_open, win.act_save, win.act_precompute, win.act_cancel),
         (win.act_run, win.act_cancel_run),
-        (*win.mode_actions.values(), win.act_intention),
+        (*win.mode_actions.values(), win.zone_kind_box, win.act_intention),
         tuple(win.camera_actions.values()),
     )
     for i, group in enumerate(groups):
         if i:
             tools.addSeparator()
-        for act in group:
-            tools.addAction(act)
+        for item in group:
+            if isinstance(item, QtWidgets.QWidget):
+                tools.addWidget(item)
+            else:
+                tools.addAction(item)
     return tools
 
 

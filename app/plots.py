@@ -131,7 +131,8 @@ class SolutionScatter(pg.PlotWidget):
         super().__init__(parent)
         self.showGrid(x=True, y=True, alpha=0.3)
         self.setMinimumHeight(180)
-        self.front_line = self.plot(pen=pg.mkPen("#1f5fbf", width=1))
+        self.front_pen = pg.mkPen("#1f5fbf", width=1)
+        self.front_lines: list = []  # one line per front (the runs browsed)
         self.points = pg.ScatterPlotItem()
         self.points.sigClicked.connect(self._clicked)
         self.addItem(self.points)
@@ -141,9 +142,12 @@ class SolutionScatter(pg.PlotWidget):
         self.addItem(self.chosen)
         self.xy = np.zeros((0, 2))
 
-    def set_results(self, solutions, on_front, pinned, axes, chosen: int | None) -> None:
+    def set_results(
+        self, solutions, on_front, pinned, axes, chosen: int | None, groups=None
+    ) -> None:
         """Draw ``solutions`` on ``axes`` (x, y keys of ``AXES``); ``on_front`` and
-        ``pinned`` are flags per solution."""
+        ``pinned`` are flags per solution; ``groups`` (e.g. the run of each) gives each
+        group's front its own line (default: one group)."""
         ax, ay = axes
         self.setLabel("bottom", AXES[ax][0])
         self.setLabel("left", AXES[ay][0])
@@ -166,9 +170,15 @@ class SolutionScatter(pg.PlotWidget):
                 }
             )
         self.points.setData(spots)
-        front = self.xy[np.asarray(on_front, bool)] if len(self.xy) else self.xy
-        front = front[np.argsort(front[:, 0])] if len(front) else front
-        self.front_line.setData(front[:, 0], front[:, 1]) if len(front) else self.front_line.clear()
+        for line in self.front_lines:
+            self.removeItem(line)
+        self.front_lines = []
+        groups = np.zeros(len(self.xy)) if groups is None else np.asarray(groups, float)
+        flags = np.asarray(on_front, bool)
+        for g in np.unique(groups[flags]) if len(self.xy) else ():
+            front = self.xy[flags & (groups == g)]
+            front = front[np.argsort(front[:, 0])]
+            self.front_lines.append(self.plot(front[:, 0], front[:, 1], pen=self.front_pen))
         self.set_chosen(chosen)
 
     def set_chosen(self, index: int | None) -> None:

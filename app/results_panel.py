@@ -1,10 +1,13 @@
-"""Browsing results: the solutions (Pareto front, seeds, pinned) and the violations of
-the loaded one.
+"""Browsing results: the run history, the solutions (Pareto front, seeds, pinned) and the
+violations of the loaded one.
 
-``SolutionsPanel``: a scatter on two chosen axes and a table of every result; clicking
-a point or a row loads that result into the design (viewport and source list); results
-can be pinned (kept across runs, saved with the project) and the view can show the
-difference between the loaded result and a pinned one.
+``SolutionsPanel``: which run's results to browse (one run, the saved results or all of
+them; each run's method, settings and outcome in one line; a run can be deleted, and
+Edit > Undo brings it back), a scatter on two chosen axes and a table of those results;
+clicking a point or a row loads that result into the design (viewport and source list);
+results can be pinned (offered for comparison, kept when their run is deleted, saved with
+the project) and the view can show the difference between the loaded result and a pinned
+one.
 
 ``ViolationsPanel``: the loaded result's violated rules and intentions with their
 amounts; the patches that break an intention are highlighted in the viewport.
@@ -19,6 +22,7 @@ from PySide6 import QtCore, QtWidgets
 
 from app.document import Document
 from app.plots import AXES, SolutionScatter, axis_value
+from lightinv_core.editing.results import ALL, SAVED, browse, run_label
 from lightinv_core.errors import LightInvError
 
 COLUMNS = ("result", "feasible", "power (W)", "light (lm)", "penalty", "pinned")
@@ -44,12 +48,29 @@ class SolutionsPanel(QtWidgets.QWidget):
     """Scatter + table of the project's results, pin, compare."""
 
     compareChanged = QtCore.Signal()
+    runDeleted = QtCore.Signal(int)
 
     def __init__(self, doc: Document, parent: QtWidgets.QWidget | None = None):
         super().__init__(parent)
         self.doc = doc
-        self.entries: list = []  # (label, Solution) as listed
-        lay = QtWidgets.QHBoxLayout(self)
+        self.entries: list = []  # results.Entry (label, solution, run) as listed
+        self.pinned_list: list = []  # the pinned results the compare list offers
+        outer = QtWidgets.QVBoxLayout(self)
+        outer.setContentsMargins(0, 0, 0, 0)
+        runs = QtWidgets.QHBoxLayout()
+        self.run_choice = QtWidgets.QComboBox()
+        self.run_choice.setSizeAdjustPolicy(QtWidgets.QComboBox.AdjustToContents)
+        self.delete_run_button = QtWidgets.QPushButton("Delete run")
+        self.delete_run_button.setToolTip("Delete this run and its results (Edit > Undo)")
+        runs.addWidget(QtWidgets.QLabel("Results of"))
+        runs.addWidget(self.run_choice)
+        runs.addWidget(self.delete_run_button)
+        self.run_info = QtWidgets.QLabel("")
+        self.run_info.setWordWrap(True)
+        runs.addWidget(self.run_info, 1)
+        outer.addLayout(runs)
+        lay = QtWidgets.QHBoxLayout()
+        outer.addLayout(lay, 1)
         left = QtWidgets.QVBoxLayout()
         axes = QtWidgets.QHBoxLayout()
         self.x_axis, self.y_axis = QtWidgets.QComboBox(), QtWidgets.QComboBox()
@@ -87,6 +108,8 @@ class SolutionsPanel(QtWidgets.QWidget):
         right.addWidget(self.summary)
         lay.addLayout(right, 1)
 
+        self.run_choice.activated.connect(self._run_chosen)
+        self.delete_run_button.clicked.connect(self.delete_run)
         self.scatter.clicked.connect(self.load)
         self.table.cellClicked.connect(lambda r, _c: self.load(r))
         self.pin_button.clicked.connect(self.toggle_pin)
@@ -96,20 +119,23 @@ class SolutionsPanel(QtWidgets.QWidget):
 
     # -- document -> widgets ----------------------------------------------------------------
     def refresh(self) -> None:
-        """Rebuild the table, scatter and compare list from the project's results."""
+        """Rebuild the run list, table, scatter and compare list from the project's
+        results."""
         if self.doc.project is None:
             return
+        self._fill_runs()
         self.entries = self.doc.results()
-        sols = [s for _, s in self.entries]
+        sols = [e.solution for e in self.entries]
         on_front = [self.doc.on_front(s) for s in sols]
         pinned = [s.info.pinned for s in sols]
         chosen = self.index_of(self.doc.shown)
         self.table.blockSignals(True)
         self.table.setRowCount(len(sols))
         rows = zip(self.entries, on_front, pinned, strict=True)
-        for r, ((label, s), front, pin) in enumerate(rows):
+        for r, (entry, front, pin) in enumerate(rows):
+            s = entry.solution
             cells = (
-                label + (" (front)" if front else ""),
+                entry.label + (" (front)" if front else ""),
                 "yes" if s.feasible else "no",
                 _fmt(axis_value(s, "power")),
                 _fmt(axis_value(s, "light")),
@@ -126,31 +152,85 @@ class SolutionsPanel(QtWidgets.QWidget):
         self.table.blockSignals(False)
         self.table.resizeColumnsToContents()
         axes = (self.x_axis.currentData(), self.y_axis.currentData())
-        self.scatter.set_results(sols, on_front, pinned, axes, chosen)
+        groups = [e.run for e in self.entries]
+        self.scatter.set_results(sols, on_front, pinned, axes, chosen, groups)
         self._fill_compare()
         n_front = sum(on_front)
-        method = self.doc.project.pareto.method if self.doc.project.pareto else ""
+        front = self.doc.front()
+        method = front.method if front is not None else ""
         q = self.doc.front_quality() if n_front else None
         quality = ""
         if q is not None:
             spread = "–" if q.spacing is None else f"{q.spacing:.4f}"
             quality = f"\nfront hypervolume {q.hypervolume:.4f}, spacing {spread} (normalised)"
+        fronts = len({e.run for e, f in zip(self.entries, on_front, strict=True) if f})
+        where = f"the {method} front" if fronts <= 1 else f"{fronts} fronts"
         self.summary.setText(
             f"{len(sols)} results"
-            + (f", {n_front} on the {method} front" if n_front else "")
+            + (f", {n_front} on {where}" if n_front else "")
             + (f", {sum(pinned)} pinned" if any(pinned) else "")
             + quality
             if sols
             else "No results yet: press Run."
         )
 
+    def _fill_runs(self) -> None:
+        """The run picker: every run, the saved results (when there are some), or all."""
+        d = self.doc
+        self.run_choice.blockSignals(True)
+        self.run_choice.clear()
+        self.run_choice.addItem(f"all runs ({len(d.runs)})", ALL)
+        if d.project.solutions or d.project.pareto is not None:
+            self.run_choice.addItem("saved results", SAVED)
+        for run in reversed(d.runs):  # newest first
+            self.run_choice.addItem(f"{run_label(run)} ({run.status or 'ended'})", run.number)
+        self.run_choice.setCurrentIndex(max(self.run_choice.findData(d.browsed_run), 0))
+        self.run_choice.blockSignals(False)
+        number = d.browsed_run
+        one = number is not ALL and number != SAVED
+        self.delete_run_button.setEnabled(one)
+        if one:
+            self.run_info.setText(d.run_summary(number))
+        elif number == SAVED:
+            self.run_info.setText(
+                "results kept outside the run history (an older file, "
+                "lightinv-cli solve, pinned results of a deleted run)"
+            )
+        else:
+            self.run_info.setText(
+                f"{len(d.runs)} runs kept; pick one to see its settings" if d.runs else ""
+            )
+
+    def _run_chosen(self, index: int) -> None:
+        self.doc.browse_run(self.run_choice.itemData(index))
+
+    def choose_run(self, number: int | None) -> bool:
+        """Browse run ``number`` (``ALL`` (None): every run; ``SAVED`` (0): the saved
+        results); False if the list does not offer it."""
+        i = self.run_choice.findData(number)
+        if i < 0:
+            return False
+        self.run_choice.setCurrentIndex(i)
+        self._run_chosen(i)
+        return True
+
+    def delete_run(self) -> None:
+        """Delete the run browsed and its results (pinned ones are kept); Edit > Undo
+        brings it back."""
+        number = self.doc.browsed_run
+        if number is ALL or number == SAVED:
+            return
+        self.doc.delete_run(number)
+        self.runDeleted.emit(number)
+
     def _fill_compare(self) -> None:
         current = self.compare.currentData()
         self.compare.blockSignals(True)
         self.compare.clear()
-        for i, (label, s) in enumerate(self.entries):
-            if s.info.pinned:
-                self.compare.addItem(f"pinned: {label}, {_fmt(axis_value(s, 'power'))} W", i)
+        self.pinned_list = self.doc.pinned()
+        for i, s in enumerate(self.pinned_list):
+            power = _fmt(axis_value(s, "power"))
+            self.compare.addItem(f"pinned: {_pinned_label(self.doc, s)}, {power} W", i)
         if current is not None and self.compare.findData(current) >= 0:
             self.compare.setCurrentIndex(self.compare.findData(current))
         self.compare.blockSignals(False)
@@ -163,7 +243,7 @@ class SolutionsPanel(QtWidgets.QWidget):
         """Row of ``solution`` among the listed results (None if not listed)."""
         if solution is None:
             return None
-        return next((i for i, (_, s) in enumerate(self.entries) if s.x == solution.x), None)
+        return next((i for i, e in enumerate(self.entries) if e.solution.x == solution.x), None)
 
     # -- actions ------------------------------------------------------------------------------
     def load(self, index: int) -> bool:
@@ -171,7 +251,7 @@ class SolutionsPanel(QtWidgets.QWidget):
         if not 0 <= index < len(self.entries):
             return False
         try:
-            self.doc.apply_solution(self.entries[index][1])
+            self.doc.apply_solution(self.entries[index].solution)
         except LightInvError as exc:
             QtWidgets.QMessageBox.warning(self, "LightInv", str(exc))
             return False
@@ -183,7 +263,7 @@ class SolutionsPanel(QtWidgets.QWidget):
         if not rows:
             QtWidgets.QMessageBox.information(self, "LightInv", "Select a result to pin first.")
             return
-        s = self.entries[rows[0].row()][1]
+        s = self.entries[rows[0].row()].solution
         self.doc.pin(s, not s.info.pinned)
 
     def _compare_edited(self) -> None:
@@ -195,7 +275,13 @@ class SolutionsPanel(QtWidgets.QWidget):
         if not self.difference.isChecked() or self.compare.currentData() is None:
             return None
         i = self.compare.currentData()
-        return self.entries[i][1] if i < len(self.entries) else None
+        return self.pinned_list[i] if i < len(self.pinned_list) else None
+
+
+def _pinned_label(doc: Document, solution) -> str:
+    """A pinned result's name: its run and label ("run 2: seed 3")."""
+    entry = next((e for e in browse(doc.project, ALL) if e.solution.x == solution.x), None)
+    return entry.label if entry is not None else "result"
 
 
 class ViolationsPanel(QtWidgets.QWidget):

@@ -4,8 +4,9 @@
 5 times a second: the convergence plots and counters are drawn from it, the
 best layout so far lights the viewport (when the run's variables are the design's),
 and the autosave reads the best so far from here. When the worker ends — finished or
-cancelled — its results go into the project, the best one is loaded into the design,
-and an infeasible outcome opens the Violations tab with the offending patches in red.
+cancelled — its results join the project's run history (earlier runs are kept), the
+best one is loaded into the design, and an infeasible outcome opens the Violations tab
+with the offending patches in red.
 """
 
 from __future__ import annotations
@@ -48,6 +49,7 @@ class RunController(QtCore.QObject):
         self.best_x: tuple[float, ...] = ()
         self.best_info = SolutionInfo()
         self.status = ""
+        self.run = None  # the RunRecord of the last run that ended
         self.preview_at = 0.0
         self.timer = QtCore.QTimer(self)
         self.timer.setInterval(REDRAW_MS)
@@ -149,25 +151,38 @@ class RunController(QtCore.QObject):
         self.tick()
         front: ParetoFront | None = results[0].pareto
         if front is not None:
-            self.doc.set_results((), front)
+            bests: tuple[Solution, ...] = ()
             chosen = front.solutions[0] if front.solutions else None
             if chosen is None and front.candidates:
                 chosen = min(front.candidates, key=lambda s: s.penalty)
         else:
             bests = tuple(r.best for r in results if r.best is not None)
-            self.doc.set_results(bests, None)
             chosen = _best_of(bests, self.problem)
+        self.status = _status(results)
+        evals = sum(r.evaluations for r in results)
+        seconds = sum(r.seconds for r in results)
+        # Each run that found something joins the project's history (earlier runs stay
+        # until deleted).
+        self.run = None
+        if chosen is not None:
+            self.run = self.doc.add_run(
+                bests,
+                front,
+                settings=self.worker.project.optimizer,
+                seeds=self.worker.seeds or (),
+                status=self.status,
+                evaluations=evals,
+                seconds=seconds,
+            )
         if chosen is None:
             self.doc.set_preview(None)
         else:
             self.doc.apply_solution(chosen)  # ends the preview, relights once
-        self.status = _status(results)
-        evals = sum(r.evaluations for r in results)
-        seconds = sum(r.seconds for r in results)
+        which = "" if self.run is None else f" (run {self.run.number})"
         text = {
-            "feasible": "Done: a feasible layout was found",
-            "infeasible": "Done, but no layout meets every rule and intention",
-            "cancelled": "Cancelled: the best layout found so far is kept",
+            "feasible": f"Done{which}: a feasible layout was found",
+            "infeasible": f"Done{which}, but no layout meets every rule and intention",
+            "cancelled": f"Cancelled{which}: the best layout found so far is kept",
         }[self.status]
         if front is not None:
             text += f"; {len(front.solutions)} on the front of {len(front.candidates)}"

@@ -2,8 +2,10 @@
 
 The model reports each edit with the project before and after it
 (``DocumentModel.on_edit``); a command puts one or the other back with
-``DocumentModel.restore``. Consecutive moves of the same source (a drag sends one per
-mouse move) merge into one step. Opening or starting a project clears the history.
+``DocumentModel.restore``, which applies only that step's change to the results (a
+deleted run comes back; runs made since stay). Consecutive moves of the same source (a
+drag sends one per mouse move) merge into one step. Opening or starting a project clears
+the history.
 """
 
 from __future__ import annotations
@@ -34,10 +36,10 @@ class EditCommand(QtGui.QUndoCommand):
         if self._done:
             self._done = False
             return
-        self.doc.restore(self.after)
+        self.doc.restore(self.after, self.before)
 
     def undo(self) -> None:
-        self.doc.restore(self.before)
+        self.doc.restore(self.before, self.after)
 
 
 def undo_stack(window) -> QtGui.QUndoStack:

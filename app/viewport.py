@@ -5,6 +5,13 @@ change only rewrites ``mesh.cell_data`` in place and re-renders (no new actors).
 VTK cells are triangles; ``tri_patch`` maps them to patch ids, in this one place.
 Rooms face inwards, so back-face culling lets the camera look in from outside
 (the ceiling seen from above is its back and disappears).
+
+Around the picture: an orientation axes widget (x, y, z) in a corner; the origin and u, v
+axes of the zone in focus (``show_axes``: the current source's zone, or the surface a
+zone is being drawn on), which the corners in Properties are measured along; and, while
+the light model is being built, a veil and a line of text (``set_busy``) over the picture,
+which a rebuild of the same scene keeps (the previous light carried onto the new patches)
+rather than blanking.
 """
 
 from __future__ import annotations
@@ -14,6 +21,7 @@ import pyvista as pv
 import vtk
 from PySide6 import QtCore, QtWidgets
 from pyvistaqt import QtInteractor
+from scipy.spatial import cKDTree
 
 from lightinv_core.scene.patches import Patches
 from lightinv_core.scene.zone_grid import zone_grid
@@ -24,6 +32,9 @@ CAMERAS = {
     "front": ((0.0, -1.0, 0.25), (0, 0, 1)),
 }
 OUTLINE_LIFT = 0.01  # m: outlines float 1 cm off their surface (no z-fighting)
+AXIS_COLOURS = {"u": "#d62020", "v": "#1a9a1a"}  # as the x (red) and y (green) of the widget
+VEIL_OPACITY = 0.55  # the white veil over a picture whose light is out of date
+AXIS_ACTORS = ("axis-u", "axis-v", "axis-u-label", "axis-v-label", "axis-origin-label")
 
 
 class ZoneFrame:
@@ -68,6 +79,58 @@ class ZoneFrame:
         )
 
 
+def _carried(old: pv.PolyData, new: pv.PolyData) -> np.ndarray:
+    """The values of ``old``'s cells carried to ``new``'s: each new triangle takes the
+    value of the old triangle whose centre is nearest its own (the same room re-meshed)."""
+    tree = cKDTree(old.cell_centers().points)
+    _, nearest = tree.query(new.cell_centers().points)
+    return np.asarray(old.cell_data["value"], np.float32)[nearest]
+
+
+def _label(text: str, point, side: str) -> vtk.vtkTextActor:
+    """Text at a 3D point, drawn over the picture on a pale box (``side``: where the text
+    lies from the point, "left" or "right"). A 2D text actor anchored at a world point
+    costs a fraction of a millisecond a render; pyvista's point labels (placed anew each
+    render) cost about 2 ms, which every drag would pay."""
+    actor = vtk.vtkTextActor()
+    actor.SetInput(text)
+    actor.GetPositionCoordinate().SetCoordinateSystemToWorld()
+    actor.GetPositionCoordinate().SetValue(*map(float, point))
+    prop = actor.GetTextProperty()
+    prop.SetFontSize(14)
+    prop.SetBold(True)
+    prop.SetColor(0.0, 0.0, 0.0)
+    prop.SetBackgroundColor(1.0, 1.0, 1.0)
+    prop.SetBackgroundOpacity(0.75)
+    if side == "right":  # the text ends at the point
+        prop.SetJustificationToRight()
+    prop.SetVerticalJustificationToCentered()
+    actor.SetPickable(False)
+    return actor
+
+
+def _veil() -> vtk.vtkActor2D:
+    """A white, half-transparent rectangle over the whole view (a picture out of date)."""
+    points = vtk.vtkPoints()
+    for x, y in ((0, 0), (1, 0), (1, 1), (0, 1)):
+        points.InsertNextPoint(x, y, 0)
+    quad = vtk.vtkCellArray()
+    quad.InsertNextCell(4, (0, 1, 2, 3))
+    poly = vtk.vtkPolyData()
+    poly.SetPoints(points)
+    poly.SetPolys(quad)
+    coordinate = vtk.vtkCoordinate()
+    coordinate.SetCoordinateSystemToNormalizedViewport()
+    mapper = vtk.vtkPolyDataMapper2D()
+    mapper.SetInputData(poly)
+    mapper.SetTransformCoordinate(coordinate)
+    actor = vtk.vtkActor2D()
+    actor.SetMapper(mapper)
+    actor.GetProperty().SetColor(1.0, 1.0, 1.0)
+    actor.GetProperty().SetOpacity(VEIL_OPACITY)
+    return actor
+
+
 def _polylines(loops: list[np.ndarray]) -> pv.PolyData:
     pts = np.concatenate(loops)
     lines, start = [], 0
@@ -93,14 +156,24 @@ class Viewport(QtWidgets.QWidget):
         self.plotter = QtInteractor(self, multi_samples=0)
         layout.addWidget(self.plotter.interactor)
         self.plotter.set_background("white")
+        self.plotter.add_axes(interactive=False, color="black")  # which way x, y, z point
         self.mesh: pv.PolyData | None = None
+        self.has_values = False  # the patches show light (not the grey of no light model)
+        self.busy_text: str | None = None
+        self.axes_frame: ZoneFrame | None = None  # the frame whose axes are drawn
+        self.axes_title = ""
+        self.axes_focus: tuple[ZoneFrame | None, str] = (None, "")  # shown when not drawing
+        self.show_zone_axes = True
+        self._veil = _veil()
         self.tri_patch: np.ndarray | None = None
         self.frames: dict[str, ZoneFrame] = {}
         self.cmap = "inferno"
         self.clim: tuple[float, float] | None = None  # None: automatic
         self.units = "lux"
         self.mode = "navigate"  # navigate | select | move | zone
-        self.surface_frame = None  # callable(patch id) -> ZoneFrame of its surface, or None
+        # callable(patch id seen or None, ray near point, ray far point) -> ZoneFrame of the
+        # surface a zone drawn there goes on, or None
+        self.surface_frame = None
         self._draft: tuple[ZoneFrame, tuple[float, float]] | None = None
         self.drag_zone: str | None = None
         self._press: QtCore.QPoint | None = None
@@ -127,15 +200,23 @@ class Viewport(QtWidgets.QWidget):
         self.render_count += 1
 
     # -- scene ----------------------------------------------------------------------------
-    def set_scene(self, patches: Patches, zones: list[str]) -> None:
-        """Build the mesh of ``patches`` (replacing any previous scene)."""
+    def set_scene(self, patches: Patches, zones: list[str], keep_picture: bool = False) -> None:
+        """Build the mesh of ``patches`` (replacing any previous scene). ``keep_picture``:
+        the same scene re-meshed (a zone drawn, a reflectance): each new triangle keeps
+        the light of the nearest old one and the camera stays, instead of a blank view
+        until the new light model is ready."""
         vertices, faces, tri_patch = patches.triangle_mesh()
         cells = np.hstack([np.full((len(faces), 1), 3), faces]).ravel()
+        old = self.mesh if keep_picture and self.has_values else None
+        camera = self.plotter.camera_position if keep_picture else None
         self.mesh = pv.PolyData(vertices.astype(float), cells)
         self.mesh.cell_data["value"] = np.zeros(len(faces), np.float32)
+        if old is not None:
+            self.mesh.cell_data["value"] = _carried(old, self.mesh)
         self.tri_patch = tri_patch
         self.frames = {z: ZoneFrame(patches, z) for z in zones}
-        self.plotter.clear()
+        self.plotter.clear()  # every actor goes, the veil and the axes too
+        self.busy_text = None
         self.plotter.add_mesh(
             self.mesh,
             name="scene",
@@ -156,7 +237,17 @@ class Viewport(QtWidgets.QWidget):
             },
         )
         self.set_zone_outlines()
-        self.camera("iso")
+        self.axes_frame = None
+        if old is not None:
+            lo, hi = self.clim or (0.0, float(max(self.mesh.cell_data["value"].max(), 1e-6)))
+            self.plotter.actors["scene"].mapper.scalar_range = (lo, hi)
+        else:
+            self._paint_grey(True)
+        if camera is not None:
+            self.plotter.camera_position = camera
+            self.render_now()
+        else:
+            self.camera("iso")
 
     def set_values(self, per_patch: np.ndarray | None, units: str = "lux") -> None:
         """Colour the patches (in place, no new actor); None paints them grey (no lighting)."""
@@ -167,6 +258,8 @@ class Viewport(QtWidgets.QWidget):
             if per_patch is None
             else np.asarray(per_patch, dtype=np.float32)[self.tri_patch]
         )
+        if (per_patch is None) == self.has_values:
+            self._paint_grey(per_patch is None)
         self.mesh.cell_data["value"][:] = values
         lo, hi = self.clim if self.clim is not None else (0.0, float(max(values.max(), 1e-6)))
         self.plotter.actors["scene"].mapper.scalar_range = (lo, hi)
@@ -175,6 +268,86 @@ class Viewport(QtWidgets.QWidget):
             for bar in self.plotter.scalar_bars.values():
                 bar.SetTitle(units)
         self.render_now()
+
+    def _paint_grey(self, grey: bool) -> None:
+        """No light model: the patches plain light grey (a colour map at zero is black)."""
+        actor = self.plotter.actors.get("scene")
+        self.has_values = not grey
+        if actor is not None:
+            actor.mapper.scalar_visibility = not grey
+            actor.prop.color = "#d8d8d8"
+
+    def set_busy(self, text: str | None) -> None:
+        """Veil the picture and say why (the light model being built: ``text``); None
+        lifts the veil. The patches and outlines stay, so the view is never blank."""
+        if text == self.busy_text:
+            return
+        self.busy_text = text
+        self.plotter.remove_actor("busy", render=False)
+        self.plotter.remove_actor("veil", render=False)
+        if text is not None:
+            self.plotter.add_actor(self._veil, name="veil", reset_camera=False, render=False)
+            self.plotter.add_text(
+                text, position="upper_left", font_size=11, color="#202020", name="busy"
+            )
+        self.request_render()
+
+    def show_axes(self, frame: ZoneFrame | None, title: str = "") -> None:
+        """The origin and u, v axes of ``frame`` (a zone, or the surface a zone is being
+        drawn on) as two arrows labelled u and v from the origin, labelled ``title`` ("Z1
+        (0, 0)") just outside the corner: the corners in Properties are metres along them.
+        None hides them."""
+        for name in AXIS_ACTORS:
+            self.plotter.remove_actor(name, render=False)
+        self.axes_frame, self.axes_title = frame, title
+        if frame is None or not self.show_zone_axes or self.mesh is None:
+            self.request_render()
+            return
+        w, h = frame.size
+        length = float(np.clip(0.3 * max(w, h), 0.3, 1.5))
+        origin = frame.to_world(0.0, 0.0) + OUTLINE_LIFT * frame.normal
+        for axis, direction in (("u", frame.u), ("v", frame.v)):
+            arrow = pv.Arrow(
+                start=origin,
+                direction=direction,
+                scale=length,
+                tip_length=0.25,
+                tip_radius=0.07,
+                shaft_radius=0.025,
+            )
+            self.plotter.add_mesh(
+                arrow,
+                name=f"axis-{axis}",
+                color=AXIS_COLOURS[axis],
+                lighting=False,
+                pickable=False,
+                reset_camera=False,
+                render=False,
+            )
+        tips = [origin + 1.12 * length * frame.u, origin + 1.12 * length * frame.v]
+        # The origin's label sits just outside the corner, so that it hides neither arrow.
+        outside = origin - 0.12 * length * (frame.u + frame.v)
+        labels = (("u", tips[0], "left"), ("v", tips[1], "left"), ("origin", outside, "right"))
+        for name, point, side in labels:
+            self.plotter.add_actor(
+                _label(title or "(0, 0)" if name == "origin" else name, point, side),
+                name=f"axis-{name}-label",
+                reset_camera=False,
+                render=False,
+            )
+        self.request_render()
+
+    def set_axes_focus(self, frame: ZoneFrame | None, title: str = "") -> None:
+        """The zone whose axes are shown while no zone is being drawn (the window's
+        current source's zone, or a drawn zone's surface); redrawn only when it changes."""
+        same = self.axes_focus[0] is frame and self.axes_focus[1] == title
+        self.axes_focus = (frame, title)
+        if self._draft is None and not (same and self.axes_frame is frame):
+            self.show_axes(frame, title)
+
+    def axes_shown(self) -> bool:
+        """Whether the zone axes are drawn."""
+        return "axis-u" in self.plotter.actors
 
     def set_colormap(self, cmap: str) -> None:
         """Change the colour map (rebuilds the scene actor's lookup table)."""
@@ -347,7 +520,7 @@ class Viewport(QtWidgets.QWidget):
                 frame = self._draft[0]
                 self._draft = None
                 self.plotter.remove_actor("draft", render=False)
-                self.request_render()
+                self.show_axes(*self.axes_focus)  # back from the surface's axes
                 if rect is not None:
                     self.zoneDrawn.emit(frame.name, *rect)
             return True
@@ -355,16 +528,20 @@ class Viewport(QtWidgets.QWidget):
 
     # -- zone drawing -----------------------------------------------------------------------
     def _start_draft(self, x: int, y: int) -> None:
-        """Begin a zone rectangle on the planar surface under the cursor."""
+        """Begin a zone rectangle on the surface the window picks for the cursor: the one
+        seen if it suits, else one the view ray crosses (the culled ceiling, from above)."""
         self._draft = None
-        hit = self.pick_at(x, y)
-        found = self.surface_frame(int(hit[0])) if len(hit) and self.surface_frame else None
-        if found is None:
+        if self.surface_frame is None:
             return
-        frame = found
-        uv = frame.from_ray(*self.ray(x, y))
+        hit = self.pick_at(x, y)
+        near, far = self.ray(x, y)
+        frame = self.surface_frame(int(hit[0]) if len(hit) else None, near, far)
+        if frame is None:
+            return
+        uv = frame.from_ray(near, far)
         if uv is not None:
             self._draft = (frame, uv)
+            self.show_axes(frame, f"{frame.name} (0, 0)")
 
     def _show_draft(self, x: int, y: int) -> tuple[float, float, float, float] | None:
         """Draw the rectangle being dragged; returns it (m, clipped to the surface)."""

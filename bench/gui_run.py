@@ -37,7 +37,7 @@ def gui_run(win, preview: bool) -> dict:
     loop.exec()
     wall = time.perf_counter() - t0
     win.runs.finished.disconnect(loop.quit)
-    sol = win.doc.project.solutions[-1]
+    sol = win.doc.project.runs[-1].solutions[-1]
     return {
         "evaluations": sol.info.evaluations,
         "seconds": sol.info.seconds,

@@ -4,16 +4,38 @@ A drawn zone (``ZoneEdit``) goes on a planar rectangular surface that is not alr
 zone; the project stores the drawn zones with its scene, and the scene is rebuilt with
 them. When a drawn zone goes (deleted, renamed), so do the sources placed in it and the
 rules that name them (``rules.only_in_zones``).
+
+Which surface a zone is drawn on (``zone_surface``): rooms face inwards and the viewport
+culls back faces, so from above (Top view) the ceiling is invisible and the floor, or a
+wall near the edge, is what is seen; a luminaire zone drawn there used to land on the
+floor. Zones go on the kind-appropriate surface: the first surface facing down (a ceiling
+or roof, seen from below or looked through from above) that the view ray crosses before
+it reaches what is seen; failing that, a luminaire zone may go on the wall seen (it does
+not face up), a skylight zone nowhere. z is up.
 """
 
 from __future__ import annotations
 
 from collections.abc import Sequence
 
+import numpy as np
+
 from lightinv_core.editing.rules import free_name
-from lightinv_core.scene.edits import ZoneEdit
+from lightinv_core.errors import DesignError
+from lightinv_core.scene.edits import ZoneEdit, rect_surfaces
 from lightinv_core.scene.model import Rect, Scene
 from lightinv_core.scene.patches import Patches
+
+DOWN = -0.1
+"""A surface faces down (a ceiling, or a roof pitched up to 84°) when the z component of
+its unit front normal is below this."""
+UP = 0.5
+"""A luminaire zone may go on a surface seen whose front normal's z is below this (a wall,
+not a floor)."""
+WHERE = {
+    "luminaire": "ceilings and roofs (facing down), or walls seen from the room",
+    "skylight": "ceilings and roofs (surfaces facing down into the room)",
+}
 
 
 def drawable_surface(scene: Scene, patches: Patches, patch: int) -> tuple[str, Rect] | None:
@@ -39,3 +61,61 @@ def zone_names_after(
 def new_zone_name(scene: Scene) -> str:
     """A free name for a new zone: Z1, Z2, ..."""
     return free_name("Z", {z.name for z in scene.zones})
+
+
+def surfaces_on_ray(scene: Scene, origin, direction) -> list[tuple[float, str]]:
+    """(distance along the ray in units of ``direction``, surface name) of every planar
+    rectangle the ray from ``origin`` meets in front of it, either side, nearest first."""
+    p0, d = np.asarray(origin, float), np.asarray(direction, float)
+    hits = []
+    for surface in scene.surfaces:
+        r = surface.rect
+        if r is None:
+            continue
+        t = _plane_distance(r.origin, r.normal, p0, d)
+        if t is None:
+            continue
+        q = p0 + t * d - r.origin
+        s, w = float(q @ r.u) / float(r.u @ r.u), float(q @ r.v) / float(r.v @ r.v)
+        if -1e-9 <= s <= 1 + 1e-9 and -1e-9 <= w <= 1 + 1e-9:
+            hits.append((t, surface.name))
+    return sorted(hits)
+
+
+def _plane_distance(point, normal, p0, d) -> float | None:
+    """Where the ray p0 + t d meets the plane through ``point`` (t > 0), or None."""
+    den = float(d @ normal)
+    if abs(den) < 1e-12:
+        return None  # the ray runs along the plane
+    t = float((np.asarray(point, float) - p0) @ normal) / den
+    return t if t > 0 else None
+
+
+def zone_surface(
+    scene: Scene, patches: Patches, kind: str, origin, direction, seen: int | None = None
+) -> tuple[str, Rect]:
+    """(surface name, its Rect) on which a zone of ``kind`` drawn along the view ray
+    (``origin``, ``direction``) goes, ``seen`` being the patch under the cursor (None:
+    nothing): the first drawable surface facing down that the ray crosses up to the one
+    seen (a ceiling seen from below, or looked through from above); else, for a
+    luminaire zone, the drawable surface seen if it does not face up (a wall). A
+    DesignError says where such zones go when there is none."""
+    p0, d = np.asarray(origin, float), np.asarray(direction, float)
+    limit = np.inf
+    if seen is not None:
+        t = _plane_distance(patches.origin[seen], patches.normal[seen], p0, d)
+        limit = np.inf if t is None else t * (1 + 1e-6) + 1e-9
+    drawable = dict(rect_surfaces(scene))
+    for t, name in surfaces_on_ray(scene, p0, d):
+        rect = drawable.get(name)
+        if t <= limit and rect is not None and rect.normal[2] < DOWN:
+            return name, rect
+    if kind == "luminaire" and seen is not None:
+        found = drawable_surface(scene, patches, seen)
+        if found is not None and found[1].normal[2] < UP:
+            return found
+    where = WHERE.get(kind, WHERE["luminaire"])
+    raise DesignError(
+        f"{kind} zones are drawn on {where}, on a planar rectangle that is not a zone "
+        "yet; there is none under the cursor"
+    )

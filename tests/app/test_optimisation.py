@@ -51,7 +51,7 @@ def test_a_run_plots_its_convergence_and_loads_the_best(qtbot, cornell_design):
     curve = plot.curve(0)
     assert np.all(np.diff(curve[:, 1]) <= 1e-9)  # best power never rises...
     assert curve[-1, 2] == 0.0  # ...and the run ends feasible
-    (best,) = win.doc.project.solutions
+    (best,) = win.doc.project.runs[-1].solutions
     assert best.feasible and best.info.evaluations >= 1500
     assert win.doc.shown is best
     assert win.doc.design.sources[0].rect == best.sources[0].rect
@@ -67,7 +67,7 @@ def test_cancel_keeps_the_best_solution_in_the_project(qtbot, cornell_design):
         qtbot.waitUntil(lambda: win.run_panel.plot.point_count >= 3, timeout=30_000)
         win.run_panel.cancel_button.click()
     assert blocker.args == ["cancelled"]
-    (best,) = win.doc.project.solutions
+    (best,) = win.doc.project.runs[-1].solutions
     assert best.info.status == "cancelled" and best.info.evaluations > 0
     assert win.doc.design.sources[0].rect == best.sources[0].rect
     assert "Cancelled" in win.run_panel.state.text()
@@ -97,7 +97,7 @@ def test_several_seeds_show_each_run(qtbot, cornell_design):
     win.doc.set_optimizer(max_evals=600)
     win.run_panel.runs.setValue(3)
     assert run_and_wait(qtbot, win) == "feasible"
-    sols = win.doc.project.solutions
+    sols = win.doc.project.runs[-1].solutions
     assert [s.info.seed for s in sols] == [0, 1, 2]
     assert {0, 1, 2} <= set(win.run_panel.plot._data)  # one curve per run
     panel = win.solutions_panel
@@ -145,7 +145,7 @@ def test_pareto_browser_loads_pins_and_compares_solutions(qtbot, experiment5, tm
     assert win.doc.project.optimizer.method == "epsilon"
     assert run_and_wait(qtbot, win, timeout=180_000) == "feasible"
     panel = win.solutions_panel
-    front = win.doc.project.pareto.solutions
+    front = win.doc.project.runs[-1].pareto.solutions
     assert len(front) >= 2 and win.tabs.currentWidget() is panel
     rows = [panel.index_of(s) for s in (front[0], front[-1])]
     assert None not in rows
@@ -177,8 +177,8 @@ def test_pareto_browser_loads_pins_and_compares_solutions(qtbot, experiment5, tm
     path = tmp_path / "exp5.json"
     assert win.save_to(path)
     again = load_project(path)
-    assert [s.x for s in again.solutions if s.info.pinned] == [front[0].x]
-    assert len(again.pareto.solutions) == len(front)
+    assert [s.x for s in again.runs[-1].pareto.solutions if s.info.pinned] == [front[0].x]
+    assert len(again.runs[-1].pareto.solutions) == len(front)
 
 
 def test_the_run_panel_offers_every_method_and_runs_an_nsga2_front(qtbot, experiment5, tmp_path):
@@ -197,7 +197,7 @@ def test_the_run_panel_offers_every_method_and_runs_an_nsga2_front(qtbot, experi
     assert panel.plot.goal_plot.getPlotItem().titleLabel.text.startswith("best front hypervolume")
     curve = panel.plot.curve(0)
     assert len(curve) >= 2 and np.all(np.diff(curve[:, 1]) >= 0)  # hypervolume only rises
-    front = win.doc.project.pareto.solutions
+    front = win.doc.project.runs[-1].pareto.solutions
     assert 2 <= len(front) <= 24 and all(s.feasible for s in front)
     summary = win.solutions_panel.summary.text()
     q = win.doc.front_quality()

@@ -6,8 +6,10 @@ from __future__ import annotations
 
 import shutil
 import subprocess
+from dataclasses import replace
 from pathlib import Path
 
+import numpy as np
 import pytest
 from PySide6 import QtCore, QtGui, QtTest, QtWidgets
 
@@ -84,7 +86,7 @@ def test_a_demo_opens_as_an_untitled_copy(qtbot, window, tmp_path, monkeypatch):
 def test_every_panel_comes_back_from_the_view_menu(qtbot, window):
     window.show()
     docks = {d.objectName(): d for d in window.findChildren(QtWidgets.QDockWidget)}
-    assert set(docks) == {"tree", "properties", "optimisation"}
+    assert set(docks) == {"tree", "properties", "luminaires", "optimisation"}
     assert set(window.panel_actions) == {*docks, "toolbar"}
     view = next(a.menu() for a in window.menuBar().actions() if a.text() == "&View")
     assert set(window.panel_actions.values()) <= set(view.actions())
@@ -478,3 +480,178 @@ def test_reflectances_are_edited_in_the_materials_panel(qtbot, window, tmp_path)
     window.act_undo.trigger()  # back to 0.85
     wait_for_operator(qtbot, window)
     assert d.reflectance("floor") == pytest.approx(0.85)
+
+
+# -- zones: drawn in Top view, their axes, the view while the light model is rebuilt -------
+
+
+def drag(window, a, b, shot: str | None = None) -> None:
+    """Press at world point ``a``, move to and release at ``b`` in the viewport (a
+    screenshot ``shot`` of the view before the release)."""
+    from tests.app.test_main_window import send_mouse, to_qt
+
+    iw = window.viewport.plotter.interactor
+    start, end = to_qt(window.viewport, a), to_qt(window.viewport, b)
+    send_mouse(iw, QtCore.QEvent.Type.MouseButtonPress, start)
+    send_mouse(iw, QtCore.QEvent.Type.MouseMove, end)
+    if shot:
+        window.viewport.screenshot(shot)
+    send_mouse(iw, QtCore.QEvent.Type.MouseButtonRelease, end)
+
+
+def test_a_luminaire_zone_drawn_in_top_view_goes_on_the_ceiling(qtbot, window):
+    """From above, the ceiling is culled and the floor is what is seen: a luminaire zone
+    drawn in Top view landed on the floor."""
+    from app.panels import ZoneDialog
+    from tests.app.test_main_window import to_qt
+
+    assert window.new_project("office", 0.5)
+    wait_for_operator(qtbot, window)
+    d, vp = window.doc, window.viewport
+    vp.camera("top")
+    window.set_mode("zone")
+    assert window.draw_kind() == "luminaire"
+    # The strip between the skylight zone and the north wall, x 5.5-6.5 m, y 7.3-7.7 m.
+    a, b = (5.5, 7.7, 3.0), (6.5, 7.3, 3.0)
+    seen = vp.pick_at(*vp._display(to_qt(vp, a).toPoint()))
+    # What is seen there is not the ceiling (culled from above) but a wall in perspective
+    # (the floor further in): the old code drew on what it saw.
+    assert d.patches.group_names[d.patches.group_id[seen[0]]] in ("walls", "floor")
+    drawn = []
+    vp.zoneDrawn.disconnect(window._zone_drawn)
+    vp.zoneDrawn.connect(lambda *args: drawn.append(args))
+    drag(window, a, b, "/tmp/h3-top-view-draft.png")
+    ((surface, u0, v0, u1, v1),) = drawn
+    found = d.scene.surface(surface)
+    assert found.group == "ceiling" and found.rect.normal[2] < -0.99
+    rect = found.rect
+    corners = [
+        rect.point(0, 0) + p * rect.u / rect.size[0] + q * rect.v / rect.size[1]
+        for p, q in ((u0, v0), (u1, v1))
+    ]
+    np.testing.assert_allclose(sorted(c[0] for c in corners), [5.5, 6.5], atol=0.03)
+    np.testing.assert_allclose(sorted(c[1] for c in corners), [7.3, 7.7], atol=0.03)
+    np.testing.assert_allclose([c[2] for c in corners], [3.0, 3.0], atol=1e-9)
+    assert f"luminaire zone on {surface}" in window.statusBar().currentMessage()
+    dialog = ZoneDialog(surface, "Z1", window)
+    dialog.setResult(QtWidgets.QDialog.Accepted)
+    assert window._zone_drawn(surface, u0, v0, u1, v1, dialog)
+    zone = d.scene.zone("Z1")
+    assert zone.kind == "luminaire" and d.scene.surface(zone.surface).group == "ceiling"
+    vp.screenshot("/tmp/h3-top-view-zone.png")
+    # A skylight zone cannot go on a wall: seen from the side with no roof behind it.
+    window.zone_kind_box.setCurrentIndex(window.zone_kind_box.findData("skylight"))
+    vp.plotter.camera_position = [(6.0, 4.0, 1.5), (6.0, 9.0, 1.5), (0, 0, 1)]
+    vp.render_now()
+    drawn.clear()
+    drag(window, (5.8, 8.0, 1.2), (6.2, 8.0, 1.8))
+    assert drawn == [] and "skylight zones are drawn on ceilings and roofs" in (
+        window.statusBar().currentMessage()
+    )
+    wait_for_operator(qtbot, window)
+
+
+def test_zone_axes_show_where_the_corners_are_measured_from(qtbot, window):
+    """Zone axes and origin were never shown: the u0 v0 u1 v1 numbers meant nothing."""
+    from lightinv_core.scene.edits import ZoneEdit
+
+    assert window.new_project("office", 0.5)
+    wait_for_operator(qtbot, window)
+    d, vp = window.doc, window.viewport
+    assert vp.plotter.renderer.axes_widget is not None  # the x, y, z orientation widget
+    assert not vp.axes_shown()
+    d.add_source("lum_west")
+    frame = vp.frames["lum_west"]
+    assert vp.axes_shown() and vp.axes_frame is frame and vp.axes_title == "lum_west (0, 0)"
+    u_arrow = vp.plotter.actors["axis-u"].mapper.dataset
+    v_arrow = vp.plotter.actors["axis-v"].mapper.dataset
+    origin = frame.to_world(0, 0)
+    # Each arrow starts at the zone's origin and points along its own axis.
+    for arrow, axis in ((u_arrow, frame.u), (v_arrow, frame.v)):
+        pts = np.asarray(arrow.points) - origin
+        along = pts @ axis
+        assert along.min() == pytest.approx(0.0, abs=0.02) and along.max() > 0.25
+        assert np.abs(pts - np.outer(along, axis)).max() < 0.2  # a thin arrow on the axis
+    vp.camera("top")
+    vp.screenshot("/tmp/h3-axes-source.png")
+    # A source in the other zone moves the axes there; dragging does not redraw them.
+    d.add_source("lum_east")
+    assert vp.axes_frame is vp.frames["lum_east"]
+    before = vp.plotter.actors["axis-u"]
+    d.move_source(d.current_source, 0.1, 0.0)
+    assert vp.plotter.actors["axis-u"] is before
+    # While a zone is drawn, the surface's axes; back to the source's after.
+    d.add_user_zone("Z1", "luminaire", "ceiling", (4.0, 5.5, 8.0, 7.0))
+    wait_for_operator(qtbot, window)
+    d.set_current_source("L1")
+    window.set_mode("zone")
+    from tests.app.test_main_window import send_mouse, to_qt
+
+    vp.plotter.camera_position = [(6.0, 7.5, 0.3), (6.0, 7.5, 3.0), (0, 1, 0)]
+    vp.render_now()
+    iw = vp.plotter.interactor
+    press = to_qt(vp, (5.6, 7.9, 3.0))
+    send_mouse(iw, QtCore.QEvent.Type.MouseButtonPress, press)
+    assert vp.axes_frame is not vp.frames["lum_west"] and vp.axes_title.endswith("(0, 0)")
+    assert d.scene.surface(vp.axes_frame.name).group == "ceiling"
+    send_mouse(iw, QtCore.QEvent.Type.MouseButtonRelease, press)  # a slip: nothing drawn
+    assert vp.axes_frame is vp.frames["lum_west"]
+    # A drawn zone chosen in its panel: the axes of the surface it was drawn on.
+    panel = window.zone_panel
+    panel.zone.activated.emit(panel.zone.findData("Z1"))
+    base = replace(d.project.scene, zones=()).load()
+    edit = ZoneEdit("Z1", "luminaire", "ceiling", (4.0, 5.5, 8.0, 7.0))
+    np.testing.assert_allclose(vp.axes_frame.origin, base.surface(edit.surface).rect.origin)
+    np.testing.assert_allclose(vp.axes_frame.to_world(4.0, 5.5), vp.frames["Z1"].to_world(0, 0))
+    assert vp.axes_title == "ceiling (0, 0)"
+    vp.camera("iso")
+    window.grab().save("/tmp/h3-axes-drawn-zone.png")
+    window.zone_axes.setChecked(False)
+    assert not vp.axes_shown()
+    window.zone_axes.setChecked(True)
+    assert vp.axes_shown()
+
+
+def test_the_view_keeps_its_picture_while_the_light_model_is_rebuilt(qtbot, window):
+    """Every zone edit blanked the view during the rebuild, without a word."""
+    assert window.new_project("office", 0.5)
+    wait_for_operator(qtbot, window)
+    d, vp = window.doc, window.viewport
+    assert vp.busy_text is None and "veil" not in vp.plotter.actors
+    d.add_source("lum_west")
+    d.update_source(d.current_source, flux=20000.0)
+    vp.camera("top")
+    camera = vp.plotter.camera_position
+    lit = vp.screenshot().astype(float)
+    lux = vp.mesh.cell_data["value"].copy()
+    d.add_user_zone("Z1", "luminaire", "ceiling", (4.0, 5.5, 8.0, 7.0))
+    # The new scene is shown at once, with the old light carried over, veiled, and why.
+    assert d.operator is None and window.worker is not None
+    assert vp.has_values and vp.mesh.cell_data["value"].max() == pytest.approx(lux.max())
+    assert vp.plotter.actors["scene"].mapper.scalar_visibility
+    assert "veil" in vp.plotter.actors and vp.busy_text.startswith("Rebuilding the light model")
+    assert "from before the change" in vp.busy_text
+    assert vp.plotter.camera_position == camera  # the camera stays
+    veiled = vp.screenshot("/tmp/h3-rebuilding.png").astype(float)
+    assert veiled.std() > 10  # not blank
+    assert np.abs(veiled - lit).mean() > 5  # veiled: visibly paler
+    wait_for_operator(qtbot, window)
+    assert vp.busy_text is None and "veil" not in vp.plotter.actors
+    vp.screenshot("/tmp/h3-rebuilt.png")
+    # A cancelled build says what to do instead of showing stale light unexplained.
+    d.set_reflectance("floor", 0.3)
+    assert vp.busy_text.startswith("Rebuilding")
+    window.cancel_precompute()
+    qtbot.waitUntil(lambda: window.worker is None, timeout=30_000)
+    if d.operator is None:  # not already loaded from the cache
+        no_model = "No light model: Compute > Precompute builds it."
+        qtbot.waitUntil(lambda: vp.busy_text == no_model, timeout=5_000)
+        assert "veil" in vp.plotter.actors and vp.has_values
+    window.start_precompute()
+    wait_for_operator(qtbot, window)
+    assert vp.busy_text is None
+    # A new project is not a rebuild: no light carried over from the old one.
+    assert window.new_project("cornell", 0.5)
+    assert not vp.has_values and vp.busy_text.startswith("Building the light model")
+    vp.screenshot("/tmp/h3-building.png")
+    wait_for_operator(qtbot, window)

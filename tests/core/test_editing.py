@@ -13,11 +13,13 @@ from lightinv_core.design.model import Design, Goal, Intention, Rule, Source
 from lightinv_core.design.solution import ParetoFront, Solution, SolutionInfo
 from lightinv_core.editing import EVENTS, DocumentModel, Events, blank_project, result_label
 from lightinv_core.editing import rules as edit_rules
+from lightinv_core.editing.results import ALL, run_label
 from lightinv_core.errors import DesignError, LightInvError
 from lightinv_core.kinds import GoalKind, RuleKind, SourceKind
 from lightinv_core.light.model import LightModel
 from lightinv_core.operator.build import build_operator
 from lightinv_core.operator.settings import OperatorSettings
+from lightinv_core.optimize.settings import OptimizerSettings
 from lightinv_core.project import ProjectError, load_project
 from lightinv_core.scene.edits import ZoneEdit
 
@@ -328,13 +330,12 @@ def test_applying_a_solution_loads_its_layout_and_refuses_foreign_sources(lit):
     assert lit.shown is None  # an edited design is no longer the loaded result
 
 
-def test_results_keep_pinned_ones_across_runs_and_are_labelled(lit):
+def test_results_are_labelled_by_what_found_them(lit):
     lit.add_source("lum_west")
-    s0, s1, eps, two, plain = solutions_of(
+    s0, eps, two, plain = solutions_of(
         lit,
         [
             SolutionInfo(seed=0),
-            SolutionInfo(seed=1),
             SolutionInfo(epsilon=1500.0),
             SolutionInfo(step1_light_power=10.0, seed=3),
             SolutionInfo(),
@@ -346,32 +347,150 @@ def test_results_keep_pinned_ones_across_runs_and_are_labelled(lit):
         "two-step seed 3",
         "result",
     ]
+
+
+SETTINGS = OptimizerSettings(method="vns", seed=4, max_evals=5000, time_limit=20.0)
+
+
+def test_each_run_is_kept_in_the_history_with_its_settings(lit):
+    """A new run used to replace every earlier result; now each run is an entry."""
+    lit.add_source("lum_west")
+    s0, s1, eps, two = solutions_of(
+        lit,
+        [
+            SolutionInfo(seed=0),
+            SolutionInfo(seed=1),
+            SolutionInfo(epsilon=1500.0),
+            SolutionInfo(step1_light_power=10.0, seed=3),
+        ],
+    )
     rec = Recorder(lit)
-    lit.set_results((s0, s1), None)
+    lit.dirty = False
+    first = lit.add_run(
+        (s0, s1),
+        None,
+        settings=SETTINGS,
+        seeds=(0, 1),
+        status="feasible",
+        evaluations=10_000,
+        seconds=3.25,
+        time="2026-11-25T14:03:12",
+    )
     assert rec.take() == ["path", "results"] and lit.dirty
-    assert [label for label, _ in lit.results()] == ["seed 0", "seed 1"]
+    assert (first.number, first.method, first.goals) == (1, "vns", ("min_electric_power",))
+    assert lit.browsed_run == 1 and [e.label for e in lit.results()] == ["seed 0", "seed 1"]
+    assert run_label(first) == "run 1: VNS, 14:03"
+    assert lit.run_summary(1) == (
+        "VNS, 2 seeds (0, 1), at most 5,000 evaluations, at most 20 s, goal min electric "
+        "power: feasible, 10,000 evaluations in 3.2 s; ended 2026-11-25 14:03:12"
+    )
+    front = ParetoFront(("min_electric_power", "max_light_power"), (eps,), "epsilon", (eps, two))
+    second = lit.add_run((), front, settings=replace(SETTINGS, method="epsilon"))
+    # The first run's results stay; the new run's are browsed.
+    assert [r.number for r in lit.runs] == [1, 2] and lit.runs[0] == first
+    assert lit.browsed_run == 2 and [e.solution.x for e in lit.results()] == [eps.x, two.x]
+    assert lit.front() is front
+    assert lit.on_front(eps) and not lit.on_front(two) and not lit.on_front(s1)
+    assert "1 on its front" in lit.run_summary(2)
+    lit.browse_run(ALL)
+    assert [e.label for e in lit.results()] == [
+        "run 1: seed 0",
+        "run 1: seed 1",
+        "run 2: epsilon 1,500 lm",
+        "run 2: two-step seed 3",
+    ]
+    assert [e.run for e in lit.results()] == [1, 1, 2, 2]
+    assert lit.front() is second.pareto  # the newest run's front
+    with pytest.raises(DesignError, match="no run 7"):
+        lit.browse_run(7)
+    assert lit.browsed_run is ALL
+
+
+def test_pinned_results_outlive_their_run_and_a_deleted_run_comes_back(lit):
+    lit.add_source("lum_west")
+    s0, s1, eps = solutions_of(
+        lit, [SolutionInfo(seed=0), SolutionInfo(seed=1), SolutionInfo(epsilon=900.0)]
+    )
+    front = ParetoFront(("min_electric_power", "max_light_power"), (eps,), "epsilon", (eps,))
+    lit.add_run((s0, s1), None, settings=SETTINGS, status="feasible")
+    lit.add_run((), front, settings=SETTINGS, status="feasible")
+    edits = []
+    lit.on_edit = lambda label, before, after: edits.append((label, before, after))
     lit.apply_solution(s1)
     kept = lit.pin(s1)
-    assert kept.info.pinned and kept.info.seed == 1 and lit.shown is kept
-    assert lit.pinned() == [kept]
-    # A new run: the pinned result stays, first; the unpinned one goes.
-    front = ParetoFront(("min_electric_power", "max_light_power"), (eps,), "epsilon", (eps, two))
-    lit.set_results((), front)
-    assert [s.x for s in lit.project.solutions] == [s1.x]
-    assert [label for label, _ in lit.results()] == [
-        "seed 1",
-        "epsilon 1,500 lm",
-        "two-step seed 3",
-    ]
-    assert lit.on_front(eps) and not lit.on_front(two) and not lit.on_front(s1)
-    # Pinning a front point stores it once; unpinning sends it back to the front only.
-    lit.pin(eps)
+    assert kept.info.pinned and lit.shown is kept and lit.pinned() == [kept]
+    lit.pin(eps)  # a front point is pinned where it is, in its run's front
     assert [s.x for s in lit.pinned()] == [s1.x, eps.x]
-    assert len(lit.results()) == 3  # the pinned front point is not listed twice
+    assert lit.runs[1].pareto.solutions[0].info.pinned
+    assert lit.runs[1].pareto.candidates[0].info.pinned
     lit.pin(eps, False)
-    assert [s.x for s in lit.project.solutions] == [s1.x] and len(lit.results()) == 3
-    lit.pin(kept, False)  # an unpinned seed result stays among the solutions
-    assert lit.pinned() == [] and not lit.project.solutions[0].info.pinned
+    assert [s.x for s in lit.pinned()] == [s1.x]
+    # Deleting run 1 keeps its pinned result among the saved results; it is an edit.
+    rec = Recorder(lit)
+    lit.browse_run(1)
+    rec.take()
+    lit.delete_run(1)
+    assert rec.take() == ["path", "results"]
+    assert [r.number for r in lit.runs] == [2] and lit.browsed_run is ALL
+    assert [s.x for s in lit.project.solutions] == [s1.x]
+    assert [e.label for e in lit.results()] == ["saved: seed 1", "run 2: epsilon 900 lm"]
+    assert edits[-1][0] == "delete run 1"
+    _, before, after = edits[-1]
+    # A run made after the delete stays when the delete is undone (and numbers go on).
+    third = lit.add_run((s0,), None, settings=SETTINGS)
+    assert third.number == 3
+    lit.restore(before, after)  # undo the delete
+    assert [r.number for r in lit.runs] == [1, 2, 3] and lit.project.solutions == ()
+    assert lit.runs[0].solutions[1].info.pinned  # the pin came back with its run
+    lit.restore(after, before)  # redo
+    assert [r.number for r in lit.runs] == [2, 3]
+    assert [s.x for s in lit.project.solutions] == [s1.x]
+    with pytest.raises(DesignError, match="no run 1"):
+        lit.delete_run(1)
+
+
+def test_undoing_a_design_edit_keeps_the_results(lit):
+    """Undo put the whole project back, so undoing an edit made before a run dropped the
+    run's results (the docs said results are not edits and stay)."""
+    edits = []
+    lit.on_edit = lambda label, before, after: edits.append((label, before, after))
+    a = lit.add_source("lum_west")
+    (s0,) = solutions_of(lit, [SolutionInfo(seed=0)])
+    lit.add_run((s0,), None, settings=SETTINGS)
+    label, before, after = edits[0]
+    assert label == f"add source {a.name}"
+    lit.restore(before, after)
+    assert lit.design.sources == () and [r.number for r in lit.runs] == [1]
+    lit.restore(after, before)
+    assert lit.design.sources[0].name == a.name and len(lit.runs) == 1
+
+
+def test_the_history_is_saved_and_reopened(lit, tmp_path):
+    lit.add_source("lum_west")
+    s0, s1, eps = solutions_of(
+        lit, [SolutionInfo(seed=0), SolutionInfo(seed=1), SolutionInfo(epsilon=900.0)]
+    )
+    front = ParetoFront(("min_electric_power", "max_light_power"), (eps,), "epsilon", (eps,))
+    lit.add_run((s0, s1), None, settings=SETTINGS, seeds=(0, 1), status="feasible")
+    lit.add_run((), front, settings=replace(SETTINGS, method="epsilon"), status="cancelled")
+    lit.pin(s1)
+    path = lit.save(tmp_path / "history.json")
+    again = DocumentModel()
+    again.open(path)
+    assert again.project == lit.project and again.runs == lit.runs
+    assert [r.status for r in again.runs] == ["feasible", "cancelled"]
+    assert again.runs[1].settings.method == "epsilon" and again.runs[0].seeds == (0, 1)
+    assert [s.x for s in again.pinned()] == [s1.x]
+    # lightinv-cli report on such a file documents the newest run's first result (its
+    # results are in the history, not in the saved solutions).
+    from lightinv_core.report.chosen import choose_solution
+
+    chosen = choose_solution(again.project)
+    assert chosen.solution == eps and chosen.label == "run 2, front point 1 of 1"
+    # Numbers go on after the highest one saved.
+    assert again.add_run((s0,), None, settings=SETTINGS).number == 3
+    chosen = choose_solution(again.project)
+    assert chosen.solution.x == s0.x and chosen.label == "run 3, best 1 of 1"
 
 
 def test_saving_and_opening_round_trip_and_clear_the_dirty_flag(lit, tmp_path):
@@ -473,3 +592,61 @@ def test_a_groups_reflectance_is_set_and_reset(doc):
     assert doc.reflectance("walls") == pytest.approx(0.33)
     doc.set_reflectance("walls", None)
     assert doc.reflectance("walls") == pytest.approx(own) and not doc.project.scene.reflectances
+
+
+def nearest_patch(model: DocumentModel, group: str, point) -> int:
+    """The patch of ``group`` whose centre is nearest ``point``."""
+    ids = model.patches.group_index(group)
+    return int(ids[np.argmin(np.linalg.norm(model.patches.centroid[ids] - point, axis=1))])
+
+
+def test_a_zone_drawn_from_above_goes_on_the_ceiling_not_the_floor_seen(doc):
+    """From above, the ceiling is culled: the floor is what the view shows, and a
+    luminaire zone drawn in Top view went on it."""
+    down = (0.0, 0.0, -1.0)
+    floor = nearest_patch(doc, "floor", (5.8, 7.5, 0.0))
+    for kind in ("luminaire", "skylight"):
+        name, rect = doc.zone_surface(kind, (5.8, 7.5, 20.0), down, floor)
+        assert doc.scene.surface(name).group == "ceiling" and rect.normal[2] == -1.0
+        assert name == "ceiling.12"  # the cell over (5.8, 7.5): x 4-8, y 7-8
+    # Straight through the skylight zone (not drawable) onto the floor: nowhere to go.
+    floor = nearest_patch(doc, "floor", (6.0, 4.0, 0.0))
+    with pytest.raises(DesignError, match="luminaire zones are drawn on ceilings and roofs"):
+        doc.zone_surface("luminaire", (6.0, 4.0, 20.0), down, floor)
+    # From inside, looking at the north wall: a luminaire zone may go on it, a skylight's
+    # may not.
+    wall = nearest_patch(doc, "walls", (6.0, 8.0, 1.5))
+    name, rect = doc.zone_surface("luminaire", (6.0, 4.0, 1.5), (0.0, 1.0, 0.0), wall)
+    assert doc.scene.surface(name).group == "walls" and rect.normal[1] == pytest.approx(-1.0)
+    with pytest.raises(DesignError, match="skylight zones are drawn on ceilings and roofs"):
+        doc.zone_surface("skylight", (6.0, 4.0, 1.5), (0.0, 1.0, 0.0), wall)
+    # Up at the ceiling from inside: the ceiling, seen from below.
+    up = nearest_patch(doc, "ceiling", (2.0, 7.5, 3.0))
+    name, _ = doc.zone_surface("luminaire", (2.0, 7.5, 1.0), (0.0, 0.2, 1.0), up)
+    assert doc.scene.surface(name).group == "ceiling"
+
+
+def test_surfaces_on_a_ray_are_listed_nearest_first_either_side(doc):
+    from lightinv_core.editing.zones import surfaces_on_ray
+
+    hits = surfaces_on_ray(doc.scene, (5.8, 7.5, 20.0), (0.0, 0.0, -2.0))
+    assert [doc.scene.surface(n).group for _, n in hits] == ["ceiling", "floor"]
+    assert [t for t, _ in hits] == pytest.approx([8.5, 10.0])  # in units of the direction
+    assert surfaces_on_ray(doc.scene, (5.8, 7.5, 20.0), (0.0, 0.0, 1.0)) == []  # behind
+
+
+def test_a_run_browsed_that_goes_is_no_longer_browsed(lit):
+    """Redoing a run's deletion while it is browsed must not leave the list on a run
+    that is gone."""
+    lit.add_source("lum_west")
+    (s0,) = solutions_of(lit, [SolutionInfo(seed=0)])
+    edits = []
+    lit.on_edit = lambda label, before, after: edits.append((label, before, after))
+    lit.add_run((s0,), None, settings=SETTINGS)
+    lit.delete_run(1)
+    _, before, after = edits[-1]
+    lit.restore(before, after)  # undo: run 1 is back
+    lit.browse_run(1)
+    assert lit.browsed_run == 1 and len(lit.results()) == 1
+    lit.restore(after, before)  # redo: gone again
+    assert lit.browsed_run is ALL and lit.results() == [] and lit.front() is None
