@@ -4,16 +4,19 @@ For each bound of each intention: what is required, what the design as shown (ha
 edits, a dragged source, a loaded result) achieves on every patch of the intention,
 and whether it holds (to the tolerance the optimiser judges with). It refreshes with
 the light, so dragging a source shows the desks' average and U0 change as it moves.
+Intentions on a work plane read its grid points (EN 12464-1: Em the plain mean).
 """
 
 from __future__ import annotations
 
+import numpy as np
 from PySide6 import QtGui, QtWidgets
 
 from app.document import Document
 from app.results_panel import distinct
 from lightinv_core.errors import LightInvError
 from lightinv_core.kinds import Bound
+from lightinv_core.light.intentions import bound_checks, intention_stats
 
 COLUMNS = ("intention", "bound", "required", "achieved", "units", "")
 OK, NOT_OK = "met", "not met"
@@ -53,12 +56,19 @@ class AchievedPanel(QtWidgets.QWidget):
         if field is None:
             return []
         out = []
+        grids, lux = d.shown_grids()
         for it in d.design.intentions:
-            try:
-                res = field.intention(it)
-            except LightInvError:
-                continue  # its patches are not in this scene (the tree says why)
-            for chk in res.checks:
+            if it.grid is not None:
+                if grids is None or lux is None or it.grid not in grids.spans:
+                    continue
+                q = lux[grids.spans[it.grid]][:, None]
+                checks = bound_checks(it, intention_stats(q, np.ones(len(q))))
+            else:
+                try:
+                    checks = field.intention(it).checks
+                except LightInvError:
+                    continue  # its patches are not in this scene (the tree says why)
+            for chk in checks:
                 achieved, required = distinct(float(chk.value[0]), float(chk.limit))
                 units = "" if chk.bound == Bound.UNIFORMITY else chk.units
                 out.append(

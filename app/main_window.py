@@ -17,13 +17,14 @@ from pathlib import Path
 import numpy as np
 from PySide6 import QtCore, QtGui, QtWidgets
 
-from app import actions, dialogs
+from app import actions, dialogs, luminaire_overlay
 from app.achieved_panel import AchievedPanel
 from app.autosave import Autosaver, Recoverable
 from app.autosave import offer_recovery as _offer_recovery
 from app.autosave import recover as _recover
 from app.document import Document
 from app.files import MAX_RECENT, ProjectFiles
+from app.luminaires_panel import LuminairesPanel
 from app.materials_panel import MaterialsPanel
 from app.panels import (
     DesignTree,
@@ -32,6 +33,7 @@ from app.panels import (
     SourcePanel,
     ZoneDialog,
     ZonePanel,
+    intention_target,
 )
 from app.results_panel import SolutionsPanel, ViolationsPanel
 from app.run_control import RunController
@@ -39,10 +41,11 @@ from app.run_panel import RunPanel
 from app.tasks import BackgroundTasks
 from app.undo import undo_stack
 from app.viewport import Viewport, ZoneFrame
-from app.workers import Worker
+from app.workers import PrecomputeWorker, Worker
 from lightinv_core.errors import LightInvError
 from lightinv_core.project import Project
 from lightinv_core.scene.edits import ZoneEdit
+from lightinv_core.scene.model import Rect
 
 __all__ = ["COLORMAPS", "MAX_RECENT", "MainWindow"]
 
@@ -50,6 +53,14 @@ COLORMAPS = ("inferno", "viridis", "plasma", "coolwarm", "gray")
 MIN_ZONE = 0.05  # m: a drawn zone narrower than this is a slip of the mouse
 DOCS = Path(__file__).resolve().parent.parent / "docs"
 """The documentation pages (docs/ in the source tree and in the bundle)."""
+
+
+def surface_frame_of(zone: ZoneFrame, edit: ZoneEdit) -> ZoneFrame:
+    """The frame of the surface a drawn zone was cut from (its corners are measured along
+    it): the zone's own axes, its origin moved back by the zone's first corner."""
+    u0, v0, u1, v1 = edit.rect
+    origin = zone.origin - u0 * zone.u - v0 * zone.v
+    return ZoneFrame(None, edit.surface, rect=Rect(origin, u1 * zone.u, v1 * zone.v))
 
 
 class MainWindow(QtWidgets.QMainWindow):
@@ -78,6 +89,7 @@ class MainWindow(QtWidgets.QMainWindow):
         self.violations_panel = ViolationsPanel(self.doc)
         self.achieved_panel = AchievedPanel(self.doc)
         self.materials_panel = MaterialsPanel(self.doc)
+        self.luminaires_panel = LuminairesPanel(self.doc)
         self._docks()
         self.files = ProjectFiles(self)
         self.tasks = BackgroundTasks(self)
@@ -121,6 +133,15 @@ class MainWindow(QtWidgets.QMainWindow):
         lay.addWidget(self._view_options())
         lay.addStretch(1)
         self._dock("Properties", "properties", box, QtCore.Qt.RightDockWidgetArea, scroll=True)
+        self._dock(
+            "Luminaires", "luminaires", self.luminaires_panel, QtCore.Qt.RightDockWidgetArea, True
+        )
+        # One column on the right: Properties and Luminaires as tabs (a laptop's height).
+        self.tabifyDockWidget(
+            self.findChild(QtWidgets.QDockWidget, "properties"),
+            self.findChild(QtWidgets.QDockWidget, "luminaires"),
+        )
+        self.findChild(QtWidgets.QDockWidget, "properties").raise_()
         self.tabs = QtWidgets.QTabWidget()
         self.tabs.addTab(self.run_panel, "Run")
         self.tabs.addTab(self.achieved_panel, "Achieved")
@@ -151,6 +172,13 @@ class MainWindow(QtWidgets.QMainWindow):
         row.addWidget(self.auto_range)
         row.addWidget(self.range_max)
         form.addRow("Range 0 to", row)
+        self.zone_axes = QtWidgets.QCheckBox("zone origin and u, v axes")
+        self.zone_axes.setChecked(True)
+        self.zone_axes.setToolTip(
+            "Where the corners u0 v0 u1 v1 in Properties are measured from, and along"
+        )
+        form.addRow("Show", self.zone_axes)
+        self.zone_axes.toggled.connect(self._zone_axes_toggled)
         self.colour_by.currentIndexChanged.connect(self._recolour)
         self.cmap.currentTextChanged.connect(self.viewport.set_colormap)
         self.auto_range.toggled.connect(lambda on: self.range_max.setEnabled(not on))
@@ -184,6 +212,11 @@ class MainWindow(QtWidgets.QMainWindow):
         d.designChanged.connect(self._sources_changed)
         d.selectionChanged.connect(lambda: self.viewport.set_selection(d.selection))
         d.pathChanged.connect(self._title)
+        d.operatorChanged.connect(self._update_busy)
+        self.progress.valueChanged.connect(self._update_busy)
+        # A precompute ended (enabled again); its worker is let go just after.
+        self.act_precompute.changed.connect(lambda: QtCore.QTimer.singleShot(0, self._update_busy))
+        self.zone_panel.zone.activated.connect(self._drawn_zone_chosen)
         self.viewport.picked.connect(self._picked)
         self.viewport.sourceDragged.connect(self._dragged)
         self.viewport.zoneDrawn.connect(self._zone_drawn)
@@ -196,6 +229,11 @@ class MainWindow(QtWidgets.QMainWindow):
         self.run_panel.runRequested.connect(self.runs.start)
         self.run_panel.cancelRequested.connect(self.runs.cancel)
         self.solutions_panel.compareChanged.connect(self._recolour)
+        self.solutions_panel.runDeleted.connect(
+            lambda n: self.statusBar().showMessage(
+                f"Deleted run {n} (Edit > Undo to restore)", 6000
+            )
+        )
         self.violations_panel.highlightChanged.connect(
             lambda: self.viewport.set_highlight(self.violations_panel.highlighted())
         )
@@ -222,13 +260,57 @@ class MainWindow(QtWidgets.QMainWindow):
         d = self.doc
         self.set_warnings("scene", list(d.scene.info.get("warnings", [])))
         self.set_warnings("operator", [])
-        self.viewport.set_scene(d.patches, [z.name for z in d.scene.zones])
-        self.viewport.set_values(None)
+        # The same scene re-meshed (a zone drawn, a reflectance, an undo) keeps its
+        # picture, veiled, until the new light model is ready; it used to go blank.
+        keep = d.rebuilt and self.viewport.has_values
+        self.viewport.set_scene(d.patches, [z.name for z in d.scene.zones], keep_picture=keep)
+        if not keep:
+            self.viewport.set_values(None)
         self.status_patches.setText(f"{d.patches.n:,} patches")
         self.status_rank.setText("operator: not built")
         self.status_eval.setText("")
         self._sources_changed()
         self.start_precompute()
+        self._update_busy()
+
+    def _update_busy(self) -> None:
+        """Say over the view why its light is missing or out of date: the light model is
+        being built (with its progress), or was not (cancelled)."""
+        d = self.doc
+        if d.patches is None or d.operator is not None:
+            text = None
+        elif isinstance(self.worker, PrecomputeWorker):
+            again = self.viewport.has_values
+            text = (
+                f"{'Rebuilding' if again else 'Building'} the light model... "
+                f"{self.progress.value() / 10:.0f}%"
+            )
+            if again:
+                text += "\nThe light shown is from before the change."
+        else:
+            text = "No light model: Compute > Precompute builds it."
+        self.viewport.set_busy(text)
+
+    def _focus_axes(self) -> None:
+        """Show the axes of the current source's zone (its corners are measured along
+        them)."""
+        d = self.doc
+        zone = d.design.source(d.current_source).zone if d.current_source else None
+        frame = self.viewport.frames.get(zone) if zone else None
+        self.viewport.set_axes_focus(frame, f"{zone} (0, 0)" if frame is not None else "")
+
+    def _drawn_zone_chosen(self) -> None:
+        """Show the axes of the surface a drawn zone was drawn on: its corners in the
+        Drawn zones panel are measured along them."""
+        z = self.zone_panel._current()
+        frame = self.viewport.frames.get(z.name) if z is not None else None
+        if frame is None:
+            return
+        self.viewport.set_axes_focus(surface_frame_of(frame, z), f"{z.surface} (0, 0)")
+
+    def _zone_axes_toggled(self, on: bool) -> None:
+        self.viewport.show_zone_axes = on
+        self.viewport.show_axes(*self.viewport.axes_focus)
 
     def _shown_sources(self) -> tuple:
         preview = self.doc.preview_sources()
@@ -238,6 +320,7 @@ class MainWindow(QtWidgets.QMainWindow):
         self.viewport.set_sources(self._shown_sources(), self.doc.current_source)
         if self.doc.current_source:
             self.viewport.drag_zone = self.doc.design.source(self.doc.current_source).zone
+        self._focus_axes()
         self._title()
 
     def _recolour(self) -> None:
@@ -246,6 +329,10 @@ class MainWindow(QtWidgets.QMainWindow):
             self.viewport.set_sources(self._shown_sources(), self.doc.current_source)
         t0 = time.perf_counter()
         self.viewport.clim = None if self.auto_range.isChecked() else (0.0, self.range_max.value())
+        d = self.doc
+        if d.project is not None and self.viewport.mesh is not None:
+            grids, lux = d.shown_grids() if field is not None else (None, None)
+            luminaire_overlay.draw(self.viewport.plotter, d.patches, d.design.arrays, grids, lux)
         if field is None:
             self.viewport.set_values(None)
             return
@@ -289,21 +376,29 @@ class MainWindow(QtWidgets.QMainWindow):
         if self.doc.current_source is not None:
             self.doc.move_source(self.doc.current_source, du, dv)
 
-    def _surface_frame(self, patch: int) -> ZoneFrame | None:
-        found = self.doc.drawable_surface(patch)
-        if found is None:
-            self.statusBar().showMessage(
-                "Zones are drawn on planar rectangular surfaces that are not zones yet", 4000
-            )
+    def _surface_frame(self, seen: int | None, near, far) -> ZoneFrame | None:
+        """The surface a zone of the kind being drawn goes on, for the view ray near ->
+        far through the cursor (``seen``: the patch under it, if any)."""
+        try:
+            name, rect = self.doc.zone_surface(self.draw_kind(), near, far - near, seen)
+        except LightInvError as exc:
+            self.statusBar().showMessage(str(exc), 6000)
             return None
-        return ZoneFrame(None, found[0], rect=found[1])
+        self.statusBar().showMessage(f"Drawing a {self.draw_kind()} zone on {name}", 4000)
+        return ZoneFrame(None, name, rect=rect)
+
+    def draw_kind(self) -> str:
+        """The kind of zone Draw zone makes (the toolbar's choice)."""
+        return self.zone_kind_box.currentData()
 
     def _zone_drawn(self, surface, u0, v0, u1, v1, dialog: ZoneDialog | None = None) -> bool:
         """Ask for the new zone's name and kind, then rebuild the scene with it."""
         if abs(u1 - u0) < MIN_ZONE or abs(v1 - v0) < MIN_ZONE:
             self.statusBar().showMessage("Zone too small: drag a larger rectangle", 4000)
             return False
-        dialog = dialog or ZoneDialog(surface, self.doc.new_zone_name(), self)
+        if dialog is None:
+            dialog = ZoneDialog(surface, self.doc.new_zone_name(), self)
+            dialog.kind.setCurrentText(self.draw_kind())
         if not dialogs.accepted(dialog):
             return False
         try:
@@ -333,14 +428,14 @@ class MainWindow(QtWidgets.QMainWindow):
         old = next((i for i in self.doc.design.intentions if i.name == name), None)
         if old is None:
             return False
-        target = old.group if old.group is not None else f"{len(old.patches)} patches"
+        target = intention_target(old)
         if dialog is None:
             dialog = IntentionDialog(target, self)
             dialog.load(old)
         if not dialogs.accepted(dialog):
             return False
         try:
-            new = dialog.intention(group=old.group, patches=old.patches)
+            new = dialog.intention(group=old.group, patches=old.patches, grid=old.grid)
             self.doc.replace_intention(name, replace(new, weight=old.weight))
         except LightInvError as exc:
             dialogs.warn(self, str(exc))

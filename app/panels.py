@@ -66,10 +66,23 @@ class DesignTree(QtWidgets.QTreeWidget):
             bounds = ", ".join(
                 f"{k} {getattr(it, k):g}" for k in Bound if getattr(it, k) is not None
             )
-            target = it.group if it.group is not None else f"{len(it.patches)} picked patches"
-            QtWidgets.QTreeWidgetItem(its, [it.name, f"{target}: {bounds} {it.quantity}"]).setData(
-                0, 256, ("intention", it.name)
+            QtWidgets.QTreeWidgetItem(
+                its, [it.name, f"{intention_target(it)}: {bounds} {it.quantity}"]
+            ).setData(0, 256, ("intention", it.name))
+        if d.design.arrays:
+            arrays = QtWidgets.QTreeWidgetItem(
+                self, ["Luminaire arrays", str(sum(a.count for a in d.design.arrays))]
             )
+            for a in d.design.arrays:
+                QtWidgets.QTreeWidgetItem(
+                    arrays, [a.name, f"{a.rows} x {a.columns} {a.product} in {a.zone}"]
+                )
+        if d.design.workplanes:
+            planes = QtWidgets.QTreeWidgetItem(self, ["Work planes", str(len(d.design.workplanes))])
+            for w in d.design.workplanes:
+                QtWidgets.QTreeWidgetItem(
+                    planes, [w.name, f"{w.height:g} m over {w.group}, border {w.border:g} m"]
+                )
         rules_item = QtWidgets.QTreeWidgetItem(self, ["Rules", str(len(d.design.rules))])
         for k, rule in enumerate(d.design.rules):
             what, bounds = rule_text(rule)
@@ -436,7 +449,7 @@ class IntentionDialog(QtWidgets.QDialog):
             if value is not None:
                 box.setValue(value)
 
-    def intention(self, group: str | None = None, patches=None) -> Intention:
+    def intention(self, group: str | None = None, patches=None, grid=None) -> Intention:
         """The intention described (DesignError if inconsistent, e.g. min above max)."""
         bounds = {k: box.value() for k, (check, box) in self.fields.items() if check.isChecked()}
         if not bounds:
@@ -446,8 +459,16 @@ class IntentionDialog(QtWidgets.QDialog):
             group=group,
             patches=None if patches is None else tuple(int(i) for i in patches),
             quantity=self.quantity.currentData(),
+            grid=grid,
             **bounds,
         )
+
+
+def intention_target(it: Intention) -> str:
+    """What an intention bounds, in words: a group, picked patches, a work plane."""
+    if it.grid is not None:
+        return f"work plane {it.grid}"
+    return it.group if it.group is not None else f"{len(it.patches)} picked patches"
 
 
 class ZonePanel(QtWidgets.QGroupBox):
@@ -476,7 +497,12 @@ class ZonePanel(QtWidgets.QGroupBox):
         row.addWidget(self.apply_button)
         row.addWidget(self.delete_button)
         form.addRow(row)
-        self.hint = QtWidgets.QLabel("Draw zone mode: drag a rectangle on a ceiling or roof.")
+        self.hint = QtWidgets.QLabel(
+            "Draw zone mode: pick luminaire or skylight zone in the toolbar, then drag a "
+            "rectangle on a ceiling or roof (from below, or from above in Top view). The "
+            "corners are metres from the surface's origin along its u, v axes (shown when "
+            "a zone is chosen here)."
+        )
         self.hint.setWordWrap(True)
         form.addRow(self.hint)
         self.zone.currentIndexChanged.connect(self._show)

@@ -187,6 +187,12 @@ class RunPanel(QtWidgets.QWidget):
     def show_progress(self, snap) -> None:
         """Counters of a ``RunSnapshot``."""
         p = snap.latest
+        if p is None and snap.precompute is not None and snap.precompute < 1.0:
+            self.counters.setText(
+                f"Precomputing the luminaire arrays' light: {100 * snap.precompute:.0f}% "
+                f"({snap.elapsed:.0f} s); the search starts after it"
+            )
+            return
         rate = snap.evaluations / snap.elapsed if snap.elapsed > 0 else 0.0
         text = f"{snap.evaluations:,} evaluations, {snap.elapsed:.1f} s, {rate:,.0f} /s"
         if p is not None:

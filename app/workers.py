@@ -128,7 +128,8 @@ class RunSnapshot:
 
     ``points`` are new (run, cumulative evaluations, best goal, best penalty) rows since
     the last snapshot; ``latest`` the newest core ``Progress`` (None before the first);
-    ``solutions`` new points of a multi-objective sweep; ``evaluations`` counts all runs.
+    ``solutions`` new points of a multi-objective sweep; ``evaluations`` counts all runs;
+    ``precompute`` the fraction done of the luminaire arrays' responses (None: none).
     """
 
     latest: Progress | None
@@ -136,6 +137,7 @@ class RunSnapshot:
     solutions: tuple
     evaluations: int
     elapsed: float
+    precompute: float | None = None
 
 
 class RunWorker(Worker):
@@ -162,6 +164,11 @@ class RunWorker(Worker):
         self._last_evals = 0
         self._last_key = None
         self._t0 = time.perf_counter()
+        self._precompute: float | None = None
+
+    def _precomputed(self, fraction: float) -> None:
+        with self._lock:
+            self._precompute = fraction
 
     def _progress(self, p: Progress) -> None:
         with self._lock:
@@ -192,6 +199,7 @@ class RunWorker(Worker):
                 sols,
                 self._offset + self._last_evals,
                 time.perf_counter() - self._t0,
+                self._precompute,
             )
 
     def work(self):
@@ -214,6 +222,7 @@ class RunWorker(Worker):
                 progress=self._progress,
                 cancel=self.is_cancelled,
                 on_result=lambda r: self._solution(r.best),
+                precompute=self._precomputed,
             )
         seed = self.seeds[0] if self.seeds else None
         return [
@@ -224,6 +233,7 @@ class RunWorker(Worker):
                 progress=self._progress,
                 cancel=self.is_cancelled,
                 on_solution=self._solution,
+                precompute=self._precomputed,
             )
         ]
 

@@ -178,7 +178,13 @@ def cmd_scenes(args) -> int:
 
 def _scene(args):
     return load_scene(
-        args.scene, args.resolution, args.materials, args.scale, args.up, args.skip_degenerate
+        args.scene,
+        args.resolution,
+        args.materials,
+        args.scale,
+        args.up,
+        args.skip_degenerate,
+        args.group_by,
     )
 
 
@@ -580,6 +586,7 @@ def _operator(args, patches):
         use_cache=not args.no_cache,
         progress=_progress_printer("precompute"),
         warn=_warn,
+        scheduler=args.scheduler,
     )
 
 
@@ -688,12 +695,35 @@ def _source_summary(src, daylight) -> dict:
 
 
 def _solution_summary(sol, daylight) -> dict:
-    return {
+    out = {
         "objectives": dict(sol.objectives),
         "penalty": sol.penalty,
         "feasible": sol.feasible,
         "sources": [_source_summary(s, daylight) for s in sol.sources],
         "violations": [dataclasses.asdict(v) for v in sol.violations],
+    }
+    if sol.arrays:
+        out["arrays"] = [_array_summary(a) for a in sol.arrays]
+    return out
+
+
+def _array_summary(a) -> dict:
+    from lightinv_core.light.arrays import resolve_product
+
+    prod = resolve_product(a.product, a.watts)
+    return {
+        "name": a.name,
+        "zone": a.zone,
+        "product": prod.name,
+        "rows": a.rows,
+        "columns": a.columns,
+        "count": a.count,
+        "spacing_m": list(a.spacing),
+        "rotation": a.rotation,
+        "dimming": a.dimming,
+        "lumens_each": prod.lumens,
+        "watts_each": prod.watts,
+        "electric_w": a.count * prod.watts * a.dimming,
     }
 
 
@@ -712,7 +742,9 @@ def cmd_solve(args) -> int:
         project = replace(project, scene=replace(project.scene, resolution=args.resolution))
     if args.method is not None:
         project = replace(project, optimizer=replace(project.optimizer, method=args.method))
-    prepared = prepare(project, progress=_progress_printer("precompute"), warn=_warn)
+    prepared = prepare(
+        project, progress=_progress_printer("precompute"), warn=_warn, scheduler=args.scheduler
+    )
     result = solve(
         project,
         prepared,
@@ -720,6 +752,7 @@ def cmd_solve(args) -> int:
         max_evals=args.max_evals,
         time_limit=args.time_limit,
         progress=_vns_printer(),
+        precompute=_progress_printer("luminaire responses") if project.design.arrays else None,
     )
     out = {
         "project": project.name,
@@ -741,6 +774,13 @@ def cmd_solve(args) -> int:
         )
         if "match" in best.objectives:
             out["error"] = best.objectives["match"]
+        if project.design.workplanes:
+            from lightinv_core.light.grids import design_grids, grid_results
+
+            grids = design_grids(prepared.light, project.design.workplanes)
+            out["workplanes"] = grid_results(
+                prepared.light, grids, best.sources, best.arrays, project.design.daylight
+            )
     if result.pareto is not None:
         out["pareto"] = [
             _solution_summary(s, project.design.daylight) for s in result.pareto.solutions
@@ -780,6 +820,18 @@ def _solve_text(out: dict) -> str:
             else f"{s['flux_lm']:.0f} lm, {s['electric_w']:.1f} W"
         )
         lines.append(f"  {s['name']:<10} {s['zone']:<10} ({c}) m  {s['area_m2']:.2f} m²  {extra}")
+    for a in out.get("arrays", []):
+        lines.append(
+            f"  {a['name']:<10} {a['zone']:<10} {a['rows']} x {a['columns']} {a['product']} "
+            f"(spacing {a['spacing_m'][0]:.2f} x {a['spacing_m'][1]:.2f} m, rotation "
+            f"{a['rotation']}, dimming {a['dimming']:.2f})  {a['electric_w']:.1f} W"
+        )
+    for name, g in out.get("workplanes", {}).items():
+        lines.append(
+            f"  work plane {name}: Em {g['Em']:.0f} lux, Emin {g['Emin']:.0f} lux, "
+            f"Emax {g['Emax']:.0f} lux, U0 {g['U0']:.2f} ({g['points']} points; luminaires "
+            "placed exactly)"
+        )
     for v in out.get("violations", []):
         lines.append(
             f"  violated: {v['name']} {v['constraint']} by {100 * v['amount']:.1f}% "
@@ -878,20 +930,36 @@ def build_parser() -> argparse.ArgumentParser:
     add("scenes", cmd_scenes, "list the built-in scenes")
 
     def scene_args(p: argparse.ArgumentParser) -> None:
-        p.add_argument("scene", help="built-in scene name or path to an .obj file")
+        p.add_argument(
+            "scene",
+            help="built-in scene name or path to a model file (.obj, .gltf, .glb, .ply, .ifc)",
+        )
         p.add_argument("--resolution", type=_positive, help="target patch size in metres")
-        p.add_argument("--materials", help="OBJ only: materials JSON (reflectance per group)")
+        p.add_argument(
+            "--materials", help="model files only: materials JSON (reflectance per group)"
+        )
         p.add_argument(
             "--scale",
             type=_positive,
             default=1.0,
-            help="OBJ only: metres per model unit (0.001 for millimetres)",
+            help="model files only: metres per model unit (0.001 for millimetres)",
         )
-        p.add_argument("--up", choices=("z", "y"), default="z", help="OBJ only: up axis")
+        p.add_argument(
+            "--up",
+            choices=("z", "y"),
+            default=None,
+            help="model files only: up axis (default: y for glTF, z for the others)",
+        )
         p.add_argument(
             "--skip-degenerate",
             action="store_true",
-            help="OBJ only: drop zero-area faces (with a warning) instead of failing",
+            help="model files only: drop zero-area faces (with a warning) instead of failing",
+        )
+        p.add_argument(
+            "--group-by",
+            choices=("node", "material"),
+            default="node",
+            help="glTF only: lighting groups named after nodes (default) or materials",
         )
 
     scene_args(add("scene-info", cmd_scene_info, "patches, groups and zones of a scene"))
@@ -1010,6 +1078,7 @@ def build_parser() -> argparse.ArgumentParser:
     sol.add_argument("--time-limit", type=_positive, help="seconds of optimisation at most")
     sol.add_argument("--resolution", type=_positive, help="override the scene's patch size (m)")
     sol.add_argument("-o", "--output", help="save the project with its results to this file")
+    _scheduler_arg(sol)
     rep = add("report", cmd_report, "write a PDF report of a project's solution")
     rep.add_argument("project", help="project file holding results (lightinv-cli solve ... -o)")
     rep.add_argument("-o", "--output", required=True, help="PDF file to write")
@@ -1030,7 +1099,28 @@ def build_parser() -> argparse.ArgumentParser:
             help="target relative error of C that chooses k (default 0.01)",
         )
         p.add_argument("--no-cache", action="store_true", help="neither read nor write the cache")
+        _scheduler_arg(p)
     return ap
+
+
+def _scheduler_arg(p: argparse.ArgumentParser) -> None:
+    """--scheduler: build the operator on a Dask cluster (docs/cluster.md)."""
+    p.add_argument(
+        "--scheduler",
+        type=_scheduler,
+        metavar="tcp://HOST:PORT",
+        help="build the radiosity operator on this Dask cluster (the cluster extra; "
+        "docs/cluster.md): the same operator as a local build",
+    )
+
+
+def _scheduler(text: str) -> str:
+    from lightinv_core.operator.distributed import check_scheduler
+
+    try:
+        return check_scheduler(text)
+    except LightInvError as exc:
+        raise argparse.ArgumentTypeError(str(exc)) from None
 
 
 def _show_warning(message, category, filename, lineno, file=None, line=None) -> None:

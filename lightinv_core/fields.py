@@ -265,7 +265,9 @@ class Field:
     lists the kinds of object that take the field (empty: every kind). On writing, a
     field is left out at its default unless ``always``; ``of`` is the spec of the
     object(s) it holds, ``encode`` turns any other value into plain data. ``nullable``:
-    a null means "not given".
+    a null means "not given". ``optional``: left out at its default even in an object
+    that writes its defaults (a field later versions added, so older files stay as
+    they were).
     """
 
     name: str
@@ -280,6 +282,7 @@ class Field:
     of: ObjectSpec | None = None
     encode: Callable[[Any], Any] | None = None
     doc_default: str | None = None
+    optional: bool = False
 
     @property
     def required(self) -> bool:
@@ -386,7 +389,8 @@ class ObjectSpec:
             value = get(f.name)
             if f.kinds and kind not in f.kinds:
                 continue
-            if f.required or f.always or self.write_defaults or value != f.default:
+            written = self.write_defaults and not f.optional
+            if f.required or f.always or written or value != f.default:
                 out[f.name] = _encode(f, value)
         return out
 

@@ -26,6 +26,8 @@ class RuleKind(StrEnum):
     CENTRED = "centred"  # each rectangle centred in its zone
     SPACING = "spacing"  # two sources at least min apart, m
     ALIGN = "align"  # centres on one line parallel to axis
+    SHR = "shr"  # luminaire arrays: spacing / mounting height above the work plane <= max
+    CLEARANCE = "clearance"  # luminaire arrays: every opening at least min from the zone edge, m
 
 
 class Quantity(StrEnum):
@@ -51,6 +53,8 @@ class GoalKind(StrEnum):
     MIN_ELECTRIC_POWER = "min_electric_power"  # sum of flux / efficacy, W
     MAX_LIGHT_POWER = "max_light_power"  # sum_i C_i A_i, lm
     MATCH = "match"  # e = ||C - C_obj|| / ||C_obj||, no unit
+    MIN_INSTALLED_POWER = "min_installed_power"  # rated power of every luminaire at full output, W
+    MIN_LUMINAIRE_COUNT = "min_luminaire_count"  # luminaires in arrays plus luminaire sources
 
 
 class VariableName(StrEnum):
@@ -62,3 +66,17 @@ class VariableName(StrEnum):
     V1 = "v1"  # opposite corner along v, m
     FLUX = "flux"  # a luminaire's luminous flux, lm
     FILTER = "filter"  # a skylight's filter, fraction in [0, 1]
+
+
+class ArrayVariable(StrEnum):
+    """A luminaire array's optimisation variables: the corners of the rectangle it fills
+    (m), its rows and columns (whole numbers), rotation (0 or 90 degrees), dimming."""
+
+    U0 = "u0"
+    V0 = "v0"
+    U1 = "u1"
+    V1 = "v1"
+    ROWS = "rows"  # luminaires along the zone's v axis
+    COLUMNS = "columns"  # luminaires along u
+    ROTATION = "rotation"  # 0: the product's C0 plane along u; 90: along v
+    DIMMING = "dimming"  # output fraction of every luminaire of the array, (0, 1]

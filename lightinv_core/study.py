@@ -61,13 +61,22 @@ def prepare(
     progress: Callable[[float], None] | None = None,
     cancel: Callable[[], bool] | None = None,
     warn: Callable[[str], None] | None = None,
+    scheduler: str | None = None,
 ) -> Prepared:
-    """Load the scene and build (or load from the cache) its radiosity operator."""
+    """Load the scene and build (or load from the cache) its radiosity operator; a build
+    runs on the Dask cluster at ``scheduler`` (``tcp://host:port``) when one is given."""
     t0 = time.perf_counter()
     base = project.path.parent if project.path is not None else None
     scene = project.scene.load(base)
     patches = mesh_patches(scene)
-    got = get_operator(patches, project.operator, progress=progress, cancel=cancel, warn=warn)
+    got = get_operator(
+        patches,
+        project.operator,
+        progress=progress,
+        cancel=cancel,
+        warn=warn,
+        scheduler=scheduler,
+    )
     return Prepared(scene, patches, got.operator, got.from_cache, time.perf_counter() - t0)
 
 
@@ -93,18 +102,20 @@ def solve(
     progress: ProgressFn | None = None,
     cancel: CancelFn | None = None,
     on_solution: SolutionFn | None = None,
+    precompute: Callable[[float], None] | None = None,
 ) -> RunResult:
     """Run the project's optimisation method (found in the registry by name).
 
     ``progress`` gets every snapshot (for a sweep, each tagged with its sub-run);
     ``on_solution`` gets each point of a multi-objective sweep as it is found (the GUI
     draws the front live and autosaves it). A cancelled run returns status "cancelled"
-    with the best solution (or the front) found so far.
+    with the best solution (or the front) found so far. ``precompute(fraction)`` reports
+    the luminaire arrays' responses, computed before the run.
     """
     o = project.optimizer
     seed = o.seed if seed is None else seed
     method = get_method(o.method)
-    problem = DesignProblem(project.design, prepared.light)
+    problem = DesignProblem(project.design, prepared.light, progress=precompute, cancel=cancel)
     stop = stop_rule(project, max_evals, time_limit)
     r = method.run(problem, o, stop, seed, progress, cancel, on_solution)
     return RunResult(
@@ -121,6 +132,7 @@ def solve_seeds(
     progress: ProgressFn | None = None,
     cancel: CancelFn | None = None,
     on_result: Callable[[RunResult], None] | None = None,
+    precompute: Callable[[float], None] | None = None,
 ) -> list[RunResult]:
     """The same single-objective problem run once per seed (paper experiment 4: how much
     the answers vary). ``progress`` snapshots are tagged with the run index; a cancel
@@ -139,7 +151,9 @@ def solve_seeds(
         tagged = None
         if progress is not None:
             tagged = (lambda j: lambda p: progress(replace(p, run=j, runs=len(seeds))))(i)
-        res = solve(project, prepared, seed, max_evals, time_limit, tagged, cancel)
+        res = solve(
+            project, prepared, seed, max_evals, time_limit, tagged, cancel, precompute=precompute
+        )
         results.append(res)
         if on_result is not None:
             on_result(res)

@@ -11,7 +11,9 @@ from __future__ import annotations
 
 import numpy as np
 
-from lightinv_core.design.model import Design
+from lightinv_core.design.arrays import ArrayShapes, array_rule_names, array_violations
+from lightinv_core.design.model import ARRAY_RULES, Design
+from lightinv_core.design.variables import ArrayLayout
 
 ALIGN_TOL = 0.01  # m
 MIN_SIDE = 1e-3  # m: a thinner source is degenerate
@@ -30,17 +32,24 @@ def rule_names(design: Design) -> list[str]:
     """One label per checked rule, in the column order of ``rule_violations``."""
     names = ["inside zone and non-degenerate"]
     for r in design.rules:
-        if r.kind in ("mirror", "centred"):
+        if r.kind in ("mirror", "centred", *ARRAY_RULES):
             continue
         for s in r.sources if r.kind in ("area", "aspect") else [",".join(r.sources)]:
             names.append(f"{r.kind} {s}")
-    return names
+    return names + array_rule_names(design)
 
 
-def rule_violations(design: Design, rect: np.ndarray, zone_size: np.ndarray) -> np.ndarray:
+def rule_violations(
+    design: Design,
+    rect: np.ndarray,
+    zone_size: np.ndarray,
+    arrays: tuple[ArrayLayout, ArrayShapes] | None = None,
+) -> np.ndarray:
     """(m, R) relative violations of the geometric rules for rectangles (m, S, 4).
 
     zone_size : (S, 2) width and height (m) of each source's zone.
+    arrays : the candidates' luminaire arrays and their shapes; needed when the design
+    has arrays (their columns come last, see ``design/arrays.py``).
     """
     names = [s.name for s in design.sources]
     u_lo, u_hi, v_lo, v_hi = _extents(rect)
@@ -54,8 +63,11 @@ def rule_violations(design: Design, rect: np.ndarray, zone_size: np.ndarray) -> 
         + np.maximum(0, v_hi - zone_size[:, 1])
     )
     thin = np.maximum(0, MIN_SIDE - np.minimum(w, h)) / MIN_SIDE
-    out.append((outside / zone_size.max() + thin).sum(axis=1))
+    scale = zone_size.max() if zone_size.size else 1.0
+    out.append((outside / scale + thin).sum(axis=1))
     for r in design.rules:
+        if r.kind in ARRAY_RULES:
+            continue
         idx = [names.index(s) for s in r.sources]
         if r.kind == "area":
             for i in idx:
@@ -83,4 +95,9 @@ def rule_violations(design: Design, rect: np.ndarray, zone_size: np.ndarray) -> 
             centre = 0.5 * (lo[:, idx] + hi[:, idx])
             spread = centre.max(axis=1) - centre.min(axis=1)
             out.append(np.maximum(0, spread - ALIGN_TOL) / ALIGN_TOL)
-    return np.stack(out, axis=1)
+    G = np.stack(out, axis=1)
+    if not design.arrays:
+        return G
+    if arrays is None:
+        raise ValueError("the design has luminaire arrays: give their layout and shapes")
+    return np.hstack([G, array_violations(design, *arrays)])

@@ -16,7 +16,15 @@ import numbers
 from dataclasses import dataclass, field
 
 from lightinv_core.errors import DesignError
-from lightinv_core.kinds import Bound, GoalKind, Quantity, RuleKind, SourceKind, VariableName
+from lightinv_core.kinds import (
+    ArrayVariable,
+    Bound,
+    GoalKind,
+    Quantity,
+    RuleKind,
+    SourceKind,
+    VariableName,
+)
 
 SOURCE_KINDS = tuple(str(k) for k in SourceKind)
 """The source kinds as plain strings (the values stored in the model)."""
@@ -27,6 +35,14 @@ AXES = ("u", "v")
 """A zone's two axes, as mirror and align rules name them."""
 RULE_SOURCES = {RuleKind.MIRROR: 2, RuleKind.SPACING: 2}
 """Rule kinds that take an exact number of sources."""
+ARRAY_RULES = (str(RuleKind.SHR), str(RuleKind.CLEARANCE))
+"""Rule kinds that name luminaire arrays (the others name sources)."""
+ARRAY_VARIABLES = tuple(str(v) for v in ArrayVariable)
+"""A luminaire array's variable names."""
+ROTATIONS = (0, 90)
+"""An array's rotations, degrees: the product's C0 plane along the zone's u or v axis."""
+MAX_ARRAY_SIDE = 100
+"""Most rows (or columns) an array may have: 10,000 luminaires in one zone."""
 MAX_PATCH_ID = 2**53  # project files limit integers to 2^53 too
 
 
@@ -70,6 +86,19 @@ def _name(value, where: str) -> str:
     return value
 
 
+def _rect_and_free(obj, where: str, allowed: tuple[str, ...]) -> None:
+    """Check and store ``obj``'s ``rect`` (four finite numbers, m) and ``free`` (names
+    from ``allowed``)."""
+    rect = _items(obj.rect, where, "rect")
+    if len(rect) != 4:
+        raise DesignError(f"{where}: rect needs four numbers u0, v0, u1, v1 (m)")
+    object.__setattr__(obj, "rect", tuple(_finite(x, f"{where} rect") for x in rect))
+    object.__setattr__(obj, "free", _items(obj.free, where, "free"))
+    bad = [v for v in obj.free if v not in allowed]
+    if bad:
+        raise DesignError(f"{where}: unknown variables {bad}; choose from {allowed}")
+
+
 @dataclass(frozen=True)
 class Source:
     """A rectangular luminaire or skylight in an emitter zone.
@@ -96,14 +125,7 @@ class Source:
         _name(self.zone, f"{where}: zone")
         if self.kind not in SOURCE_KINDS:
             raise DesignError(f"{where}: kind must be {_either(SOURCE_KINDS)}")
-        rect = _items(self.rect, where, "rect")
-        if len(rect) != 4:
-            raise DesignError(f"{where}: rect needs four numbers u0, v0, u1, v1 (m)")
-        object.__setattr__(self, "rect", tuple(_finite(x, f"{where} rect") for x in rect))
-        object.__setattr__(self, "free", _items(self.free, where, "free"))
-        bad = [v for v in self.free if v not in VARIABLES]
-        if bad:
-            raise DesignError(f"{where}: unknown variables {bad}; choose from {VARIABLES}")
+        _rect_and_free(self, where, VARIABLES)
         if len(_items(self.flux_range, where, "flux_range")) != 2:
             raise DesignError(f"{where}: flux_range needs two numbers (min, max) in lm")
         object.__setattr__(
@@ -225,6 +247,12 @@ class Rule:
             raise DesignError(f"{where}: max aspect ratio must be at least 1, got {got}")
         if self.kind == RuleKind.SPACING and self.min is None:
             raise DesignError(f"{where}: give the min gap (m)")
+        if self.kind == RuleKind.SHR and not (self.max is not None and self.max > 0):
+            raise DesignError(
+                f"{where}: give the largest spacing-to-height ratio as max (e.g. 1.5)"
+            )
+        if self.kind == RuleKind.CLEARANCE and self.min is None:
+            raise DesignError(f"{where}: give the least clearance to the zone's edges (m) as min")
 
 
 @dataclass(frozen=True)
@@ -235,7 +263,10 @@ class Intention:
     ``quantity`` is "lux" (illuminance) or "C" (reflected exitance, lm/m²).
     ``min``/``max`` bound every patch; ``average`` is a lower bound on the
     area-weighted mean and ``uniformity`` on U0 = min / mean (EN 12464-1 style:
-    desks 500 lux, U0 >= 0.6). ``weight`` scales its penalty.
+    desks 500 lux, U0 >= 0.6). ``weight`` scales its penalty. On a work plane's
+    ``grid`` (its name) the statistics are EN 12464-1's: the plain mean of the grid
+    points (Em), their min (Emin), U0 = Emin / Em, max; luminaire arrays' light there is
+    maintained (their maintenance factor applied).
     """
 
     name: str
@@ -247,14 +278,22 @@ class Intention:
     average: float | None = None
     uniformity: float | None = None
     weight: float = 100.0
+    grid: str | None = None
 
     def __post_init__(self) -> None:
         _name(self.name, "an intention's name")
         where = f"intention {self.name!r}"
-        if (self.group is None) == (self.patches is None):
-            raise DesignError(f"{where}: give either a group or a list of patches")
+        targets = sum(x is not None for x in (self.group, self.patches, self.grid))
+        if targets != 1:
+            raise DesignError(
+                f"{where}: give one of a group, a list of patches or a work-plane grid"
+            )
         if self.group is not None:
             _name(self.group, f"{where}: group")
+        if self.grid is not None:
+            _name(self.grid, f"{where}: grid")
+            if self.quantity != Quantity.LUX:
+                raise DesignError(f"{where}: a work-plane grid takes illuminance (lux) only")
         if self.patches is not None:
             if not isinstance(self.patches, tuple | list | range) or len(self.patches) == 0:
                 raise DesignError(f"{where}: patches must be a non-empty list of patch ids")
@@ -286,6 +325,135 @@ class Intention:
         _finite(self.weight, f"{where} weight", lo=0.0)
 
 
+def _whole(value, where: str, lo: int, hi: int) -> int:
+    if isinstance(value, bool) or not isinstance(value, numbers.Real):
+        raise DesignError(f"{where}: {_short(value)} is not a whole number")
+    if not math.isfinite(value) or not float(value).is_integer():
+        raise DesignError(f"{where}: {_short(value)} is not a whole number")
+    if not lo <= value <= hi:
+        raise DesignError(f"{where}: {int(value)} is outside [{lo}, {hi}]")
+    return int(value)
+
+
+@dataclass(frozen=True)
+class LuminaireArray:
+    """A regular array of one photometric product in a luminaire zone.
+
+    The array fills ``rect`` (u0, v0, u1, v1, m, in the zone's axes): ``columns``
+    luminaires along u and ``rows`` along v at the centres of equal cells, so the
+    spacing is the rectangle's side / count and the outer luminaires sit half a
+    spacing in from its edges (the usual even layout). A single luminaire is an array
+    of one row and one column at the rectangle's centre (the rectangle may then be a
+    point). The luminaires are mounted on the zone's surface, aimed along its normal
+    into the room, their C0 plane along u (``rotation`` 0) or v (90).
+
+    ``product`` is a catalogue name (resources/luminaires/catalogue.json) or the path
+    of an IES/EULUMDAT file; ``watts`` overrides the product's rated input power.
+    ``dimming`` (0..1] scales every luminaire's output and power (power proportional to
+    output). ``maintenance_factor`` scales the light where maintained values are asked
+    (EN 12464-1 Em on work-plane grids and every patch intention). ``free`` names the
+    variables the optimiser may change (``ARRAY_VARIABLES``); rows and columns stay in
+    their ranges, dimming in ``dimming_range``.
+    """
+
+    name: str
+    zone: str
+    product: str
+    rect: tuple[float, float, float, float]
+    rows: int = 1
+    columns: int = 1
+    rotation: int = 0
+    dimming: float = 1.0
+    free: tuple[str, ...] = ()
+    rows_range: tuple[int, int] = (1, 10)
+    columns_range: tuple[int, int] = (1, 10)
+    dimming_range: tuple[float, float] = (0.1, 1.0)
+    maintenance_factor: float = 0.8
+    watts: float | None = None
+
+    def __post_init__(self) -> None:
+        _name(self.name, "an array's name")
+        where = f"array {self.name!r}"
+        _name(self.zone, f"{where}: zone")
+        _name(self.product, f"{where}: product")
+        _rect_and_free(self, where, ARRAY_VARIABLES)
+        for key in ("rows_range", "columns_range"):
+            pair = _items(getattr(self, key), where, key)
+            if len(pair) != 2:
+                raise DesignError(f"{where}: {key} needs two whole numbers (min, max)")
+            lo, hi = (_whole(x, f"{where} {key}", 1, MAX_ARRAY_SIDE) for x in pair)
+            if lo > hi:
+                raise DesignError(f"{where}: {key} min {lo} is above max {hi}")
+            object.__setattr__(self, key, (lo, hi))
+        for key in ("rows", "columns"):
+            lo, hi = getattr(self, f"{key}_range")
+            object.__setattr__(self, key, _whole(getattr(self, key), f"{where} {key}", lo, hi))
+        if self.rotation not in ROTATIONS or isinstance(self.rotation, bool):
+            raise DesignError(f"{where}: rotation must be 0 or 90 (degrees), got {self.rotation!r}")
+        object.__setattr__(self, "rotation", int(self.rotation))
+        pair = _items(self.dimming_range, where, "dimming_range")
+        if len(pair) != 2:
+            raise DesignError(f"{where}: dimming_range needs two numbers (min, max)")
+        lo, hi = (_finite(x, f"{where} dimming_range", 0.0, 1.0) for x in pair)
+        if not 0 < lo <= hi:
+            raise DesignError(f"{where}: dimming range must satisfy 0 < min <= max <= 1")
+        object.__setattr__(self, "dimming_range", (lo, hi))
+        object.__setattr__(self, "dimming", _finite(self.dimming, f"{where} dimming", 0.0, 1.0))
+        if self.dimming == 0:
+            raise DesignError(f"{where}: dimming must be above 0 (remove the array instead)")
+        object.__setattr__(
+            self,
+            "maintenance_factor",
+            _finite(self.maintenance_factor, f"{where} maintenance_factor", 0.0, 1.0),
+        )
+        if self.maintenance_factor == 0:
+            raise DesignError(f"{where}: maintenance factor must be above 0 (typically 0.7-0.9)")
+        if self.watts is not None:
+            object.__setattr__(self, "watts", _finite(self.watts, f"{where} watts", lo=0.0))
+
+    @property
+    def count(self) -> int:
+        """Number of luminaires."""
+        return self.rows * self.columns
+
+    @property
+    def spacing(self) -> tuple[float, float]:
+        """Spacing (m) between neighbouring luminaires along u and v."""
+        u0, v0, u1, v1 = self.rect
+        return abs(u1 - u0) / self.columns, abs(v1 - v0) / self.rows
+
+    def positions(self) -> list[tuple[float, float]]:
+        """Zone coordinates (u, v), m, of each luminaire, row by row."""
+        u0, v0, u1, v1 = self.rect
+        ulo, vlo = min(u0, u1), min(v0, v1)
+        su, sv = self.spacing
+        return [
+            (ulo + (i + 0.5) * su, vlo + (j + 0.5) * sv)
+            for j in range(self.rows)
+            for i in range(self.columns)
+        ]
+
+
+@dataclass(frozen=True)
+class Workplane:
+    """An EN 12464-1 calculation grid: a horizontal plane ``height`` m above the floor
+    group ``group``, ``border`` m left out along its edges, points spaced by the
+    standard's rule p = 0.2 x 5^log10(d) (docs/photometry.md). Grid points are
+    receivers only: they take no part in the light transport."""
+
+    name: str
+    height: float = 0.8
+    border: float = 0.5
+    group: str = "floor"
+
+    def __post_init__(self) -> None:
+        _name(self.name, "a work plane's name")
+        where = f"work plane {self.name!r}"
+        _name(self.group, f"{where}: group")
+        object.__setattr__(self, "height", _finite(self.height, f"{where} height", 0.0, 1000.0))
+        object.__setattr__(self, "border", _finite(self.border, f"{where} border", 0.0, 1000.0))
+
+
 GOALS = tuple(str(g) for g in GoalKind)
 
 
@@ -297,7 +465,10 @@ class Goal:
     - ``max_light_power``: total reflected light power sum_i C_i A_i (lm), of
       the sources whose kind is in ``kinds`` (all when empty);
     - ``match``: relative distance e(E) = ||C(E) - C_obj|| / ||C_obj|| (paper
-      eq. 11) to the light of the project's ``target_sources``.
+      eq. 11) to the light of the project's ``target_sources``;
+    - ``min_installed_power``: rated power (W) of every luminaire at full output: the
+      arrays' count x product watts plus the luminaire sources' flux / efficacy;
+    - ``min_luminaire_count``: luminaires in the arrays plus luminaire sources.
     """
 
     kind: str
@@ -341,6 +512,8 @@ class Design:
     target_sources: tuple[Source, ...] = ()
     daylight: Daylight = field(default_factory=Daylight)
     penalty_power: int = 2
+    arrays: tuple[LuminaireArray, ...] = ()
+    workplanes: tuple[Workplane, ...] = ()
 
     def __post_init__(self) -> None:
         for name, cls in (
@@ -349,6 +522,8 @@ class Design:
             ("rules", Rule),
             ("intentions", Intention),
             ("target_sources", Source),
+            ("arrays", LuminaireArray),
+            ("workplanes", Workplane),
         ):
             items = _items(getattr(self, name), "design", name)
             bad = [x for x in items if not isinstance(x, cls)]
@@ -365,8 +540,11 @@ class Design:
                 f"penalty power must be an even positive integer (paper eq. 3), got {_short(pp)}"
             )
         names = [s.name for s in self.sources]
+        array_names = [a.name for a in self.arrays]
         for what, items in (
             ("source", names),
+            ("source or array", names + array_names),
+            ("work plane", [w.name for w in self.workplanes]),
             ("target source", [s.name for s in self.target_sources]),
             ("intention", [i.name for i in self.intentions]),
             ("goal", [g.kind for g in self.goals]),
@@ -378,15 +556,38 @@ class Design:
                 )
         if not self.goals:
             raise DesignError("give at least one goal")
-        known = set(names)
+        known, known_arrays = set(names), set(array_names)
         for r in self.rules:
+            if r.kind in ARRAY_RULES:
+                missing = [s for s in r.sources if s not in known_arrays]
+                if missing:
+                    raise DesignError(
+                        f"rule {r.kind!r} names {missing}, which are not luminaire arrays"
+                    )
+                continue
             missing = [s for s in r.sources if s not in known]
             if missing:
-                raise DesignError(f"rule {r.kind!r} names unknown sources {missing}")
+                also = [s for s in missing if s in known_arrays]
+                hint = f" ({also} are arrays: they take shr and clearance rules)" if also else ""
+                raise DesignError(f"rule {r.kind!r} names unknown sources {missing}{hint}")
+        planes = {w.name for w in self.workplanes}
+        for it in self.intentions:
+            if it.grid is not None and it.grid not in planes:
+                raise DesignError(
+                    f"intention {it.name!r}: no work plane {it.grid!r} "
+                    f"(work planes: {sorted(planes) or 'none'})"
+                )
         if any(g.kind == GoalKind.MATCH for g in self.goals) and not self.target_sources:
             raise DesignError("a match goal needs target_sources (the light to reproduce)")
         if self.penalty_power < 1 or self.penalty_power % 2:
             raise DesignError("penalty power must be an even positive integer (paper eq. 3)")
+
+    def array(self, name: str) -> LuminaireArray:
+        """The luminaire array called ``name``."""
+        for a in self.arrays:
+            if a.name == name:
+                return a
+        raise DesignError(f"no luminaire array {name!r}")
 
     def source(self, name: str) -> Source:
         """The source called ``name``."""

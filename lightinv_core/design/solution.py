@@ -7,7 +7,7 @@ from collections.abc import Mapping
 from dataclasses import dataclass, field, fields, replace
 from typing import Any
 
-from lightinv_core.design.model import Source
+from lightinv_core.design.model import LuminaireArray, Source
 from lightinv_core.errors import DesignError
 
 
@@ -118,8 +118,9 @@ class Solution:
     """A source layout with its objective values (in their units), penalty and violations.
 
     ``objectives`` maps goal kinds to values: "min_electric_power" in W,
-    "max_light_power" in lm, "match" as the relative error e(E). ``x`` is the
-    variable vector it was decoded from.
+    "max_light_power" in lm, "match" as the relative error e(E),
+    "min_installed_power" in W, "min_luminaire_count" a count. ``x`` is the variable
+    vector it was decoded from; ``arrays`` the design's luminaire arrays as laid out.
     """
 
     sources: tuple[Source, ...]
@@ -128,6 +129,7 @@ class Solution:
     violations: tuple[Violation, ...] = ()
     x: tuple[float, ...] = ()
     info: SolutionInfo = field(default_factory=SolutionInfo)
+    arrays: tuple[LuminaireArray, ...] = ()
 
     def __post_init__(self) -> None:
         if isinstance(self.info, Mapping):

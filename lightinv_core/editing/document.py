@@ -14,11 +14,12 @@ from __future__ import annotations
 
 from collections.abc import Callable
 from dataclasses import replace
+from datetime import datetime
 from pathlib import Path
 
 import numpy as np
 
-from lightinv_core.design.model import Design, Goal, Intention, Rule, Source
+from lightinv_core.design.model import ARRAY_RULES, Design, Goal, Intention, Rule, Source
 from lightinv_core.design.solution import ParetoFront, Solution, SolutionInfo
 from lightinv_core.editing import results as _results
 from lightinv_core.editing import rules
@@ -34,11 +35,13 @@ from lightinv_core.optimize.problem import DesignProblem
 from lightinv_core.optimize.quality import FrontQuality, front_quality, front_scales
 from lightinv_core.project import (
     OperatorSettings,
+    OptimizerSettings,
     Project,
     SceneSpec,
     load_project,
     save_project,
 )
+from lightinv_core.project.results import RunRecord
 from lightinv_core.scene.edits import ZoneEdit
 from lightinv_core.scene.model import Rect, Scene
 from lightinv_core.scene.patches import Patches, mesh_patches
@@ -61,6 +64,11 @@ class DocumentModel:
         self.path: Path | None = None
         self.dirty = False
         self.shown: Solution | None = None  # the result last loaded into the design
+        self._browsed: int | None = _results.ALL  # the run whose results are listed
+        self._run_mark = 1  # the next run's number at least: a deleted run's is not reused
+        # True while the scene shown was re-meshed for an edit of the same project (a drawn
+        # zone, a reflectance, an undo) rather than opened: the view may keep the old light.
+        self.rebuilt = False
         self._problem: DesignProblem | None = None
         self._light_shown: ShownLight | None = None  # the light model and the light shown
         self._preview: tuple[Source, ...] | None = None  # a running best's sources, as lit
@@ -89,15 +97,20 @@ class DocumentModel:
         """How the operator is built for this project."""
         return self._project.operator
 
-    def set_project(self, project: Project, path: Path | None = None) -> None:
+    def set_project(
+        self, project: Project, path: Path | None = None, rebuild: bool = False
+    ) -> None:
         """Make ``project`` the open one: its scene is loaded and meshed first, so a
-        SceneError changes nothing. The operator is dropped (build it again)."""
+        SceneError changes nothing. The operator is dropped (build it again).
+        ``rebuild``: the same project re-meshed after an edit (its browsing state stays)."""
         base = path.parent if path is not None else None
         scene = project.scene.load(base)
         patches = mesh_patches(scene)
         self._project, self.scene, self.patches = project, scene, patches
         self.operator, self.light, self._problem, self._light_shown = None, None, None, None
-        self.shown, self._preview = None, None
+        self.shown, self._preview, self.rebuilt = None, None, rebuild
+        if not rebuild:
+            self._browsed, self._run_mark = _results.ALL, 1
         self.selection = np.zeros(0, np.int64)
         self.current_source = project.design.sources[0].name if project.design.sources else None
         self.path, self.dirty = path, False
@@ -158,13 +171,17 @@ class DocumentModel:
         if self.on_edit is not None and self._project is not before:
             self.on_edit(label, before, self._project)
 
-    def restore(self, project: Project) -> None:
+    def restore(self, project: Project, source: Project | None = None) -> None:
         """Make ``project``, an earlier (undo) or later (redo) state of the open one,
-        current: its design, run settings, results and drawn zones. A change of drawn
-        zones re-meshes the scene (the operator is built again or loaded from the cache);
-        anything else just relights. Not itself an edit."""
+        current: its design, run settings and drawn zones. ``source`` is the state the
+        step goes from (undo: the project after the edit): the results take only that
+        step's change (a deleted run comes back), so runs made and results pinned since
+        stay; without it the results stay as they are. A change of drawn zones re-meshes
+        the scene (the operator is built again or loaded from the cache); anything else
+        just relights. Not itself an edit."""
+        project = _results.carried_over(self._project, source or project, project)
         if project.scene != self._project.scene:
-            self.set_project(project, self.path)
+            self.set_project(project, self.path, rebuild=True)
         else:
             self._project, self._problem, self.shown, self._preview = project, None, None, None
             names = [x.name for x in project.design.sources]
@@ -252,6 +269,35 @@ class DocumentModel:
             replace(self.design, rules=kept), f"remove rule {rules.rule_text(rule)[0]}"
         )
 
+    def set_arrays(self, arrays, label: str = "edit luminaire arrays") -> None:
+        """Replace the design's luminaire arrays (DesignError if a rule or name clashes):
+        add, edit and remove are this with another tuple. Rules on arrays that are gone
+        go with them."""
+        arrays = tuple(arrays)
+        names = {a.name for a in arrays}
+        kept = tuple(
+            r for r in self.design.rules if r.kind not in ARRAY_RULES or set(r.sources) <= names
+        )
+        self._set_design(replace(self.design, arrays=arrays, rules=kept), label)
+
+    def set_workplanes(self, workplanes, label: str = "edit work planes") -> None:
+        """Replace the design's work planes; intentions on a removed one go with it."""
+        workplanes = tuple(workplanes)
+        names = {w.name for w in workplanes}
+        its = tuple(i for i in self.design.intentions if i.grid is None or i.grid in names)
+        self._set_design(replace(self.design, workplanes=workplanes, intentions=its), label)
+
+    def grid_stats(self) -> dict[str, dict[str, float]]:
+        """EN 12464-1 values (points, Em, Emin, Emax lux, U0) of each work plane in the
+        light shown; empty before the operator exists or without work planes."""
+        return {} if self._light_shown is None else self._light_shown.grid_stats()
+
+    def shown_grids(self):
+        """(grids, lux at their points) of the light shown, or (None, None)."""
+        if self._light_shown is None:
+            return None, None
+        return self._light_shown.grids, self._light_shown.grid_lux
+
     def set_goal(self, kind: str, on: bool) -> None:
         """Add goal ``kind`` (both power goals give a Pareto front) or remove it;
         DesignError when no goal would be left."""
@@ -318,6 +364,14 @@ class DocumentModel:
         """(surface name, Rect) under a patch if a zone may be drawn there, else None."""
         return _zones.drawable_surface(self.scene, self.patches, patch)
 
+    def zone_surface(
+        self, kind: str, origin, direction, seen: int | None = None
+    ) -> tuple[str, Rect]:
+        """(surface name, Rect) a zone of ``kind`` drawn along a view ray goes on: the
+        patch ``seen`` under the cursor's surface if it suits, else the first along the
+        ray (``zones.zone_surface``); DesignError saying where such zones go if none."""
+        return _zones.zone_surface(self.scene, self.patches, kind, origin, direction, seen)
+
     def new_zone_name(self) -> str:
         """A free name for a drawn zone (Z1, Z2, ...)."""
         return _zones.new_zone_name(self.scene)
@@ -334,7 +388,8 @@ class DocumentModel:
             design=rules.only_in_zones(self.design, names),
         )
         before = self._project
-        self.set_project(project, self.path)  # loads the scene first: an error changes nothing
+        # Loads the scene first: an error changes nothing.
+        self.set_project(project, self.path, rebuild=True)
         self.mark_dirty()
         self._edited("drawn zones", before)
 
@@ -359,7 +414,7 @@ class DocumentModel:
         if spec == self._project.scene:
             return
         before = self._project
-        self.set_project(replace(self._project, scene=spec), self.path)
+        self.set_project(replace(self._project, scene=spec), self.path, rebuild=True)
         self.mark_dirty()
         self._edited(f"reflectance of {group}", before)
 
@@ -460,37 +515,127 @@ class DocumentModel:
             )
             for s in self.design.sources
         )
+        # Arrays take the result's layout (rows, columns, rectangle, rotation, dimming);
+        # product, ranges and which variables are free stay the design's.
+        laid = {a.name: a for a in solution.arrays}
+        arrays = tuple(
+            replace(
+                a,
+                rect=laid[a.name].rect,
+                rows=laid[a.name].rows,
+                columns=laid[a.name].columns,
+                rotation=laid[a.name].rotation,
+                dimming=laid[a.name].dimming,
+            )
+            if a.name in laid
+            else a
+            for a in self.design.arrays
+        )
         self._preview = None
-        self._set_design(replace(self.design, sources=sources), "load a result")
+        self._set_design(replace(self.design, sources=sources, arrays=arrays), "load a result")
         self.shown = solution
         self.events.emit("results")
 
-    def set_results(self, solutions: tuple[Solution, ...], pareto: ParetoFront | None) -> None:
-        """Store a run's results (pinned results of earlier runs are kept ahead)."""
-        self._project = _results.with_results(self._project, solutions, pareto)
+    @property
+    def browsed_run(self) -> int | None:
+        """The run whose results are listed: its number, ``results.SAVED`` (the saved
+        results) or ``results.ALL`` (every run's); ALL once the run chosen is gone (an
+        undo, a redo of its deletion)."""
+        b, p = self._browsed, self._project
+        if b is _results.ALL or p is None:
+            return _results.ALL
+        if b == _results.SAVED:
+            return b if p.solutions or p.pareto is not None else _results.ALL
+        return b if any(r.number == b for r in p.runs) else _results.ALL
+
+    @property
+    def runs(self) -> tuple[RunRecord, ...]:
+        """The project's optimisation runs, oldest first."""
+        return self._project.runs
+
+    def add_run(
+        self,
+        solutions: tuple[Solution, ...],
+        pareto: ParetoFront | None,
+        *,
+        settings: OptimizerSettings,
+        seeds=(),
+        status: str = "",
+        evaluations: int = 0,
+        seconds: float = 0.0,
+        time: str | None = None,
+    ) -> RunRecord:
+        """Keep a finished run's results as the next run of the history (earlier runs
+        stay); its results are then the ones browsed. ``time``: when it ended (ISO 8601;
+        default now). Not an edit (undo leaves it)."""
+        number = _results.next_run_number(self._project, self._run_mark)
+        run = RunRecord(
+            number=number,
+            method=settings.method,
+            time=time or datetime.now().isoformat(timespec="seconds"),
+            settings=settings,
+            seeds=tuple(seeds),
+            goals=tuple(g.kind for g in self.design.goals),
+            status=status,
+            evaluations=int(evaluations),
+            seconds=float(seconds),
+            solutions=tuple(solutions),
+            pareto=pareto,
+        )
+        self._project = _results.with_run(self._project, run)
+        self._run_mark = number + 1
+        self._browsed = number
         self.mark_dirty()
         self.events.emit("results")
+        return run
 
-    def results(self) -> list[tuple[str, Solution]]:
-        """Every result to browse, labelled (see ``results.browse``)."""
-        return _results.browse(self._project)
+    def delete_run(self, number: int) -> None:
+        """Delete run ``number`` and its results (its pinned ones are kept as saved
+        results); an edit, so Edit > Undo brings it back. DesignError if there is none."""
+        before = self._project
+        self._project = _results.without_run(self._project, number)
+        if self.browsed_run == number:
+            self._browsed = _results.ALL
+        self.mark_dirty()
+        self.events.emit("results")
+        self._edited(f"delete run {number}", before)
+
+    def browse_run(self, number: int | None) -> None:
+        """List run ``number``'s results (``results.SAVED``: the saved ones; None: every
+        run's); DesignError for a run the project does not have."""
+        if number is not _results.ALL and number != _results.SAVED:
+            _results.find_run(self._project, number)
+        self._browsed = number
+        self.events.emit("results")
+
+    def run_summary(self, number: int) -> str:
+        """One line on what run ``number`` was asked and did."""
+        return _results.run_summary(_results.find_run(self._project, number))
+
+    def results(self) -> list[_results.Entry]:
+        """The results browsed, labelled (see ``results.browse``)."""
+        return _results.browse(self._project, self.browsed_run)
+
+    def front(self) -> ParetoFront | None:
+        """The Pareto front of the results browsed (see ``results.front_of``)."""
+        return _results.front_of(self._project, self.browsed_run)
 
     def front_quality(self) -> FrontQuality | None:
-        """Hypervolume and spacing of the project's front (None without a front or a
-        light model)."""
-        front = self._project.pareto if self._project is not None else None
+        """Hypervolume and spacing of the front browsed (None without a front or a light
+        model)."""
+        front = self.front() if self._project is not None else None
         if front is None or not front.solutions or self.light is None:
             return None
         scales = front_scales(self._project.design, self.light)
         return front_quality(front.solutions, scales)
 
     def on_front(self, solution: Solution) -> bool:
-        """Whether ``solution`` is on the project's Pareto front."""
+        """Whether ``solution`` is on one of the project's Pareto fronts."""
         return _results.on_front(self._project, solution)
 
     def pin(self, solution: Solution, pinned: bool = True) -> Solution:
-        """Pin (keep across runs, offer for comparison; saved with the project) or unpin
-        a result; returns the stored copy."""
+        """Pin (offer for comparison, keep when its run is deleted; saved with the
+        project) or unpin a result; returns the pinned copy."""
         self._project, new = _results.with_pin(self._project, solution, pinned)
         if self.shown is not None and self.shown.x == solution.x:
             self.shown = new
@@ -499,7 +644,7 @@ class DocumentModel:
         return new
 
     def pinned(self) -> list[Solution]:
-        """The pinned results."""
+        """The pinned results, each layout once."""
         return _results.pinned_results(self._project)
 
 
@@ -513,10 +658,11 @@ def blank_project(scene_name: str, resolution: float | None = None) -> Project:
 
 
 def obj_project(path: str | Path, **options) -> Project:
-    """A new project on an OBJ model (groups, materials and zones from the file);
-    ``options`` are the scene's import settings: ``scale`` (metres per model unit),
-    ``up`` ("z" or "y"), ``materials`` (a reflectance JSON file), ``resolution`` (m),
-    ``skip_degenerate`` (ProjectError on a bad value)."""
+    """A new project on a model file, OBJ, glTF/GLB, PLY or IFC (groups, materials and
+    zones from the file); ``options`` are the scene's import settings: ``scale`` (metres
+    per model unit), ``up`` ("z" or "y"; None: the format's), ``materials`` (a
+    reflectance JSON file), ``resolution`` (m), ``skip_degenerate``, ``group_by`` (glTF:
+    "node" or "material") (ProjectError on a bad value)."""
     if options.get("materials"):
         options["materials"] = str(Path(options["materials"]).resolve())
     return Project(

@@ -4,17 +4,26 @@ Three layouts are lit: the design as written (its tied rules applied), a preview
 layout (a running optimisation's best, without touching the design), and other sources
 under the design's rules (a pinned result, for the difference view; its light is kept
 until its sources or the rules change, since the view asks on every edit).
+
+Luminaire arrays add their light placed exactly (``light.arrays.arrays_field``: about
+a second for a room's arrays, so it is kept until the arrays change), and the design's
+work planes their grids: ``grid_lux`` and ``grid_stats`` are the values shown (EN
+12464-1's Em, Emin, Emax, U0), maintained.
 """
 
 from __future__ import annotations
 
 import time
+from dataclasses import replace
 
 import numpy as np
 
-from lightinv_core.design.model import Design, Source
+from lightinv_core.design.model import Design, LuminaireArray, Source
+from lightinv_core.light.arrays import arrays_field
 from lightinv_core.light.field import LightField
+from lightinv_core.light.grids import DesignGrids, design_grids
 from lightinv_core.light.model import LightModel
+from lightinv_core.transport.workplane import grid_statistics
 
 
 class ShownLight:
@@ -28,6 +37,11 @@ class ShownLight:
         self.last_eval_ms = float("nan")
         """Time (ms) of the last relight."""
         self._compared: tuple | None = None
+        self._arrays: tuple | None = None  # (arrays, grids, H on patches, lux at points)
+        self.grids: DesignGrids | None = None
+        """The design's work-plane grids (None without work planes)."""
+        self.grid_lux: np.ndarray | None = None
+        """Illuminance (lux, maintained) at every grid point of the layout shown."""
 
     def relight(self, design: Design, preview: tuple[Source, ...] | None = None) -> LightField:
         """Light ``preview`` (sources as lit) if given, else ``design`` as written; the
@@ -37,9 +51,34 @@ class ShownLight:
             self.field = self.model.field(preview, design.daylight)
         else:
             self.field = self.model.design_field(design)
+        self.grids = design_grids(self.model, design.workplanes) if design.workplanes else None
+        self.grid_lux = None
+        if self.grids is not None:
+            lux = self.grids.Phi.astype(float) @ self.field.emission[self.model.op.zone_patches]
+            self.grid_lux = lux
+        if design.arrays:
+            H, at_points = self._arrays_light(design.arrays)
+            self.field = replace(self.field, illuminance=self.field.illuminance + H)
+            if self.grid_lux is not None:
+                self.grid_lux = self.grid_lux + at_points
         self.previewing = preview is not None
         self.last_eval_ms = 1e3 * (time.perf_counter() - t0)
         return self.field
+
+    def _arrays_light(self, arrays: tuple[LuminaireArray, ...]) -> tuple[np.ndarray, np.ndarray]:
+        """Light of ``arrays`` on the patches and at the grid points (kept until they or
+        the grids change)."""
+        if self._arrays is None or self._arrays[:2] != (arrays, self.grids):
+            points = None if self.grids is None else self.grids.points
+            H, at_points = arrays_field(self.model.patches, self.model.op, arrays, points)
+            self._arrays = (arrays, self.grids, H, at_points)
+        return self._arrays[2], self._arrays[3]
+
+    def grid_stats(self) -> dict[str, dict[str, float]]:
+        """EN 12464-1 values (points, Em, Emin, Emax lux, U0) of each work plane shown."""
+        if self.grids is None or self.grid_lux is None:
+            return {}
+        return {n: grid_statistics(self.grid_lux[s]) for n, s in self.grids.spans.items()}
 
     def layout(self, design: Design) -> tuple[Source, ...]:
         """The design's sources as lit (mirrored and centred ones placed by their rules)."""
@@ -51,7 +90,11 @@ class ShownLight:
         """The light of the design as written, even while a preview is shown."""
         if not self.previewing and self.field is not None:
             return self.field
-        return self.model.design_field(design)
+        field = self.model.design_field(design)
+        if design.arrays:
+            H, _ = self._arrays_light(design.arrays)
+            field = replace(field, illuminance=field.illuminance + H)
+        return field
 
     def of_sources(self, design: Design, sources) -> np.ndarray:
         """Illuminance (n,) lux of ``sources`` under ``design``'s tied rules and daylight."""

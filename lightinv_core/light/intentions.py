@@ -70,6 +70,11 @@ class BoundCheck(NamedTuple):
 def intention_patches(intention: Intention, patches: Patches) -> np.ndarray:
     """The sorted patch ids an intention bounds: its group, every patch (``"*"``) or its
     listed patches; DesignError naming the intention when they are not in the scene."""
+    if intention.grid is not None:
+        raise DesignError(
+            f"intention {intention.name!r} bounds work plane {intention.grid!r}'s grid "
+            "points, not patches"
+        )
     if intention.patches is not None:
         idx = np.asarray(intention.patches, dtype=np.int64)
         bad = idx[(idx < 0) | (idx >= patches.n)]

@@ -14,7 +14,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from lightinv_core.design.geometry import rule_names, rule_violations
+from lightinv_core.design.geometry import rule_names
 from lightinv_core.design.solution import SolutionInfo
 from lightinv_core.errors import DesignError
 from lightinv_core.kinds import GoalKind
@@ -49,8 +49,7 @@ def random_start(problem: DesignProblem, rng: np.random.Generator) -> np.ndarray
     failing = np.zeros(len(rule_names(problem.design)), np.int64)
     for _ in range(START_TRIES // 500):
         X = lo + rng.random((500, len(lo))) * (hi - lo)
-        rect, _, _ = problem.vars.decode(X)
-        broken = rule_violations(problem.design, rect, problem.zone_size) > 0
+        broken = problem.rule_violations(X) > 0
         ok = np.flatnonzero(~np.any(broken, axis=1))
         if len(ok):
             return X[ok[0]]
@@ -70,8 +69,7 @@ def random_layouts(problem: DesignProblem, rng: np.random.Generator, count: int)
     total = 0
     while total < count:
         X = lo + rng.random((500, len(lo))) * (hi - lo)
-        rect, _, _ = problem.vars.decode(X)
-        ok = ~np.any(rule_violations(problem.design, rect, problem.zone_size) > 0, axis=1)
+        ok = ~np.any(problem.rule_violations(X) > 0, axis=1)
         if not ok.any():
             found.append(random_start(problem, rng)[None])  # raises when the rules clash
             total += 1

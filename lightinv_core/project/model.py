@@ -21,19 +21,31 @@ from lightinv_core.design.solution import ParetoFront, Solution
 from lightinv_core.fields import Field, ObjectSpec, _fail, _integer, _string, _within
 from lightinv_core.operator.settings import OPERATOR, OperatorSettings
 from lightinv_core.optimize.settings import OPTIMIZER, OptimizerSettings
-from lightinv_core.project.results import PARETO, RESULTS, SOLUTION, VIOLATION, read_results
+from lightinv_core.project.results import (
+    PARETO,
+    RESULTS,
+    RUN,
+    SOLUTION,
+    VIOLATION,
+    RunRecord,
+    read_results,
+)
 from lightinv_core.project.scene import SCENE, ZONE, SceneSpec, resolve_path
 from lightinv_core.project.specs import (
+    ARRAY,
     DAYLIGHT,
     GOAL,
     INTENTION,
     RULE,
     SOURCE,
+    WORKPLANE,
+    read_arrays,
     read_daylight,
     read_goals,
     read_intentions,
     read_rules,
     read_sources,
+    read_workplanes,
 )
 
 __all__ = ["FILE_SPECS", "SCHEMA", "TOP", "Project", "SceneSpec", "resolve_path"]
@@ -57,10 +69,12 @@ class Project:
     description: str = ""
     solutions: tuple[Solution, ...] = ()
     pareto: ParetoFront | None = None
+    runs: tuple[RunRecord, ...] = ()  # the optimisation runs made in the window
     path: Path | None = field(default=None, compare=False)
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "solutions", tuple(self.solutions))
+        object.__setattr__(self, "runs", tuple(self.runs))
 
 
 # -- the top level of the file --------------------------------------------------------------
@@ -147,13 +161,29 @@ TOP = ObjectSpec(
             of=SOURCE,
         ),
         Field(
+            "arrays",
+            read_arrays,
+            (),
+            "list",
+            _see("arrays", "luminaire arrays") + " of photometric products",
+            of=ARRAY,
+        ),
+        Field(
+            "workplanes",
+            read_workplanes,
+            (),
+            "list",
+            _see("workplanes", "work planes") + " with EN 12464-1 calculation grids",
+            of=WORKPLANE,
+        ),
+        Field(
             "rules",
             read_rules,
             (),
             "list",
             _see("rules", "geometric rules"),
             always=True,
-            needs=("sources",),
+            needs=("sources", "arrays"),
             of=RULE,
         ),
         Field(
@@ -202,11 +232,14 @@ FILE_SPECS = (
     OPERATOR,
     DAYLIGHT,
     SOURCE,
+    ARRAY,
+    WORKPLANE,
     RULE,
     INTENTION,
     GOAL,
     OPTIMIZER,
     RESULTS,
+    RUN,
     SOLUTION,
     VIOLATION,
     PARETO,
@@ -225,6 +258,8 @@ def project_from_values(values: Mapping[str, Any]) -> Project:
             values["target_sources"],
             values["daylight"],
             values["penalty_power"],
+            values["arrays"],
+            values["workplanes"],
         )
     results = values["results"] or {}
     return Project(
@@ -236,6 +271,7 @@ def project_from_values(values: Mapping[str, Any]) -> Project:
         values["description"],
         results.get("solutions", ()),
         results.get("pareto"),
+        results.get("runs", ()),
     )
 
 
@@ -243,8 +279,8 @@ def project_values(p: Project) -> dict[str, Any]:
     """The top-level values of ``p``, by ``TOP`` field (results None when there are none)."""
     d = p.design
     results = None
-    if p.solutions or p.pareto is not None:
-        results = {"solutions": p.solutions, "pareto": p.pareto}
+    if p.solutions or p.pareto is not None or p.runs:
+        results = {"solutions": p.solutions, "pareto": p.pareto, "runs": p.runs}
     return {
         "schema": SCHEMA,
         "name": p.name,
@@ -255,6 +291,8 @@ def project_values(p: Project) -> dict[str, Any]:
         "penalty_power": d.penalty_power,
         "sources": d.sources,
         "target_sources": d.target_sources,
+        "arrays": d.arrays,
+        "workplanes": d.workplanes,
         "rules": d.rules,
         "intentions": d.intentions,
         "goals": d.goals,

@@ -58,4 +58,16 @@ def read_project(data: Any, base_dir: Path | None) -> Project:
             obj=resolve_path(scene.obj, base_dir),
             materials=resolve_path(scene.materials, base_dir),
         )
+    if base_dir is not None:
+        values["arrays"] = tuple(
+            replace(a, product=resolve_path(a.product, base_dir))
+            if is_product_file(a.product)
+            else a
+            for a in values["arrays"]
+        )
     return project_from_values(values)
+
+
+def is_product_file(product: str) -> bool:
+    """Whether an array's ``product`` names a photometric file (not a catalogue entry)."""
+    return Path(product).suffix.lower() in (".ies", ".ldt")

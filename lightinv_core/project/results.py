@@ -1,14 +1,20 @@
-"""Saved results in a project file: solutions, their violations and the Pareto front.
+"""Saved results in a project file: solutions, their violations, Pareto fronts and the
+history of optimisation runs.
 
 Each object's fields are declared once here (``VIOLATION``, ``SOLUTION``, ``PARETO``,
-``RESULTS``); reading, the messages, writing and the tables of docs/project-file.md come
-from them. Results may hold infinities and NaN (a penalty of infinity, a violation whose
+``RUN``, ``RESULTS``); reading, the messages, writing and the tables of
+docs/project-file.md come from them. A ``RunRecord`` is one optimisation run of the
+window's history (its method, when it ended, its settings and what it found); the
+results' own ``solutions`` and ``pareto`` hold results outside any recorded run (those of
+``lightinv-cli solve``, of files written before runs were recorded, pinned results of a
+deleted run). Results may hold infinities and NaN (a penalty of infinity, a violation whose
 value is not defined), written as the strings "inf", "-inf" and "nan". A solution's
 ``info`` is free-form: its values are read as JSON values and typed by ``SolutionInfo``.
 """
 
 from __future__ import annotations
 
+from dataclasses import dataclass, field
 from functools import partial
 from typing import Any
 
@@ -22,6 +28,7 @@ from lightinv_core.fields import (
     _choice,
     _describe,
     _fail,
+    _integer,
     _is_int,
     _is_number,
     _join,
@@ -30,7 +37,8 @@ from lightinv_core.fields import (
     _string,
     _unique,
 )
-from lightinv_core.project.specs import SOURCE, read_sources
+from lightinv_core.optimize.settings import OPTIMIZER, OptimizerSettings
+from lightinv_core.project.specs import ARRAY, SOURCE, read_arrays, read_sources
 
 
 class Info(dict):
@@ -127,7 +135,7 @@ SOLUTION = ObjectSpec(
             _objectives,
             type="object",
             meaning="goal kind -> value: `min_electric_power` in W, `max_light_power` in lm, "
-            "`match` as e",
+            "`match` as e, `min_installed_power` in W, `min_luminaire_count`",
         ),
         Field(
             "penalty",
@@ -158,6 +166,15 @@ SOLUTION = ObjectSpec(
             "free-form run information (seed, evaluations, seconds, status, ...)",
             encode=lambda info: Info(info.to_dict()),
             doc_default="`{}`",
+        ),
+        Field(
+            "arrays",
+            read_arrays,
+            (),
+            "list of arrays",
+            "the luminaire arrays as laid out, in the format of `arrays`",
+            of=ARRAY,
+            optional=True,
         ),
     ),
     write_defaults=True,
@@ -198,15 +215,94 @@ PARETO = ObjectSpec(
     write_defaults=True,
 )
 
-RESULTS = ObjectSpec(
-    "results",
+
+@dataclass(frozen=True)
+class RunRecord:
+    """One optimisation run of a project's history.
+
+    ``number``: 1, 2, ... in the order the runs were made (a deleted run's number is not
+    reused); ``method``: the registry name it ran with; ``time``: when it ended (ISO 8601
+    local date and time, e.g. "2026-11-25T14:03:12"); ``settings``: the run settings it
+    used; ``seeds``: the seeds of a several-seed run (empty: the settings' seed);
+    ``goals``: the design's goal kinds at the time, primary first; ``status``: "feasible",
+    "infeasible" or "cancelled"; ``evaluations`` of the light and wall time ``seconds``
+    over all its sub-runs; ``solutions``: each seed's best; ``pareto``: the front of a
+    multi-objective run (or None).
+    """
+
+    number: int
+    method: str
+    time: str = ""
+    settings: OptimizerSettings = field(default_factory=OptimizerSettings)
+    seeds: tuple[int, ...] = ()
+    goals: tuple[str, ...] = ()
+    status: str = ""
+    evaluations: int = 0
+    seconds: float = 0.0
+    solutions: tuple[Solution, ...] = ()
+    pareto: ParetoFront | None = None
+
+    def __post_init__(self) -> None:
+        for name in ("seeds", "goals", "solutions"):
+            object.__setattr__(self, name, tuple(getattr(self, name)))
+
+    def results(self) -> tuple[Solution, ...]:
+        """Every result of the run: each seed's best, then its front's candidates (or the
+        front itself when it kept no candidates)."""
+        front = () if self.pareto is None else (self.pareto.candidates or self.pareto.solutions)
+        return self.solutions + tuple(front)
+
+
+RUN = ObjectSpec(
+    "run",
     (
+        Field("number", lambda v, p: _integer(v, p, lo=1), type="integer", meaning="1, 2, ..."),
+        Field("method", _string, type="string", meaning="the method it ran with"),
+        Field(
+            "time",
+            _text,
+            "",
+            "string",
+            'when it ended, ISO 8601 local time ("2026-11-25T14:03:12")',
+        ),
+        Field(
+            "settings",
+            partial(OPTIMIZER.build, OptimizerSettings),
+            OptimizerSettings(),
+            "object",
+            "the run settings it used, as `optimizer`",
+            of=OPTIMIZER,
+            doc_default="see `optimizer`",
+        ),
+        Field(
+            "seeds",
+            lambda v, p: _list(v, p, _integer, "integers"),
+            (),
+            "list of integers",
+            "the seeds of a several-seed run (empty: the settings' seed)",
+        ),
+        Field(
+            "goals",
+            lambda v, p: _list(v, p, lambda x, q: _choice(x, q, GOALS), "goal kinds"),
+            (),
+            "list of goal kinds",
+            "the design's goals when it ran, primary first",
+        ),
+        Field("status", _text, "", "string", "`feasible`, `infeasible` or `cancelled`"),
+        Field(
+            "evaluations",
+            lambda v, p: _integer(v, p, lo=0),
+            0,
+            "integer",
+            "light evaluations, all its sub-runs",
+        ),
+        Field("seconds", lambda v, p: _number(v, p, lo=0), 0, "number", "wall time, s"),
         Field(
             "solutions",
             read_solutions,
             (),
             "list of solutions",
-            "saved solutions (the best of a run, pinned ones)",
+            "each seed's best",
             of=SOLUTION,
         ),
         Field(
@@ -214,7 +310,7 @@ RESULTS = ObjectSpec(
             partial(PARETO.build, ParetoFront),
             None,
             "object or null",
-            "the last multi-objective front",
+            "its front, for a multi-objective run",
             nullable=True,
             of=PARETO,
         ),
@@ -223,7 +319,55 @@ RESULTS = ObjectSpec(
 )
 
 
+def read_runs(v: Any, path: str) -> tuple[RunRecord, ...]:
+    """The runs listed at ``path`` (each number once)."""
+    runs = _list(v, path, partial(RUN.build, RunRecord), "runs")
+    seen: set[int] = set()
+    for i, run in enumerate(runs):
+        if run.number in seen:
+            _fail(_join(_join(path, i), "number"), f"run {run.number} is listed twice")
+        seen.add(run.number)
+    return runs
+
+
+# ``solutions`` and ``pareto`` are always written (files from before the run history read
+# the same); ``runs`` only when there are some.
+RESULTS = ObjectSpec(
+    "results",
+    (
+        Field(
+            "solutions",
+            read_solutions,
+            (),
+            "list of solutions",
+            "saved solutions outside the run history (`lightinv-cli solve`, older files, "
+            "pinned results of a deleted run)",
+            always=True,
+            of=SOLUTION,
+        ),
+        Field(
+            "pareto",
+            partial(PARETO.build, ParetoFront),
+            None,
+            "object or null",
+            "a multi-objective front outside the run history",
+            nullable=True,
+            always=True,
+            of=PARETO,
+        ),
+        Field(
+            "runs",
+            read_runs,
+            (),
+            "list of runs",
+            "the optimisation runs made in the window, oldest first (below)",
+            of=RUN,
+        ),
+    ),
+)
+
+
 def read_results(v: Any, path: str) -> dict[str, Any]:
-    """The results object at ``path``: ``solutions`` (a tuple) and ``pareto`` (a
-    ``ParetoFront`` or None)."""
+    """The results object at ``path``: ``solutions`` (a tuple), ``pareto`` (a
+    ``ParetoFront`` or None) and ``runs`` (a tuple of ``RunRecord``)."""
     return {**RESULTS.defaults(), **RESULTS.read(v, path)}

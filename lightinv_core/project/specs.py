@@ -14,14 +14,19 @@ from functools import partial
 from typing import Any
 
 from lightinv_core.design.model import (
+    ARRAY_RULES,
+    ARRAY_VARIABLES,
     AXES,
+    ROTATIONS,
     SOURCE_KINDS,
     VARIABLES,
     Daylight,
     Goal,
     Intention,
+    LuminaireArray,
     Rule,
     Source,
+    Workplane,
 )
 from lightinv_core.fields import (
     Field,
@@ -144,6 +149,8 @@ RULE_TAKES = {
     RuleKind.CENTRED: (),
     RuleKind.SPACING: ("min",),
     RuleKind.ALIGN: ("axis",),
+    RuleKind.SHR: ("max",),
+    RuleKind.CLEARANCE: ("min",),
 }
 """Which of min, max and axis each rule kind takes."""
 
@@ -169,8 +176,8 @@ RULE = ObjectSpec(
         Field(
             "sources",
             lambda v, p: _unique(_list(v, p, _string, "source names", 1), p),
-            type="list of source names",
-            meaning="the sources it constrains, each once",
+            type="list of names",
+            meaning="the sources it constrains, each once (`shr`, `clearance`: luminaire arrays)",
         ),
         Field("min", _nonneg, None, "number >= 0", "lower bound", _taking("min"), nullable=True),
         Field("max", _nonneg, None, "number >= 0", "upper bound", _taking("max"), nullable=True),
@@ -199,7 +206,7 @@ INTENTION = ObjectSpec(
             _string,
             None,
             "string",
-            'a lighting group of the scene, or `"*"` (every patch); this or `patches`',
+            'a lighting group of the scene, or `"*"` (every patch); this, `patches` or `grid`',
             nullable=True,
         ),
         Field(
@@ -207,7 +214,16 @@ INTENTION = ObjectSpec(
             lambda v, p: _list(v, p, lambda x, q: _integer(x, q, lo=0), "patch ids", 1),
             None,
             "list of integers >= 0",
-            "patch ids (at least one); this or `group`",
+            "patch ids (at least one); this, `group` or `grid`",
+            nullable=True,
+        ),
+        Field(
+            "grid",
+            _string,
+            None,
+            "string",
+            "a work plane's name: EN 12464-1 values over its grid points (lux only); "
+            "this, `group` or `patches`",
             nullable=True,
         ),
         Field(
@@ -297,6 +313,166 @@ DAYLIGHT = ObjectSpec(
 # -- readers: JSON data -> design objects ---------------------------------------------------
 
 
+_A = LuminaireArray.__dataclass_fields__
+
+
+def _array_variables(v: Any, p: str) -> tuple[str, ...]:
+    return _unique(_list(v, p, lambda x, q: _choice(x, q, ARRAY_VARIABLES), "variables"), p)
+
+
+def _rotation(v: Any, p: str) -> int:
+    r = _integer(v, p, lo=0)
+    if r not in ROTATIONS:
+        _fail(p, f"expected 0 or 90 (degrees), got {r}")
+    return r
+
+
+def _whole_pair(v: Any, p: str) -> tuple[int, int]:
+    items = _list(v, p, lambda x, q: _integer(x, q, lo=1), "whole numbers")
+    if len(items) != 2:
+        _fail(p, f"expected 2 whole numbers (min, max), got {len(items)}")
+    return tuple(items)
+
+
+ARRAY = ObjectSpec(
+    "array",
+    (
+        Field("name", _string, type="string", meaning="unique among sources and arrays"),
+        Field("zone", _string, type="string", meaning="the luminaire zone it is mounted in"),
+        Field(
+            "product",
+            _string,
+            type="string",
+            meaning="a catalogue luminaire's name, or an `.ies`/`.ldt` file "
+            "(relative to the project file)",
+        ),
+        Field(
+            "rect",
+            lambda v, p: _numbers(v, p, 4),
+            type="4 numbers",
+            meaning="`[u0, v0, u1, v1]`: the rectangle the array fills evenly, zone axes, m",
+        ),
+        Field(
+            "rows",
+            lambda v, p: _integer(v, p, lo=1),
+            _A["rows"].default,
+            "integer >= 1",
+            "luminaires along the zone's v axis",
+            always=True,
+        ),
+        Field(
+            "columns",
+            lambda v, p: _integer(v, p, lo=1),
+            _A["columns"].default,
+            "integer >= 1",
+            "luminaires along u",
+            always=True,
+        ),
+        Field(
+            "rotation",
+            _rotation,
+            _A["rotation"].default,
+            "`0` or `90`",
+            "degrees: the product's C0 plane along u (0) or v (90)",
+        ),
+        Field(
+            "dimming",
+            lambda v, p: _number(v, p, gt=0.0, hi=1.0),
+            _A["dimming"].default,
+            "number in (0, 1]",
+            "output (and power) of every luminaire, fraction of full",
+        ),
+        Field(
+            "free",
+            _array_variables,
+            (),
+            "list of variables",
+            "what the optimiser may change: `u0`, `v0`, `u1`, `v1`, `rows`, `columns`, "
+            "`rotation`, `dimming`",
+        ),
+        Field(
+            "rows_range",
+            _whole_pair,
+            _A["rows_range"].default,
+            "2 integers",
+            "bounds of free rows",
+        ),
+        Field(
+            "columns_range",
+            _whole_pair,
+            _A["columns_range"].default,
+            "2 integers",
+            "bounds of free columns",
+        ),
+        Field(
+            "dimming_range",
+            lambda v, p: _numbers(v, p, 2, lo=0.0),
+            _A["dimming_range"].default,
+            "2 numbers",
+            "bounds of a free dimming; 0 < min <= max <= 1",
+        ),
+        Field(
+            "maintenance_factor",
+            lambda v, p: _number(v, p, gt=0.0, hi=1.0),
+            _A["maintenance_factor"].default,
+            "number in (0, 1]",
+            "maintained / new light (EN 12464-1 Em)",
+            always=True,
+        ),
+        Field(
+            "watts",
+            _nonneg,
+            None,
+            "number >= 0",
+            "rated input power of one luminaire, W (default: the catalogue's or the file's)",
+            nullable=True,
+        ),
+    ),
+)
+
+_W = Workplane.__dataclass_fields__
+WORKPLANE = ObjectSpec(
+    "workplane",
+    (
+        Field("name", _string, type="string", meaning="unique among the work planes"),
+        Field(
+            "height",
+            _nonneg,
+            _W["height"].default,
+            "number >= 0",
+            "above the floor group, m",
+            always=True,
+        ),
+        Field(
+            "border",
+            _nonneg,
+            _W["border"].default,
+            "number >= 0",
+            "left out along the floor's edges, m",
+            always=True,
+        ),
+        Field(
+            "group",
+            _string,
+            _W["group"].default,
+            "string",
+            "the floor group it lies over",
+            always=True,
+        ),
+    ),
+)
+
+
+def read_arrays(v: Any, path: str) -> tuple[LuminaireArray, ...]:
+    """The luminaire arrays listed at ``path``, names unique."""
+    return _unique_names(_list(v, path, partial(ARRAY.build, LuminaireArray), "arrays"), path)
+
+
+def read_workplanes(v: Any, path: str) -> tuple[Workplane, ...]:
+    """The work planes listed at ``path``, names unique."""
+    return _unique_names(_list(v, path, partial(WORKPLANE.build, Workplane), "work planes"), path)
+
+
 def _unique_names(items: tuple, path: str) -> tuple:
     """``items`` (with a ``name``), failing at the second use of a name."""
     seen: dict[str, int] = {}
@@ -313,21 +489,29 @@ def read_sources(v: Any, path: str) -> tuple[Source, ...]:
     return _unique_names(_list(v, path, partial(SOURCE.build, Source), "sources"), path)
 
 
-def _rule(v: Any, path: str, names: tuple[str, ...]) -> Rule:
+def _rule(v: Any, path: str, names: tuple[str, ...], arrays: tuple[str, ...] = ()) -> Rule:
     values = RULE.read(v, path)
+    on_arrays = values["kind"] in ARRAY_RULES
+    what, pool = ("luminaire array", arrays) if on_arrays else ("source", names)
     for i, s in enumerate(values["sources"]):
-        if s not in names:
-            known = ", ".join(names) or "none"
-            _fail(_join(_join(path, "sources"), i), f"no source {s!r} (sources: {known})")
+        if s not in pool:
+            known = ", ".join(pool) or "none"
+            _fail(_join(_join(path, "sources"), i), f"no {what} {s!r} ({what}s: {known})")
     with _within(path):
         return Rule(**values)
 
 
-def read_rules(v: Any, path: str, sources: tuple[Source, ...] = ()) -> tuple[Rule, ...]:
-    """The rules listed at ``path``; each names some of ``sources``, and a source mirrors
-    at most one other."""
+def read_rules(
+    v: Any,
+    path: str,
+    sources: tuple[Source, ...] = (),
+    arrays: tuple[LuminaireArray, ...] = (),
+) -> tuple[Rule, ...]:
+    """The rules listed at ``path``; each names some of ``sources`` (``shr`` and
+    ``clearance``: of ``arrays``), and a source mirrors at most one other."""
     names = tuple(s.name for s in sources)
-    rules = _list(v, path, lambda x, p: _rule(x, p, names), "rules")
+    array_names = tuple(a.name for a in arrays)
+    rules = _list(v, path, lambda x, p: _rule(x, p, names, array_names), "rules")
     mirrored: dict[str, int] = {}
     for i, r in enumerate(rules):
         if r.kind == RuleKind.MIRROR:

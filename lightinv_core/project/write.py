@@ -74,6 +74,9 @@ def project_dict(p: Project, base_dir: Path | None) -> dict:
     for key in ("obj", "materials"):
         if key in scene:
             scene[key] = _relative(scene[key], base_dir)
+    for a in d.get("arrays", ()):
+        if Path(a["product"]).suffix.lower() in (".ies", ".ldt"):
+            a["product"] = _relative(a["product"], base_dir)
     return _jsonable(d, "")
 
 

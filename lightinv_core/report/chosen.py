@@ -2,15 +2,17 @@
 
 The light comes from the project's ``LightModel`` with the solution's own sources (as
 saved: tied rules already applied), so solutions whose source order or subset differs
-from the design's (two-step fronts) are lit correctly.
+from the design's (two-step fronts) are lit correctly; its luminaire arrays add their
+light with every luminaire placed exactly.
 """
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 from lightinv_core.design.solution import Solution
 from lightinv_core.errors import LightInvError
+from lightinv_core.light.arrays import arrays_field
 from lightinv_core.light.field import LightField
 from lightinv_core.project import Project
 
@@ -27,8 +29,16 @@ class Chosen:
 
 def choose_solution(project: Project, solution: Solution | None = None) -> Chosen:
     """``solution`` if given, else the project's first saved solution, else the first of
-    its Pareto front; a ``LightInvError`` when the project holds no result."""
+    its Pareto front, else the same of its newest run (the window's run history); a
+    ``LightInvError`` when the project holds no result."""
     front = project.pareto.solutions if project.pareto is not None else ()
+    if solution is None and not project.solutions and not front and project.runs:
+        run = project.runs[-1]
+        found = run.solutions or (run.pareto.solutions if run.pareto is not None else ())
+        if found:
+            where = "front point" if not run.solutions else "best"
+            label = f"run {run.number}, {where} 1 of {len(found)}"
+            return Chosen(found[0], label, 0 if not run.solutions else None)
     if solution is None:
         if project.solutions:
             solution = project.solutions[0]
@@ -56,4 +66,9 @@ def choose_solution(project: Project, solution: Solution | None = None) -> Chose
 def solution_field(project: Project, prepared, solution: Solution) -> LightField:
     """The light of the solution's sources on every patch (``prepared`` is a
     ``lightinv_core.study.Prepared``)."""
-    return prepared.light.field(solution.sources, project.design.daylight)
+    field = prepared.light.field(solution.sources, project.design.daylight)
+    if solution.arrays:
+        # Luminaire arrays placed exactly (not the optimiser's lattice).
+        H, _ = arrays_field(prepared.patches, prepared.operator, solution.arrays)
+        field = replace(field, illuminance=field.illuminance + H)
+    return field

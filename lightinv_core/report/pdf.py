@@ -2,8 +2,10 @@
 
 Pages, in order: title (project, scene, operator, solution status and objectives),
 the false-colour views (top, front, iso), the tables (sources and geometric rules,
-lighting intentions and illuminance per group), convergence (when the solution
-recorded a history) and the Pareto front (multi-objective projects).
+lighting intentions and illuminance per group), the luminaire schedule and polar curves
+(designs with luminaire arrays), the work planes' EN 12464-1 values and iso-lux plans
+(designs with work planes), convergence (when the solution recorded a history) and the
+Pareto front (multi-objective projects).
 
 The PDF is written atomically: a failed or cancelled report leaves neither a PDF nor
 any of its PNG pages behind, and an older file at ``path`` is kept untouched.
@@ -25,6 +27,8 @@ from matplotlib.figure import Figure
 
 from lightinv_core.atomic import atomic_writer
 from lightinv_core.errors import CancelledError
+from lightinv_core.light.arrays import resolve_product
+from lightinv_core.light.grids import design_grids, grid_light
 from lightinv_core.optimize.quality import front_quality, front_scales
 from lightinv_core.project import Project
 from lightinv_core.report.chosen import Chosen, choose_solution, solution_field
@@ -33,6 +37,12 @@ from lightinv_core.report.figures import (
     pareto_figure,
     table_pages,
     text_page,
+)
+from lightinv_core.report.luminaires import (
+    grid_table,
+    isolux_figures,
+    luminaire_table,
+    polar_figure,
 )
 from lightinv_core.report.tables import (
     Table,
@@ -43,7 +53,12 @@ from lightinv_core.report.tables import (
     rules_table,
     source_table,
 )
-from lightinv_core.report.views import CAMERAS, render_view, source_outlines
+from lightinv_core.report.views import (
+    CAMERAS,
+    luminaire_outlines,
+    render_view,
+    source_outlines,
+)
 
 PDF_DPI = 150  # resolution of the rasterised views inside the PDF
 PNG_DPI = 100
@@ -170,7 +185,7 @@ def write_report(
     patches, design = prepared.patches, project.design
     field = solution_field(project, prepared, sol)
     H = field.illuminance
-    outlines = source_outlines(patches, sol.sources)
+    outlines = source_outlines(patches, sol.sources) + luminaire_outlines(patches, sol.arrays)
     intentions = intention_table(sol, design, field)
 
     def view(name):
@@ -184,6 +199,12 @@ def write_report(
     def tables_second():
         return table_pages([intentions, group_table(field)])
 
+    grid_lux = None
+    grids = None
+    if design.workplanes:
+        grids = design_grids(prepared.light, design.workplanes)
+        grid_lux = grid_light(prepared.light, grids, sol.sources, sol.arrays, design.daylight)
+
     primary = design.goals[0].kind
     plan: list[tuple[str, Callable[[], Figure | list[Figure] | None]]] = [
         ("view-top", view("top")),
@@ -192,6 +213,13 @@ def write_report(
         ("sources", tables_first),
         ("intentions", tables_second),
     ]
+    if sol.arrays:
+        plan.append(("luminaires", lambda: table_pages([luminaire_table(sol.arrays)])))
+        products = [resolve_product(a.product, a.watts) for a in sol.arrays]
+        plan.append(("polar", lambda: polar_figure(products)))
+    if grids is not None:
+        plan.append(("workplanes", lambda: table_pages([grid_table(design, grids, grid_lux)])))
+        plan.append(("isolux", lambda: isolux_figures(grids, grid_lux)))
     history = sol.info.history
     if history:
         plan.append(("convergence", lambda: convergence_figure(sol, primary)))

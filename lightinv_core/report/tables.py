@@ -15,7 +15,9 @@ import numpy as np
 from lightinv_core.design.geometry import rule_names, rule_violations
 from lightinv_core.design.model import Design, Source
 from lightinv_core.design.solution import Solution
+from lightinv_core.design.variables import array_layout
 from lightinv_core.kinds import Bound, Quantity, SourceKind
+from lightinv_core.light.arrays import array_shapes
 from lightinv_core.light.field import LightField
 from lightinv_core.scene.patches import Patches
 from lightinv_core.scene.zone_grid import zone_grid
@@ -126,10 +128,17 @@ def rules_table(solution: Solution, design: Design, patches: Patches) -> Table |
     rows, flags = [], []
     names = [s.name for s in design.sources]
     by_name = {s.name: s for s in solution.sources}
-    if design.rules and all(n in by_name for n in names):
-        rect = np.array([[by_name[n].rect for n in names]], dtype=float)
+    arrays_ok = len(solution.arrays) == len(design.arrays)
+    if design.rules and all(n in by_name for n in names) and arrays_ok:
+        rect = np.array([[by_name[n].rect for n in names]], dtype=float).reshape(1, -1, 4)
         size = np.array([zone_grid(patches, s.zone).size for s in design.sources])
-        amounts = rule_violations(design, rect, size)[0]
+        arrays = None
+        if design.arrays:
+            arrays = (
+                array_layout(solution.arrays),
+                array_shapes(patches, solution.arrays, design.workplanes),
+            )
+        amounts = rule_violations(design, rect, size.reshape(-1, 2), arrays)[0]
         for name, amount in zip(rule_names(design), amounts, strict=True):
             ok = amount <= 0
             rows.append((name, "geometry", PASS if ok else f"{FAIL} ({fmt(amount, 3)})"))
@@ -168,14 +177,16 @@ def intention_table(solution: Solution, design: Design, field: LightField) -> Ta
 
     The achieved values come from the solution's light ``field``; pass/fail is the
     solution's own verdict (its violations) when its intentions were judged (finite
-    penalty), else the verdict of the field, with the same 0.1% tolerance.
+    penalty), else the verdict of the field, with the same 0.1% tolerance. Intentions on
+    work-plane grids have their own table (``report/luminaires.py``).
     """
-    if not design.intentions:
+    patch_intentions = [it for it in design.intentions if it.grid is None]
+    if not patch_intentions:
         return None
     judged = math.isfinite(solution.penalty)
     failed = {(v.name, v.constraint) for v in solution.violations}
     rows, flags = [], []
-    for it in design.intentions:
+    for it in patch_intentions:
         res = field.intention(it)
         st = res.stats
         u0 = float(st.uniformity[0]) if st.average[0] > 0 else float("nan")

@@ -22,8 +22,10 @@ from matplotlib.collections import PolyCollection
 from matplotlib.colors import Normalize
 from matplotlib.figure import Figure
 
-from lightinv_core.design.model import Source
+from lightinv_core.design.model import LuminaireArray, Source
 from lightinv_core.errors import LightInvError
+from lightinv_core.light.arrays import resolve_product
+from lightinv_core.light.arrays import zone_frame as light_zone_frame
 from lightinv_core.scene.patches import Patches
 from lightinv_core.scene.zone_grid import zone_grid
 
@@ -127,6 +129,27 @@ def source_outlines(
         (a, b), (c, d) = s.u_range, s.v_range
         pts = np.array([o + a * u + c * v, o + b * u + c * v, o + b * u + d * v, o + a * u + d * v])
         out.append(Outline(s.name, pts, "source"))
+    return out
+
+
+def luminaire_outlines(patches: Patches, arrays: Sequence[LuminaireArray]) -> list[Outline]:
+    """Outlines of every luminaire opening of the arrays (as written) in 3-D."""
+    out = []
+    for a in arrays:
+        prod = resolve_product(a.product, a.watts)
+        frame = light_zone_frame(patches, a.zone)
+        w, length = (max(x, 0.05) for x in prod.opening)
+        # The opening's length runs along C0: u at rotation 0, v at 90.
+        hu, hv = (length / 2, w / 2) if a.rotation == 0 else (w / 2, length / 2)
+        for k, (cu, cv) in enumerate(a.positions()):
+            corners = [
+                (cu - hu, cv - hv),
+                (cu + hu, cv - hv),
+                (cu + hu, cv + hv),
+                (cu - hu, cv + hv),
+            ]
+            pts = np.array([frame.point(u, v) for u, v in corners])
+            out.append(Outline(f"{a.name}.{k + 1}", pts, "source"))
     return out
 
 

@@ -669,13 +669,157 @@ def _(d):
     return raised(lambda: read_weather("builtin").occupied(18, 8))
 
 
+# --- glTF, PLY and IFC files ------------------------------------------------------------
+
+
+def mesh_error(d: Path, name: str, data: bytes, **kw) -> BaseException | None:
+    from lightinv_core.scene.mesh_import import load_mesh
+
+    (d / name).write_bytes(data)
+    return raised(lambda: load_mesh(d / name, resolution=0.5, **kw))
+
+
+@case(
+    "gltf-not-gltf",
+    "glTF/PLY file",
+    "a `.glb` file that holds text (an STL file renamed)",
+    ObjImportError,
+    "room.glb: not a binary glTF (GLB) file",
+    "export the model as glTF 2.0 binary",
+)
+def _(d):
+    return mesh_error(d, "room.glb", b"solid cube\nendsolid cube\n")
+
+
+@case(
+    "gltf-truncated",
+    "glTF/PLY file",
+    "a `.glb` file cut off inside its JSON chunk",
+    ObjImportError,
+    "room.glb: the GLB file is truncated or damaged",
+)
+def _(d):
+    from tests.core.test_mesh_import import box_gltf
+
+    whole = box_gltf(d / "whole.glb").read_bytes()
+    return mesh_error(d, "room.glb", whole[:200])
+
+
+@case(
+    "gltf-no-triangles",
+    "glTF/PLY file",
+    "a glTF file whose only mesh is a cloud of points",
+    ObjImportError,
+    "room.glb: no triangles found in its scene",
+)
+def _(d):
+    from tests.core.test_mesh_import import Gltf
+
+    g = Gltf()
+    g.node("points", g.mesh([(np.zeros((1, 3, 3)), None)]))
+    g.doc["meshes"][0]["primitives"][0]["mode"] = 0  # POINTS
+    return raised(lambda: load_scene(str(g.save(d / "room.glb"))))
+
+
+@case(
+    "gltf-transparent",
+    "glTF/PLY file",
+    "a glTF material with alpha 0.2 (`alphaMode` BLEND): glass",
+    WARNING,
+    "room.glb: material(s) 'Glass' are transparent",
+    "treats every surface as opaque",
+)
+def _(d):
+    from tests.core.test_mesh_import import Gltf, box_polygons
+
+    g = Gltf()
+    glass = g.material("Glass", [0.9, 0.9, 0.9, 0.2], alphaMode="BLEND")
+    for name, polys in box_polygons().items():
+        g.part(name, polys, glass if name == "ceiling" else None)
+    scene = load_scene(str(g.save(d / "room.glb")), 0.5)
+    found = [w for w in scene.info["warnings"] if "transparent" in w]
+    return Warned(found[0]) if found else None
+
+
+@case(
+    "ply-point-cloud",
+    "glTF/PLY file",
+    "a PLY file of points only (a scan)",
+    ObjImportError,
+    "room.ply: no faces found (3 vertices)",
+    "not a point cloud",
+)
+def _(d):
+    head = "ply\nformat ascii 1.0\nelement vertex 3\n"
+    head += "property float x\nproperty float y\nproperty float z\nend_header\n"
+    return mesh_error(d, "room.ply", (head + "0 0 0\n1 0 0\n0 1 0\n").encode())
+
+
+@case(
+    "ifc-missing-extra",
+    "IFC file",
+    "an IFC file where ifcopenshell is not installed",
+    ObjImportError,
+    "IFC import needs the optional extra: pip install 'lightinv[ifc]'",
+)
+def _(d):
+    import builtins
+    from unittest import mock
+
+    real = builtins.__import__
+
+    def no_ifc(name, *args, **kwargs):
+        if name.startswith("ifcopenshell"):
+            raise ImportError(name)
+        return real(name, *args, **kwargs)
+
+    (d / "room.ifc").write_text("ISO-10303-21;\n")
+    with mock.patch.object(builtins, "__import__", no_ifc):
+        return raised(lambda: load_scene(str(d / "room.ifc")))
+
+
+@case(
+    "ifc-unreadable",
+    "IFC file",
+    "a `.ifc` file that is not STEP text",
+    ObjImportError,
+    "room.ifc: cannot read it as IFC",
+    "export the model as IFC2X3 or IFC4",
+)
+def _(d):
+    (d / "room.ifc").write_text("<html>not a model</html>\n")
+    return raised(lambda: load_scene(str(d / "room.ifc")))
+
+
+@case(
+    "ifc-odd-ceiling",
+    "IFC file",
+    "a ceiling covering with a hole cut in it (not a rectangle: no luminaire zone)",
+    WARNING,
+    "1 window(s) or ceiling(s) ('IfcCovering:Holed') have no rectangular face",
+    "plain surfaces and not emitter zones",
+)
+def _(d):
+    import ifcopenshell.api.feature
+
+    from tests.core.test_ifc_import import ifc_room
+
+    def extra(box, f):
+        panel = box("IfcCovering", "Holed", 0.0, 0.0, 2.5, 2.0, 2.0, 0.02, predefined="CEILING")
+        hole = box("IfcOpeningElement", "hole", 0.5, 0.5, 2.4, 0.5, 0.5, 0.3, contained=False)
+        ifcopenshell.api.feature.add_feature(f, feature=hole, element=panel)
+
+    scene = load_scene(str(ifc_room(d / "room.ifc", extra=extra)), 0.5)
+    return Warned(scene.info["warnings"][0]) if scene.info["warnings"] else None
+
+
 # --- scenes and drawn zones ---------------------------------------------------------------
 
 
 @case(
     "scene-unknown",
     "scene",
-    "a scene that is neither built in nor an OBJ file (`room.dae`)",
+    "a scene that is neither built in nor a model file (`room.dae`)",
     SceneError,
     "'room.dae'",
     "neither a built-in scene",
@@ -812,6 +956,19 @@ def _(d):
 
 
 @case(
+    "project-run-twice",
+    "project file",
+    'a run of the results\' history listed twice (two runs `"number": 1`)',
+    ProjectError,
+    "project.json: results.runs[1].number",
+    "run 1 is listed twice",
+)
+def _(d):
+    run = {"number": 1, "method": "vns"}
+    return project_error(d, lambda data: data.update(results={"runs": [run, run]}))
+
+
+@case(
     "project-invalid-json",
     "project file",
     "invalid JSON (a missing comma)",
@@ -863,7 +1020,103 @@ def _(d):
     return project_error(d, setter("scene", {"builtin": "ofice"}))
 
 
+def with_array(**fields) -> Callable[[dict], None]:
+    """A project change: a luminaire zone on the box's ceiling and an array in it (with
+    ``fields`` over its defaults), and a work plane over the floor."""
+
+    def change(data: dict) -> None:
+        data["scene"]["zones"].append(
+            {"name": "lamps", "kind": "luminaire", "surface": "ceiling", "rect": [0, 2, 3, 3]}
+        )
+        array = {"name": "A1", "zone": "lamps", "product": "Downlight 2000 lm 20 W"}
+        data["arrays"] = [{**array, "rect": [0, 0, 3, 1], "rows": 1, "columns": 2, **fields}]
+        data["workplanes"] = [{"name": "wp"}]
+
+    return change
+
+
+@case(
+    "project-array-rows",
+    "project file",
+    'a luminaire array of no rows (`"rows": 0`)',
+    ProjectError,
+    "project.json: arrays[0].rows",
+    "expected an integer >= 1, got 0",
+)
+def _(d):
+    return project_error(d, with_array(rows=0))
+
+
+@case(
+    "project-array-rule-on-source",
+    "project file",
+    "a spacing-to-height rule naming a source, not an array",
+    ProjectError,
+    "project.json: rules[1].sources[0]",
+    "no luminaire array 'S1' (luminaire arrays: A1)",
+)
+def _(d):
+    def change(data):
+        with_array()(data)
+        data["rules"].append({"kind": "shr", "sources": ["S1"], "max": 1.5})
+
+    return project_error(d, change)
+
+
+@case(
+    "project-grid-unknown",
+    "project file",
+    'an intention on a work plane that does not exist (`"grid": "desk"`)',
+    ProjectError,
+    "intention 'office': no work plane 'desk' (work planes: ['wp'])",
+)
+def _(d):
+    def change(data):
+        with_array()(data)
+        data["intentions"].append({"name": "office", "grid": "desk", "average": 500})
+
+    return project_error(d, change)
+
+
 # --- project files: when the scene is loaded and the problem built ------------------------
+
+
+@case(
+    "project-array-product",
+    "project scene",
+    'a luminaire array of a product the catalogue lacks (`"product": "Downlite"`)',
+    DesignError,
+    "product 'Downlite' is neither a catalogue luminaire",
+    "nor an .ies/.ldt file",
+)
+def _(d):
+    return problem_error(d, with_array(product="Downlite"))
+
+
+@case(
+    "project-array-product-file",
+    "project scene",
+    'a luminaire array whose photometric file is missing (`"product": "gone.ies"`)',
+    DesignError,
+    "product '<dir>/gone.ies': no such photometric file",
+)
+def _(d):
+    return problem_error(d, with_array(product="gone.ies"))
+
+
+@case(
+    "project-workplane-not-floor",
+    "project scene",
+    'a work plane over the walls (`"group": "walls"`)',
+    LightInvError,
+    "group 'walls' is not a horizontal floor facing up; a work plane lies over a floor",
+)
+def _(d):
+    def change(data):
+        with_array()(data)
+        data["workplanes"] = [{"name": "wp", "group": "walls"}]
+
+    return problem_error(d, change)
 
 
 @case(
@@ -1027,6 +1280,25 @@ def _(d):
     return start_error(d, change)
 
 
+@case(
+    "scheduler-address",
+    "run start",
+    "`--scheduler localhost:8786` (a Dask scheduler address without its `tcp://`)",
+    LightInvError,
+    "scheduler address 'localhost:8786'",
+    "not of the form tcp://host:port",
+)
+def _(d):
+    from lightinv_core.operator.build import build_operator
+
+    patches = mesh_patches(box_scene(d))
+    return raised(
+        lambda: build_operator(
+            patches, OperatorSettings(rank=8, rays=16), scheduler="localhost:8786"
+        )
+    )
+
+
 # --- values of the wrong type given to the model classes in code ------------------------
 # Not in the docs table (no file can produce them: the readers check types first), but
 # each used to escape as a TypeError, ValueError or OverflowError instead of a
@@ -1144,12 +1416,13 @@ LIGHTINV_WRITE_DOCS=1 .venv/bin/python -m pytest tests/core/test_bad_input.py
 (without the variable the test fails while this file differs from the messages).
 
 Every error a user can cause is a `LightInvError` (a `ValueError`): `SceneError` for
-scenes, surfaces and drawn zones, `ObjImportError` (a `SceneError`) for OBJ, MTL and
-materials files, `ProjectError` for project files (its message starts with the file
-name and the JSON path), `DesignError` for designs that cannot work on the scene or
-whose rules cannot be met. The window shows the message exactly as below in an error
-dialog (`str(exc)` in a message box, never a traceback); `lightinv-cli` prints it as
-one line, `lightinv-cli: error: MESSAGE`, and exits with status 2.
+scenes, surfaces and drawn zones, `ObjImportError` (a `SceneError`) for model files
+(OBJ, glTF, PLY, IFC), MTL and materials files, `ProjectError` for project files (its
+message starts with the file name and the JSON path), `DesignError` for designs that
+cannot work on the scene or whose rules cannot be met. The window shows the message
+exactly as below in an error dialog (`str(exc)` in a message box, never a traceback);
+`lightinv-cli` prints it as one line, `lightinv-cli: error: MESSAGE`, and exits with
+status 2.
 
 A *warning* does not stop the work: the import or build goes on and the text is
 returned (`scene.info["warnings"]`, the `warn` callback of `get_operator` and

@@ -41,9 +41,9 @@ def check_groups(stats: list[dict]) -> None:
         assert 0 <= s["min_lux"] <= s["avg_lux"] <= s["max_lux"], s
 
 
-def test_scenes_lists_the_four_builtin_scenes(capsys):
+def test_scenes_lists_the_builtin_scenes(capsys):
     scenes = run_json(capsys, "scenes")["scenes"]
-    assert [s["name"] for s in scenes] == ["cornell", "office", "patio", "corridor"]
+    assert [s["name"] for s in scenes] == ["cornell", "office", "patio", "corridor", "building"]
     for s in scenes:
         assert isinstance(s["patches"], int) and s["patches"] > 0
         assert s["resolution"] > 0 and s["description"]

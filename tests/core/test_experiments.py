@@ -49,6 +49,7 @@ def test_all_example_projects_load():
         "experiment5",
         "experiment5-skylights",
         "experiment5-twostep",
+        "office-arrays",
         "office-demo",
     ]
     for n in names:

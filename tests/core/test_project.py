@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import copy
+import dataclasses
 import json
 import math
 import os
@@ -90,6 +91,21 @@ VALID: dict = {
     "target_sources": [
         {"name": "T1", "zone": "A3", "kind": "luminaire", "rect": [0, 0, 3, 0.6], "flux": 3000}
     ],
+    "arrays": [
+        {
+            "name": "R1",
+            "zone": "A2",
+            "product": "Downlight 2000 lm 20 W",
+            "rect": [0, 0, 3, 0.6],
+            "rows": 1,
+            "columns": 3,
+            "rotation": 90,
+            "free": ["columns", "dimming"],
+            "columns_range": [1, 6],
+            "maintenance_factor": 0.8,
+        }
+    ],
+    "workplanes": [{"name": "wp", "height": 0.8, "border": 0.5, "group": "floor"}],
     "rules": [
         {"kind": "area", "sources": ["S1"], "min": 1, "max": 4},
         {"kind": "aspect", "sources": ["S1", "S2"], "max": 3},
@@ -97,6 +113,8 @@ VALID: dict = {
         {"kind": "centred", "sources": ["S2"]},
         {"kind": "spacing", "sources": ["L1", "L2"], "min": 0.5},
         {"kind": "align", "sources": ["S1", "S2", "S3"], "axis": "u"},
+        {"kind": "shr", "sources": ["R1"], "max": 1.5},
+        {"kind": "clearance", "sources": ["R1"], "min": 0.05},
     ],
     "intentions": [
         {
@@ -109,6 +127,14 @@ VALID: dict = {
             "weight": 100,
         },
         {"name": "picked", "patches": [1, 2, 3], "quantity": "C", "max": 800, "weight": 10},
+        {
+            "name": "desks",
+            "quantity": "lux",
+            "average": 300,
+            "uniformity": 0.4,
+            "weight": 100,
+            "grid": "wp",
+        },
     ],
     "goals": [
         {"kind": "max_light_power", "kinds": ["skylight"]},
@@ -532,12 +558,12 @@ ERRORS = [
     (
         _set("rules[0].kind", "size"),
         "rules[0].kind: expected one of 'area', 'aspect', 'mirror', 'centred', 'spacing', "
-        "'align', got string 'size'",
+        "'align', 'shr', 'clearance', got string 'size'",
     ),
     (
         _set("goals[0].kind", "max_light"),
-        "goals[0].kind: expected one of 'min_electric_power', 'max_light_power', 'match', got "
-        "string 'max_light'",
+        "goals[0].kind: expected one of 'min_electric_power', 'max_light_power', 'match', "
+        "'min_installed_power', 'min_luminaire_count', got string 'max_light'",
     ),
     (
         _set("intentions[0].quantity", "cd"),
@@ -557,12 +583,13 @@ ERRORS = [
     (_set("scene.builtin", DELETE), 'scene: give exactly one of "builtin"'),
     (
         _set("scene.builtin", "coridor"),
-        "scene.builtin: expected one of 'cornell', 'office', 'patio', 'corridor', got string "
-        "'coridor'",
+        "scene.builtin: expected one of 'cornell', 'office', 'patio', 'corridor', 'building', "
+        "got string 'coridor'",
     ),
     (
         _set("scene", {"obj": "room.3ds"}),
-        "scene.obj: expected the path of an .obj file, got 'room.3ds'",
+        "scene.obj: expected the path of a model file (.obj, .gltf, .glb, .ply or .ifc), "
+        "got 'room.3ds'",
     ),
     (
         _set("scene.scale", 0.001),
@@ -593,7 +620,8 @@ ERRORS = [
     ),
     (
         _set("intentions[1].group", "desks"),
-        "intentions[1]: intention 'picked': give either a group or a list of patches",
+        "intentions[1]: intention 'picked': give one of a group, a list of patches or a "
+        "work-plane grid",
     ),
     (
         _set("intentions[0].max", 400),
@@ -857,3 +885,75 @@ def test_bad_scene_zones_name_their_json_path(tmp_path, zones, message):
     path.write_text(json.dumps(data), encoding="utf-8")
     with pytest.raises(ProjectError, match=r"^zones\.json: " + re.escape(message)):
         load_project(path)
+
+
+# -- the run history (results.runs) ---------------------------------------------------------
+
+RUN = {
+    "number": 2,
+    "method": "vns",
+    "time": "2026-11-25T14:03:12",
+    "seeds": [0, 1],
+    "goals": ["min_electric_power"],
+    "status": "feasible",
+    "evaluations": 12000,
+    "seconds": 3.5,
+    "solutions": [{**SOLUTION, "penalty": 0.25, "violations": []}],
+}
+
+
+def _with_runs(*runs) -> dict:
+    data = valid()
+    data["results"]["runs"] = [copy.deepcopy(r) for r in runs]
+    return data
+
+
+def test_the_run_history_round_trips_and_older_files_read_without_it(tmp_path):
+    front = {"pareto": copy.deepcopy(RESULTS["pareto"]), "solutions": []}
+    data = _with_runs({**RUN, "number": 1, "settings": {"method": "epsilon"}, **front}, RUN)
+    p = project_from_dict(copy.deepcopy(data))
+    assert [r.number for r in p.runs] == [1, 2]
+    first, second = p.runs
+    assert first.settings.method == "epsilon" and len(first.pareto.candidates) == 2
+    assert second.settings == OptimizerSettings() and second.seeds == (0, 1)
+    assert second.seconds == 3.5 and second.solutions[0].penalty == 0.25
+    assert second.results() == second.solutions and first.results() == first.pareto.candidates
+    path = tmp_path / "history.json"
+    save_project(p, path)
+    again = load_project(path)
+    assert project_to_dict(again) == project_to_dict(p)
+    assert json.loads(path.read_text())["results"]["runs"][1]["time"] == "2026-11-25T14:03:12"
+    # A file of before the history has no runs, and none are written back.
+    old = project_from_dict(copy.deepcopy(WITH_RESULTS))
+    assert old.runs == () and "runs" not in project_to_dict(old)["results"]
+    # Runs alone are saved too (a project whose results are all in its history).
+    only = dataclasses.replace(project_from_dict(copy.deepcopy(VALID)), runs=p.runs)
+    assert project_to_dict(only)["results"] == {
+        "solutions": [],
+        "pareto": None,
+        "runs": project_to_dict(p)["results"]["runs"],
+    }
+
+
+RUN_ERRORS = [
+    ({**RUN, "number": 0}, "results.runs[0].number: expected an integer >= 1, got 0"),
+    ({**RUN, "method": ""}, "results.runs[0].method: expected a non-empty string"),
+    ({**RUN, "settings": {"method": "ga"}}, "results.runs[0].settings.method: expected one of"),
+    ({**RUN, "seeds": [1.5]}, "results.runs[0].seeds[0]: expected an integer"),
+    ({**RUN, "goals": ["cost"]}, "results.runs[0].goals[0]: expected one of"),
+    ({**RUN, "seconds": -1}, "results.runs[0].seconds: expected a number >= 0, got -1"),
+    ({**RUN, "best": 1}, "results.runs[0]: unknown field 'best'"),
+    ({"method": "vns"}, "results.runs[0]: missing required field 'number'"),
+]
+
+
+@pytest.mark.parametrize(("run", "message"), RUN_ERRORS, ids=[m for _, m in RUN_ERRORS])
+def test_bad_runs_name_their_json_path(run, message):
+    with pytest.raises(ProjectError) as info:
+        project_from_dict(_with_runs(run))
+    assert str(info.value).startswith(message), str(info.value)
+
+
+def test_a_run_listed_twice_is_refused():
+    with pytest.raises(ProjectError, match=r"^results\.runs\[1\]\.number: run 2 is listed twice"):
+        project_from_dict(_with_runs(RUN, RUN))

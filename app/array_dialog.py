@@ -1,0 +1,219 @@
+"""The dialogs that add or edit a luminaire array and a work plane.
+
+An array is one product (from the catalogue, or an IES/EULUMDAT file) laid out evenly in
+a luminaire zone: rows and columns at the centres of equal cells of a rectangle, a
+rotation of 0 or 90 degrees, a dimming level, and which of these the optimiser may
+change. The dialog shows the spacing and the array's power as they are typed.
+"""
+
+from __future__ import annotations
+
+from PySide6 import QtWidgets
+
+from app import dialogs
+from lightinv_core.design.model import ARRAY_VARIABLES, LuminaireArray, Workplane
+from lightinv_core.errors import LightInvError
+from lightinv_core.light.arrays import resolve_product
+from lightinv_core.luminaires import builtin_catalogue
+
+FREE_LABELS = {
+    "u0": "u0",
+    "v0": "v0",
+    "u1": "u1",
+    "v1": "v1",
+    "rows": "rows",
+    "columns": "columns",
+    "rotation": "rotation",
+    "dimming": "dimming",
+}
+
+
+def _spin(lo: float, hi: float, value: float, decimals: int = 2, step: float = 0.1):
+    box = QtWidgets.QDoubleSpinBox(decimals=decimals, singleStep=step)
+    box.setRange(lo, hi)
+    box.setValue(value)
+    return box
+
+
+def _int(lo: int, hi: int, value: int) -> QtWidgets.QSpinBox:
+    box = QtWidgets.QSpinBox()
+    box.setRange(lo, hi)
+    box.setValue(value)
+    return box
+
+
+class ArrayDialog(QtWidgets.QDialog):
+    """Fields of one ``LuminaireArray``; ``array()`` builds it (DesignError if bad)."""
+
+    def __init__(
+        self,
+        zones: dict[str, tuple[float, float]],
+        base: LuminaireArray | None = None,
+        name: str = "A1",
+        parent: QtWidgets.QWidget | None = None,
+    ):
+        super().__init__(parent)
+        self.setWindowTitle("Luminaire array" if base is None else f"Edit array {base.name}")
+        self.zones = zones
+        zone = base.zone if base is not None else next(iter(zones), "")
+        w, h = zones.get(zone, (1.0, 1.0))
+        base = base or LuminaireArray(
+            name,
+            zone,
+            builtin_catalogue()[0].name,
+            (0.0, 0.0, w, h),
+            rows=2,
+            columns=2,
+            free=("rows", "columns", "dimming"),
+        )
+        form = QtWidgets.QFormLayout(self)
+        self.name = QtWidgets.QLineEdit(base.name)
+        form.addRow("Name", self.name)
+        self.zone = QtWidgets.QComboBox()
+        self.zone.addItems(list(zones))
+        self.zone.setCurrentText(base.zone)
+        form.addRow("Zone", self.zone)
+        self.product = QtWidgets.QComboBox(editable=True)
+        self.product.addItems([e.name for e in builtin_catalogue()])
+        self.product.setCurrentText(base.product)
+        browse = QtWidgets.QPushButton("File…")
+        browse.clicked.connect(self._browse)
+        row = QtWidgets.QHBoxLayout()
+        row.addWidget(self.product, 1)
+        row.addWidget(browse)
+        form.addRow("Product", row)
+        self.corners = [_spin(-1e3, 1e3, x) for x in base.rect]
+        rect = QtWidgets.QHBoxLayout()
+        for box in self.corners:
+            rect.addWidget(box)
+        form.addRow("Rectangle u0 v0 u1 v1 (m)", rect)
+        self.rows = _int(1, 100, base.rows)
+        self.columns = _int(1, 100, base.columns)
+        counts = QtWidgets.QHBoxLayout()
+        counts.addWidget(self.rows)
+        counts.addWidget(QtWidgets.QLabel("rows (along v) x"))
+        counts.addWidget(self.columns)
+        counts.addWidget(QtWidgets.QLabel("columns (along u)"))
+        form.addRow("Layout", counts)
+        self.rotation = QtWidgets.QComboBox()
+        self.rotation.addItems(["0° (C0 along u)", "90° (C0 along v)"])
+        self.rotation.setCurrentIndex(0 if base.rotation == 0 else 1)
+        form.addRow("Rotation", self.rotation)
+        self.dimming = _spin(0.01, 1.0, base.dimming, 2, 0.05)
+        form.addRow("Dimming", self.dimming)
+        self.mf = _spin(0.01, 1.0, base.maintenance_factor, 2, 0.05)
+        form.addRow("Maintenance factor", self.mf)
+        self.free = {}
+        free = QtWidgets.QHBoxLayout()
+        for var in ARRAY_VARIABLES:
+            box = QtWidgets.QCheckBox(FREE_LABELS[var])
+            box.setChecked(var in base.free)
+            self.free[var] = box
+            free.addWidget(box)
+        form.addRow("Free for the optimiser", free)
+        self.rows_range = (_int(1, 100, base.rows_range[0]), _int(1, 100, base.rows_range[1]))
+        self.cols_range = (
+            _int(1, 100, base.columns_range[0]),
+            _int(1, 100, base.columns_range[1]),
+        )
+        self.dim_range = (
+            _spin(0.01, 1.0, base.dimming_range[0], 2, 0.05),
+            _spin(0.01, 1.0, base.dimming_range[1], 2, 0.05),
+        )
+        for label, pair in (
+            ("Rows range", self.rows_range),
+            ("Columns range", self.cols_range),
+            ("Dimming range", self.dim_range),
+        ):
+            line = QtWidgets.QHBoxLayout()
+            line.addWidget(pair[0])
+            line.addWidget(QtWidgets.QLabel("to"))
+            line.addWidget(pair[1])
+            form.addRow(label, line)
+        self.summary = QtWidgets.QLabel()
+        form.addRow(self.summary)
+        for box in (*self.corners, self.dimming):
+            box.valueChanged.connect(self._update)
+        for box in (self.rows, self.columns):
+            box.valueChanged.connect(self._update)
+        self.product.currentTextChanged.connect(self._update)
+        self.zone.currentTextChanged.connect(self._zone_changed)
+        dialogs.ok_cancel(self)
+        self._update()
+
+    def _browse(self) -> None:
+        path = dialogs.open_file(self, "Photometric file", "IES or EULUMDAT (*.ies *.ldt)")
+        if path:
+            self.product.setCurrentText(path)
+
+    def _zone_changed(self, zone: str) -> None:
+        w, h = self.zones.get(zone, (1.0, 1.0))
+        for box, value in zip(self.corners, (0.0, 0.0, w, h), strict=True):
+            box.setValue(value)
+
+    def _update(self) -> None:
+        try:
+            a = self.array()
+            p = resolve_product(a.product, a.watts)
+        except LightInvError as exc:
+            self.summary.setText(f"<span style='color:#b00'>{exc}</span>")
+            return
+        su, sv = a.spacing
+        self.summary.setText(
+            f"{a.count} luminaires, spacing {su:.2f} x {sv:.2f} m; "
+            f"{a.count * p.lumens * a.dimming:,.0f} lm, {a.count * p.watts * a.dimming:,.1f} W"
+        )
+
+    def array(self) -> LuminaireArray:
+        """The array as entered (DesignError naming the bad field)."""
+        return LuminaireArray(
+            self.name.text().strip(),
+            self.zone.currentText(),
+            self.product.currentText().strip(),
+            tuple(b.value() for b in self.corners),
+            rows=self.rows.value(),
+            columns=self.columns.value(),
+            rotation=0 if self.rotation.currentIndex() == 0 else 90,
+            dimming=self.dimming.value(),
+            free=tuple(v for v, box in self.free.items() if box.isChecked()),
+            rows_range=(self.rows_range[0].value(), self.rows_range[1].value()),
+            columns_range=(self.cols_range[0].value(), self.cols_range[1].value()),
+            dimming_range=(self.dim_range[0].value(), self.dim_range[1].value()),
+            maintenance_factor=self.mf.value(),
+        )
+
+
+class WorkplaneDialog(QtWidgets.QDialog):
+    """Fields of one ``Workplane``: name, height, border, floor group."""
+
+    def __init__(
+        self,
+        groups: list[str],
+        base: Workplane | None = None,
+        name: str = "wp",
+        parent: QtWidgets.QWidget | None = None,
+    ):
+        super().__init__(parent)
+        self.setWindowTitle("Work plane")
+        base = base or Workplane(name, group="floor" if "floor" in groups else groups[0])
+        form = QtWidgets.QFormLayout(self)
+        self.name = QtWidgets.QLineEdit(base.name)
+        form.addRow("Name", self.name)
+        self.height = _spin(0.0, 100.0, base.height)
+        form.addRow("Height above the floor (m)", self.height)
+        self.border = _spin(0.0, 100.0, base.border)
+        form.addRow("Border left out (m)", self.border)
+        self.group = QtWidgets.QComboBox()
+        self.group.addItems(groups)
+        self.group.setCurrentText(base.group)
+        form.addRow("Floor group", self.group)
+        dialogs.ok_cancel(self)
+
+    def workplane(self) -> Workplane:
+        """The work plane as entered (DesignError naming the bad field)."""
+        return Workplane(
+            self.name.text().strip(),
+            self.height.value(),
+            self.border.value(),
+            self.group.currentText(),
+        )

@@ -1,0 +1,354 @@
+"""The luminaires panel: the catalogue with polar curves, the design's luminaire arrays
+and its work planes with their EN 12464-1 values, live.
+
+Every edit goes through the editing model (``set_arrays``, ``set_workplanes``,
+``add_intention``), so Edit > Undo takes it back, and the light shown (the arrays placed
+exactly, about a second for a room) follows; the work planes' Em, Emin, Emax and U0 come
+from the light shown. EN 12464-1 presets add an intention on a work plane.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pyqtgraph as pg
+from PySide6 import QtCore, QtWidgets
+
+from app import dialogs
+from app.array_dialog import ArrayDialog, WorkplaneDialog
+from app.document import Document
+from lightinv_core.design.en12464 import REQUIREMENTS, preset_intention
+from lightinv_core.errors import LightInvError
+from lightinv_core.light.arrays import Product, resolve_product
+from lightinv_core.luminaires import builtin_catalogue
+
+ARRAY_COLUMNS = ("array", "zone", "product", "layout", "spacing m", "C0", "dimming", "W")
+PLANE_COLUMNS = ("work plane", "height m", "points", "Em lux", "Emin lux", "Emax lux", "U0")
+
+
+def _table(columns: tuple[str, ...]) -> QtWidgets.QTableWidget:
+    """A read-only table selected by rows."""
+    table = QtWidgets.QTableWidget(0, len(columns))
+    table.setHorizontalHeaderLabels(columns)
+    table.setSelectionBehavior(QtWidgets.QAbstractItemView.SelectRows)
+    table.setEditTriggers(QtWidgets.QAbstractItemView.NoEditTriggers)
+    table.verticalHeader().hide()
+    return table
+
+
+class PolarPlot(pg.PlotWidget):
+    """A product's intensity (cd/klm) in its C0-C180 and C90-C270 planes, as a polar
+    diagram: down is nadir (gamma 0), circles every ``ring`` cd/klm."""
+
+    def __init__(self, parent: QtWidgets.QWidget | None = None):
+        super().__init__(parent)
+        self.setAspectLocked(True)
+        self.hideAxis("bottom")
+        self.hideAxis("left")
+        self.setMinimumHeight(170)
+        self.curves: dict[str, np.ndarray] = {}
+
+    def show_product(self, product: Product | None) -> None:
+        """Draw ``product``'s curves (nothing for None)."""
+        self.clear()
+        self.curves = {}
+        if product is None:
+            return
+        gam = np.radians(np.linspace(0.0, 180.0, 181))
+        per_klm = 1000.0 / max(product.lumens, 1e-9)
+        peak = 1.0
+        for c, colour, style in ((0.0, "#1f77b4", QtCore.Qt.SolidLine), (90.0, "#ff7f0e", None)):
+            deg = np.degrees(gam)
+            right = product.photometry.intensity(np.full_like(deg, c), deg) * per_klm
+            left = product.photometry.intensity(np.full_like(deg, c + 180.0), deg) * per_klm
+            r = np.concatenate([right, left[::-1]])
+            t = np.concatenate([gam, -gam[::-1]])
+            x, y = r * np.sin(t), -r * np.cos(t)
+            pen = pg.mkPen(colour, width=2, style=style or QtCore.Qt.DashLine)
+            self.plot(x, y, pen=pen, name=f"C{c:.0f}")
+            self.curves[f"C{c:.0f}"] = np.column_stack([x, y])
+            peak = max(peak, float(r.max()))
+        # At most four rings at a round step, labelled along the 45-degree line.
+        step = 10 ** np.floor(np.log10(peak / 4))
+        ring = next(m * step for m in (1, 2, 2.5, 5, 10) if peak / (m * step) <= 4)
+        for k in range(1, int(peak // ring) + 1):
+            r = k * ring
+            circle = QtWidgets.QGraphicsEllipseItem(-r, -r, 2 * r, 2 * r)
+            circle.setPen(pg.mkPen("#bbbbbb", width=1))
+            self.addItem(circle)
+            label = pg.TextItem(f"{r:g}", color="#777777", anchor=(0, 0))
+            label.setPos(r * np.sqrt(0.5), -r * np.sqrt(0.5))
+            self.addItem(label)
+        for angle in (0.0, 45.0, 90.0):  # nadir, 45 and 90 degrees either side
+            t = np.radians(angle)
+            for sign in (1, -1):
+                self.plot(
+                    [0, sign * peak * np.sin(t)],
+                    [0, -peak * np.cos(t)],
+                    pen=pg.mkPen("#dddddd", width=1),
+                )
+        self.setTitle(f"{product.name}: cd/klm (C0 solid, C90 dashed)", size="8pt")
+
+
+class LuminairesPanel(QtWidgets.QWidget):
+    """Catalogue, arrays and work planes of the open design (see the module)."""
+
+    def __init__(self, doc: Document, parent: QtWidgets.QWidget | None = None):
+        super().__init__(parent)
+        self.doc = doc
+        lay = QtWidgets.QVBoxLayout(self)
+        cat_box = QtWidgets.QGroupBox("Catalogue")
+        cat = QtWidgets.QVBoxLayout(cat_box)
+        self.catalogue = _table(("product", "lm", "W", "lm/W"))
+        self.catalogue.horizontalHeader().setStretchLastSection(True)
+        self.catalogue.setMaximumHeight(130)
+        cat.addWidget(self.catalogue)
+        self.polar = PolarPlot()
+        cat.addWidget(self.polar)
+        lay.addWidget(cat_box)
+
+        arr_box = QtWidgets.QGroupBox("Luminaire arrays")
+        arr = QtWidgets.QVBoxLayout(arr_box)
+        self.arrays = _table(ARRAY_COLUMNS)
+        self.arrays.doubleClicked.connect(lambda _: self.edit_array())
+        arr.addWidget(self.arrays)
+        row = QtWidgets.QHBoxLayout()
+        self.add_array_button = QtWidgets.QPushButton("Add array…")
+        self.edit_array_button = QtWidgets.QPushButton("Edit…")
+        self.remove_array_button = QtWidgets.QPushButton("Remove")
+        for b in (self.add_array_button, self.edit_array_button, self.remove_array_button):
+            row.addWidget(b)
+        arr.addLayout(row)
+        self.add_array_button.clicked.connect(lambda: self.add_array())
+        self.edit_array_button.clicked.connect(lambda: self.edit_array())
+        self.remove_array_button.clicked.connect(self.remove_array)
+        lay.addWidget(arr_box)
+
+        wp_box = QtWidgets.QGroupBox("Work planes (EN 12464-1, maintained)")
+        wp = QtWidgets.QVBoxLayout(wp_box)
+        self.planes = _table(PLANE_COLUMNS)
+        wp.addWidget(self.planes)
+        row = QtWidgets.QHBoxLayout()
+        self.add_plane_button = QtWidgets.QPushButton("Add work plane…")
+        self.remove_plane_button = QtWidgets.QPushButton("Remove")
+        self.preset = QtWidgets.QComboBox()
+        self.preset.addItem("EN 12464-1 intention…", None)
+        for r in REQUIREMENTS:
+            self.preset.addItem(f"{r.activity}: {r.em:g} lux, U0 {r.u0:.2f}", r.key)
+        for w in (self.add_plane_button, self.remove_plane_button, self.preset):
+            row.addWidget(w)
+        wp.addLayout(row)
+        self.add_plane_button.clicked.connect(lambda: self.add_workplane())
+        self.remove_plane_button.clicked.connect(self.remove_workplane)
+        self.preset.activated.connect(self._preset)
+        self.status = QtWidgets.QLabel()
+        self.status.setWordWrap(True)
+        wp.addWidget(self.status)
+        lay.addWidget(wp_box)
+
+        self._fill_catalogue()
+        self.catalogue.itemSelectionChanged.connect(self._show_product)
+        self.catalogue.selectRow(0)
+        doc.designChanged.connect(self.refresh)
+        doc.lightingChanged.connect(self.refresh)
+        doc.sceneChanged.connect(self.refresh)
+        self.refresh()
+
+    # -- catalogue ------------------------------------------------------------------------
+    def _fill_catalogue(self) -> None:
+        entries = builtin_catalogue()
+        self.catalogue.setRowCount(len(entries))
+        for i, e in enumerate(entries):
+            for j, text in enumerate(
+                (e.name, f"{e.lumens:,.0f}", f"{e.watts:g}", f"{e.efficacy:.0f}")
+            ):
+                self.catalogue.setItem(i, j, QtWidgets.QTableWidgetItem(text))
+        self.catalogue.resizeColumnsToContents()
+
+    def _show_product(self) -> None:
+        rows = self.catalogue.selectionModel().selectedRows()
+        if not rows:
+            self.polar.show_product(None)
+            return
+        name = self.catalogue.item(rows[0].row(), 0).text()
+        self.polar.show_product(resolve_product(name))
+
+    def selected_product(self) -> str | None:
+        """The catalogue product selected, by name."""
+        rows = self.catalogue.selectionModel().selectedRows()
+        return self.catalogue.item(rows[0].row(), 0).text() if rows else None
+
+    # -- arrays ---------------------------------------------------------------------------
+    def _luminaire_zones(self) -> dict[str, tuple[float, float]]:
+        d = self.doc
+        if d.project is None:
+            return {}
+        return {z: d.zone_size(z) for z in d.patches.zone_names if d.zone_kind(z) == "luminaire"}
+
+    def _new_name(self, prefix: str, taken) -> str:
+        k = 1
+        while f"{prefix}{k}" in taken:
+            k += 1
+        return f"{prefix}{k}"
+
+    def add_array(self, dialog: ArrayDialog | None = None) -> bool:
+        """Ask for a new array (``dialog`` given: take it as answered) and add it."""
+        zones = self._luminaire_zones()
+        if not zones:
+            dialogs.warn(self, "The scene has no luminaire zone to mount an array in.")
+            return False
+        d = self.doc.design
+        taken = {s.name for s in d.sources} | {a.name for a in d.arrays}
+        if dialog is None:
+            dialog = ArrayDialog(zones, name=self._new_name("A", taken), parent=self)
+            product = self.selected_product()
+            if product:
+                dialog.product.setCurrentText(product)
+            if not dialogs.accepted(dialog):
+                return False
+        try:
+            array = dialog.array()
+            resolve_product(array.product, array.watts)
+            self.doc.set_arrays((*d.arrays, array), f"add array {array.name}")
+        except LightInvError as exc:
+            dialogs.warn(self, str(exc))
+            return False
+        return True
+
+    def current_array(self) -> int | None:
+        rows = self.arrays.selectionModel().selectedRows()
+        return rows[0].row() if rows else None
+
+    def edit_array(self, dialog: ArrayDialog | None = None) -> bool:
+        """Edit the selected array."""
+        i = self.current_array()
+        if i is None:
+            return False
+        arrays = self.doc.design.arrays
+        if dialog is None:
+            dialog = ArrayDialog(self._luminaire_zones(), arrays[i], parent=self)
+            if not dialogs.accepted(dialog):
+                return False
+        try:
+            new = dialog.array()
+            resolve_product(new.product, new.watts)
+            self.doc.set_arrays(
+                (*arrays[:i], new, *arrays[i + 1 :]), f"edit array {arrays[i].name}"
+            )
+        except LightInvError as exc:
+            dialogs.warn(self, str(exc))
+            return False
+        return True
+
+    def remove_array(self) -> None:
+        i = self.current_array()
+        if i is None:
+            return
+        arrays = self.doc.design.arrays
+        self.doc.set_arrays(arrays[:i] + arrays[i + 1 :], f"remove array {arrays[i].name}")
+
+    # -- work planes ----------------------------------------------------------------------
+    def add_workplane(self, dialog: WorkplaneDialog | None = None) -> bool:
+        """Ask for a new work plane and add it."""
+        d = self.doc
+        if d.project is None:
+            return False
+        if dialog is None:
+            taken = {w.name for w in d.design.workplanes}
+            name = "wp" if "wp" not in taken else self._new_name("wp", taken)
+            dialog = WorkplaneDialog(list(d.patches.group_names), name=name, parent=self)
+            if not dialogs.accepted(dialog):
+                return False
+        try:
+            wp = dialog.workplane()
+            d.set_workplanes((*d.design.workplanes, wp), f"add work plane {wp.name}")
+        except LightInvError as exc:
+            dialogs.warn(self, str(exc))
+            return False
+        return True
+
+    def remove_workplane(self) -> None:
+        rows = self.planes.selectionModel().selectedRows()
+        if not rows:
+            return
+        i = rows[0].row()
+        planes = self.doc.design.workplanes
+        self.doc.set_workplanes(planes[:i] + planes[i + 1 :], f"remove work plane {planes[i].name}")
+
+    def _preset(self, index: int) -> None:
+        key = self.preset.itemData(index)
+        self.preset.setCurrentIndex(0)
+        if key is not None:
+            self.add_preset(key)
+
+    def add_preset(self, key: str) -> bool:
+        """Add the EN 12464-1 preset ``key`` as an intention on the selected (or first)
+        work plane."""
+        d = self.doc
+        planes = d.design.workplanes
+        if not planes:
+            dialogs.warn(self, "Add a work plane first: EN 12464-1 values apply to its grid.")
+            return False
+        rows = self.planes.selectionModel().selectedRows()
+        plane = planes[rows[0].row() if rows else 0].name
+        taken = {i.name for i in d.design.intentions}
+        it = preset_intention(key, plane)
+        name = it.name if it.name not in taken else self._new_name(f"{it.name}-", taken)
+        try:
+            d.add_intention(preset_intention(key, plane, name))
+        except LightInvError as exc:
+            dialogs.warn(self, str(exc))
+            return False
+        return True
+
+    # -- refresh --------------------------------------------------------------------------
+    def refresh(self) -> None:
+        d = self.doc
+        design = d.design if d.project is not None else None
+        arrays = design.arrays if design is not None else ()
+        self.arrays.setRowCount(len(arrays))
+        for i, a in enumerate(arrays):
+            try:
+                p = resolve_product(a.product, a.watts)
+                product, watts = p.name, f"{a.count * p.watts * a.dimming:,.1f}"
+            except LightInvError:
+                product, watts = a.product, "?"
+            su, sv = a.spacing
+            cells = (
+                a.name,
+                a.zone,
+                product,
+                f"{a.rows} x {a.columns}",
+                f"{su:.2f} x {sv:.2f}",
+                f"{a.rotation}°",
+                f"{100 * a.dimming:.0f}%",
+                watts,
+            )
+            for j, text in enumerate(cells):
+                self.arrays.setItem(i, j, QtWidgets.QTableWidgetItem(text))
+        self.arrays.resizeColumnsToContents()
+        planes = design.workplanes if design is not None else ()
+        stats = d.grid_stats() if design is not None else {}
+        self.planes.setRowCount(len(planes))
+        for i, w in enumerate(planes):
+            st = stats.get(w.name)
+            cells = [w.name, f"{w.height:.2f}"]
+            if st is None:
+                cells += ["—"] * 5
+            else:
+                cells += [
+                    str(st["points"]),
+                    f"{st['Em']:.0f}",
+                    f"{st['Emin']:.0f}",
+                    f"{st['Emax']:.0f}",
+                    f"{st['U0']:.2f}",
+                ]
+            for j, text in enumerate(cells):
+                self.planes.setItem(i, j, QtWidgets.QTableWidgetItem(text))
+        self.planes.resizeColumnsToContents()
+        if design is not None and planes and not stats:
+            self.status.setText("Values appear once the radiosity operator is ready.")
+        elif design is not None and arrays:
+            total = sum(a.count for a in arrays)
+            self.status.setText(f"{total} luminaires in {len(arrays)} arrays.")
+        else:
+            self.status.setText("")

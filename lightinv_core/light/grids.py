@@ -1,0 +1,129 @@
+"""Work-plane grids of a design: their points and the zone sources' light there.
+
+A grid point takes light from the patches it sees and gives none back
+(``transport/receivers.py``): with F_p its traced form factors to the patches, the
+light of zone emission e (lm/m² on the emitter-zone patches) at the points is
+
+    H_p = F_p[:, zone] e + F_p R Phi e,
+
+so the zone basis at the points, Phi_p = F_p[:, zone] + F_p R Phi (q, nz), is
+precomputed once and a candidate costs O(q) per emitting zone patch, like a patch
+receiver. Phi's rows are made only where the points see patches, a block at a time.
+"""
+
+from __future__ import annotations
+
+import weakref
+from collections.abc import Sequence
+from dataclasses import dataclass
+
+import numpy as np
+
+from lightinv_core.design.model import Daylight, LuminaireArray, Source, Workplane
+from lightinv_core.light.arrays import arrays_field, caster_for
+from lightinv_core.light.model import LightModel
+from lightinv_core.operator.radiosity import BASIS_BYTES
+from lightinv_core.sources.emission import source_stack
+from lightinv_core.transport.formfactors import DEFAULT_RAYS
+from lightinv_core.transport.receivers import receiver_factors
+from lightinv_core.transport.workplane import Grid, WorkPlane, grid_statistics, work_plane_grid
+
+GRID_SEED_OFFSET = 7  # the points' rays draw from a stream of their own
+
+
+@dataclass(frozen=True)
+class DesignGrids:
+    """The grids of a design's work planes, stacked: ``points`` (q, 3) m, ``spans``
+    {work plane name: slice of the points}, ``grids`` {name: Grid}, ``floor_z``
+    {name: height of its floor, m}, and ``Phi`` (q, nz) float32, the zone basis at the
+    points (lux per lm/m² of each emitter-zone patch)."""
+
+    points: np.ndarray
+    spans: dict[str, slice]
+    grids: dict[str, Grid]
+    floor_z: dict[str, float]
+    Phi: np.ndarray
+
+    def plane_height(self, name: str) -> float:
+        """World height (m) of work plane ``name``."""
+        span = self.spans[name]
+        return float(self.points[span][0, 2])
+
+
+_GRIDS: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()
+
+
+def design_grids(light: LightModel, workplanes: Sequence[Workplane]) -> DesignGrids:
+    """Lay out each work plane's EN 12464-1 grid and precompute its zone basis
+    (remembered per operator and work planes)."""
+    memo = _GRIDS.setdefault(light.op, {})
+    key = tuple(workplanes)
+    if key not in memo:
+        memo.clear()  # one set of work planes at a time per operator
+        memo[key] = _design_grids(light, key)
+    return memo[key]
+
+
+def _design_grids(light: LightModel, workplanes: Sequence[Workplane]) -> DesignGrids:
+    patches, op = light.patches, light.op
+    caster = caster_for(patches)
+    grids, spans, floor_z, chunks = {}, {}, {}, []
+    start = 0
+    for wp in workplanes:
+        g = work_plane_grid(patches, caster, WorkPlane(wp.height, wp.border, wp.group))
+        grids[wp.name] = g
+        spans[wp.name] = slice(start, start + len(g.points))
+        floor_z[wp.name] = float(g.points[0, 2] - wp.height)
+        start += len(g.points)
+        chunks.append(g.points)
+    points = np.vstack(chunks) if chunks else np.zeros((0, 3))
+    nz = len(op.zone_patches)
+    if not len(points):
+        return DesignGrids(points, spans, grids, floor_z, np.zeros((0, nz), np.float32))
+    rays = int(op.info.get("rays", DEFAULT_RAYS))
+    seed = int(op.info.get("seed", 0)) + GRID_SEED_OFFSET
+    normals = np.broadcast_to([0.0, 0.0, 1.0], points.shape)
+    Fp = receiver_factors(points, normals, caster, patches.n, rays, seed).tocsc()
+    seen = np.flatnonzero(np.diff(Fp.indptr))
+    Phi = np.zeros((len(points), nz), np.float32)
+    R = (Fp[:, seen].multiply(op.rho[seen][None, :])).tocsr().astype(np.float32)
+    # The rows of the basis the points see, a block at a time (memory O(block x nz)).
+    block = max(1, BASIS_BYTES // (8 * max(nz, 1)))
+    for a in range(0, len(seen), block):
+        Phi += np.asarray(R[:, a : a + block] @ op.phi_rows(seen[a : a + block]))
+    Phi += Fp[:, op.zone_patches].toarray().astype(np.float32)
+    # Shared by every problem and view of these work planes: nobody may change them.
+    for a in (points, Phi):
+        a.setflags(write=False)
+    return DesignGrids(points, spans, grids, floor_z, Phi)
+
+
+def grid_light(
+    light: LightModel,
+    grids: DesignGrids,
+    sources: Sequence[Source],
+    arrays: Sequence[LuminaireArray],
+    daylight: Daylight,
+) -> np.ndarray:
+    """Illuminance (lux, maintained) at every grid point of a layout: its zone sources
+    through the points' zone basis, its arrays placed exactly (no lattice)."""
+    lux = np.zeros(len(grids.points))
+    if sources:
+        V = light.zone_emission(sources, *source_stack(sources), daylight)[:, 0]
+        lux += grids.Phi.astype(float) @ V.astype(float)
+    if arrays:
+        _, at_points = arrays_field(light.patches, light.op, arrays, grids.points)
+        lux += at_points
+    return lux
+
+
+def grid_results(
+    light: LightModel,
+    grids: DesignGrids,
+    sources: Sequence[Source],
+    arrays: Sequence[LuminaireArray],
+    daylight: Daylight,
+) -> dict[str, dict[str, float]]:
+    """EN 12464-1 values (points, Em, Emin, Emax lux, U0) of each work plane."""
+    lux = grid_light(light, grids, sources, arrays, daylight)
+    return {name: grid_statistics(lux[span]) for name, span in grids.spans.items()}

@@ -1,0 +1,193 @@
+"""The report's pages on luminaire arrays and work planes, in EN 12464-1's terms.
+
+- the luminaire schedule: per array its product, count, spacing, rotation, dimming,
+  flux and power, and the totals;
+- polar curves of each product (C0-C180 and C90-C270 planes, cd per 1000 lm);
+- per work plane: its grid and the maintained values Em, Emin, Emax and U0 against the
+  intentions on it, with an iso-lux plan.
+
+Grid values come with the luminaires placed exactly (not the optimiser's lattice).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+
+import numpy as np
+
+from lightinv_core.design.model import Design, LuminaireArray
+from lightinv_core.kinds import Bound
+from lightinv_core.light.arrays import Product, resolve_product
+from lightinv_core.light.grids import DesignGrids
+from lightinv_core.report.figures import new_figure
+from lightinv_core.report.tables import FAIL, PASS, Table, fmt
+from lightinv_core.transport.workplane import grid_statistics
+
+ISO_LEVELS = 8  # iso-lux lines per plan
+
+
+def luminaire_table(arrays: Sequence[LuminaireArray]) -> Table | None:
+    """The luminaire schedule (None without arrays)."""
+    if not arrays:
+        return None
+    rows = []
+    count = watts = lumens = 0.0
+    for a in arrays:
+        p = resolve_product(a.product, a.watts)
+        su, sv = a.spacing
+        w = a.count * p.watts * a.dimming
+        lm = a.count * p.lumens * a.dimming
+        count, watts, lumens = count + a.count, watts + w, lumens + lm
+        rows.append(
+            (
+                a.name,
+                p.name,
+                f"{a.rows} x {a.columns} = {a.count}",
+                f"{su:.2f} x {sv:.2f}",
+                f"{a.rotation}°",
+                f"{100 * a.dimming:.0f}%",
+                f"{p.lumens:,.0f}",
+                f"{p.watts:g}",
+                f"{lm:,.0f}",
+                f"{w:,.1f}",
+            )
+        )
+    rows.append(
+        ("total", "", f"{count:.0f}", "", "", "", "", "", f"{lumens:,.0f}", f"{watts:,.1f}")
+    )
+    return Table(
+        "Luminaire schedule",
+        (
+            "array",
+            "product",
+            "rows x columns",
+            "spacing m",
+            "C0",
+            "dimming",
+            "lm each",
+            "W each",
+            "lm",
+            "W",
+        ),
+        tuple(rows),
+        note="Spacing along the zone's u and v axes; C0 at 0° runs along u. Output and power "
+        "scale with dimming.",
+    )
+
+
+def polar_figure(products: Sequence[Product]):
+    """Polar curves (cd/klm) of each product in its C0-C180 and C90-C270 planes."""
+    products = list({p.name: p for p in products}.values())
+    if not products:
+        return None
+    fig = new_figure()
+    fig.suptitle(
+        "Luminous intensity distributions (cd per 1000 lm)", fontsize=14, x=0.06, ha="left"
+    )
+    gam = np.linspace(0.0, 180.0, 181)
+    for k, p in enumerate(products):
+        ax = fig.add_subplot(1, len(products), k + 1, projection="polar")
+        ax.set_theta_zero_location("S")
+        per_klm = 1000.0 / max(p.lumens, 1e-9)
+        for c, style in ((0.0, "-"), (90.0, "--")):
+            right = p.photometry.intensity(np.full_like(gam, c), gam) * per_klm
+            left = p.photometry.intensity(np.full_like(gam, c + 180.0), gam) * per_klm
+            theta = np.concatenate([np.radians(gam), -np.radians(gam[::-1])])
+            r = np.concatenate([right, left[::-1]])
+            ax.plot(theta, r, style, lw=1.6, label=f"C{c:.0f}-C{c + 180:.0f}")
+        ax.set_title(f"{p.name}\n{p.lumens:,.0f} lm, {p.watts:g} W", fontsize=10)
+        ax.tick_params(labelsize=7)
+        ax.legend(fontsize=7, loc="lower right", bbox_to_anchor=(1.15, -0.12))
+    return fig
+
+
+def grid_table(design: Design, grids: DesignGrids, lux: np.ndarray) -> Table | None:
+    """EN 12464-1 values of each work plane with its intentions' verdicts."""
+    if not grids.spans:
+        return None
+    rows, flags = [], []
+    for name, span in grids.spans.items():
+        st = grid_statistics(lux[span])
+        g = grids.grids[name]
+        asks = [it for it in design.intentions if it.grid == name]
+        values = {
+            Bound.AVERAGE: st["Em"],
+            Bound.MIN: st["Emin"],
+            Bound.MAX: st["Emax"],
+            Bound.UNIFORMITY: st["U0"],
+        }
+        required = []
+        ok = True
+        for it in asks:
+            for bound in Bound:
+                limit = getattr(it, bound)
+                if limit is None:
+                    continue
+                label = {"average": "Em", "min": "Emin", "max": "Emax", "uniformity": "U0"}
+                sign = "≤" if bound == Bound.MAX else "≥"
+                required.append(f"{label[bound]} {sign} {fmt(limit)}")
+                v = values[bound]
+                met = v <= limit * 1.001 if bound == Bound.MAX else v >= limit * 0.999
+                ok = ok and met
+        rows.append(
+            (
+                name,
+                f"{st['points']} ({g.spacing[0]:.2f} x {g.spacing[1]:.2f} m)",
+                fmt(st["Em"]),
+                fmt(st["Emin"]),
+                fmt(st["Emax"]),
+                fmt(st["U0"], 3),
+                ", ".join(required) or "—",
+                (PASS if ok else FAIL) if asks else "—",
+            )
+        )
+        flags.append(("pass" if ok else "fail") if asks else "")
+    return Table(
+        "Work planes (EN 12464-1)",
+        (
+            "work plane",
+            "points (spacing)",
+            "Em lux",
+            "Emin lux",
+            "Emax lux",
+            "U0",
+            "required",
+            "result",
+        ),
+        tuple(rows),
+        tuple(flags),
+        note="Maintained values (maintenance factor applied) with the luminaires placed "
+        "exactly; grid spacing by p = 0.2 x 5^log10(d). A bound met to within 0.1% passes.",
+    )
+
+
+def isolux_figures(grids: DesignGrids, lux: np.ndarray) -> list:
+    """A plan of each work plane: the grid points coloured by lux, with iso-lux lines."""
+    figs = []
+    for name, span in grids.spans.items():
+        pts, val = grids.points[span], lux[span]
+        fig = new_figure()
+        ax = fig.add_axes([0.08, 0.1, 0.78, 0.8])
+        st = grid_statistics(val)
+        ax.set_title(
+            f"Work plane {name} at z = {pts[0, 2]:.2f} m: Em {st['Em']:.0f} lux, "
+            f"Emin {st['Emin']:.0f}, Emax {st['Emax']:.0f}, U0 {st['U0']:.2f}",
+            fontsize=12,
+        )
+        sc = ax.scatter(pts[:, 0], pts[:, 1], c=val, cmap="inferno", s=30, vmin=0.0)
+        if len(pts) >= 4 and np.ptp(val) > 0:
+            levels = np.linspace(val.min(), val.max(), ISO_LEVELS + 2)[1:-1]
+            cs = ax.tricontour(
+                pts[:, 0], pts[:, 1], val, levels=levels, colors="0.2", linewidths=0.8
+            )
+            ax.clabel(cs, fmt="%.0f", fontsize=7)
+        ax.set_aspect("equal")
+        pad = 0.5 * max(grids.grids[name].spacing)
+        ax.set_xlim(pts[:, 0].min() - pad, pts[:, 0].max() + pad)
+        ax.set_ylim(pts[:, 1].min() - pad, pts[:, 1].max() + pad)
+        ax.set_xlabel("x (m)")
+        ax.set_ylabel("y (m)")
+        cb = fig.colorbar(sc, cax=fig.add_axes([0.88, 0.1, 0.02, 0.8]))
+        cb.set_label("illuminance (lux)")
+        figs.append(fig)
+    return figs

@@ -1,0 +1,126 @@
+"""The window's luminaires panel: catalogue and polar curves, arrays added and edited in
+their dialog, luminaires drawn in the view, work planes with live EN 12464-1 values and
+iso-lux lines, presets, undo, and a run that lays the arrays out."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from app.array_dialog import ArrayDialog, WorkplaneDialog
+from tests.app.conftest import wait_for_operator
+
+
+def _arrays_window(qtbot, window):
+    assert window.new_project("office", 0.5)
+    wait_for_operator(qtbot, window, timeout=120_000)
+    return window.doc, window.luminaires_panel
+
+
+def test_catalogue_shows_each_products_polar_curves(qtbot, window):
+    panel = window.luminaires_panel
+    assert panel.catalogue.rowCount() == 3
+    panel.catalogue.selectRow(1)
+    assert "batwing" in panel.polar.getPlotItem().titleLabel.text.lower()
+    c0, c90 = panel.polar.curves["C0"], panel.polar.curves["C90"]
+    # The batwing is wider across (C90) than along (C0).
+    assert np.abs(c90[:, 0]).max() > 1.3 * np.abs(c0[:, 0]).max()
+    panel.grab().save("/tmp/luminaires-panel-catalogue.png")
+
+
+def test_arrays_and_work_planes_are_edited_and_shown_live(qtbot, window, tmp_path):
+    d, panel = _arrays_window(qtbot, window)
+    base = d.lighting().copy()
+    # A work plane first: no light from luminaires yet (the office has none lit).
+    assert panel.add_workplane(WorkplaneDialog(list(d.patches.group_names), name="wp"))
+    assert d.grid_stats()["wp"]["points"] > 20
+    zones = {z: d.zone_size(z) for z in ("lum_west", "lum_east")}
+    dialog = ArrayDialog(zones, name="A1")
+    dialog.zone.setCurrentText("lum_west")
+    dialog.product.setCurrentText("Linear batwing 4000 lm 32 W")
+    dialog.rows.setValue(3)
+    dialog.columns.setValue(1)
+    dialog.rotation.setCurrentIndex(1)
+    assert "3 luminaires" in dialog.summary.text()
+    assert panel.add_array(dialog)
+    assert [a.name for a in d.design.arrays] == ["A1"]
+    em1 = d.grid_stats()["wp"]["Em"]
+    assert em1 > 40 and d.lighting().max() > base.max()
+    assert panel.arrays.item(0, 3).text() == "3 x 1"
+    # Edit: six rows -> more light on the plane, the table follows.
+    panel.arrays.selectRow(0)
+    edit = ArrayDialog(zones, d.design.arrays[0])
+    edit.rows.setValue(6)
+    assert panel.edit_array(edit)
+    em2 = d.grid_stats()["wp"]["Em"]
+    assert em2 == pytest.approx(2 * em1, rel=0.1)
+    assert panel.planes.item(0, 3).text() == f"{em2:.0f}"
+    # The view draws the six luminaires and the plane's iso-lux lines.
+    plotter = window.viewport.plotter
+    assert "luminaires" in plotter.actors and "isolux" in plotter.actors
+    # An EN 12464-1 preset becomes an intention on the plane; the Achieved tab shows it.
+    assert panel.add_preset("filing")
+    it = d.design.intentions[-1]
+    assert (it.grid, it.average, it.uniformity) == ("wp", 300.0, 0.4)
+    rows = window.achieved_panel.rows()
+    assert any(r[0] == "filing" and r[1] == "average ≥" for r in rows)
+    window.grab().save("/tmp/luminaires-window.png")
+    panel.grab().save("/tmp/luminaires-panel.png")
+    window.viewport.screenshot("/tmp/luminaires-view.png")
+    # Undo takes the preset back, then the edit.
+    window.act_undo.trigger()
+    assert not any(i.grid for i in d.design.intentions)
+    window.act_undo.trigger()
+    assert d.design.arrays[0].rows == 3
+    # Saved and opened again.
+    assert window.save_to(tmp_path / "a.json")
+    from lightinv_core.project import load_project
+
+    again = load_project(tmp_path / "a.json")
+    assert again.design.arrays[0].product == "Linear batwing 4000 lm 32 W"
+    assert again.design.workplanes[0].name == "wp"
+
+
+def test_a_bad_array_is_refused_with_a_message(qtbot, window, monkeypatch):
+    d, panel = _arrays_window(qtbot, window)
+    said = []
+    monkeypatch.setattr("app.dialogs.warn", lambda parent, msg: said.append(msg))
+    dialog = ArrayDialog({"lum_west": d.zone_size("lum_west")}, name="A1")
+    dialog.product.setCurrentText("no such product")
+    assert "neither a catalogue luminaire" in dialog.summary.text()
+    assert not panel.add_array(dialog)
+    assert said and "neither a catalogue luminaire" in said[0]
+    assert not d.design.arrays
+
+
+def test_a_run_lays_the_arrays_out_and_loads_them(qtbot, window):
+    """An optimisation of array rows, columns and dimming against an EN 12464-1 preset on the
+    work plane: the best layout comes back into the design and the panel."""
+    from tests.app.test_optimisation import run_and_wait
+
+    d, panel = _arrays_window(qtbot, window)
+    assert panel.add_workplane(WorkplaneDialog(list(d.patches.group_names), name="wp"))
+    zones = {z: d.zone_size(z) for z in ("lum_west", "lum_east")}
+    for name, zone in (("W", "lum_west"), ("E", "lum_east")):
+        dialog = ArrayDialog(zones, name=name)
+        dialog.zone.setCurrentText(zone)
+        dialog.product.setCurrentText("Linear batwing 4000 lm 32 W")
+        dialog.rotation.setCurrentIndex(1)
+        dialog.rows.setValue(2)
+        dialog.columns.setValue(1)
+        for var, box in dialog.free.items():
+            box.setChecked(var in ("rows", "columns", "dimming"))
+        dialog.rows_range[1].setValue(5)
+        dialog.cols_range[1].setValue(3)
+        assert panel.add_array(dialog)
+    assert panel.add_preset("archive")  # Em 200 lux, U0 0.4
+    d.set_optimizer(method="vns", max_evals=3000)
+    status = run_and_wait(qtbot, window, timeout=180_000)
+    assert status == "feasible"
+    best = d.project.runs[-1].solutions[0]
+    assert best.arrays and d.design.arrays[0].rows == best.arrays[0].rows
+    stats = d.grid_stats()["wp"]
+    assert stats["Em"] >= 200 * 0.999 and stats["U0"] >= 0.4 * 0.999
+    a = best.arrays[0]
+    assert panel.arrays.item(0, 3).text() == f"{a.rows} x {a.columns}"
+    window.grab().save("/tmp/luminaires-run.png")
