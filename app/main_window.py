@@ -443,12 +443,15 @@ class MainWindow(QtWidgets.QMainWindow):
         return True
 
     def add_rule(self, dialog=None) -> bool:
-        """Ask for a geometric rule (area, aspect, spacing, align) and add it."""
-        names = [x.name for x in self.doc.design.sources] if self.doc.project else []
-        if not names:
-            dialogs.inform(self, "Add sources first: rules bind sources.")
+        """Ask for a geometric rule (area, aspect, spacing, align; spacing-to-height and
+        clearance on luminaire arrays) and add it."""
+        d = self.doc.design if self.doc.project else None
+        names = [x.name for x in d.sources] if d is not None else []
+        arrays = [a.name for a in d.arrays] if d is not None else []
+        if not names and not arrays:
+            dialogs.inform(self, "Add sources or luminaire arrays first: rules bind them.")
             return False
-        dialog = dialog or RuleDialog(names, self)
+        dialog = dialog or RuleDialog(names, self, arrays)
         if not dialogs.accepted(dialog):
             return False
         try:

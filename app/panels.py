@@ -582,27 +582,27 @@ RULE_KINDS = {
     "aspect": "aspect ratio of each source (long / short side)",
     "spacing": "gap between two sources in one zone (m)",
     "align": "sources on one line along a zone axis",
+    "shr": "luminaire arrays: spacing / mounting height",
+    "clearance": "luminaire arrays: clearance to the zone's edges (m)",
 }
+ARRAY_KINDS = ("shr", "clearance")
 
 
 class RuleDialog(QtWidgets.QDialog):
     """A new geometric rule: its kind, the sources it binds, its bounds or axis.
     (Mirror and centred rules are set in the Properties panel.)"""
 
-    def __init__(self, sources: list[str], parent: QtWidgets.QWidget | None = None):
+    def __init__(self, sources: list[str], parent: QtWidgets.QWidget | None = None, arrays=()):
         super().__init__(parent)
         self.setWindowTitle("Add a geometric rule")
+        self.names = {"sources": list(sources), "arrays": list(arrays)}
         form = QtWidgets.QFormLayout(self)
         self.kind = QtWidgets.QComboBox()
         for key, text in RULE_KINDS.items():
-            self.kind.addItem(text, key)
+            if (key in ARRAY_KINDS and arrays) or (key not in ARRAY_KINDS and sources):
+                self.kind.addItem(text, key)
         form.addRow("Rule", self.kind)
         self.sources = QtWidgets.QListWidget()
-        for name in sources:
-            item = QtWidgets.QListWidgetItem(name)
-            item.setFlags(item.flags() | QtCore.Qt.ItemIsUserCheckable)
-            item.setCheckState(QtCore.Qt.Checked)
-            self.sources.addItem(item)
         self.sources.setMaximumHeight(110)
         form.addRow("Sources", self.sources)
         self.bounds = {}
@@ -618,8 +618,27 @@ class RuleDialog(QtWidgets.QDialog):
 
     def _kind_changed(self) -> None:
         kind = self.kind.currentData()
+        # Rules on arrays list the arrays, the others the sources.
+        names = self.names["arrays" if kind in ARRAY_KINDS else "sources"]
+        if [self.sources.item(i).text() for i in range(self.sources.count())] != names:
+            self.sources.clear()
+            for name in names:
+                item = QtWidgets.QListWidgetItem(name)
+                item.setFlags(item.flags() | QtCore.Qt.ItemIsUserCheckable)
+                item.setCheckState(QtCore.Qt.Checked)
+                self.sources.addItem(item)
+        if kind == "shr":
+            self.bounds["max"][0].setChecked(True)
+            self.bounds["max"][1].setValue(1.5)
+        elif kind == "clearance":
+            self.bounds["min"][0].setChecked(True)
+            self.bounds["min"][1].setValue(0.1)
         for key, (check, box) in self.bounds.items():
-            usable = kind in ("area", "spacing") or (kind == "aspect" and key == "max")
+            usable = (
+                kind in ("area", "spacing")
+                or (kind in ("aspect", "shr") and key == "max")
+                or (kind == "clearance" and key == "min")
+            )
             check.setEnabled(usable)
             box.setEnabled(usable and check.isChecked())
         self.axis.setEnabled(kind == "align")

@@ -149,6 +149,10 @@ def rule_text(rule) -> tuple[str, str]:
         return f"align {names}", f"along {rule.axis}"
     if rule.kind == "centred":
         return f"centred {names}", "in their zones"
+    if rule.kind == "shr":
+        return f"spacing/height {names}", f"at most {rule.max:g}"
+    if rule.kind == "clearance":
+        return f"clearance {names}", f"at least {rule.min:g} m from the zone's edges"
     units = {"area": " m²", "spacing": " m", "aspect": ""}[rule.kind]
     lo = f"at least {rule.min:g}{units}" if rule.min is not None else ""
     hi = f"at most {rule.max:g}{units}" if rule.max is not None else ""

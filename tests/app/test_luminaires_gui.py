@@ -124,3 +124,37 @@ def test_a_run_lays_the_arrays_out_and_loads_them(qtbot, window):
     a = best.arrays[0]
     assert panel.arrays.item(0, 3).text() == f"{a.rows} x {a.columns}"
     window.grab().save("/tmp/luminaires-run.png")
+
+
+def test_rules_on_arrays_are_added_in_the_rule_dialog_and_listed(qtbot, window):
+    from PySide6 import QtWidgets
+
+    from app.panels import RuleDialog
+
+    d, panel = _arrays_window(qtbot, window)
+    zones = {z: d.zone_size(z) for z in ("lum_west", "lum_east")}
+    assert panel.add_array(ArrayDialog(zones, name="A1"))
+    dialog = RuleDialog([], window, ["A1"])
+    # Only the array rules are offered without sources, and they list the arrays.
+    assert [dialog.kind.itemData(i) for i in range(dialog.kind.count())] == ["shr", "clearance"]
+    dialog.set_rule("shr", ["A1"], max=1.2)
+    dialog.setResult(QtWidgets.QDialog.Accepted)
+    assert window.add_rule(dialog)
+    clear = RuleDialog([], window, ["A1"])
+    clear.set_rule("clearance", ["A1"], min=0.2)
+    clear.setResult(QtWidgets.QDialog.Accepted)
+    assert window.add_rule(clear)
+    kinds = [(r.kind, r.sources, r.min, r.max) for r in d.design.rules]
+    assert kinds == [("shr", ("A1",), None, 1.2), ("clearance", ("A1",), 0.2, None)]
+    texts = []
+    root = window.tree.invisibleRootItem()
+    for i in range(root.childCount()):
+        item = root.child(i)
+        texts += [item.child(j).text(1) for j in range(item.childCount())]
+    assert "at most 1.2" in texts and "at least 0.2 m from the zone's edges" in texts
+    # Removing the array takes its rules with it (one undoable step).
+    panel.arrays.selectRow(0)
+    panel.remove_array()
+    assert not d.design.rules
+    window.act_undo.trigger()
+    assert len(d.design.rules) == 2
