@@ -19,6 +19,7 @@ MODES = (
     ("select", "Select patches"),
     ("move", "Move source"),
     ("zone", "Draw zone"),
+    ("polygon", "Draw polygon zone"),
 )
 CAMERAS = ("iso", "top", "front")
 

@@ -220,6 +220,7 @@ class MainWindow(QtWidgets.QMainWindow):
         self.viewport.picked.connect(self._picked)
         self.viewport.sourceDragged.connect(self._dragged)
         self.viewport.zoneDrawn.connect(self._zone_drawn)
+        self.viewport.polygonDrawn.connect(self._polygon_drawn)
         self.viewport.surface_frame = self._surface_frame
         self.tree.groupActivated.connect(self.add_intention_on_group)
         self.tree.intentionActivated.connect(self.edit_intention)
@@ -363,9 +364,18 @@ class MainWindow(QtWidgets.QMainWindow):
 
     # -- picking, dragging, drawing, intentions ------------------------------------------------
     def set_mode(self, mode: str) -> None:
-        """navigate (orbit), select (pick patches), move (drag the source), zone (draw)."""
+        """navigate (orbit), select (pick patches), move (drag the source), zone (draw a
+        rectangle), polygon (click a polygon's corners)."""
+        if mode != "polygon":
+            self.viewport.cancel_polygon()
         self.viewport.mode = mode
         self.mode_actions[mode].setChecked(True)
+        if mode == "polygon":
+            self.statusBar().showMessage(
+                "Click the zone's corners on a ceiling or roof; double-click, Enter or a click "
+                "on the first corner closes it; Backspace takes back a corner, Esc drops it",
+                10000,
+            )
 
     def _picked(self, ids: np.ndarray, add: bool) -> None:
         ids = np.union1d(self.doc.selection, ids) if add else ids
@@ -404,6 +414,28 @@ class MainWindow(QtWidgets.QMainWindow):
         try:
             name, kind = dialog.name.text().strip(), dialog.kind.currentText()
             edit = ZoneEdit(name, kind, surface, (u0, v0, u1, v1))  # a bad name stops nothing
+            self.stop_worker()
+            self.doc.set_user_zones((*self.doc.user_zones, edit))
+        except LightInvError as exc:
+            dialogs.warn(self, str(exc))
+            return False
+        return True
+
+    def _polygon_drawn(self, surface: str, corners, dialog: ZoneDialog | None = None) -> bool:
+        """Ask for the new polygon zone's name and kind, then rebuild the scene with it."""
+        pts = np.asarray(corners, float)
+        span = pts.max(axis=0) - pts.min(axis=0) if len(pts) else np.zeros(2)
+        if len(pts) < 3 or span.min() < MIN_ZONE:
+            self.statusBar().showMessage("Zone too small: click at least 3 corners apart", 4000)
+            return False
+        if dialog is None:
+            dialog = ZoneDialog(surface, self.doc.new_zone_name(), self)
+            dialog.kind.setCurrentText(self.draw_kind())
+        if not dialogs.accepted(dialog):
+            return False
+        try:
+            name, kind = dialog.name.text().strip(), dialog.kind.currentText()
+            edit = ZoneEdit(name, kind, surface, outline=tuple(map(tuple, pts)))
             self.stop_worker()
             self.doc.set_user_zones((*self.doc.user_zones, edit))
         except LightInvError as exc:

@@ -12,7 +12,7 @@ from app import dialogs
 from app.document import Document
 from lightinv_core.design.model import CORNERS, DesignError, Intention, Rule
 from lightinv_core.editing.rules import rule_text
-from lightinv_core.errors import LightInvError
+from lightinv_core.errors import LightInvError, SceneError
 from lightinv_core.kinds import Bound, Quantity, SourceKind
 
 
@@ -158,7 +158,7 @@ class SourcePanel(QtWidgets.QGroupBox):
         self.corners = []
         for label in ("u0", "v0", "u1", "v1"):
             box = QtWidgets.QDoubleSpinBox(decimals=3, singleStep=0.05, suffix=" m")
-            box.setRange(0.0, 1000.0)
+            box.setRange(-1000.0, 1000.0)  # a zone may run on from its surface
             box.setKeyboardTracking(False)
             box.valueChanged.connect(self._rect_edited)
             self.corners.append(box)
@@ -488,9 +488,16 @@ class ZonePanel(QtWidgets.QGroupBox):
         self.corners = []
         for label in ("u0", "v0", "u1", "v1"):
             box = QtWidgets.QDoubleSpinBox(decimals=3, singleStep=0.1, suffix=" m")
-            box.setRange(0.0, 1000.0)
+            box.setRange(-1000.0, 1000.0)  # a zone may run on from its surface
             self.corners.append(box)
             form.addRow(label, box)
+        self.outline = QtWidgets.QLineEdit()
+        self.outline.setPlaceholderText("rectangle (u0 v0 u1 v1 above)")
+        self.outline.setToolTip(
+            "A polygon zone's corners, metres along the surface's u, v axes: "
+            "'u v; u v; u v; ...' in order around it. Empty: the rectangle above."
+        )
+        form.addRow("Polygon", self.outline)
         row = QtWidgets.QHBoxLayout()
         self.apply_button = QtWidgets.QPushButton("Apply")
         self.delete_button = QtWidgets.QPushButton("Delete zone")
@@ -499,9 +506,9 @@ class ZonePanel(QtWidgets.QGroupBox):
         form.addRow(row)
         self.hint = QtWidgets.QLabel(
             "Draw zone mode: pick luminaire or skylight zone in the toolbar, then drag a "
-            "rectangle on a ceiling or roof (from below, or from above in Top view). The "
-            "corners are metres from the surface's origin along its u, v axes (shown when "
-            "a zone is chosen here)."
+            "rectangle on a ceiling or roof (from below, or from above in Top view); Draw "
+            "polygon zone mode: click its corners. The corners are metres from the "
+            "surface's origin along its u, v axes (shown when a zone is chosen here)."
         )
         self.hint.setWordWrap(True)
         form.addRow(self.hint)
@@ -517,7 +524,8 @@ class ZonePanel(QtWidgets.QGroupBox):
             self.zone.addItem(f"{z.name} on {z.surface}", z.name)
         self.zone.blockSignals(False)
         has = bool(self.doc.user_zones)
-        for w in (self.name, self.kind, *self.corners, self.apply_button, self.delete_button):
+        widgets = (self.name, self.kind, *self.corners, self.outline)
+        for w in (*widgets, self.apply_button, self.delete_button):
             w.setEnabled(has)
         self._show()
 
@@ -533,6 +541,10 @@ class ZonePanel(QtWidgets.QGroupBox):
         self.kind.setCurrentText(z.kind)
         for box, value in zip(self.corners, z.rect, strict=True):
             box.setValue(value)
+            box.setEnabled(z.outline is None)  # a polygon's rectangle is its bounds
+        self.outline.setText(
+            "" if z.outline is None else "; ".join(f"{u:g} {v:g}" for u, v in z.outline)
+        )
 
     def apply(self) -> None:
         """Write the fields back (the scene is re-meshed)."""
@@ -541,12 +553,19 @@ class ZonePanel(QtWidgets.QGroupBox):
         z = self._current()
         if z is None:
             return
-        new = replace(
-            z,
-            name=self.name.text().strip(),
-            kind=self.kind.currentText(),
-            rect=tuple(b.value() for b in self.corners),
-        )
+        text = self.outline.text().strip()
+        try:
+            outline = parse_corners(text) if text else None
+            new = replace(
+                z,
+                name=self.name.text().strip(),
+                kind=self.kind.currentText(),
+                rect=None if outline else tuple(b.value() for b in self.corners),
+                outline=outline,
+            )
+        except LightInvError as exc:
+            QtWidgets.QMessageBox.warning(self, "LightInv", str(exc))
+            return
         self._set([new if u.name == z.name else u for u in self.doc.user_zones])
 
     def delete(self) -> None:
@@ -560,6 +579,23 @@ class ZonePanel(QtWidgets.QGroupBox):
             self.doc.set_user_zones(zones)
         except LightInvError as exc:
             QtWidgets.QMessageBox.warning(self, "LightInv", str(exc))
+
+
+def parse_corners(text: str) -> tuple[tuple[float, float], ...]:
+    """Corners typed as 'u v; u v; ...' (commas also separate the two numbers);
+    SceneError on anything else."""
+    corners = []
+    for k, part in enumerate(p for p in text.split(";") if p.strip()):
+        items = part.replace(",", " ").split()
+        try:
+            u, v = (float(x) for x in items)
+        except ValueError:
+            raise SceneError(
+                f"polygon corner {k + 1} ({part.strip()!r}): give two numbers, 'u v', and "
+                "separate corners with ';'"
+            ) from None
+        corners.append((u, v))
+    return tuple(corners)
 
 
 class ZoneDialog(QtWidgets.QDialog):

@@ -34,6 +34,7 @@ CAMERAS = {
 OUTLINE_LIFT = 0.01  # m: outlines float 1 cm off their surface (no z-fighting)
 AXIS_COLOURS = {"u": "#d62020", "v": "#1a9a1a"}  # as the x (red) and y (green) of the widget
 VEIL_OPACITY = 0.55  # the white veil over a picture whose light is out of date
+CLOSE_SNAP = 0.02  # of the surface's size: a click this near the first corner closes
 AXIS_ACTORS = ("axis-u", "axis-v", "axis-u-label", "axis-v-label", "axis-origin-label")
 
 
@@ -49,6 +50,7 @@ class ZoneFrame:
             self.v = rect.v / np.linalg.norm(rect.v)
             self.normal = rect.normal
             self.size = rect.size
+            self.outline = None
             return
         g = zone_grid(patches, name)
         first = g.patch[0, 0]
@@ -57,6 +59,7 @@ class ZoneFrame:
         self.v = patches.edge2[first] / np.linalg.norm(patches.edge2[first])
         self.normal = patches.normal[first]
         self.size = g.size
+        self.outline = patches.zone_outline(name)
 
     def to_world(self, u: float, v: float) -> np.ndarray:
         """3D point of zone coordinates (m), lifted off the surface."""
@@ -71,6 +74,12 @@ class ZoneFrame:
         t = float(np.dot(self.origin - p0, self.normal)) / den
         q = p0 + t * d - self.origin
         return float(np.dot(q, self.u)), float(np.dot(q, self.v))
+
+    def outline_loop(self) -> np.ndarray:
+        """Closed polyline (k + 1, 3) of the zone's outline: its polygon, or its rectangle."""
+        if self.outline is None:
+            return self.rectangle(0, 0, *self.size)
+        return np.array([self.to_world(u, v) for u, v in [*self.outline, self.outline[0]]])
 
     def rectangle(self, u0: float, v0: float, u1: float, v1: float) -> np.ndarray:
         """Closed polyline (5, 3) of a rectangle in zone coordinates."""
@@ -146,6 +155,7 @@ class Viewport(QtWidgets.QWidget):
     picked = QtCore.Signal(object, bool)  # patch ids (np.ndarray), add to selection
     sourceDragged = QtCore.Signal(float, float)  # du, dv in metres
     zoneDrawn = QtCore.Signal(str, float, float, float, float)  # surface, u0, v0, u1, v1
+    polygonDrawn = QtCore.Signal(str, object)  # surface, corners [(u, v), ...] m
 
     def __init__(self, parent: QtWidgets.QWidget | None = None):
         super().__init__(parent)
@@ -170,7 +180,10 @@ class Viewport(QtWidgets.QWidget):
         self.cmap = "inferno"
         self.clim: tuple[float, float] | None = None  # None: automatic
         self.units = "lux"
-        self.mode = "navigate"  # navigate | select | move | zone
+        self.mode = "navigate"  # navigate | select | move | zone | polygon
+        # A polygon zone being drawn: its surface and the corners clicked so far.
+        self._poly: tuple[ZoneFrame, list[tuple[float, float]]] | None = None
+        self._skip_release = False  # the release that follows a closing double-click
         # callable(patch id seen or None, ray near point, ray far point) -> ZoneFrame of the
         # surface a zone drawn there goes on, or None
         self.surface_frame = None
@@ -365,7 +378,7 @@ class Viewport(QtWidgets.QWidget):
         """Dashed-looking thin outlines of every emitter zone."""
         if not self.frames:
             return
-        loops = [f.rectangle(0, 0, *f.size) for f in self.frames.values()]
+        loops = [f.outline_loop() for f in self.frames.values()]
         self._outlines("zones", loops, "#3070ff", 2)
 
     def _outlines(self, name: str, loops: list[np.ndarray], color: str, width: int) -> None:
@@ -489,10 +502,13 @@ class Viewport(QtWidgets.QWidget):
         return None if frame is None else frame.from_ray(*self.ray(x, y))
 
     def eventFilter(self, obj, event) -> bool:
-        """In select and move modes, mouse drags pick or move instead of orbiting."""
+        """In select and move modes, mouse drags pick or move instead of orbiting; in
+        zone and polygon modes, they draw."""
         if self.mode == "navigate" or obj is not self.plotter.interactor:
             return False
         et = event.type()
+        if self.mode == "polygon":
+            return self._polygon_event(et, event)
         if et == QtCore.QEvent.Type.MouseButtonPress and event.button() == QtCore.Qt.LeftButton:
             self._press = event.position().toPoint()
             if self.mode == "move" and self.drag_zone:
@@ -527,6 +543,101 @@ class Viewport(QtWidgets.QWidget):
         return False
 
     # -- zone drawing -----------------------------------------------------------------------
+    def _polygon_event(self, et, event) -> bool:
+        """Polygon mode: each click adds a corner on the surface; a double-click, Enter or
+        a click on the first corner closes the polygon; Backspace takes back the last
+        corner, Escape drops the polygon. Right-drag and the wheel still move the camera."""
+        left = getattr(event, "button", lambda: None)() == QtCore.Qt.LeftButton
+        if et == QtCore.QEvent.Type.MouseButtonPress and left:
+            self._press = event.position().toPoint()
+            return True
+        if et == QtCore.QEvent.Type.MouseButtonRelease and left:
+            self._press = None
+            if self._skip_release:
+                self._skip_release = False
+                return True
+            self._polygon_click(*self._display(event.position().toPoint()))
+            return True
+        if et == QtCore.QEvent.Type.MouseButtonDblClick and left:
+            self._skip_release = True
+            self.finish_polygon()
+            return True
+        if et == QtCore.QEvent.Type.MouseMove and self._poly is not None:
+            self._show_polygon(*self._display(event.position().toPoint()))
+            return False  # VTK keeps its own bookkeeping of the cursor
+        if et == QtCore.QEvent.Type.KeyPress and self._poly is not None:
+            key = event.key()
+            if key in (QtCore.Qt.Key_Return, QtCore.Qt.Key_Enter):
+                self.finish_polygon()
+            elif key == QtCore.Qt.Key_Escape:
+                self.cancel_polygon()
+            elif key == QtCore.Qt.Key_Backspace:
+                self._poly[1].pop()
+                if not self._poly[1]:
+                    self.cancel_polygon()
+                else:
+                    self._show_polygon()
+            else:
+                return False
+            return True
+        return False
+
+    def _polygon_click(self, x: int, y: int) -> None:
+        """A corner at a display point (the first one picks the surface; the polygon may
+        run on over the coplanar cells of the same material that continue it, so corners
+        are not clipped to that surface: ``apply_zone_edits`` checks what it covers)."""
+        if self._poly is None:
+            self._start_draft(x, y)
+            if self._draft is not None:
+                frame, uv = self._draft
+                self._draft = None
+                self._poly = (frame, [uv])
+                self._show_polygon()
+            return
+        frame, corners = self._poly
+        uv = frame.from_ray(*self.ray(x, y))
+        if uv is None:
+            return
+        if len(corners) >= 3 and np.hypot(*np.subtract(uv, corners[0])) < CLOSE_SNAP * max(
+            frame.size
+        ):
+            self.finish_polygon()
+            return
+        corners.append(uv)
+        self._show_polygon()
+
+    def _show_polygon(self, x: int | None = None, y: int | None = None) -> None:
+        """Draw the corners so far, and the edge to the cursor at display point (x, y)."""
+        frame, corners = self._poly
+        pts = list(corners)
+        if x is not None:
+            uv = frame.from_ray(*self.ray(x, y))
+            if uv is not None:
+                pts.append(uv)
+        loop = np.array([frame.to_world(u, v) for u, v in [*pts, pts[0]]])
+        self._outlines("draft", [loop], "#ff2020", 4)
+        self.request_render()
+
+    def polygon_corners(self) -> list[tuple[float, float]]:
+        """The corners of the polygon being drawn (m on its surface), empty if none."""
+        return [] if self._poly is None else list(self._poly[1])
+
+    def finish_polygon(self) -> None:
+        """Close the polygon being drawn and emit it (three corners or more)."""
+        if self._poly is None:
+            return
+        frame, corners = self._poly
+        self.cancel_polygon()
+        if len(corners) >= 3:
+            self.polygonDrawn.emit(frame.name, corners)
+
+    def cancel_polygon(self) -> None:
+        """Drop the polygon being drawn."""
+        self._poly = None
+        self.plotter.remove_actor("draft", render=False)
+        self.show_axes(*self.axes_focus)
+        self.request_render()
+
     def _start_draft(self, x: int, y: int) -> None:
         """Begin a zone rectangle on the surface the window picks for the cursor: the one
         seen if it suits, else one the view ray crosses (the culled ceiling, from above)."""

@@ -213,6 +213,7 @@ def cmd_scene_info(args) -> int:
                 "u_axis": (r.u / r.size[0]).tolist(),
                 "v_axis": (r.v / r.size[1]).tolist(),
                 "normal": r.normal.tolist(),
+                "outline": None if z.outline is None else z.outline.tolist(),
             }
         )
     info = {
@@ -236,6 +237,7 @@ def cmd_scene_info(args) -> int:
     lines += [
         f"  {z['name']:<10} {z['kind']:<9} {z['size_m'][0]:.2f} x {z['size_m'][1]:.2f} m, "
         f"grid {z['grid'][0]} x {z['grid'][1]}"
+        + (f", polygon of {len(z['outline'])} corners" if z["outline"] else "")
         for z in zones
     ]
     lines += [f"warning: {w}" for w in info["warnings"]]

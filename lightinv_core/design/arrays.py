@@ -21,6 +21,7 @@ import numpy as np
 from lightinv_core.design.model import ARRAY_RULES, Design
 from lightinv_core.design.variables import ArrayLayout
 from lightinv_core.kinds import RuleKind
+from lightinv_core.scene.zone_outline import OUTLINE_TOL, outside_area
 
 MIN_FOOTPRINT = 0.01  # m: a point-like product still needs room to be mounted
 
@@ -29,11 +30,13 @@ MIN_FOOTPRINT = 0.01  # m: a point-like product still needs room to be mounted
 class ArrayShapes:
     """What the array rules need beyond the layout: each array's zone ``size`` (A, 2) m,
     product ``opening`` (A, 2) as (width, length) m, and ``mount_height`` (A,) m, the
-    height of its luminaires above the work plane."""
+    height of its luminaires above the work plane; ``outline`` (A,) each zone's polygon
+    outline (k, 2) m or None (a rectangle), empty for rectangles only."""
 
     size: np.ndarray
     opening: np.ndarray
     mount_height: np.ndarray
+    outline: tuple = ()
 
 
 @dataclass(frozen=True)
@@ -88,6 +91,16 @@ def luminaire_positions(layout: ArrayLayout, j: int) -> tuple[np.ndarray, np.nda
     return U.reshape(m, -1), V.reshape(m, -1), mask.reshape(m, -1)
 
 
+def _outside_outline(outline: np.ndarray, layout: ArrayLayout, g: ArrayGeometry, j: int):
+    """(m,) the share of array ``j``'s luminaire footprints outside the zone's polygon
+    outline, summed over its luminaires (each 0 to 1), less a rounding tolerance."""
+    u, v, mask = luminaire_positions(layout, j)
+    hu, hv = 0.5 * g.fu[:, j : j + 1], 0.5 * g.fv[:, j : j + 1]
+    rect = np.stack(np.broadcast_arrays(u - hu, v - hv, u + hu, v + hv), axis=-1)
+    share = outside_area(outline, rect) / (4 * hu * hv)
+    return (np.maximum(0, share - OUTLINE_TOL) * mask).sum(axis=1)
+
+
 def array_rule_names(design: Design) -> list[str]:
     """Labels of the array columns of ``rule_violations``, in order."""
     names = [f"array {a.name} in its zone" for a in design.arrays]
@@ -111,6 +124,9 @@ def array_violations(design: Design, layout: ArrayLayout, shapes: ArrayShapes) -
     overlap_u = np.where(layout.columns > 1, np.maximum(0, g.fu - g.su) / g.fu, 0.0)
     overlap_v = np.where(layout.rows > 1, np.maximum(0, g.fv - g.sv) / g.fv, 0.0)
     out = [np.maximum(0, -clear) / np.maximum(w, h) + overlap_u + overlap_v]
+    for j, outline in enumerate(shapes.outline):
+        if outline is not None:
+            out[0][:, j] += _outside_outline(outline, layout, g, j)
     names = [a.name for a in design.arrays]
     for r in design.rules:
         if r.kind not in ARRAY_RULES:

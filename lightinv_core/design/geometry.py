@@ -3,17 +3,21 @@
 ``rule_violations`` returns, for a stack of candidates, the relative amount by
 which each rule is broken (0 where it holds); a candidate with any positive
 amount is rejected without a radiosity evaluation. Every source must also lie
-inside its zone and have a positive area. ``mirror`` and ``centred`` rules are
+inside its zone (and inside the zone's polygon outline, if it has one) and have a
+positive area. ``mirror`` and ``centred`` rules are
 tied by the variables (see variables.py) and so always hold.
 """
 
 from __future__ import annotations
+
+from collections.abc import Sequence
 
 import numpy as np
 
 from lightinv_core.design.arrays import ArrayShapes, array_rule_names, array_violations
 from lightinv_core.design.model import ARRAY_RULES, Design
 from lightinv_core.design.variables import ArrayLayout
+from lightinv_core.scene.zone_outline import OUTLINE_TOL, outside_area
 
 ALIGN_TOL = 0.01  # m
 MIN_SIDE = 1e-3  # m: a thinner source is degenerate
@@ -44,12 +48,16 @@ def rule_violations(
     rect: np.ndarray,
     zone_size: np.ndarray,
     arrays: tuple[ArrayLayout, ArrayShapes] | None = None,
+    outlines: Sequence[np.ndarray | None] = (),
 ) -> np.ndarray:
     """(m, R) relative violations of the geometric rules for rectangles (m, S, 4).
 
     zone_size : (S, 2) width and height (m) of each source's zone.
     arrays : the candidates' luminaire arrays and their shapes; needed when the design
     has arrays (their columns come last, see ``design/arrays.py``).
+    outlines : per source, its zone's polygon outline (k, 2) m, or None (or nothing)
+    where the zone is its whole rectangle; a source must then lie inside the polygon,
+    the share of its area outside counting in the first column.
     """
     names = [s.name for s in design.sources]
     u_lo, u_hi, v_lo, v_hi = _extents(rect)
@@ -63,6 +71,10 @@ def rule_violations(
         + np.maximum(0, v_hi - zone_size[:, 1])
     )
     thin = np.maximum(0, MIN_SIDE - np.minimum(w, h)) / MIN_SIDE
+    for i, outline in enumerate(outlines):
+        if outline is not None:
+            share = outside_area(outline, rect[:, i]) / np.maximum(area[:, i], 1e-12)
+            thin[:, i] += np.maximum(0, share - OUTLINE_TOL)
     scale = zone_size.max() if zone_size.size else 1.0
     out.append((outside / scale + thin).sum(axis=1))
     for r in design.rules:

@@ -202,10 +202,22 @@ class DocumentModel:
             return self.light.zone_size(zone)
         return zone_grid(self.patches, zone).size
 
+    def zone_outline(self, zone: str) -> np.ndarray | None:
+        """The polygon (k, 2) in zone metres that sources in ``zone`` must lie inside, or
+        None when the zone is its whole rectangle."""
+        return self.scene.zone(zone).outline
+
     def add_source(self, zone: str, name: str | None = None) -> Source:
         """A new source centred in ``zone`` (see ``rules.new_source``); it becomes the
         current one."""
-        src = rules.new_source(self.design, zone, self.zone_kind(zone), self.zone_size(zone), name)
+        src = rules.new_source(
+            self.design,
+            zone,
+            self.zone_kind(zone),
+            self.zone_size(zone),
+            name,
+            self.zone_outline(zone),
+        )
         design = rules.with_source(self.design, src)
         self.current_source = src.name
         self._set_design(design, f"add source {src.name}")
@@ -221,7 +233,7 @@ class DocumentModel:
     def move_source(self, name: str, du: float, dv: float) -> None:
         """Shift a source by (du, dv) metres, kept inside its zone."""
         s = self.design.source(name)
-        rect = rules.moved_rect(s, du, dv, self.zone_size(s.zone))
+        rect = rules.moved_rect(s, du, dv, self.zone_size(s.zone), self.zone_outline(s.zone))
         self._set_design(rules.with_source_fields(self.design, name, rect=rect), f"move {name}")
 
     def remove_source(self, name: str) -> None:

@@ -15,6 +15,7 @@ import numpy as np
 from lightinv_core.design.model import CORNERS, Design, Goal, Rule, Source
 from lightinv_core.errors import DesignError
 from lightinv_core.kinds import RuleKind, SourceKind
+from lightinv_core.scene.zone_outline import inner_square, kept_inside
 
 NEW_SOURCE_SIZE = 1.0
 """m: a new source is a square this wide (or the zone's width or height if smaller)."""
@@ -28,16 +29,24 @@ def free_name(stem: str, taken: set[str]) -> str:
 
 
 def new_source(
-    design: Design, zone: str, kind: str, size: tuple[float, float], name: str | None = None
+    design: Design,
+    zone: str,
+    kind: str,
+    size: tuple[float, float],
+    name: str | None = None,
+    outline: np.ndarray | None = None,
 ) -> Source:
     """A source centred in ``zone`` (``size`` (w, h) m): a 1 x 1 m (or smaller)
     rectangle, a 3,000 lm luminaire or a skylight with filter 1, whose corners and flux
     (or filter) the optimiser may change: a fixed flux would leave a least-power run
-    unable to reach its targets. Unnamed, it takes the first free name L1, L2, ...
-    (luminaires) or S1, ... (skylights)."""
+    unable to reach its targets. In a zone with a polygon ``outline``, the square
+    (smaller if need be) lies inside it, near its centroid. Unnamed, it takes the first
+    free name L1, L2, ... (luminaires) or S1, ... (skylights)."""
     w, h = size
     sw, sh = min(NEW_SOURCE_SIZE, w), min(NEW_SOURCE_SIZE, h)
     rect = ((w - sw) / 2, (h - sh) / 2, (w + sw) / 2, (h + sh) / 2)
+    if outline is not None:
+        rect = inner_square(outline, NEW_SOURCE_SIZE)
     if name is None:
         stem = "L" if kind == SourceKind.LUMINAIRE else "S"
         name = free_name(stem, {s.name for s in design.sources})
@@ -60,14 +69,21 @@ def with_source_fields(design: Design, name: str, **fields) -> Design:
     return replace(design, sources=sources)
 
 
-def moved_rect(source: Source, du: float, dv: float, size: tuple[float, float]) -> tuple:
+def moved_rect(
+    source: Source,
+    du: float,
+    dv: float,
+    size: tuple[float, float],
+    outline: np.ndarray | None = None,
+) -> tuple:
     """``source``'s rectangle shifted by (du, dv) m, the shift clipped so that it stays
-    inside its zone of ``size`` (w, h) m."""
+    inside its zone of ``size`` (w, h) m and, if it has one, inside its polygon
+    ``outline`` (the move stops at the edge)."""
     w, h = size
     (a, b), (c, d) = source.u_range, source.v_range
     du = float(np.clip(du, -a, w - b))
     dv = float(np.clip(dv, -c, h - d))
-    return (a + du, c + dv, b + du, d + dv)
+    return kept_inside(outline, (a, c, b, d), (a + du, c + dv, b + du, d + dv))
 
 
 def without_source(design: Design, name: str) -> Design:

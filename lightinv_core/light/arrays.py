@@ -207,6 +207,7 @@ class ArrayLight:
         self.arrays = tuple(arrays)
         self.products = [resolve_product(a.product, a.watts) for a in self.arrays]
         self.frames = [zone_frame(patches, a.zone) for a in self.arrays]
+        self.outlines = tuple(patches.zone_outline(a.zone) for a in self.arrays)
         self.rows = np.asarray(rows, dtype=np.int64)
         pts = np.zeros((0, 3)) if points is None else np.asarray(points, float).reshape(-1, 3)
         self.n_points = len(pts)
@@ -279,7 +280,9 @@ class ArrayLight:
     def shapes(self, mount_height: np.ndarray) -> ArrayShapes:
         """The arrays' shapes for the geometric rules, given their mounting heights (m)."""
         size = np.array([f.size for f in self.frames], dtype=float).reshape(-1, 2)
-        return ArrayShapes(size, self.shapes_opening, np.asarray(mount_height, float))
+        return ArrayShapes(
+            size, self.shapes_opening, np.asarray(mount_height, float), self.outlines
+        )
 
     def weights(self, layout: ArrayLayout, maintained: bool = True) -> np.ndarray:
         """W (L, m) float32: each lattice node's share of the candidates' luminaires,
@@ -464,4 +467,5 @@ def array_shapes(
         np.array([f.size for f in frames], dtype=float).reshape(-1, 2),
         np.array([resolve_product(a.product, a.watts).opening for a in arrays]).reshape(-1, 2),
         np.array([float(f.origin[2]) - plane for f in frames]),
+        tuple(patches.zone_outline(a.zone) for a in arrays),
     )

@@ -202,6 +202,8 @@ class DesignProblem:
         zones = {s.zone for s in sources} | {a.zone for a in design.arrays}
         self.vars = Variables(design, {z: light.zone_size(z) for z in zones})
         self.zone_size = self.vars.zone_size
+        outlines = [self.patches.zone_outline(s.zone) for s in sources]
+        self.outlines = tuple(outlines) if any(o is not None for o in outlines) else ()
         self.grids: DesignGrids | None = (
             design_grids(light, design.workplanes) if design.workplanes else None
         )
@@ -274,7 +276,7 @@ class DesignProblem:
         rect, _, _ = self.vars.decode(X)
         lay = self.layout_of(X)
         arrays = None if lay is None else (lay, self.array_shapes)
-        return rule_violations(self.design, rect, self.zone_size, arrays)
+        return rule_violations(self.design, rect, self.zone_size, arrays, self.outlines)
 
     def _constraint_columns(self) -> tuple[Constraint, ...]:
         cols = [Constraint("geometry", n, "", 0.0) for n in rule_names(self.design)]
@@ -336,7 +338,7 @@ class DesignProblem:
         rect, flux, filt = self.vars.decode(X)
         lay = self.layout_of(X)
         arrays = None if lay is None else (lay, self.array_shapes)
-        geo = rule_violations(self.design, rect, self.zone_size, arrays)
+        geo = rule_violations(self.design, rect, self.zone_size, arrays, self.outlines)
         ok = ~np.any(geo > 0, axis=1)
         good = np.flatnonzero(ok)
         if len(good) == m:

@@ -18,6 +18,7 @@ from lightinv_core.fields import (
     ObjectSpec,
     _boolean,
     _choice,
+    _describe,
     _fail,
     _join,
     _list,
@@ -56,6 +57,13 @@ def _obj_path(v: Any, path: str) -> str:
     return s
 
 
+def _outline(v: Any, path: str) -> tuple[tuple[float, float], ...]:
+    """A polygon's corners: a list of [u, v] pairs (m)."""
+    if not isinstance(v, list | tuple) or len(v) < 3:
+        _fail(path, f"expected a list of at least 3 [u, v] corners, got {_describe(v)}")
+    return tuple(tuple(_numbers(p, _join(path, i), 2)) for i, p in enumerate(v))
+
+
 ZONE = ObjectSpec(
     "zone",
     (
@@ -76,9 +84,23 @@ ZONE = ObjectSpec(
         Field(
             "rect",
             lambda v, p: _numbers(v, p, 4),
+            default=None,
             type="4 numbers",
+            doc_default="the outline's bounds",
             meaning="(u0, v0, u1, v1) in metres along the surface's own u and v edges from its "
-            "origin; two opposite corners in any order (stored smallest first)",
+            "origin; two opposite corners in any order (stored smallest first); needed "
+            "unless `outline` is given",
+            always=True,
+        ),
+        Field(
+            "outline",
+            _outline,
+            default=None,
+            type="list of [u, v]",
+            meaning="a zone of any shape: its polygon's corners (at least 3, in order around "
+            "it, not crossing itself) in the same metres; sources must lie inside it. Its "
+            "bounding rectangle becomes the zone's surface and must lie on the surface",
+            optional=True,
         ),
     ),
 )
@@ -93,7 +115,7 @@ def _zone_edit(v: Any, path: str) -> ZoneEdit:
     try:
         return ZoneEdit(**values)
     except SceneError as err:
-        _fail(_join(path, "rect"), str(err))
+        _fail(_join(path, "outline" if "outline" in values else "rect"), str(err))
 
 
 def _zone_edits(v: Any, path: str) -> tuple[ZoneEdit, ...]:

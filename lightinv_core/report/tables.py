@@ -138,7 +138,8 @@ def rules_table(solution: Solution, design: Design, patches: Patches) -> Table |
                 array_layout(solution.arrays),
                 array_shapes(patches, solution.arrays, design.workplanes),
             )
-        amounts = rule_violations(design, rect, size.reshape(-1, 2), arrays)[0]
+        outlines = [patches.zone_outline(s.zone) for s in design.sources]
+        amounts = rule_violations(design, rect, size.reshape(-1, 2), arrays, outlines)[0]
         for name, amount in zip(rule_names(design), amounts, strict=True):
             ok = amount <= 0
             rows.append((name, "geometry", PASS if ok else f"{FAIL} ({fmt(amount, 3)})"))

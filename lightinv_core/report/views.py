@@ -122,7 +122,10 @@ def source_outlines(
             frames[s.zone] = zone_frame(patches, s.zone)
             o, u, v, (w, h) = frames[s.zone]
             if zones:
-                pts = np.array([o, o + w * u, o + w * u + h * v, o + h * v])
+                polygon = patches.zone_outline(s.zone)
+                if polygon is None:
+                    polygon = np.array([(0, 0), (w, 0), (w, h), (0, h)], dtype=float)
+                pts = o + polygon[:, :1] * u + polygon[:, 1:] * v
                 out.append(Outline(s.zone, pts, "zone"))
     for s in sources:
         o, u, v, _ = frames[s.zone]

@@ -29,6 +29,8 @@ import numpy as np
 from lightinv_core.errors import SceneError
 from lightinv_core.scene.builders import Insert, split_rect
 from lightinv_core.scene.model import ZONE_KINDS, EmitterZone, Rect, Scene, Surface
+from lightinv_core.scene.zone_outline import bounds as outline_bounds
+from lightinv_core.scene.zone_outline import check_outline
 
 EDGE_SNAP = 1e-6  # m: rectangle edges this close to the surface's edges are put on them
 
@@ -44,13 +46,18 @@ class ZoneEdit:
 
     ``rect`` is (u0, v0, u1, v1) in metres along the surface's u and v edges from its
     origin; the corners may be given in any order and are stored as
-    (min u, min v, max u, max v).
+    (min u, min v, max u, max v). A zone of any other shape is given by ``outline``,
+    its polygon's corners (u, v) in the same metres (stored counter-clockwise): the
+    zone's surface is then the polygon's bounding rectangle, and sources placed in the
+    zone must lie inside the polygon (``EmitterZone.outline``). With an outline,
+    ``rect`` may be left out; if given, it must be the outline's bounding rectangle.
     """
 
     name: str
     kind: str
     surface: str
-    rect: tuple[float, float, float, float]
+    rect: tuple[float, float, float, float] | None = None
+    outline: tuple[tuple[float, float], ...] | None = None
 
     def __post_init__(self) -> None:
         for key in ("name", "surface"):
@@ -60,6 +67,14 @@ class ZoneEdit:
         where = f"new emitter zone {self.name!r} on surface {self.surface!r}"
         if self.kind not in ZONE_KINDS:
             raise SceneError(f"{where}: kind {self.kind!r} is not one of {ZONE_KINDS}")
+        given = self.rect
+        if self.outline is not None:
+            outline = check_outline(self.outline, where)
+            object.__setattr__(self, "outline", tuple((float(u), float(v)) for u, v in outline))
+            if self.rect is None:
+                object.__setattr__(self, "rect", outline_bounds(outline))
+        elif self.rect is None:
+            raise SceneError(f"{where}: give its rectangle (rect) or its outline (corners)")
         try:
             items = list(self.rect)
             values = [float(x) for x in items if not isinstance(x, bool | str)]
@@ -78,6 +93,14 @@ class ZoneEdit:
                 f"{where}: the rectangle has zero width or height "
                 f"({_fmt(width)} x {_fmt(height)} m); give two opposite corners"
             )
+        if self.outline is not None and given is not None:
+            box = outline_bounds(np.array(self.outline))
+            if max(abs(a - b) for a, b in zip(box, rect, strict=True)) > EDGE_SNAP:
+                raise SceneError(
+                    f"{where}: rect ({', '.join(map(_fmt, rect))}) is not the bounding "
+                    f"rectangle of the outline, ({', '.join(map(_fmt, box))}); leave rect out"
+                )
+            rect = box
         object.__setattr__(self, "rect", rect)
 
     @property
@@ -231,6 +254,9 @@ def _apply_one(scene: Scene, edit: ZoneEdit, base: Surface, used: set[str]) -> S
             "that continue it"
         )
     zone_rect = Rect(frame.point(u0, v0), (u1 - u0) * frame.eu, (v1 - v0) * frame.ev)
+    outline = None
+    if edit.outline is not None:  # in the zone's own metres, on its rectangle
+        outline = np.clip(np.array(edit.outline) - (u0, v0), 0.0, (u1 - u0, v1 - v0))
     zone_surface = Surface(edit.name, base.group, base.reflectance, rect=zone_rect)
     replaced: dict[int, list[Surface]] = {}
     for k, (i, s, box) in enumerate(hits):
@@ -252,7 +278,7 @@ def _apply_one(scene: Scene, edit: ZoneEdit, base: Surface, used: set[str]) -> S
     return Scene(
         scene.name,
         tuple(surfaces),
-        (*scene.zones, EmitterZone(edit.name, edit.kind, edit.name)),
+        (*scene.zones, EmitterZone(edit.name, edit.kind, edit.name, outline)),
         scene.resolution,
         scene.description,
         dict(scene.info),

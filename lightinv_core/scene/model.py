@@ -16,6 +16,7 @@ import numpy as np
 
 from lightinv_core.errors import SceneError
 from lightinv_core.kinds import SourceKind
+from lightinv_core.scene.zone_outline import check_outline
 
 ZONE_KINDS = tuple(str(k) for k in SourceKind)
 """Emitter zones take the kinds of source placed in them."""
@@ -166,18 +167,25 @@ class EmitterZone:
     """A planar rectangle where skylights or luminaires may be placed.
 
     The zone's patches are those of the rectangular surface ``surface``; its
-    (u, v) axes in metres are that rectangle's edges.
+    (u, v) axes in metres are that rectangle's edges. ``outline``, if given, is a
+    polygon (k, 2) in those (u, v) metres inside the rectangle: sources must then lie
+    inside the polygon (``zone_outline``), not merely inside the rectangle.
     """
 
     name: str
     kind: str
     surface: str
+    outline: np.ndarray | None = None
 
     def __post_init__(self) -> None:
         if self.kind not in ZONE_KINDS:
             raise SceneError(
                 f"emitter zone {self.name!r}: kind {self.kind!r} is not one of {ZONE_KINDS}"
             )
+        if self.outline is not None:
+            outline = check_outline(self.outline, f"emitter zone {self.name!r}")
+            outline.setflags(write=False)
+            object.__setattr__(self, "outline", outline)
 
 
 @dataclass(frozen=True, eq=False)
@@ -216,6 +224,14 @@ class Scene:
                 raise SceneError(
                     f"emitter zone {z.name!r}: surface {z.surface!r} is not a planar rectangle"
                 )
+            if z.outline is not None:
+                su, sv = surf.rect.size
+                lo, hi = z.outline.min(axis=0), z.outline.max(axis=0)
+                if lo.min() < -1e-6 or hi[0] > su + 1e-6 or hi[1] > sv + 1e-6:
+                    raise SceneError(
+                        f"emitter zone {z.name!r}: its outline runs outside its surface "
+                        f"{z.surface!r}, (0, 0)-({su:g}, {sv:g}) m"
+                    )
 
     @property
     def groups(self) -> tuple[str, ...]:

@@ -36,6 +36,8 @@ class Patches:
     zone_id : (n,) int32, index into ``zone_names`` or -1
     grid_ij : (n, 2) int32, cell (i along u, j along v) of a rectangle's grid, -1 for triangles
     grid_shape : dict surface name -> (nu, nv) for rectangle surfaces
+    zone_outlines : per zone (as ``zone_names``), its polygon outline (k, 2) in zone
+        metres, or None for the whole rectangle (``EmitterZone.outline``)
     """
 
     origin: np.ndarray
@@ -54,6 +56,7 @@ class Patches:
     group_names: tuple[str, ...]
     zone_names: tuple[str, ...]
     grid_shape: dict
+    zone_outlines: tuple = ()
 
     @property
     def n(self) -> int:
@@ -76,6 +79,13 @@ class Patches:
             known = ", ".join(self.zone_names) or "none"
             raise SceneError(f"no emitter zone {name!r} in the scene (zones: {known})")
         return np.flatnonzero(self.zone_id == self.zone_names.index(name))
+
+    def zone_outline(self, name: str) -> np.ndarray | None:
+        """The polygon (k, 2) in zone metres sources in zone ``name`` must lie inside, or
+        None when the whole rectangle is open to them."""
+        self.zone_index(name)
+        k = self.zone_names.index(name)
+        return self.zone_outlines[k] if k < len(self.zone_outlines) else None
 
     def triangle_mesh(
         self, center: np.ndarray | None = None
@@ -351,4 +361,5 @@ def mesh_patches(scene: Scene) -> Patches:
         group_names=groups,
         zone_names=tuple(z.name for z in scene.zones),
         grid_shape=grid_shape,
+        zone_outlines=tuple(z.outline for z in scene.zones),
     )

@@ -148,7 +148,7 @@ def test_the_window_fits_a_laptop_screen(qtbot, window, tmp_path):
         bottom_right = widget.mapTo(window, widget.rect().bottomRight())
         assert widget.isVisible() and inside.contains(top_left) and inside.contains(bottom_right)
     assert window.run_panel.run_button.visibleRegion().boundingRect().height() > 10
-    window.grab().save(str(tmp_path / "laptop.png"))
+    window.grab().save("/tmp/laptop.png")
 
 
 def test_a_drag_ending_outside_the_view_selects_without_error(qtbot, window):
@@ -655,3 +655,96 @@ def test_the_view_keeps_its_picture_while_the_light_model_is_rebuilt(qtbot, wind
     assert not vp.has_values and vp.busy_text.startswith("Building the light model")
     vp.screenshot("/tmp/h3-building.png")
     wait_for_operator(qtbot, window)
+
+
+def test_a_polygon_zone_clicked_corner_by_corner(qtbot, window):
+    """Zones were rectangles only: an L-shaped zone is clicked corner by corner in Top
+    view, sources added to it start inside it and drags stop at its edge, and its
+    corners can be typed in the Drawn zones panel."""
+    from app.panels import ZoneDialog
+    from lightinv_core.scene.zone_outline import is_inside
+    from tests.app.test_main_window import send_mouse, to_qt
+
+    assert window.new_project("office", 0.5)
+    wait_for_operator(qtbot, window)
+    d, vp = window.doc, window.viewport
+    vp.camera("top")
+    window.set_mode("polygon")
+    assert "Click the zone's corners" in window.statusBar().currentMessage()
+    # An L between the skylight zone and the north wall (world x, y on the 3 m ceiling).
+    corners = [(4.0, 7.4), (8.0, 7.4), (8.0, 6.6), (5.2, 6.6), (5.2, 5.8), (4.0, 5.8)]
+    iw = vp.plotter.interactor
+    drawn = []
+    vp.polygonDrawn.disconnect(window._polygon_drawn)
+    vp.polygonDrawn.connect(lambda *args: drawn.append(args))
+    for x, y in corners:
+        p = to_qt(vp, (x, y, 3.0))
+        send_mouse(iw, QtCore.QEvent.Type.MouseButtonPress, p)
+        send_mouse(iw, QtCore.QEvent.Type.MouseButtonRelease, p)
+    assert len(vp.polygon_corners()) == 6 and not drawn
+    send_mouse(iw, QtCore.QEvent.Type.MouseMove, to_qt(vp, (4.6, 6.0, 3.0)))
+    vp.screenshot("/tmp/polygon-draft.png")
+    # Backspace takes back the last corner; a click on the first one closes the polygon.
+    QtTest.QTest.keyClick(iw, QtCore.Qt.Key_Backspace)
+    assert len(vp.polygon_corners()) == 5
+    p = to_qt(vp, (4.0, 5.8, 3.0))
+    send_mouse(iw, QtCore.QEvent.Type.MouseButtonPress, p)
+    send_mouse(iw, QtCore.QEvent.Type.MouseButtonRelease, p)
+    first = to_qt(vp, (4.0, 7.4, 3.0))
+    send_mouse(iw, QtCore.QEvent.Type.MouseButtonPress, first)
+    send_mouse(iw, QtCore.QEvent.Type.MouseButtonRelease, first)
+    ((surface, uv),) = drawn
+    assert len(uv) == 6 and vp.polygon_corners() == []
+    dialog = ZoneDialog(surface, "Z1", window)
+    dialog.setResult(QtWidgets.QDialog.Accepted)
+    assert window._polygon_drawn(surface, uv, dialog)
+    wait_for_operator(qtbot, window)
+    zone = d.scene.zone("Z1")
+    assert zone.kind == "luminaire" and zone.outline is not None and len(zone.outline) == 6
+    rect = d.scene.zone_rect("Z1")
+    eu, ev = rect.u / rect.size[0], rect.v / rect.size[1]
+    world = np.array([rect.origin + u * eu + v * ev for u, v in zone.outline])
+    np.testing.assert_allclose(world[:, 2], 3.0, atol=1e-9)
+    got = sorted(map(tuple, np.round(world[:, :2], 1)))
+    assert got == sorted(corners), got  # clicked to within 5 cm
+    # A source added to the zone starts inside the L; a drag into the notch stops at it.
+    src = d.add_source("Z1")
+    assert is_inside(zone.outline, src.rect)
+    for _ in range(5):
+        d.move_source(src.name, 1.0, 1.0)
+        assert is_inside(zone.outline, d.design.source(src.name).rect)
+    window.set_mode("navigate")
+    vp.render_now()
+    vp.screenshot("/tmp/polygon-zone.png")
+    # The Drawn zones panel shows the corners and takes typed ones: now a triangle.
+    panel = window.zone_panel
+    panel.zone.setCurrentIndex(panel.zone.findData("Z1"))
+    assert panel.outline.text().count(";") == 5 and not panel.corners[0].isEnabled()
+    panel.outline.setText("0 0; 2 0; 0 1.2")
+    panel.apply()
+    wait_for_operator(qtbot, window)
+    assert len(d.scene.zone("Z1").outline) == 3
+    assert d.scene.zone_rect("Z1").size == pytest.approx((2.0, 1.2))
+    panel.grab().save("/tmp/polygon-panel.png")
+    panel.outline.setText("0 0; 2 zero; 0 1")
+    warned = []
+    with _patched_warning(warned):
+        panel.apply()
+    assert "polygon corner 2 ('2 zero')" in warned[0]
+    window.act_undo.trigger()  # back to the L
+    wait_for_operator(qtbot, window)
+    assert len(d.scene.zone("Z1").outline) == 6
+
+
+class _patched_warning:
+    """Collect QMessageBox.warning texts instead of showing the box."""
+
+    def __init__(self, into: list):
+        self.into, self.saved = into, None
+
+    def __enter__(self):
+        self.saved = QtWidgets.QMessageBox.warning
+        QtWidgets.QMessageBox.warning = lambda *args: self.into.append(args[2])
+
+    def __exit__(self, *exc):
+        QtWidgets.QMessageBox.warning = self.saved

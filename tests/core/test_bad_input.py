@@ -892,6 +892,33 @@ def _(d):
     return raised(lambda: ZoneEdit("Z1", "luminaire", "ceiling", (1, 1, 1, 2)))
 
 
+@case(
+    "zone-outline-crossing",
+    "drawn zone",
+    "a polygon zone whose corners are given out of order (a bow tie)",
+    SceneError,
+    "new emitter zone 'Z1' on surface 'ceiling'",
+    "crosses itself (edges 1 and 3)",
+)
+def _(d):
+    outline = ((0.5, 0.5), (2.5, 3.5), (2.5, 0.5), (0.5, 3.5))
+    return raised(lambda: ZoneEdit("Z1", "luminaire", "ceiling", outline=outline))
+
+
+@case(
+    "zone-outline-outside",
+    "drawn zone",
+    "a triangle zone whose bounding rectangle runs past the ceiling's edge",
+    SceneError,
+    "new emitter zone 'Z1' on surface 'ceiling'",
+    "(0.5, 1)-(4, 3)",
+    "outside the surface",
+)
+def _(d):
+    edit = ZoneEdit("Z1", "luminaire", "ceiling", outline=((0.5, 1), (4, 1), (0.5, 3)))
+    return raised(lambda: apply_zone_edits(box_scene(d), [edit]))
+
+
 # --- project files: when loaded -----------------------------------------------------------
 
 

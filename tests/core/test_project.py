@@ -856,12 +856,36 @@ def test_a_zone_that_does_not_fit_the_scene_fails_on_loading_the_scene():
         spec.load()
 
 
+BOWTIE = [[4, 5.5], [8, 7], [8, 5.5], [4, 7]]
+
 ZONE_ERRORS = [
     ("x", "scene.zones: expected a list of zone objects, got string 'x'"),
     ([7], "scene.zones[0]: expected an object, got number 7"),
     ([{**ZONES[0], "colour": 1}], "scene.zones[0]: unknown field 'colour' (known: name, kind,"),
     ([{**ZONES[0], "nam": 1}], "scene.zones[0]: unknown field 'nam'"),
-    ([{"name": "Z1", "kind": "luminaire", "surface": "c"}], "scene.zones[0]: missing required"),
+    (
+        [{"name": "Z1", "kind": "luminaire", "surface": "c"}],
+        "scene.zones[0].rect: new emitter zone 'Z1' on surface 'c': give its rectangle (rect) "
+        "or its outline",
+    ),
+    (
+        [{**ZONES[0], "outline": [[4, 5.5], [8, 5.5]]}],
+        "scene.zones[0].outline: expected a list of at least 3 [u, v] corners",
+    ),
+    (
+        [{**ZONES[0], "outline": [[4, 5.5], [8, 5.5], [8]]}],
+        "scene.zones[0].outline[2]: expected 2 numbers, got 1",
+    ),
+    (
+        [{"name": "Z1", "kind": "luminaire", "surface": "ceiling", "outline": BOWTIE}],
+        "scene.zones[0].outline: new emitter zone 'Z1' on surface 'ceiling': the outline "
+        "crosses itself (edges 1 and 3)",
+    ),
+    (
+        [{**ZONES[0], "outline": [[4, 5.5], [8, 5.5], [6, 7]]}],
+        "scene.zones[0].outline: new emitter zone 'Z1' on surface 'ceiling': rect (0.5, 1, 2.5, "
+        "3) is not the bounding rectangle of the outline, (4, 5.5, 8, 7)",
+    ),
     (
         [ZONES[0], {**ZONES[1], "kind": "lamp"}],
         "scene.zones[1].kind: expected one of 'luminaire', 'skylight'",

@@ -42,7 +42,7 @@ def test_zone_edit_normalises_and_validates():
         (("Z", "skylight", "ceiling", (0, 0, 1)), "rect must be 4 finite numbers"),
         (("Z", "skylight", "ceiling", (0, 0, math.nan, 1)), "rect must be 4 finite numbers"),
         (("Z", "skylight", "ceiling", (0, 0, True, 1)), "rect must be 4 finite numbers"),
-        (("Z", "skylight", "ceiling", None), "rect must be 4 finite numbers"),
+        (("Z", "skylight", "ceiling", None), "give its rectangle"),
         (("Z", "skylight", "ceiling", (1, 0, 1, 2)), r"zero width or height \(0 x 2 m\)"),
     ]
     for args, message in cases:
