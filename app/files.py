@@ -9,14 +9,16 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from PySide6 import QtCore
+from PySide6 import QtCore, QtWidgets
 
 from app import actions, dialogs
+from app.workers import LoadWorker
 from lightinv_core.editing import blank_project, obj_project
 from lightinv_core.errors import LightInvError
 from lightinv_core.project import Project, load_project
 
 MAX_RECENT = 8
+LOAD_DIALOG_MS = 500  # a load shorter than this shows no progress dialog
 SHIPPED = Path(__file__).resolve().parent.parent / "resources"
 """The installation's own files (demo projects): opened as untitled copies."""
 
@@ -35,6 +37,7 @@ class ProjectFiles(QtCore.QObject):
     def __init__(self, window):
         super().__init__(window)
         self.win, self.doc = window, window.doc
+        self._abandoned: list = []  # loads cancelled but still running
 
     # -- opening -------------------------------------------------------------------------------
     def may_discard(self) -> bool:
@@ -48,17 +51,62 @@ class ProjectFiles(QtCore.QObject):
         return answer == "discard"
 
     def load_project(self, project: Project, path: Path | None = None) -> bool:
-        """Open a project (its scene loaded and meshed); errors shown, nothing half-done."""
+        """Open a project (its scene loaded and meshed off the GUI thread); errors
+        shown, nothing half-done; a cancelled load keeps the open project."""
         if not self.may_discard():
             return False
-        self.win.stop_worker()
         try:
-            self.doc.set_project(project, path)
+            loaded = self.load_scene(project, path)
+            if loaded is None:
+                self.win.statusBar().showMessage("Loading cancelled", 4000)
+                return False
+            # The open project's work (a precompute) goes on while the new one loads.
+            self.win.stop_worker()
+            self.doc.set_project(project, path, loaded=loaded)
         except LightInvError as exc:
             dialogs.error(self.win, "cannot open", str(exc))
             return False
         self.win.undo_stack.clear()  # another project: earlier edits are not undoable
         return True
+
+    def load_scene(self, project: Project, path: Path | None):
+        """(scene, patches) of ``project``, loaded by a worker while the window stays
+        responsive (a progress dialog with Cancel shows after half a second); None if
+        cancelled (the worker's result is then dropped); LightInvError on a bad scene."""
+        worker = LoadWorker(project, path)
+        got: dict = {}
+        loop = QtCore.QEventLoop()
+        worker.succeeded.connect(lambda r: got.update(result=r))
+        worker.failed.connect(lambda m: got.update(error=m))
+        worker.finished.connect(loop.quit)
+        what = Path(project.scene.obj).name if project.scene.obj else project.scene.builtin
+        box = QtWidgets.QProgressDialog(f"Loading {what}...", "Cancel", 0, 0, self.win)
+        box.setWindowTitle("LightInv")
+        box.setWindowModality(QtCore.Qt.WindowModal)
+        box.setAutoReset(False)
+        box.setAutoClose(False)
+        box.hide()  # shown only if the load lasts (its own timer needs setValue calls)
+        later = QtCore.QTimer(singleShot=True, interval=LOAD_DIALOG_MS)
+        later.timeout.connect(box.show)
+        box.canceled.connect(loop.quit)
+        worker.start()
+        later.start()
+        if not worker.isFinished():
+            loop.exec()
+        later.stop()
+        box.hide()
+        box.deleteLater()
+        if not worker.isFinished():  # cancelled: let it end on its own, drop the result
+            worker.cancel()
+            self._abandoned.append(worker)
+            worker.finished.connect(lambda w=worker: self._abandoned.remove(w))
+            return None
+        worker.wait()
+        QtCore.QCoreApplication.sendPostedEvents(self)  # its result signals, if still queued
+        QtWidgets.QApplication.processEvents()
+        if "error" in got:
+            raise LightInvError(got["error"])
+        return got["result"]
 
     def new_project(self, scene: str, resolution: float | None = None) -> bool:
         """A new project on a built-in scene."""

@@ -18,6 +18,7 @@ from typing import ClassVar
 
 from PySide6 import QtCore, QtWidgets
 
+from lightinv_core.editing import load_scene_of
 from lightinv_core.errors import CancelledError, LightInvError
 from lightinv_core.operator.cache import CachedOperator, get_operator
 from lightinv_core.operator.settings import OperatorSettings
@@ -74,6 +75,17 @@ class Worker(QtCore.QThread):
                 self.cancelled.emit()
             else:
                 self.succeeded.emit(result)
+
+
+class LoadWorker(Worker):
+    """Loads a project's scene and meshes it: an imported building takes seconds."""
+
+    def __init__(self, project, path, parent: QtCore.QObject | None = None):
+        super().__init__(parent)
+        self.project, self.path = project, path
+
+    def work(self):
+        return load_scene_of(self.project, self.path)
 
 
 class PrecomputeWorker(Worker):

@@ -6,7 +6,12 @@ the rules are pure functions of the design (rules.py), of the results (results.p
 of drawn zones (zones.py); the light shown comes from the ``LightModel`` (lighting.py).
 """
 
-from lightinv_core.editing.document import DocumentModel, blank_project, obj_project
+from lightinv_core.editing.document import (
+    DocumentModel,
+    blank_project,
+    load_scene_of,
+    obj_project,
+)
 from lightinv_core.editing.events import EVENTS, Events
 from lightinv_core.editing.lighting import ShownLight
 from lightinv_core.editing.results import result_label
@@ -17,6 +22,7 @@ __all__ = [
     "Events",
     "ShownLight",
     "blank_project",
+    "load_scene_of",
     "obj_project",
     "result_label",
 ]

@@ -98,14 +98,18 @@ class DocumentModel:
         return self._project.operator
 
     def set_project(
-        self, project: Project, path: Path | None = None, rebuild: bool = False
+        self,
+        project: Project,
+        path: Path | None = None,
+        rebuild: bool = False,
+        loaded: tuple[Scene, Patches] | None = None,
     ) -> None:
         """Make ``project`` the open one: its scene is loaded and meshed first, so a
         SceneError changes nothing. The operator is dropped (build it again).
-        ``rebuild``: the same project re-meshed after an edit (its browsing state stays)."""
-        base = path.parent if path is not None else None
-        scene = project.scene.load(base)
-        patches = mesh_patches(scene)
+        ``rebuild``: the same project re-meshed after an edit (its browsing state stays).
+        ``loaded``: its scene and patches, already made (``load_scene_of``; the window
+        loads a model file off its GUI thread)."""
+        scene, patches = loaded if loaded is not None else load_scene_of(project, path)
         self._project, self.scene, self.patches = project, scene, patches
         self.operator, self.light, self._problem, self._light_shown = None, None, None, None
         self.shown, self._preview, self.rebuilt = None, None, rebuild
@@ -667,6 +671,13 @@ def blank_project(scene_name: str, resolution: float | None = None) -> Project:
         scene=SceneSpec(builtin=scene_name, resolution=resolution),
         design=Design((), (Goal(GoalKind.MIN_ELECTRIC_POWER),)),
     )
+
+
+def load_scene_of(project: Project, path: Path | None = None) -> tuple[Scene, Patches]:
+    """The scene of ``project`` (saved at ``path``: relative model paths are resolved
+    from its folder) and its patches; SceneError or ObjImportError on a bad one."""
+    scene = project.scene.load(path.parent if path is not None else None)
+    return scene, mesh_patches(scene)
 
 
 def obj_project(path: str | Path, **options) -> Project:

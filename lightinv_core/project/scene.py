@@ -8,6 +8,9 @@ file's reading, messages, writing and docs tables come.
 
 from __future__ import annotations
 
+import os
+import threading
+from collections import OrderedDict
 from dataclasses import dataclass, replace
 from pathlib import Path
 from typing import Any
@@ -55,6 +58,44 @@ def _obj_path(v: Any, path: str) -> str:
         kinds = ", ".join(MODEL_SUFFIXES[:-1]) + " or " + MODEL_SUFFIXES[-1]
         _fail(path, f"expected the path of a model file ({kinds}), got {s!r}")
     return s
+
+
+MODEL_CACHE_SIZE = 4
+"""Imported model files kept (``model_scene``): a zone drawn or a reflectance changed on
+an imported building re-meshes its scene, and re-importing an IFC house took 9 s."""
+_models: OrderedDict[tuple, Scene] = OrderedDict()
+_models_lock = threading.Lock()
+
+
+def _stamp(path: str | None) -> tuple | None:
+    """What tells a file's versions apart: its modification time and size."""
+    if path is None:
+        return None
+    try:
+        st = os.stat(path)
+    except OSError:
+        return None
+    return (st.st_mtime_ns, st.st_size)
+
+
+def model_scene(path: str, resolution: float | None, **options) -> Scene:
+    """``load_scene`` of a model file, kept for reuse while the file (and its materials
+    file) is unchanged: scenes are immutable, so the same one serves every load."""
+    materials = options.get("materials")
+    stamps = (_stamp(path), _stamp(materials))
+    key = (str(path), resolution, *sorted((k, str(v)) for k, v in options.items()), stamps)
+    if stamps[0] is None or (materials is not None and stamps[1] is None):
+        return load_scene(path, resolution, **options)  # its error says what is missing
+    with _models_lock:
+        if key in _models:
+            _models.move_to_end(key)
+            return _models[key]
+    scene = load_scene(path, resolution, **options)
+    with _models_lock:
+        _models[key] = scene
+        while len(_models) > MODEL_CACHE_SIZE:
+            _models.popitem(last=False)
+    return scene
 
 
 def _outline(v: Any, path: str) -> tuple[tuple[float, float], ...]:
@@ -310,7 +351,7 @@ class SceneSpec:
         if self.builtin is not None:
             scene = load_scene(self.builtin, self.resolution)
         else:
-            scene = load_scene(
+            scene = model_scene(
                 resolve_path(self.obj, base_dir),
                 self.resolution,
                 materials=resolve_path(self.materials, base_dir),

@@ -40,6 +40,7 @@ from lightinv_core.scene.model import Scene
 from lightinv_core.scene.obj_geometry import z_up
 from lightinv_core.scene.obj_import import assemble_scene, check_options
 from lightinv_core.scene.obj_parse import LISTED, MAX_COORD, ObjData, ObjFace, clip, load_materials
+from lightinv_core.scene.obj_size import check_ifc_size
 
 MISSING = "IFC import needs the optional extra: pip install 'lightinv[ifc]'"
 IFC_SUFFIXES = (".ifc",)
@@ -94,9 +95,12 @@ def load_ifc(
     ``info["ifc"]`` records the elements, spaces, zones and the area left out.
 
     Raises ObjImportError for a missing extra, a file ifcopenshell cannot read, no
-    building elements, or bad options.
+    building elements, bad options, or a file too large for the memory available
+    (``check_ifc_size``).
     """
     path, res, scale = check_options(path, resolution, scale, up, "IFC")
+    if path.is_file():  # a missing file is _open's error
+        check_ifc_size(path, path.name)
     ifcopenshell, shapely = _libraries()
     mats = load_materials(materials)
     fname = path.name

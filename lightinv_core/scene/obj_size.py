@@ -100,3 +100,25 @@ def check_counts(counts: ObjCounts, fname: str) -> ObjCounts:
             "simplify the model or free memory"
         )
     return counts
+
+
+# IFC: ifcopenshell's geometry and the plane polygons took 45 MiB for a 145 kB file and
+# 90 MiB for a 590 kB one (generated rooms, bench/model_import.py; about 100 bytes per
+# file byte beyond a 35 MiB base); doubled for models whose bytes hold more geometry.
+IFC_BYTES_PER_FILE_BYTE = 200
+IFC_BASE_BYTES = 64 << 20
+
+
+def check_ifc_size(path: Path, fname: str) -> int:
+    """The estimated peak memory (bytes) of importing the IFC file ``path``, or
+    ObjImportError if it is over 80% of the memory available."""
+    nbytes = os.path.getsize(path)
+    need, have = IFC_BASE_BYTES + IFC_BYTES_PER_FILE_BYTE * nbytes, available_memory_bytes()
+    if need > MEMORY_SHARE * have:
+        raise ObjImportError(
+            f"{fname}: importing {format_bytes(nbytes)} of IFC needs about "
+            f"{format_bytes(need)} but {format_bytes(have)} is available (an import may "
+            "use at most 80% of it); export the storeys or rooms to light as a smaller "
+            "IFC, or free memory"
+        )
+    return need

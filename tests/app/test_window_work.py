@@ -748,3 +748,54 @@ class _patched_warning:
 
     def __exit__(self, *exc):
         QtWidgets.QMessageBox.warning = self.saved
+
+
+# -- loading a model off the GUI thread -------------------------------------------------------
+
+
+def test_a_slow_model_loads_with_progress_and_a_cancel_keeps_the_open_project(
+    qtbot, window, monkeypatch
+):
+    """Importing an IFC house froze the window for 9 s: the load now runs in a worker,
+    the window keeps painting, a progress dialog offers Cancel, and a cancelled load
+    leaves the open project as it was."""
+    import time
+
+    import app.files
+    import app.workers
+
+    real = app.workers.load_scene_of
+
+    def slow(project, path):
+        time.sleep(1.2)
+        return real(project, path)
+
+    monkeypatch.setattr(app.workers, "load_scene_of", slow)
+    monkeypatch.setattr(app.files, "LOAD_DIALOG_MS", 100)
+    ticks = []
+    timer = QtCore.QTimer()
+    timer.timeout.connect(lambda: ticks.append(1))
+    timer.start(50)
+    assert window.new_project("cornell", 0.5)  # slow, but completes
+    assert window.doc.scene.name.lower().startswith("cornell") and len(ticks) >= 10
+    before = window.doc.project
+    shots = []
+
+    def cancel_it():
+        box = next(
+            w
+            for w in QtWidgets.QApplication.topLevelWidgets()
+            if w.inherits("QProgressDialog") and w.isVisible()
+        )
+        shots.append(box.labelText())
+        box.grab().save("/tmp/loading.png")
+        box.findChild(QtWidgets.QPushButton).click()
+
+    QtCore.QTimer.singleShot(600, cancel_it)
+    assert not window.new_project("office", 0.5)
+    timer.stop()
+    assert shots == ["Loading office..."]
+    assert window.doc.project is before
+    assert "Loading cancelled" in window.statusBar().currentMessage()
+    qtbot.waitUntil(lambda: not window.files._abandoned, timeout=5000)
+    wait_for_operator(qtbot, window)

@@ -298,3 +298,19 @@ def test_bad_ifc_files_are_one_line_errors(tmp_path):
     empty.write(str(tmp_path / "empty.ifc"))
     with pytest.raises(ObjImportError, match=r"^empty\.ifc: no building elements with geometry"):
         load_ifc(tmp_path / "empty.ifc")
+
+
+def test_an_ifc_file_too_large_for_the_memory_is_refused_before_it_is_read(room, monkeypatch):
+    """ifcopenshell holds the whole model and its geometry: a file that would need more
+    than 80% of the memory available is refused up front, with what it needs."""
+    import lightinv_core.scene.obj_size as obj_size
+
+    need = obj_size.check_ifc_size(room, room.name)
+    assert need == obj_size.IFC_BASE_BYTES + obj_size.IFC_BYTES_PER_FILE_BYTE * (
+        room.stat().st_size
+    )
+    monkeypatch.setattr(obj_size, "available_memory_bytes", lambda: int(need / 0.8) - 1)
+    with pytest.raises(ObjImportError, match=r"^room\.ifc: importing .* of IFC needs about"):
+        load_ifc(room)
+    monkeypatch.setattr(obj_size, "available_memory_bytes", lambda: int(need / 0.8) + 1)
+    assert load_ifc(room).zones
