@@ -174,6 +174,19 @@ def compute_menu(win, bar: QtWidgets.QMenuBar) -> None:
         compute.addAction(act)
 
 
+def toolbar_text(win) -> tuple:
+    """(action, short toolbar label) pairs."""
+    m = win.mode_actions
+    return (
+        (m["select"], "Select"),
+        (m["move"], "Move"),
+        (m["polygon"], "Draw polygon"),
+        (win.act_run, "Run"),
+        (win.act_cancel_run, "Cancel run"),
+        (win.act_intention, "Add intention"),
+    )
+
+
 def main_toolbar(win) -> QtWidgets.QToolBar:
     """The toolbar: files, precompute, run, modes (and the kind of zone drawn),
     intention, cameras."""
@@ -185,6 +198,11 @@ def main_toolbar(win) -> QtWidgets.QToolBar:
         (*win.mode_actions.values(), win.zone_kind_box, win.act_intention),
         tuple(win.camera_actions.values()),
     )
+    # Short toolbar labels (the menus keep the full names), so the camera buttons still
+    # fit a 1366 px wide screen.
+    for act, short in toolbar_text(win):
+        act.setIconText(short)
+        act.setToolTip(act.text().replace("&", "").rstrip("."))
     for i, group in enumerate(groups):
         if i:
             tools.addSeparator()

@@ -148,6 +148,14 @@ def test_the_window_fits_a_laptop_screen(qtbot, window, tmp_path):
         bottom_right = widget.mapTo(window, widget.rect().bottomRight())
         assert widget.isVisible() and inside.contains(top_left) and inside.contains(bottom_right)
     assert window.run_panel.run_button.visibleRegion().boundingRect().height() > 10
+    # Every toolbar button shows (none in the overflow menu), the cameras included.
+    tools = window.findChild(QtWidgets.QToolBar, "main toolbar")
+    hidden = [
+        a.iconText()
+        for a in tools.actions()
+        if not a.isSeparator() and not tools.widgetForAction(a).isVisible()
+    ]
+    assert hidden == []
     window.grab().save("/tmp/laptop.png")
 
 
