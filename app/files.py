@@ -38,6 +38,7 @@ class ProjectFiles(QtCore.QObject):
         super().__init__(window)
         self.win, self.doc = window, window.doc
         self._abandoned: list = []  # loads cancelled but still running
+        self.loading = False  # a load_scene is under way (its event loop is running)
 
     # -- opening -------------------------------------------------------------------------------
     def may_discard(self) -> bool:
@@ -73,6 +74,7 @@ class ProjectFiles(QtCore.QObject):
         """(scene, patches) of ``project``, loaded by a worker while the window stays
         responsive (a progress dialog with Cancel shows after half a second); None if
         cancelled (the worker's result is then dropped); LightInvError on a bad scene."""
+        self._abandoned = [w for w in self._abandoned if w.isRunning()]
         worker = LoadWorker(project, path)
         got: dict = {}
         loop = QtCore.QEventLoop()
@@ -80,33 +82,48 @@ class ProjectFiles(QtCore.QObject):
         worker.failed.connect(lambda m: got.update(error=m))
         worker.finished.connect(loop.quit)
         what = Path(project.scene.obj).name if project.scene.obj else project.scene.builtin
-        box = QtWidgets.QProgressDialog(f"Loading {what}...", "Cancel", 0, 0, self.win)
+        # No parent: the window is disabled meanwhile (no second Open, no edits), and a
+        # disabled parent would disable its dialog too.
+        box = QtWidgets.QProgressDialog(f"Loading {what}...", "Cancel", 0, 0)
         box.setWindowTitle("LightInv")
-        box.setWindowModality(QtCore.Qt.WindowModal)
         box.setAutoReset(False)
         box.setAutoClose(False)
         box.hide()  # shown only if the load lasts (its own timer needs setValue calls)
         later = QtCore.QTimer(singleShot=True, interval=LOAD_DIALOG_MS)
         later.timeout.connect(box.show)
+        cancelled: list[bool] = []
+        box.canceled.connect(lambda: cancelled.append(True))
         box.canceled.connect(loop.quit)
-        worker.start()
-        later.start()
-        if not worker.isFinished():
-            loop.exec()
-        later.stop()
-        box.hide()
-        box.deleteLater()
-        if not worker.isFinished():  # cancelled: let it end on its own, drop the result
+        self.loading = True
+        self.win.setEnabled(False)
+        try:
+            worker.start()
+            later.start()
+            if not worker.isFinished():
+                loop.exec()
+        finally:
+            later.stop()
+            box.hide()
+            box.deleteLater()
+            self.win.setEnabled(True)
+            self.loading = False
+        if cancelled:  # drop the result; the worker ends on its own (waited for on close)
             worker.cancel()
+            worker.succeeded.disconnect()
+            worker.failed.disconnect()
             self._abandoned.append(worker)
-            worker.finished.connect(lambda w=worker: self._abandoned.remove(w))
             return None
         worker.wait()
-        QtCore.QCoreApplication.sendPostedEvents(self)  # its result signals, if still queued
-        QtWidgets.QApplication.processEvents()
+        QtWidgets.QApplication.processEvents()  # its result signals, if still queued
         if "error" in got:
             raise LightInvError(got["error"])
         return got["result"]
+
+    def wait_abandoned(self) -> None:
+        """Wait for cancelled loads still running (before the window goes)."""
+        for w in self._abandoned:
+            w.wait()
+        self._abandoned.clear()
 
     def new_project(self, scene: str, resolution: float | None = None) -> bool:
         """A new project on a built-in scene."""

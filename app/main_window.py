@@ -637,10 +637,14 @@ class MainWindow(QtWidgets.QMainWindow):
         return _recover(self, rec)
 
     def closeEvent(self, event: QtGui.QCloseEvent) -> None:
+        if self.files.loading:  # a project is being loaded: Cancel it first
+            event.ignore()
+            return
         if not self.files.may_discard():
             event.ignore()
             return
         self.stop_worker()
+        self.files.wait_abandoned()  # loads cancelled but still running end first
         self.autosaver.close()  # a clean exit: nothing to recover
         self.settings.setValue("geometry", self.saveGeometry())
         self.settings.setValue("windowState", self.saveState())

@@ -543,7 +543,8 @@ class ZonePanel(QtWidgets.QGroupBox):
             box.setValue(value)
             box.setEnabled(z.outline is None)  # a polygon's rectangle is its bounds
         self.outline.setText(
-            "" if z.outline is None else "; ".join(f"{u:g} {v:g}" for u, v in z.outline)
+            # Enough digits that Apply (a rename) gives back the same corners.
+            "" if z.outline is None else "; ".join(f"{u:.12g} {v:.12g}" for u, v in z.outline)
         )
 
     def apply(self) -> None:

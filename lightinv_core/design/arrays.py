@@ -24,6 +24,7 @@ from lightinv_core.kinds import RuleKind
 from lightinv_core.scene.zone_outline import OUTLINE_TOL, outside_area
 
 MIN_FOOTPRINT = 0.01  # m: a point-like product still needs room to be mounted
+OUTLINE_CHUNK = 1 << 20  # (candidate, luminaire, outline edge) triples checked at once
 
 
 @dataclass(frozen=True)
@@ -96,9 +97,17 @@ def _outside_outline(outline: np.ndarray, layout: ArrayLayout, g: ArrayGeometry,
     outline, summed over its luminaires (each 0 to 1), less a rounding tolerance."""
     u, v, mask = luminaire_positions(layout, j)
     hu, hv = 0.5 * g.fu[:, j : j + 1], 0.5 * g.fv[:, j : j + 1]
-    rect = np.stack(np.broadcast_arrays(u - hu, v - hv, u + hu, v + hv), axis=-1)
-    share = outside_area(outline, rect) / (4 * hu * hv)
-    return (np.maximum(0, share - OUTLINE_TOL) * mask).sum(axis=1)
+    out = np.zeros(len(u))
+    # In slices: the check holds (candidates, luminaires, outline edges) at once.
+    step = max(1, OUTLINE_CHUNK // max(1, u.shape[1] * len(outline)))
+    for a in range(0, len(u), step):
+        s = slice(a, a + step)
+        rect = np.stack(
+            np.broadcast_arrays(u[s] - hu[s], v[s] - hv[s], u[s] + hu[s], v[s] + hv[s]), axis=-1
+        )
+        share = outside_area(outline, rect) / (4 * hu[s] * hv[s])
+        out[s] = (np.maximum(0, share - OUTLINE_TOL) * mask[s]).sum(axis=1)
+    return out
 
 
 def array_rule_names(design: Design) -> list[str]:

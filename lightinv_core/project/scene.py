@@ -78,11 +78,30 @@ def _stamp(path: str | None) -> tuple | None:
     return (st.st_mtime_ns, st.st_size)
 
 
+def _companions(path: str) -> tuple:
+    """Stamps of the files a model may read beside it: an OBJ's ``.mtl`` libraries, a
+    glTF's ``.bin`` buffers (``COMPANION_SUFFIXES``, in the model's folder)."""
+    folder = Path(path).parent
+    try:
+        names = sorted(
+            e.name
+            for e in os.scandir(folder)
+            if e.is_file() and Path(e.name).suffix.lower() in COMPANION_SUFFIXES
+        )
+    except OSError:
+        return ()
+    return tuple((n, _stamp(str(folder / n))) for n in names)
+
+
+COMPANION_SUFFIXES = (".mtl", ".bin")
+
+
 def model_scene(path: str, resolution: float | None, **options) -> Scene:
-    """``load_scene`` of a model file, kept for reuse while the file (and its materials
-    file) is unchanged: scenes are immutable, so the same one serves every load."""
+    """``load_scene`` of a model file, kept for reuse while the file, the files beside
+    it that it may read (``_companions``) and its materials file are unchanged: scenes
+    are immutable, so the same one serves every load."""
     materials = options.get("materials")
-    stamps = (_stamp(path), _stamp(materials))
+    stamps = (_stamp(path), _stamp(materials), _companions(path))
     key = (str(path), resolution, *sorted((k, str(v)) for k, v in options.items()), stamps)
     if stamps[0] is None or (materials is not None and stamps[1] is None):
         return load_scene(path, resolution, **options)  # its error says what is missing

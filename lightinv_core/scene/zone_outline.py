@@ -114,7 +114,12 @@ def _clipped_x_dy(p: np.ndarray, q: np.ndarray, lo: tuple, hi: tuple) -> np.ndar
         safe = np.where(moving, da, 1.0)
         ta, tb = (lo[axis] - pa) / safe, (hi[axis] - pa) / safe
         enter, leave = np.minimum(ta, tb), np.maximum(ta, tb)
-        inside = (pa >= lo[axis]) & (pa <= hi[axis])
+        if axis == 0:
+            # Half-open in x, as the vertical sides' winding count: a polygon edge lying
+            # on the rectangle's left side belongs to that side's term, not here.
+            inside = (pa > lo[axis]) & (pa <= hi[axis])
+        else:
+            inside = (pa >= lo[axis]) & (pa <= hi[axis])
         t0 = np.where(moving, np.maximum(t0, enter), np.where(inside, t0, 1.0))
         t1 = np.where(moving, np.minimum(t1, leave), np.where(inside, t1, 0.0))
     dt = np.maximum(t1 - t0, 0.0)

@@ -784,7 +784,10 @@ def test_a_slow_model_loads_with_progress_and_a_cancel_keeps_the_open_project(
     timer = QtCore.QTimer()
     timer.timeout.connect(lambda: ticks.append(1))
     timer.start(50)
+    enabled = []
+    QtCore.QTimer.singleShot(300, lambda: enabled.append(window.isEnabled()))
     assert window.new_project("cornell", 0.5)  # slow, but completes
+    assert enabled == [False] and window.isEnabled()  # no second Open meanwhile
     assert window.doc.scene.name.lower().startswith("cornell") and len(ticks) >= 10
     before = window.doc.project
     shots = []
@@ -805,5 +808,5 @@ def test_a_slow_model_loads_with_progress_and_a_cancel_keeps_the_open_project(
     assert shots == ["Loading office..."]
     assert window.doc.project is before
     assert "Loading cancelled" in window.statusBar().currentMessage()
-    qtbot.waitUntil(lambda: not window.files._abandoned, timeout=5000)
+    qtbot.waitUntil(lambda: not any(w.isRunning() for w in window.files._abandoned), timeout=5000)
     wait_for_operator(qtbot, window)

@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import copy
 import json
+from itertools import combinations
 
 import numpy as np
 import pytest
@@ -71,6 +72,32 @@ def test_inside_area_is_exact_against_shapely():
         pytest.approx([0.0, 0.0], abs=1e-12)
     )
     assert outside_area(None, np.array([[0, 0, 9, 9]])) == [0.0]
+
+
+EDGY = [
+    [(0, 0), (3, 0), (3, 2), (2, 2), (2, 1), (1, 1), (1, 2), (0, 2)],  # U
+    [(1, 1), (2, 1), (2, 2), (1, 2)],  # a square off the origin
+    [(0, 0), (4, 0), (4, 1), (1, 1), (1, 3), (4, 3), (4, 4), (0, 4)],  # C
+    [(0, 0), (2, 0), (2, 1), (3, 1), (3, 2), (1, 2), (1, 3), (0, 3)],  # stairs
+    [(0, 0), (1, 0), (2, 0), (2, 2), (0, 2)],  # collinear corners
+]
+
+
+@pytest.mark.parametrize("poly", EDGY, ids=["U", "square", "C", "stairs", "collinear"])
+def test_rectangles_with_sides_on_the_outline_edges(poly):
+    """Sides lying exactly on the polygon's edges (a source flush against a notch's wall)
+    were counted twice on the rectangle's left side: a legal source came out wholly
+    outside and one in the notch wholly inside."""
+    outline = check_outline(poly, "edgy")
+    shape = Polygon(outline)
+    xs = sorted({p[0] for p in poly} | {0.5, 1.5, 2.5})
+    ys = sorted({p[1] for p in poly} | {0.5, 1.5})
+    rects = np.array(
+        [(a, b, c, d) for a, c in combinations(xs, 2) for b, d in combinations(ys, 2)], float
+    )
+    want = [shape.intersection(box(*r)).area for r in rects]
+    np.testing.assert_allclose(inside_area(outline, rects), want, atol=1e-12)
+    assert is_inside(outline, inner_square(outline, 1.0))
 
 
 def test_check_outline_orients_and_rejects():

@@ -981,3 +981,30 @@ def test_bad_runs_name_their_json_path(run, message):
 def test_a_run_listed_twice_is_refused():
     with pytest.raises(ProjectError, match=r"^results\.runs\[1\]\.number: run 2 is listed twice"):
         project_from_dict(_with_runs(RUN, RUN))
+
+
+def test_imported_models_are_reused_until_their_files_change(tmp_path):
+    """A zone drawn on an imported building re-imported the file (9 s for an IFC house):
+    the imported scene is kept, and taken again only when the model, its ``.mtl``
+    library or the materials file changes."""
+    import os
+
+    from lightinv_core.project.scene import model_scene
+
+    obj = tmp_path / "room.obj"
+    obj.write_text(
+        "mtllib room.mtl\nv 0 0 0\nv 4 0 0\nv 4 3 0\nv 0 3 0\nusemtl floor\nf 1 2 3 4\n"
+        "v 0 0 2.5\nv 0 3 2.5\nv 4 3 2.5\nv 4 0 2.5\nusemtl ceiling\nf 5 6 7 8\n"
+    )
+    mtl = tmp_path / "room.mtl"
+    mtl.write_text("newmtl floor\nKd 0.2 0.2 0.2\nnewmtl ceiling\nKd 0.8 0.8 0.8\n")
+    first = model_scene(str(obj), 0.5)
+    assert model_scene(str(obj), 0.5) is first
+    assert model_scene(str(obj), 1.0) is not first  # another resolution
+    floor = next(s for s in first.surfaces if s.group.startswith("floor"))
+    mtl.write_text("newmtl floor\nKd 0.9 0.9 0.9\nnewmtl ceiling\nKd 0.8 0.8 0.8\n")
+    os.utime(mtl, ns=(1, 1))  # a different stamp even within the clock's resolution
+    again = model_scene(str(obj), 0.5)
+    assert again is not first
+    refl = next(s for s in again.surfaces if s.group == floor.group).reflectance
+    assert refl == pytest.approx(0.9, abs=0.01) and floor.reflectance == pytest.approx(0.2)
