@@ -406,6 +406,11 @@ class MainWindow(QtWidgets.QMainWindow):
         if abs(u1 - u0) < MIN_ZONE or abs(v1 - v0) < MIN_ZONE:
             self.statusBar().showMessage("Zone too small: drag a larger rectangle", 4000)
             return False
+        return self._add_zone(surface, dialog, rect=(u0, v0, u1, v1))
+
+    def _add_zone(self, surface: str, dialog: ZoneDialog | None, **shape) -> bool:
+        """Ask for a drawn zone's name and kind, then rebuild the scene with it
+        (``shape``: its ``rect`` or its ``outline``); errors shown, nothing changed."""
         if dialog is None:
             dialog = ZoneDialog(surface, self.doc.new_zone_name(), self)
             dialog.kind.setCurrentText(self.draw_kind())
@@ -413,7 +418,7 @@ class MainWindow(QtWidgets.QMainWindow):
             return False
         try:
             name, kind = dialog.name.text().strip(), dialog.kind.currentText()
-            edit = ZoneEdit(name, kind, surface, (u0, v0, u1, v1))  # a bad name stops nothing
+            edit = ZoneEdit(name, kind, surface, **shape)  # a bad name stops nothing
             self.stop_worker()
             self.doc.set_user_zones((*self.doc.user_zones, edit))
         except LightInvError as exc:
@@ -428,20 +433,7 @@ class MainWindow(QtWidgets.QMainWindow):
         if len(pts) < 3 or span.min() < MIN_ZONE:
             self.statusBar().showMessage("Zone too small: click at least 3 corners apart", 4000)
             return False
-        if dialog is None:
-            dialog = ZoneDialog(surface, self.doc.new_zone_name(), self)
-            dialog.kind.setCurrentText(self.draw_kind())
-        if not dialogs.accepted(dialog):
-            return False
-        try:
-            name, kind = dialog.name.text().strip(), dialog.kind.currentText()
-            edit = ZoneEdit(name, kind, surface, outline=tuple(map(tuple, pts)))
-            self.stop_worker()
-            self.doc.set_user_zones((*self.doc.user_zones, edit))
-        except LightInvError as exc:
-            dialogs.warn(self, str(exc))
-            return False
-        return True
+        return self._add_zone(surface, dialog, outline=tuple(map(tuple, pts)))
 
     def add_intention_on_selection(self, dialog: IntentionDialog | None = None) -> bool:
         """Ask for bounds and add an intention on the picked patches."""
