@@ -55,10 +55,18 @@ def random_start(problem: DesignProblem, rng: np.random.Generator) -> np.ndarray
             return X[ok[0]]
         failing += broken.sum(axis=0)
     # Name the rule most layouts break: the one to relax first.
-    worst = rule_names(problem.design)[int(np.argmax(failing))]
+    k = int(np.argmax(failing))
+    worst = rule_names(problem.design)[k]
+    hint = "check area, aspect and spacing bounds against the zone sizes"
+    if k == 0 and problem.outlines:
+        hint = (
+            "sources must lie inside their zone's polygon outline; a source too large "
+            "for the polygon, or a mirrored or centred copy (tied across the polygon's "
+            "bounding rectangle) that falls outside it, cannot"
+        )
     raise DesignError(
         f"no random layout out of {START_TRIES:,} meets the geometric rules; "
-        f"most break {worst!r}: check area, aspect and spacing bounds against the zone sizes"
+        f"most break {worst!r}: {hint}"
     )
 
 

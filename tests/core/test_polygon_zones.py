@@ -255,3 +255,17 @@ def test_array_luminaires_must_fit_the_outline():
     a = project.design.arrays[0]
     bad = array_layout((type(a)(**{**a.__dict__, "rect": (0, 0, 5, 2), "rows": 2}),))
     assert array_violations(project.design, bad, shapes)[0, 0] > 1.0
+
+
+def test_a_source_that_cannot_fit_the_polygon_says_why():
+    from lightinv_core.errors import DesignError
+    from lightinv_core.optimize.search import random_start
+
+    d = _l_project()
+    # Centred on the bounding rectangle's centre (2.5, 1), on the notch's edge: any
+    # rectangle there reaches into the notch.
+    d["rules"].append({"kind": "centred", "sources": ["S2"]})
+    project = project_from_dict(d)
+    problem = study.DesignProblem(project.design, study.prepare(project).light)
+    with pytest.raises(DesignError, match="inside their zone's polygon outline"):
+        random_start(problem, np.random.default_rng(0))
