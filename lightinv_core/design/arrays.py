@@ -21,7 +21,7 @@ import numpy as np
 from lightinv_core.design.model import ARRAY_RULES, Design
 from lightinv_core.design.variables import ArrayLayout
 from lightinv_core.kinds import RuleKind
-from lightinv_core.scene.zone_outline import OUTLINE_TOL, outside_area
+from lightinv_core.scene.zone_outline import outside_share
 
 MIN_FOOTPRINT = 0.01  # m: a point-like product still needs room to be mounted
 OUTLINE_CHUNK = 1 << 20  # (candidate, luminaire, outline edge) triples checked at once
@@ -105,8 +105,7 @@ def _outside_outline(outline: np.ndarray, layout: ArrayLayout, g: ArrayGeometry,
         rect = np.stack(
             np.broadcast_arrays(u[s] - hu[s], v[s] - hv[s], u[s] + hu[s], v[s] + hv[s]), axis=-1
         )
-        share = outside_area(outline, rect) / (4 * hu[s] * hv[s])
-        out[s] = (np.maximum(0, share - OUTLINE_TOL) * mask[s]).sum(axis=1)
+        out[s] = (outside_share(outline, rect) * mask[s]).sum(axis=1)
     return out
 
 

@@ -17,7 +17,7 @@ import numpy as np
 from lightinv_core.design.arrays import ArrayShapes, array_rule_names, array_violations
 from lightinv_core.design.model import ARRAY_RULES, Design
 from lightinv_core.design.variables import ArrayLayout
-from lightinv_core.scene.zone_outline import OUTLINE_TOL, outside_area
+from lightinv_core.scene.zone_outline import outside_share
 
 ALIGN_TOL = 0.01  # m
 MIN_SIDE = 1e-3  # m: a thinner source is degenerate
@@ -73,8 +73,7 @@ def rule_violations(
     thin = np.maximum(0, MIN_SIDE - np.minimum(w, h)) / MIN_SIDE
     for i, outline in enumerate(outlines):
         if outline is not None:
-            share = outside_area(outline, rect[:, i]) / np.maximum(area[:, i], 1e-12)
-            thin[:, i] += np.maximum(0, share - OUTLINE_TOL)
+            thin[:, i] += outside_share(outline, rect[:, i])
     scale = zone_size.max() if zone_size.size else 1.0
     out.append((outside / scale + thin).sum(axis=1))
     for r in design.rules:

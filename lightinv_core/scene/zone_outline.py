@@ -174,6 +174,15 @@ def outside_area(outline: np.ndarray | None, rect: np.ndarray) -> np.ndarray:
     return np.maximum(full - inside_area(outline, rect), 0.0)
 
 
+def outside_share(outline: np.ndarray, rect: np.ndarray) -> np.ndarray:
+    """The share (0 to 1) of each rectangle (..., 4) outside ``outline``, less the
+    rounding tolerance ``OUTLINE_TOL`` (0 for a rectangle inside): the rules' amount."""
+    rect = np.asarray(rect, dtype=float)
+    full = np.abs(rect[..., 2] - rect[..., 0]) * np.abs(rect[..., 3] - rect[..., 1])
+    share = outside_area(outline, rect) / np.maximum(full, 1e-12)
+    return np.maximum(0.0, share - OUTLINE_TOL)
+
+
 def points_inside(outline: np.ndarray, points: np.ndarray) -> np.ndarray:
     """Whether each point (..., 2) lies inside or on ``outline`` (even-odd rule)."""
     pts = np.asarray(points, dtype=float)
@@ -200,9 +209,7 @@ def bounds(outline: np.ndarray) -> tuple[float, float, float, float]:
 
 def is_inside(outline: np.ndarray | None, rect) -> bool:
     """Whether the rectangle (u0, v0, u1, v1) lies inside ``outline`` (None: any)."""
-    r = np.asarray(rect, dtype=float)
-    area = abs((r[2] - r[0]) * (r[3] - r[1]))
-    return float(outside_area(outline, r)) <= OUTLINE_TOL * max(area, 1e-12)
+    return outline is None or float(outside_share(outline, rect)) == 0.0
 
 
 def kept_inside(outline: np.ndarray | None, start, end) -> tuple[float, ...]:
@@ -241,7 +248,7 @@ def inner_square(outline: np.ndarray, side: float) -> tuple[float, float, float,
     while s > MIN_SIDE:
         h = 0.5 * s
         rects = np.column_stack([centres - h, centres + h])
-        ok = np.flatnonzero(outside_area(outline, rects) <= OUTLINE_TOL * s * s)
+        ok = np.flatnonzero(outside_share(outline, rects) == 0.0)
         if len(ok):
             return tuple(map(float, rects[ok[0]]))
         s *= 0.5
