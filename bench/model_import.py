@@ -7,6 +7,10 @@ ifc_import.py). Prints one JSON object:
 - ``glb``: import time of a GLB of k x k separate quads (2 k² triangles), per triangle;
 - ``ifc``: import time and patches of a row of n copies of the tests' IFC room
   (slab, four walls, a window, a roof slab with a skylight, a ceiling panel, a space);
+- ``ifc_memory``: peak memory of importing the n-room IFC file, measured in a fresh
+  process (its peak resident memory, VmHWM, after the import less before it,
+  ifcopenshell and shapely already imported): what ``obj_size.check_ifc_size``
+  estimates from the file's size;
 - ``files``: for IFC files given with ``--ifc``, import time, what was left out, zones,
   patches at 0.5 m and the share of light lost (area-weighted, 128 rays per patch).
 
@@ -137,6 +141,47 @@ def rooms(d: Path, n: int) -> dict:
     }
 
 
+# The child's peak RSS is reset (clear_refs 5) after its imports: a forked child's
+# ru_maxrss starts from its parent's.
+PEAK = """
+import sys
+import ifcopenshell, ifcopenshell.geom, shapely
+from lightinv_core.scene.loading import load_scene
+def hwm():
+    for line in open("/proc/self/status"):
+        if line.startswith("VmHWM:"):
+            return int(line.split()[1])
+open("/proc/self/clear_refs", "w").write("5")
+before = hwm()
+load_scene(sys.argv[1], 0.5)
+print(before, hwm())
+"""
+
+
+def ifc_memory(d: Path, n: int) -> dict:
+    """Peak import memory of the n-room file (written by ``rooms``), in a fresh process."""
+    import subprocess
+
+    path = d / f"rooms{n}.ifc"
+    root = str(Path(__file__).resolve().parents[1])
+    got = subprocess.run(
+        [sys.executable, "-c", PEAK, str(path)],
+        capture_output=True,
+        text=True,
+        check=True,
+        cwd=root,
+        env={**os.environ, "PYTHONPATH": root},
+    )
+    before, after = (int(x) for x in got.stdout.split()[-2:])
+    nbytes = path.stat().st_size
+    return {
+        "rooms": n,
+        "file_bytes": nbytes,
+        "base_mib": round(before / 1024, 1),
+        "import_mib": round((after - before) / 1024, 1),
+    }
+
+
 def ifc_file(path: str) -> dict:
     from lightinv_core.transport.formfactors import form_factor_matrix, lost_fraction
 
@@ -165,13 +210,15 @@ def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--quads", type=int, nargs="+", default=[100, 300])
     ap.add_argument("--rooms", type=int, nargs="+", default=[1, 4, 16])
+    ap.add_argument("--memory-rooms", type=int, nargs="+", default=[16, 64])
     ap.add_argument("--ifc", nargs="*", default=[], help="IFC files to measure as well")
     args = ap.parse_args()
     with tempfile.TemporaryDirectory() as tmp:
         d = Path(tmp)
         out = {"cores": os.cpu_count(), "box": box(d)}
         out["glb"] = [quads(d, k) for k in args.quads]
-        out["ifc"] = [rooms(d, n) for n in args.rooms]
+        out["ifc"] = [rooms(d, n) for n in sorted(set(args.rooms) | set(args.memory_rooms))]
+        out["ifc_memory"] = [ifc_memory(d, n) for n in args.memory_rooms]
         out["files"] = [ifc_file(f) for f in args.ifc]
     print(json.dumps(out, indent=2))
 

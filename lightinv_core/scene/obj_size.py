@@ -102,9 +102,10 @@ def check_counts(counts: ObjCounts, fname: str) -> ObjCounts:
     return counts
 
 
-# IFC: ifcopenshell's geometry and the plane polygons took 45 MiB for a 145 kB file and
-# 90 MiB for a 590 kB one (generated rooms, bench/model_import.py; about 100 bytes per
-# file byte beyond a 35 MiB base); doubled for models whose bytes hold more geometry.
+# IFC: ifcopenshell's geometry and the plane polygons took 73 MiB for a 145 kB file and
+# 118 MiB for a 590 kB one (generated rooms, bench/model_import.py ``ifc_memory``: about
+# 106 bytes per file byte over a 58 MiB base); the per-byte term is doubled for models
+# whose bytes hold more geometry.
 IFC_BYTES_PER_FILE_BYTE = 200
 IFC_BASE_BYTES = 64 << 20
 
