@@ -31,10 +31,33 @@ class RuleKind(StrEnum):
 
 
 class Quantity(StrEnum):
-    """What an intention bounds: illuminance (lux) or reflected exitance C (lm/m²)."""
+    """What an intention bounds: illuminance (lux) or reflected exitance C (lm/m²) in
+    its scenario, or a daylight metric (docs/daylight.md), each per patch or grid point."""
 
     LUX = "lux"  # illuminance H = (B - E) / rho, lux
     C = "C"  # reflected exitance C = B - E, lm/m²
+    DF = "df"  # daylight factor under the CIE overcast sky, % (daylight only)
+    DA = "da"  # daylight autonomy DA300: share of occupied hours with >= 300 lux daylight
+    UDI = "udi"  # useful daylight: share of occupied hours with 100-3000 lux daylight
+    SDA = "sda"  # 1 where DA300 >= 50%, else 0: its average is sDA300/50%
+
+
+DAYLIGHT_QUANTITIES = {
+    Quantity.DF: "overcast",
+    Quantity.DA: "annual",
+    Quantity.UDI: "annual",
+    Quantity.SDA: "annual",
+}
+"""The daylight metrics and the scenario each is measured in."""
+
+
+class Scenario(StrEnum):
+    """The light an intention is judged in (docs/daylight.md, scenarios)."""
+
+    DESIGN = "design"  # luminaires plus skylights at the design exterior lux (the paper's)
+    NIGHT = "night"  # luminaires only
+    OVERCAST = "overcast"  # luminaires plus the CIE overcast sky through the glazing
+    ANNUAL = "annual"  # daylight through every occupied hour of the weather file
 
 
 class Bound(StrEnum):
@@ -48,13 +71,23 @@ class Bound(StrEnum):
 
 class GoalKind(StrEnum):
     """What to optimise: electric power (W, minimised), reflected light power (lm,
-    maximised), or the match error e (paper eq. 11, minimised)."""
+    maximised), the match error e (paper eq. 11, minimised), installed power, luminaire
+    count, and the climate goals: annual energy (kWh), sDA (maximised), glazing area (m²)."""
 
     MIN_ELECTRIC_POWER = "min_electric_power"  # sum of flux / efficacy, W
     MAX_LIGHT_POWER = "max_light_power"  # sum_i C_i A_i, lm
     MATCH = "match"  # e = ||C - C_obj|| / ||C_obj||, no unit
     MIN_INSTALLED_POWER = "min_installed_power"  # rated power of every luminaire at full output, W
     MIN_LUMINAIRE_COUNT = "min_luminaire_count"  # luminaires in arrays plus luminaire sources
+    MIN_ANNUAL_ENERGY = "min_annual_energy"  # electric lighting energy with dimming, kWh/a
+    MAX_SDA = "max_sda"  # sDA300/50% of the control work plane, fraction
+    MIN_GLAZING_AREA = "min_glazing_area"  # area of the skylight sources, m²
+
+
+MAXIMISED_GOALS = frozenset({GoalKind.MAX_LIGHT_POWER, GoalKind.MAX_SDA})
+"""Goals whose value is maximised (the others are minimised)."""
+ANNUAL_GOALS = frozenset({GoalKind.MIN_ANNUAL_ENERGY, GoalKind.MAX_SDA})
+"""Goals that need the weather year."""
 
 
 class VariableName(StrEnum):

@@ -14,6 +14,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 from lightinv_core.design.model import DesignError, Intention
+from lightinv_core.kinds import Scenario
 
 
 @dataclass(frozen=True)
@@ -52,6 +53,9 @@ def requirement(key: str) -> Requirement:
 
 
 def preset_intention(key: str, grid: str, name: str | None = None) -> Intention:
-    """An intention on work plane ``grid`` asking for the preset's Em and U0."""
+    """An intention on work plane ``grid`` asking for the preset's Em and U0 at night
+    (luminaires only): the standard's values must hold without daylight."""
     r = requirement(key)
-    return Intention(name or r.key, grid=grid, average=r.em, uniformity=r.u0)
+    return Intention(
+        name or r.key, grid=grid, average=r.em, uniformity=r.u0, scenario=Scenario.NIGHT.value
+    )

@@ -17,11 +17,14 @@ from dataclasses import dataclass, field
 
 from lightinv_core.errors import DesignError
 from lightinv_core.kinds import (
+    ANNUAL_GOALS,
+    DAYLIGHT_QUANTITIES,
     ArrayVariable,
     Bound,
     GoalKind,
     Quantity,
     RuleKind,
+    Scenario,
     SourceKind,
     VariableName,
 )
@@ -279,10 +282,22 @@ class Intention:
     uniformity: float | None = None
     weight: float = 100.0
     grid: str | None = None
+    scenario: str = Scenario.DESIGN.value
 
     def __post_init__(self) -> None:
         _name(self.name, "an intention's name")
         where = f"intention {self.name!r}"
+        if self.scenario not in tuple(Scenario):
+            raise DesignError(f"{where}: scenario must be {_either(tuple(Scenario))}")
+        metric_scenario = DAYLIGHT_QUANTITIES.get(self.quantity)
+        if metric_scenario is not None:
+            # A daylight metric is measured in its own scenario, whatever was written.
+            object.__setattr__(self, "scenario", metric_scenario)
+        elif self.scenario == Scenario.ANNUAL:
+            raise DesignError(
+                f"{where}: the annual scenario bounds a daylight metric: quantity "
+                f"{_either(tuple(q for q, sc in DAYLIGHT_QUANTITIES.items() if sc == 'annual'))}"
+            )
         targets = sum(x is not None for x in (self.group, self.patches, self.grid))
         if targets != 1:
             raise DesignError(
@@ -292,8 +307,11 @@ class Intention:
             _name(self.group, f"{where}: group")
         if self.grid is not None:
             _name(self.grid, f"{where}: grid")
-            if self.quantity != Quantity.LUX:
-                raise DesignError(f"{where}: a work-plane grid takes illuminance (lux) only")
+            if self.quantity == Quantity.C:
+                raise DesignError(
+                    f"{where}: a work-plane grid takes illuminance (lux) or a daylight metric, "
+                    "not reflected exitance"
+                )
         if self.patches is not None:
             if not isinstance(self.patches, tuple | list | range) or len(self.patches) == 0:
                 raise DesignError(f"{where}: patches must be a non-empty list of patch ids")
@@ -487,18 +505,58 @@ class Goal:
 
 @dataclass(frozen=True)
 class Daylight:
-    """Exterior diffuse illuminance (lux) and glazing transmittance of the skylights."""
+    """The daylight of the design and its climate (docs/daylight.md).
+
+    ``exterior_lux`` and ``transmittance``: in the ``design`` scenario every skylight
+    emits filter x transmittance x exterior_lux (the paper's model). The other fields
+    serve the other scenarios and the annual goals: ``weather`` (an EPW or TMY3 path,
+    or "builtin": the shipped Greensboro TMY3), ``north_deg`` (compass bearing of the
+    scene's +y axis), ``occupancy`` (local hours [start, end) of the occupied day) on
+    weekdays only unless ``weekdays`` is False, ``ground_reflectance``, ``overcast_lux``
+    (horizontal lux of the design overcast sky), daylight-linked dimming to
+    ``target_lux`` on the work plane ``workplane`` (default: the first) between
+    ``min_level`` and full output, with ``standby_w`` drawn all year.
+    """
 
     exterior_lux: float = 10000.0
     transmittance: float = 0.6
+    weather: str = "builtin"
+    north_deg: float = 0.0
+    occupancy: tuple[float, float] = (8.0, 18.0)
+    weekdays: bool = True
+    ground_reflectance: float = 0.2
+    overcast_lux: float = 10000.0
+    target_lux: float = 500.0
+    min_level: float = 0.1
+    standby_w: float = 0.0
+    workplane: str | None = None
 
     def __post_init__(self) -> None:
-        object.__setattr__(
-            self, "exterior_lux", _finite(self.exterior_lux, "daylight exterior_lux", lo=0.0)
-        )
-        object.__setattr__(
-            self, "transmittance", _finite(self.transmittance, "daylight transmittance", 0.0, 1.0)
-        )
+        def put(key, lo=None, hi=None):
+            object.__setattr__(self, key, _finite(getattr(self, key), f"daylight {key}", lo, hi))
+
+        put("exterior_lux", 0.0)
+        put("transmittance", 0.0, 1.0)
+        put("north_deg", -360.0, 360.0)
+        put("ground_reflectance", 0.0, 0.99)
+        put("overcast_lux", 0.0, 2e5)
+        put("target_lux", 0.0, 1e5)
+        put("min_level", 0.0, 1.0)
+        put("standby_w", 0.0)
+        _name(self.weather, "daylight weather")
+        hours = _items(self.occupancy, "daylight", "occupancy")
+        if len(hours) != 2:
+            raise DesignError("daylight occupancy: give two hours, start and end (0-24)")
+        start, end = (_finite(h, "daylight occupancy", 0.0, 24.0) for h in hours)
+        if not start < end:
+            raise DesignError(f"daylight occupancy: start {start:g} h is not before end {end:g} h")
+        object.__setattr__(self, "occupancy", (start, end))
+        if not isinstance(self.weekdays, bool):
+            raise DesignError(
+                f"daylight weekdays must be true or false, got {_short(self.weekdays)}"
+            )
+        if self.workplane is not None:
+            _name(self.workplane, "daylight workplane")
 
 
 @dataclass(frozen=True)
@@ -577,10 +635,30 @@ class Design:
                     f"intention {it.name!r}: no work plane {it.grid!r} "
                     f"(work planes: {sorted(planes) or 'none'})"
                 )
+        if self.daylight.workplane is not None and self.daylight.workplane not in planes:
+            raise DesignError(
+                f"daylight workplane {self.daylight.workplane!r} is not a work plane "
+                f"(work planes: {sorted(planes) or 'none'})"
+            )
+        annual = [str(g.kind) for g in self.goals if g.kind in ANNUAL_GOALS]
+        if annual and not self.workplanes:
+            raise DesignError(
+                f"goals {annual} are measured on a work plane (dimming and sDA): add one"
+            )
         if any(g.kind == GoalKind.MATCH for g in self.goals) and not self.target_sources:
             raise DesignError("a match goal needs target_sources (the light to reproduce)")
         if self.penalty_power < 1 or self.penalty_power % 2:
             raise DesignError("penalty power must be an even positive integer (paper eq. 3)")
+
+    @property
+    def control_plane(self) -> Workplane | None:
+        """The work plane the climate goals and dimming read (``daylight.workplane`` or
+        the first), None without work planes."""
+        name = self.daylight.workplane
+        for w in self.workplanes:
+            if name is None or w.name == name:
+                return w
+        return None
 
     def array(self, name: str) -> LuminaireArray:
         """The luminaire array called ``name``."""

@@ -128,9 +128,20 @@ def bounds_set(intention: Intention) -> tuple[Bound, ...]:
     )
 
 
+QUANTITY_UNITS = {
+    Quantity.LUX: "lux",
+    Quantity.C: "lm/m²",
+    Quantity.DF: "%",
+    Quantity.DA: "",
+    Quantity.UDI: "",
+    Quantity.SDA: "",
+}
+"""Units of each quantity as messages show them (DA, UDI and sDA are fractions)."""
+
+
 def bound_checks(intention: Intention, stats: IntentionStats) -> list[BoundCheck]:
     """The checks of the bounds the intention sets (``bounds_set`` order)."""
-    it, units = intention, ("lux" if intention.quantity == Quantity.LUX else "lm/m²")
+    it, units = intention, QUANTITY_UNITS[Quantity(intention.quantity)]
     out = []
     for b in bounds_set(it):
         if b == Bound.MIN:

@@ -33,7 +33,14 @@ from lightinv_core.design.geometry import rule_names, rule_violations
 from lightinv_core.design.model import Design
 from lightinv_core.design.solution import Solution, SolutionInfo, Violation
 from lightinv_core.design.variables import ArrayLayout, Variables
-from lightinv_core.kinds import Bound, GoalKind, SourceKind
+from lightinv_core.kinds import (
+    ANNUAL_GOALS,
+    MAXIMISED_GOALS,
+    Bound,
+    GoalKind,
+    Scenario,
+    SourceKind,
+)
 from lightinv_core.light.arrays import (
     ArrayLight,
     array_light,
@@ -41,6 +48,8 @@ from lightinv_core.light.arrays import (
     arrays_field,
     resolve_product,
 )
+from lightinv_core.light.daylight import SDA_SHARE, ScenarioLight
+from lightinv_core.light.daylight_year import dimming_sum, sky_groups
 from lightinv_core.light.grids import DesignGrids, design_grids
 from lightinv_core.light.intentions import (
     FEASIBILITY_TOL,
@@ -69,6 +78,9 @@ GOAL_UNITS = {
     GoalKind.MATCH: "",
     GoalKind.MIN_INSTALLED_POWER: "W",
     GoalKind.MIN_LUMINAIRE_COUNT: "",
+    GoalKind.MIN_ANNUAL_ENERGY: "kWh",
+    GoalKind.MAX_SDA: "",
+    GoalKind.MIN_GLAZING_AREA: "m²",
 }
 
 __all__ = ["EPSILON_WEIGHT", "FEASIBILITY_TOL", "Constraint", "DesignProblem", "Evaluation"]
@@ -108,6 +120,21 @@ class Level:
     def rows(self) -> np.ndarray:
         """Patch ids of the representatives."""
         return self.receivers.rows
+
+
+@dataclass(frozen=True)
+class Lit:
+    """The light of m candidates: ``V`` (nz, m) zone emission in the design scenario,
+    ``by_kind`` its parts by source kind, ``cols`` the zone columns any candidate emits
+    from; ``H`` (receivers, m) lux in the design scenario (None when no receiver is
+    read) and, for designs judged in other scenarios, ``parts``: the luminaires' light
+    and each sky group's daylight per exterior lux (``light/daylight.py``)."""
+
+    V: np.ndarray
+    by_kind: dict
+    cols: np.ndarray
+    H: np.ndarray | None
+    parts: ScenarioLight | None = None
 
 
 @dataclass(frozen=True)
@@ -219,6 +246,17 @@ class DesignProblem:
         )
         self.products = [resolve_product(a.product, a.watts) for a in design.arrays]
         self.epsilon = tuple((str(k), float(b)) for k, b in epsilon)
+        wanted = {str(g.kind) for g in design.goals} | {k for k, _ in self.epsilon}
+        self.annual_goals = bool(wanted & ANNUAL_GOALS)
+        # Scenarios other than the paper's design daylight need the light split into
+        # the luminaires' and each sky group's (same GEMM columns, so the same cost).
+        self.split = self.annual_goals or any(
+            it.scenario != Scenario.DESIGN for it in design.intentions
+        )
+        self.sky = sky_groups(light, design) if self.split else None
+        self._year_box: list = []  # the weather year, read at the first annual use
+        plane = design.control_plane
+        self.control = None if plane is None or self.grids is None else self.grids.spans[plane.name]
         self.primary = str(design.goals[0].kind)
         self.objectives = tuple(GoalKind(g.kind) for g in design.goals)
         self.scales = {
@@ -227,13 +265,16 @@ class DesignProblem:
             GoalKind.MATCH: 1.0,
             GoalKind.MIN_INSTALLED_POWER: electric_scale(design, light, self.products),
             GoalKind.MIN_LUMINAIRE_COUNT: count_scale(design),
+            GoalKind.MIN_ANNUAL_ENERGY: energy_scale(design, light, self.products),
+            GoalKind.MAX_SDA: 1.0,
+            GoalKind.MIN_GLAZING_AREA: glazing_scale(design, light),
         }
         self.constraints = self._constraint_columns()
         self._weights = [c.weight for c in self.constraints if c.kind != "geometry"]
         self._senses = tuple(
-            (str(k), -1.0 if k == GoalKind.MAX_LIGHT_POWER else 1.0) for k in self.objectives
+            (str(k), -1.0 if k in MAXIMISED_GOALS else 1.0) for k in self.objectives
         )
-        self._sign = -1.0 if self.primary == GoalKind.MAX_LIGHT_POWER else 1.0
+        self._sign = -1.0 if self.primary in MAXIMISED_GOALS else 1.0
         light_goal = next((g for g in design.goals if g.kind == GoalKind.MAX_LIGHT_POWER), None)
         # The light-power goal counts its kinds' sources (all kinds when it names none).
         kinds = (light_goal.kinds if light_goal else ()) or tuple(SourceKind)
@@ -356,12 +397,22 @@ class DesignProblem:
                     goals[k][good] = g[k]
         return Evaluation(value, penalty, ok, goals, len(good), geo, lighting, self._senses)
 
-    def _light(self, rect, flux, filt, level: Level, lay: ArrayLayout | None):
-        """(V, by_kind, cols, H): the zone emission of m candidates and, when the level
-        has receivers, their illuminance there (zone sources plus arrays)."""
+    def _light(
+        self,
+        rect,
+        flux,
+        filt,
+        level: Level,
+        lay: ArrayLayout | None,
+        arrays_H: np.ndarray | None = None,
+    ) -> Lit:
+        """The light of m candidates (see ``Lit``): zone sources plus arrays, lit from
+        the lattice blend for ``lay`` or, given, the arrays' exact light ``arrays_H``."""
         d = self.design
         m = rect.shape[0]
         nz = len(self.light.op.zone_patches)
+        if self.split:
+            return self._split_light(rect, flux, filt, level, lay, arrays_H)
         if d.sources:
             V, by_kind = self.light.zone_emission(
                 d.sources, rect, flux, filt, d.daylight, split_kinds=True
@@ -370,23 +421,74 @@ class DesignProblem:
             V = np.zeros((nz, m), np.float32)
             by_kind = {str(k): V for k in SourceKind}
         cols = np.flatnonzero(np.any(V != 0, axis=1))
-        # At the full level the match error comes from the Gram matrix, not the field.
-        need_field = bool(d.intentions) or (self.match is not None and level.divisor > 1)
-        Phi = level.receivers.Phi_rows
         H = None
-        if need_field and (Phi is None or Phi.shape[0]):
-            if len(cols) or level.arrays_R is None:
-                H = self.light.illuminance(V, level.receivers, cols)
-            if level.arrays_R is not None:
-                lit = level.arrays_R @ self.arrays.weights(lay)
-                H = lit if H is None else H + lit
-        return V, by_kind, cols, H
+        if self._needs_field(level):
+            H = self._receiver_light(V, cols, level, lay, arrays_H)
+        return Lit(V, by_kind, cols, H)
+
+    def _needs_field(self, level: Level) -> bool:
+        # At the full level the match error comes from the Gram matrix, not the field.
+        need = bool(self.design.intentions) or self.split
+        need = need or (self.match is not None and level.divisor > 1)
+        Phi = level.receivers.Phi_rows
+        return need and (Phi is None or Phi.shape[0] > 0)
+
+    def _receiver_light(self, V, cols, level: Level, lay, arrays_H=None) -> np.ndarray:
+        """Lux at the level's receivers of emission V (nz, m) plus the arrays' light."""
+        H = None
+        blend = level.arrays_R is not None and arrays_H is None and lay is not None
+        if len(cols) or not (blend or arrays_H is not None):
+            H = self.light.illuminance(V, level.receivers, cols)
+        if blend:
+            lit = level.arrays_R @ self.arrays.weights(lay)
+            H = lit if H is None else H + lit
+        elif arrays_H is not None:
+            H = arrays_H if H is None else H + arrays_H
+        return H
+
+    def _split_light(self, rect, flux, filt, level: Level, lay, arrays_H) -> Lit:
+        """``_light`` for designs judged in several scenarios: the luminaires' light and
+        each sky group's daylight per exterior lux, computed apart."""
+        d = self.design
+        m = rect.shape[0]
+        nz = len(self.light.op.zone_patches)
+        ext = d.daylight.exterior_lux
+        if d.sources:
+            unit = replace(d.daylight, exterior_lux=1.0)
+            _, by_unit = self.light.zone_emission(
+                d.sources, rect, flux, filt, unit, split_kinds=True
+            )
+            V_lum, V_sky = by_unit[SourceKind.LUMINAIRE], by_unit[SourceKind.SKYLIGHT]
+        else:
+            V_lum = V_sky = np.zeros((nz, m), np.float32)
+        V = V_lum + np.float32(ext) * V_sky
+        by_kind = {SourceKind.LUMINAIRE.value: V_lum, SourceKind.SKYLIGHT.value: ext * V_sky}
+        cols = np.flatnonzero(np.any(V != 0, axis=1))
+        if not self._needs_field(level):
+            return Lit(V, by_kind, cols, None)
+        lum_cols = np.flatnonzero(np.any(V_lum != 0, axis=1))
+        electric = self._receiver_light(V_lum, lum_cols, level, lay, arrays_H)
+        if electric is None:
+            electric = np.zeros((len(level.rows) + self._points(), m))
+        sky = np.zeros((self.sky.count, *electric.shape))
+        for g, gcols in enumerate(self.sky.cols):
+            on = gcols[np.any(V_sky[gcols] != 0, axis=1)]
+            if len(on):
+                Vg = np.zeros_like(V_sky)
+                Vg[on] = V_sky[on]
+                sky[g] = self.light.illuminance(Vg, level.receivers, on)
+        parts = ScenarioLight(d.daylight, self.sky, electric, sky, self._year_box)
+        return Lit(V, by_kind, cols, parts.lux(Scenario.DESIGN), parts)
+
+    def _points(self) -> int:
+        return 0 if self.grids is None else len(self.grids.points)
 
     def _score(self, rect, flux, filt, level: Level, lay: ArrayLayout | None = None):
         """Value, penalty, goals and lighting constraint columns (c - tol, each (m,)) of
         m lit candidates."""
         d = self.design
-        V, by_kind, cols, H = self._light(rect, flux, filt, level, lay)
+        lit = self._light(rect, flux, filt, level, lay)
+        V, by_kind, cols, H = lit.V, lit.by_kind, lit.cols, lit.H
         m = V.shape[1]
         match = self._match(V, cols, H, level) if self.match is not None else np.zeros(m)
         power_V = sum(by_kind[k] for k in self._power_kinds)
@@ -404,8 +506,14 @@ class DesignProblem:
             "match": match,
             "min_installed_power": installed,
             "min_luminaire_count": count,
+            "min_glazing_area": self._glazing_area(rect),
+            "min_annual_energy": np.full(m, np.nan),
+            "max_sda": np.full(m, np.nan),
         }
-        checks = self._checks(H, level) if self.design.intentions else []
+        if self.annual_goals:
+            energy, sda = self._annual_goals(lit, level, electric)
+            goals["min_annual_energy"], goals["max_sda"] = energy, sda
+        checks = self._checks(lit, level) if self.design.intentions else []
         # With arrays the search reads the lattice blend: it keeps a margin for the
         # blend's error, so the layout also holds judged with the luminaires placed exactly.
         margin = ARRAY_MARGIN if self.design.arrays else 0.0
@@ -414,6 +522,30 @@ class DesignProblem:
         penalty = self._penalty(lighting, len(checks), m)
         value = self._sign * goals[self.primary] / self.scales[self.primary] + penalty
         return value, penalty, goals, tuple(lighting)
+
+    def _glazing_area(self, rect: np.ndarray) -> np.ndarray:
+        """Total area (m²) of the skylight sources of m candidates (rect (m, S, 4))."""
+        sky = [j for j, s in enumerate(self.design.sources) if s.kind == SourceKind.SKYLIGHT]
+        if not sky:
+            return np.zeros(rect.shape[0])
+        r = rect[:, sky]
+        return (np.abs(r[..., 2] - r[..., 0]) * np.abs(r[..., 3] - r[..., 1])).sum(axis=1)
+
+    def _annual_goals(self, lit: Lit, level: Level, electric: np.ndarray):
+        """(annual energy kWh, sDA) of m candidates on the control work plane."""
+        d, parts = self.design.daylight, lit.parts
+        idx = len(level.rows) + np.arange(self.control.start, self.control.stop)
+        year = parts.year()
+        full = parts.electric[idx].mean(axis=0)
+        if self.sky.count:
+            b = parts.sky[:, idx].mean(axis=1).T
+            levels = dimming_sum(year, b, full, d.target_lux, d.min_level)
+        else:
+            levels = np.clip(d.target_lux / np.maximum(full, 1e-9), d.min_level, 1.0) * year.hours
+        standby = d.standby_w * year.every.shape[1]
+        energy = (electric * levels + standby) / 1000.0
+        sda = (parts.da(idx) >= SDA_SHARE).mean(axis=0)
+        return energy, sda
 
     def _penalty(self, lighting: list, n_intent: int, m: int) -> np.ndarray:
         """P = sum W max(0, G)^pow over the lighting columns: intentions, then epsilon."""
@@ -434,20 +566,26 @@ class DesignProblem:
         C_obj = self.C_obj[rows]
         return np.linalg.norm(C - C_obj[:, None], axis=0) / max(np.linalg.norm(C_obj), 1e-30)
 
-    def _checks(self, H: np.ndarray, level: Level) -> list[BoundCheck]:
-        """Every intention's bound checks on the batch's field H at the level's rows."""
+    def _checks(self, lit: Lit, level: Level) -> list[BoundCheck]:
+        """Every intention's bound checks on the batch's light at the level's rows."""
         out = []
         rho = self.light.op.rho
         for i, it in enumerate(self.design.intentions):
             pos = level.intent_pos[i]
-            # Grid points take illuminance only (they have no reflectance).
-            q = H[pos] if it.grid is not None else quantity_values(it, H[pos], rho[level.rows[pos]])
+            # Grid points have no reflectance: they take illuminance and daylight metrics.
+            r = None if it.grid is not None else rho[level.rows[pos]]
+            if lit.parts is not None:
+                q = lit.parts.quantity(it, pos, r)
+            elif it.grid is not None:
+                q = lit.H[pos]
+            else:
+                q = quantity_values(it, lit.H[pos], r)
             out += bound_checks(it, intention_stats(q, level.intent_w[i]))
         return out
 
     def _epsilon_terms(self, goals):
         for kind, bound in self.epsilon:
-            if kind == GoalKind.MAX_LIGHT_POWER:
+            if kind in MAXIMISED_GOALS:
                 c = (bound - goals[kind]) / max(abs(bound), 1e-12)
             else:
                 c = (goals[kind] - bound) / max(abs(bound), 1e-12)
@@ -476,22 +614,16 @@ class DesignProblem:
             for bound, ids in field.offending_patches(it)
         ]
 
-    def _judged_light(self, x: np.ndarray, lv: Level) -> np.ndarray:
-        """(receivers, 1) illuminance of layout x at level ``lv``'s receivers, its arrays
-        placed exactly (not blended from the lattice): what a solution is judged on."""
+    def _judged_light(self, x: np.ndarray, lv: Level) -> Lit:
+        """The light of layout x at level ``lv``'s receivers, its arrays placed exactly
+        (not blended from the lattice): what a solution is judged on."""
         rect, flux, filt = self.vars.decode(x[None])
         if not self.design.arrays:
-            return self._light(rect, flux, filt, lv, None)[3]
-        d = self.design
-        q = 0 if self.grids is None else len(self.grids.points)
-        H = np.zeros((len(lv.rows) + q, 1))
-        if d.sources:
-            V = self.light.zone_emission(d.sources, rect, flux, filt, d.daylight)
-            H += self.light.illuminance(V, lv.receivers, np.arange(V.shape[0]))
+            return self._light(rect, flux, filt, lv, None)
         points = None if self.grids is None else self.grids.points
         Hp, Hq = arrays_field(self.patches, self.light.op, self.arrays_at(x), points)
-        H[:, 0] += np.concatenate([Hp[lv.rows], Hq])
-        return H
+        exact = np.concatenate([Hp[lv.rows], Hq])[:, None]
+        return self._light(rect, flux, filt, lv, None, arrays_H=exact)
 
     def arrays_at(self, x: np.ndarray) -> tuple:
         """The design's luminaire arrays with the parameters of x filled in."""
@@ -513,8 +645,7 @@ class DesignProblem:
             # Penalty and violations from one computation, at the judging tolerance.
             excess: list[np.ndarray] = []
             if self.design.intentions:
-                H = self._judged_light(x, lv)
-                checks = self._checks(H, lv)
+                checks = self._checks(self._judged_light(x, lv), lv)
                 excess += [chk.c - JUDGED_TOL for chk in checks]
                 for chk in checks:
                     if chk.c[0] > JUDGED_TOL:
@@ -591,3 +722,19 @@ def installed_power(design: Design, light: LightModel) -> float:
         else:
             total += light.emission.full_electric_power(s)
     return total
+
+
+def energy_scale(design: Design, light: LightModel, products=()) -> float:
+    """Energy (kWh) of every luminaire at full output all year plus standby: the scale
+    of the annual-energy goal."""
+    hours = 8760.0
+    return max(
+        (electric_scale(design, light, products) + design.daylight.standby_w) * hours / 1e3, 1e-9
+    )
+
+
+def glazing_scale(design: Design, light: LightModel) -> float:
+    """Area (m²) of the skylight sources' zones: the scale of the glazing-area goal."""
+    zones = {s.zone for s in design.sources if s.kind == SourceKind.SKYLIGHT}
+    total = sum(light.zone_size(z)[0] * light.zone_size(z)[1] for z in zones)
+    return max(total, 1e-9)

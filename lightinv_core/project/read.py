@@ -65,6 +65,9 @@ def read_project(data: Any, base_dir: Path | None) -> Project:
             else a
             for a in values["arrays"]
         )
+        dl = values["daylight"]
+        if dl.weather != "builtin":
+            values["daylight"] = replace(dl, weather=resolve_path(dl.weather, base_dir))
     return project_from_values(values)
 
 

@@ -31,6 +31,7 @@ from lightinv_core.design.model import (
 from lightinv_core.fields import (
     Field,
     ObjectSpec,
+    _boolean,
     _choice,
     _fail,
     _integer,
@@ -42,7 +43,7 @@ from lightinv_core.fields import (
     _unique,
     _within,
 )
-from lightinv_core.kinds import GoalKind, Quantity, RuleKind, SourceKind
+from lightinv_core.kinds import GoalKind, Quantity, RuleKind, Scenario, SourceKind
 
 LUMINAIRE = (str(SourceKind.LUMINAIRE),)
 SKYLIGHT = (str(SourceKind.SKYLIGHT),)
@@ -231,8 +232,20 @@ INTENTION = ObjectSpec(
             lambda v, p: _choice(v, p, tuple(str(q) for q in Quantity)),
             _I["quantity"].default,
             _either(tuple(Quantity)),
-            "illuminance (lux), or reflected exitance C (lm/m²)",
+            "illuminance (lux) or reflected exitance C (lm/m²) in the scenario; or a "
+            "daylight metric: daylight factor `df` (%), DA300 `da` and UDI 100-3000 `udi` "
+            "(fractions of the occupied hours), `sda` (1 where DA300 >= 50%: its average "
+            "is sDA300/50%)",
             always=True,
+        ),
+        Field(
+            "scenario",
+            lambda v, p: _choice(v, p, tuple(str(q) for q in Scenario)),
+            _I["scenario"].default,
+            _either(tuple(Scenario)),
+            "the light it is judged in: `design` (luminaires + skylights at the design "
+            "exterior lux), `night` (luminaires only), `overcast` (luminaires + the CIE "
+            "overcast sky); `df` is always `overcast` and `da`, `udi`, `sda` `annual`",
         ),
         Field("min", _nonneg, None, "number >= 0", "lower bound on every patch", nullable=True),
         Field("max", _nonneg, None, "number >= 0", "upper bound on every patch", nullable=True),
@@ -305,6 +318,78 @@ DAYLIGHT = ObjectSpec(
             "number in [0, 1]",
             "fraction of it the skylight glazing lets through",
             always=True,
+        ),
+        Field(
+            "weather",
+            _string,
+            _DL["weather"].default,
+            "string",
+            'EPW or TMY3 weather file (relative to the project), or `"builtin"`: '
+            "the shipped Greensboro TMY3 (docs/daylight.md)",
+        ),
+        Field(
+            "north_deg",
+            lambda v, p: _number(v, p, lo=-360.0, hi=360.0),
+            _DL["north_deg"].default,
+            "number",
+            "compass bearing of the scene's +y axis, degrees (0: +y is north)",
+        ),
+        Field(
+            "occupancy",
+            lambda v, p: _numbers(v, p, 2, lo=0.0, hi=24.0),
+            _DL["occupancy"].default,
+            "2 numbers",
+            "occupied hours `[start, end)` of the day, local time",
+        ),
+        Field(
+            "weekdays",
+            _boolean,
+            _DL["weekdays"].default,
+            "boolean",
+            "occupied Monday to Friday only",
+        ),
+        Field(
+            "ground_reflectance",
+            lambda v, p: _number(v, p, lo=0.0, hi=0.99),
+            _DL["ground_reflectance"].default,
+            "number in [0, 0.99]",
+            "of the ground outside, for the light it reflects onto the glazing",
+        ),
+        Field(
+            "overcast_lux",
+            lambda v, p: _number(v, p, lo=0.0, hi=2e5),
+            _DL["overcast_lux"].default,
+            "number >= 0",
+            "horizontal exterior illuminance of the design overcast sky, lux",
+        ),
+        Field(
+            "target_lux",
+            _nonneg,
+            _DL["target_lux"].default,
+            "number >= 0",
+            "daylight-linked dimming keeps the work plane's mean at this, lux",
+        ),
+        Field(
+            "min_level",
+            lambda v, p: _number(v, p, lo=0.0, hi=1.0),
+            _DL["min_level"].default,
+            "number in [0, 1]",
+            "lowest dimming level of the luminaires",
+        ),
+        Field(
+            "standby_w",
+            _nonneg,
+            _DL["standby_w"].default,
+            "number >= 0",
+            "standby power of the lighting controls, drawn all year, W",
+        ),
+        Field(
+            "workplane",
+            _string,
+            None,
+            "string",
+            "the work plane the dimming and the annual goals read (default: the first)",
+            nullable=True,
         ),
     ),
 )

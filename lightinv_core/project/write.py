@@ -77,6 +77,9 @@ def project_dict(p: Project, base_dir: Path | None) -> dict:
     for a in d.get("arrays", ()):
         if Path(a["product"]).suffix.lower() in (".ies", ".ldt"):
             a["product"] = _relative(a["product"], base_dir)
+    dl = d.get("daylight", {})
+    if dl.get("weather", "builtin") != "builtin":
+        dl["weather"] = _relative(dl["weather"], base_dir)
     return _jsonable(d, "")
 
 

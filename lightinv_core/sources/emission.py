@@ -96,6 +96,11 @@ class ZoneEmission:
         """(width, height) in metres of an emitter zone."""
         return self.grid(zone).size
 
+    def columns(self, zone: str) -> slice | np.ndarray:
+        """The zone's patches' columns among the operator's zone patches."""
+        self.grid(zone)
+        return self._cols[zone]
+
     def matrix(
         self,
         sources: Sequence[Source],

@@ -187,7 +187,7 @@ def test_grid_light_matches_the_reference_solver(office):
     pb = DesignProblem(d, office)
     x = pb.vars.initial()
     lv = pb.level(1)
-    _, _, _, H = pb._light(*pb.vars.decode(x[None]), lv, pb.layout_of(x[None]))
+    H = pb._light(*pb.vars.decode(x[None]), lv, pb.layout_of(x[None])).H
     grid_lux = H[-len(pb.grids.points) :, 0]
     # Reference: dense radiosity on the same form factors, luminaires placed exactly.
     patches = office.patches
@@ -219,7 +219,7 @@ def test_lattice_blend_is_close_to_exact_placement_off_the_nodes(office):
     pb = DesignProblem(d, office)
     x = pb.vars.initial()
     lv = pb.level(1)
-    _, _, _, H = pb._light(*pb.vars.decode(x[None]), lv, pb.layout_of(x[None]))
+    H = pb._light(*pb.vars.decode(x[None]), lv, pb.layout_of(x[None])).H
     q = len(pb.grids.points)
     _, exact = arrays_field(office.patches, office.op, (a,), pb.grids.points)
     blend = H[-q:, 0]

@@ -1,0 +1,253 @@
+"""The light of one layout in every scenario, and its daylight and energy figures.
+
+A ``ScenarioLight`` holds, at a set of receivers (patches or work-plane points), the
+luminaires' light (lux, at the layout's fluxes and dimming) and per sky group the
+daylight per lux on the group's outside (``daylight_year``); every scenario is a sum
+of those (docs/daylight.md):
+
+- ``design``: luminaires + skylights at the design exterior lux (the paper's model);
+- ``night``: luminaires only;
+- ``overcast``: luminaires + the CIE overcast sky of ``overcast_lux`` on the glazing,
+  each group by its orientation (ground reflection included);
+- daylight factor DF = overcast daylight / horizontal exterior lux x 100 (%);
+- annual: DA300, UDI 100-3000 and sDA over the occupied hours of the weather year,
+  and daylight-linked dimming's annual energy (kWh) and LENI (kWh/m² a).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field, replace
+
+import numpy as np
+
+from lightinv_core.climate.metrics import DA_THRESHOLD, UDI_BANDS
+from lightinv_core.design.model import Daylight, Design, DesignError, Intention
+from lightinv_core.kinds import Quantity, Scenario, SourceKind
+from lightinv_core.light.daylight_year import (
+    DaylightYear,
+    SkyGroups,
+    daylight_year,
+    dimming_levels,
+    hours_from,
+    hours_within,
+)
+from lightinv_core.sources.emission import source_electric_power
+
+SDA_SHARE = 0.5
+"""A point counts towards sDA300/50% when its DA300 is at least this share."""
+
+
+@dataclass(frozen=True, eq=False)
+class ScenarioLight:
+    """Light of m layouts at R receivers: ``electric`` (R, m) lux from the luminaires and
+    ``sky`` (G, R, m) lux per exterior lux on each sky group's plane."""
+
+    daylight: Daylight
+    groups: SkyGroups
+    electric: np.ndarray
+    sky: np.ndarray
+    _year: list = field(default_factory=list, repr=False)
+
+    def year(self) -> DaylightYear:
+        """The weather year of the sky groups (read once, see ``daylight_year``)."""
+        if not self._year:
+            self._year.append(daylight_year(self.groups, self.daylight))
+        return self._year[0]
+
+    def lux(self, scenario: str, idx=slice(None)) -> np.ndarray:
+        """Illuminance (lux) in a scenario (design, night or overcast) at receivers idx."""
+        e = self.electric[idx]
+        if scenario == Scenario.NIGHT or not self.groups.count:
+            return e
+        if scenario == Scenario.DESIGN:
+            return e + self.daylight.exterior_lux * self.sky[:, idx].sum(axis=0)
+        if scenario == Scenario.OVERCAST:
+            return e + self.daylight.overcast_lux * self.overcast_daylight(idx)
+        raise ValueError(f"no illuminance in scenario {scenario!r}")
+
+    def overcast_daylight(self, idx=slice(None)) -> np.ndarray:
+        """Daylight per horizontal exterior lux under the CIE overcast sky (DF / 100)."""
+        if not self.groups.count:
+            return np.zeros_like(self.electric[idx])
+        return np.tensordot(self.groups.overcast, self.sky[:, idx], axes=1)
+
+    def coefficients(self, idx=slice(None)) -> np.ndarray:
+        """(R', m, G): daylight per exterior lux on each group, at receivers idx."""
+        return np.moveaxis(self.sky[:, idx], 0, -1)
+
+    def da(self, idx=slice(None)) -> np.ndarray:
+        """DA300 (share of occupied hours, 0-1) at receivers idx, (R', m)."""
+        if not self.groups.count:
+            return np.zeros_like(self.electric[idx])
+        y = self.year()
+        return hours_from(y, self.coefficients(idx), DA_THRESHOLD) / y.hours
+
+    def udi(self, idx=slice(None)) -> np.ndarray:
+        """UDI 100-3000 (share of occupied hours, 0-1) at receivers idx, (R', m)."""
+        if not self.groups.count:
+            return np.zeros_like(self.electric[idx])
+        y = self.year()
+        return hours_within(y, self.coefficients(idx), UDI_BANDS[0], UDI_BANDS[2]) / y.hours
+
+    def quantity(self, intention: Intention, idx=slice(None), rho=None) -> np.ndarray:
+        """The intention's quantity at receivers idx (R', m): lux or C in its scenario
+        (``rho`` the receivers' reflectances for C), DF (%), DA, UDI or the sDA mark."""
+        q = intention.quantity
+        if q == Quantity.DF:
+            return 100.0 * self.overcast_daylight(idx)
+        if q == Quantity.DA:
+            return self.da(idx)
+        if q == Quantity.UDI:
+            return self.udi(idx)
+        if q == Quantity.SDA:
+            return (self.da(idx) >= SDA_SHARE).astype(float)
+        lux = self.lux(intention.scenario, idx)
+        if q == Quantity.C:
+            return lux * (rho[:, None] if lux.ndim == 2 else rho)
+        return lux
+
+
+@dataclass(frozen=True)
+class AnnualEnergy:
+    """Daylight-linked dimming of a layout over the weather year: ``energy_kwh`` (a
+    year, standby included), ``leni`` (kWh/m² a over ``floor_m2``), ``full_kwh`` (the
+    same hours at full output), ``monthly_kwh`` (12,) and the mean dimming level."""
+
+    energy_kwh: float
+    leni: float
+    full_kwh: float
+    monthly_kwh: tuple[float, ...]
+    mean_level: float
+    floor_m2: float
+
+
+def annual_energy(
+    light: ScenarioLight, grid_idx, installed_w: float, floor_m2: float
+) -> AnnualEnergy:
+    """Dimming energy of the first layout of ``light`` controlled on the work-plane points
+    ``grid_idx`` (their mean): see ``climate.metrics`` for the rules."""
+    d = light.daylight
+    y = light.year()
+    full = float(light.electric[grid_idx, 0].mean())
+    b = light.sky[:, grid_idx, 0].mean(axis=1) if light.groups.count else np.zeros(0)
+    if light.groups.count:
+        levels = dimming_levels(y, b, full, d.target_lux, d.min_level)
+    else:
+        levels = np.full(y.hours, np.clip(d.target_lux / max(full, 1e-9), d.min_level, 1.0))
+    hours_year = y.every.shape[1]
+    standby = d.standby_w * hours_year / 1000.0
+    energy = installed_w * levels.sum() / 1000.0 + standby
+    full_kwh = installed_w * y.hours / 1000.0 + standby
+    monthly = []
+    per_month = np.bincount(np.asarray(y.times.month) - 1, minlength=12)
+    for mth in range(1, 13):
+        lit = installed_w * levels[y.months == mth].sum() / 1000.0
+        monthly.append(float(lit + d.standby_w * per_month[mth - 1] / 1000.0))
+    floor = max(float(floor_m2), 1e-9)
+    return AnnualEnergy(
+        float(energy),
+        float(energy / floor),
+        float(full_kwh),
+        tuple(monthly),
+        float(levels.mean()),
+        float(floor_m2),
+    )
+
+
+@dataclass(frozen=True, eq=False)
+class LayoutDaylight:
+    """One layout's light in every scenario: ``patches`` at every patch (R = n, m = 1),
+    ``points`` at the work-plane grid points (None without work planes, ``grids`` their
+    layout), ``installed_w`` its luminaires' electric power (W) as designed and
+    ``control`` the work plane the dimming reads (None without work planes)."""
+
+    design: Design
+    patches: ScenarioLight
+    points: ScenarioLight | None
+    grids: object | None
+    installed_w: float
+    control: str | None
+    floor_m2: float
+
+    def energy(self) -> AnnualEnergy:
+        """Daylight-linked dimming over the weather year (reads the weather file); LENI
+        per m² of the control work plane's floor group."""
+        if self.points is None or self.control is None:
+            raise DesignError("annual energy is measured on a work plane: add one")
+        span = self.grids.spans[self.control]
+        return annual_energy(self.points, span, self.installed_w, self.floor_m2)
+
+    def hour_lux(self, hour: int) -> np.ndarray:
+        """Illuminance (lux, (n,)) on every patch in hour ``hour`` (0-based, of the
+        weather file's year): daylight of that hour plus the luminaires dimmed as the
+        control rules set them (off outside the occupancy schedule)."""
+        p = self.patches
+        y = p.year()
+        if not 0 <= hour < y.every.shape[1]:
+            raise DesignError(f"hour {hour} is outside the year (0-{y.every.shape[1] - 1})")
+        E = y.every[:, hour]
+        day = np.tensordot(E, p.sky[:, :, 0], axes=1) if p.groups.count else 0.0
+        level = self.level_at(hour)
+        return p.electric[:, 0] * level + day
+
+    def level_at(self, hour: int) -> float:
+        """The luminaires' dimming level (0-1) in hour ``hour``: 0 when unoccupied."""
+        y = self.patches.year()
+        if not y.occupied[hour]:
+            return 0.0
+        d = self.design.daylight
+        if self.points is None or self.control is None:
+            return 1.0
+        span = self.grids.spans[self.control]
+        full = float(self.points.electric[span, 0].mean())
+        day = 0.0
+        if self.points.groups.count:
+            b = self.points.sky[:, span, 0].mean(axis=1)
+            day = float(b @ y.every[:, hour])
+        return float(np.clip((d.target_lux - day) / max(full, 1e-9), d.min_level, 1.0))
+
+
+def layout_daylight(light, design: Design, sources=None, arrays=None) -> LayoutDaylight:
+    """The light of one layout of ``design`` (its sources as lit, tied rules applied;
+    default: the design as written) in every scenario, on ``light``'s patches and the
+    design's work planes."""
+    from lightinv_core.light.arrays import arrays_field, resolve_product
+    from lightinv_core.light.daylight_year import sky_groups
+    from lightinv_core.light.grids import design_grids, grid_light
+
+    sources = light.layout(design) if sources is None else tuple(sources)
+    arrays = design.arrays if arrays is None else tuple(arrays)
+    groups = sky_groups(light, design)
+    lum = tuple(s for s in sources if s.kind == SourceKind.LUMINAIRE)
+    unit = replace(design.daylight, exterior_lux=1.0)
+    electric = light.field(lum, design.daylight).illuminance.copy()
+    grids = design_grids(light, design.workplanes) if design.workplanes else None
+    if arrays:
+        Hp, _ = arrays_field(light.patches, light.op, arrays)
+        electric += Hp
+    sky = np.zeros((groups.count, light.n))
+    per_group = []
+    for g, zones in enumerate(groups.zones):
+        group = tuple(s for s in sources if s.kind == SourceKind.SKYLIGHT and s.zone in zones)
+        per_group.append(group)
+        sky[g] = light.field(group, unit).illuminance
+    at_patches = ScenarioLight(design.daylight, groups, electric[:, None], sky[:, :, None])
+    at_points = None
+    if grids is not None:
+        e_pts = grid_light(light, grids, lum, arrays, design.daylight)
+        s_pts = np.zeros((groups.count, len(grids.points)))
+        for g, grp in enumerate(per_group):
+            s_pts[g] = grid_light(light, grids, grp, (), unit)
+        at_points = ScenarioLight(
+            design.daylight, groups, e_pts[:, None], s_pts[:, :, None], at_patches._year
+        )
+    watts = float(sum(source_electric_power(s) for s in lum))
+    for a in arrays:
+        watts += a.count * resolve_product(a.product, a.watts).watts * a.dimming
+    plane = design.control_plane
+    floor = 0.0
+    if plane is not None:
+        floor = float(light.patches.area[light.patches.group_index(plane.group)].sum())
+    return LayoutDaylight(
+        design, at_patches, at_points, grids, watts, None if plane is None else plane.name, floor
+    )

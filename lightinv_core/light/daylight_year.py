@@ -1,0 +1,236 @@
+"""The daylight year of a design, and annual statistics in O(log hours) per point.
+
+Light is linear and every skylight emits filter x transmittance x the exterior
+illuminance on its plane, so the daylight at a receiver in hour t is
+``sum_g a_g E_g(t)``: per *sky group* g (the skylight zones facing one way) a
+coefficient a_g (lux at the receiver per lux on the group's outside, from the
+candidate's skylights) times that group's hourly exterior illuminance E_g(t) (Perez,
+``climate.transposition``). With one sky group (every skylight on one roof plane, the
+usual case) a point's daylight is a single a x E(t), so over the occupied hours
+
+- hours with daylight >= L are the hours with E >= L / a: one ``searchsorted`` in
+  the sorted E;
+- daylight-linked dimming's level clip((target - b E) / A, min, 1) is 1 below one
+  breakpoint of E, min above another and linear between, so its sum over the year is
+  two ``searchsorted`` and a difference of prefix sums of the sorted E.
+
+With several sky groups the statistics are counted hour by hour (exact, slower:
+docs/daylight.md gives both speeds).
+"""
+
+from __future__ import annotations
+
+import os
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+from lightinv_core.climate.sky import overcast_plane_illuminance
+from lightinv_core.design.model import Daylight, Design
+from lightinv_core.kinds import SourceKind
+
+MAX_CACHED_YEARS = 4
+
+
+@dataclass(frozen=True, eq=False)
+class SkyGroups:
+    """The design's skylight zones grouped by orientation: ``zones[g]`` the zone names
+    of group g, ``outward`` (G, 3) unit normals away from the room, ``cols[g]`` their
+    columns in the operator's zone patches, ``overcast`` (G,) the exterior lux on the
+    group's plane per horizontal lux under the CIE overcast sky (ground included)."""
+
+    zones: tuple[tuple[str, ...], ...]
+    outward: np.ndarray
+    cols: tuple[np.ndarray, ...]
+    overcast: np.ndarray
+
+    @property
+    def count(self) -> int:
+        """Number of groups."""
+        return len(self.zones)
+
+
+def sky_groups(light, design: Design) -> SkyGroups:
+    """The sky groups of ``design``'s skylight sources on ``light``'s scene (a
+    ``LightModel``)."""
+    zones = sorted({s.zone for s in design.sources if s.kind == SourceKind.SKYLIGHT})
+    keys: dict[tuple, list[str]] = {}
+    normals: dict[tuple, np.ndarray] = {}
+    for z in zones:
+        ids = light.emission.grid(z).patch.ravel()
+        n = light.patches.normal[ids].mean(axis=0)
+        n = n / np.linalg.norm(n)
+        key = tuple(np.round(n, 3))
+        keys.setdefault(key, []).append(z)
+        normals.setdefault(key, n)
+    nz = len(light.op.zone_patches)
+    out_zones, outward, cols = [], [], []
+    for key, members in keys.items():
+        out_zones.append(tuple(members))
+        outward.append(-normals[key])
+        c = np.concatenate([np.arange(nz)[light.emission.columns(z)] for z in members])
+        cols.append(np.sort(c))
+    outward_a = np.array(outward).reshape(-1, 3)
+    over = (
+        overcast_plane_illuminance(outward_a, 1.0, design.daylight.ground_reflectance)
+        if len(outward_a)
+        else np.zeros(0)
+    )
+    return SkyGroups(tuple(out_zones), outward_a, tuple(cols), np.asarray(over, float))
+
+
+@dataclass(frozen=True, eq=False)
+class DaylightYear:
+    """Hourly exterior illuminance (lux) on each sky group's plane: ``every`` (G, 8760)
+    for every hour of the file, ``occupied`` the mask of the schedule's hours and
+    ``exterior`` (G, T) those hours; ``months`` (T,) 1-12 of each occupied hour;
+    ``site`` names the weather. With one group, ``sorted`` (T,) is its exterior lux in
+    increasing order and ``prefix`` (T + 1,) their cumulative sums."""
+
+    site: str
+    source: str
+    times: object
+    every: np.ndarray
+    occupied: np.ndarray
+    exterior: np.ndarray
+    months: np.ndarray
+    sorted: np.ndarray | None
+    prefix: np.ndarray | None
+
+    @property
+    def hours(self) -> int:
+        """Occupied hours T."""
+        return self.exterior.shape[1]
+
+
+def weather_path(daylight: Daylight) -> Path:
+    """The weather file a daylight names ("builtin": the shipped TMY3)."""
+    from lightinv_core.climate.weather import BUILTIN
+
+    return BUILTIN if daylight.weather == "builtin" else Path(daylight.weather)
+
+
+_YEARS: dict[tuple, DaylightYear] = {}
+
+
+def daylight_year(groups: SkyGroups, daylight: Daylight) -> DaylightYear:
+    """The year of ``groups`` under ``daylight``'s weather, orientation and schedule
+    (remembered while the file is unchanged; pvlib is imported here only)."""
+    from lightinv_core.climate.transposition import plane_illuminance, sun_and_sky
+    from lightinv_core.climate.weather import WeatherError, read_weather
+
+    path = weather_path(daylight)
+    try:
+        stat = os.stat(path)
+    except OSError as exc:
+        raise WeatherError(f"weather file {str(path)!r}: {exc.strerror or exc}") from None
+    key = (
+        str(path),
+        stat.st_mtime_ns,
+        stat.st_size,
+        daylight.north_deg,
+        daylight.ground_reflectance,
+        daylight.occupancy,
+        daylight.weekdays,
+        groups.outward.tobytes(),
+    )
+    if key in _YEARS:
+        return _YEARS[key]
+    weather = read_weather(path)
+    sky = sun_and_sky(weather)
+    every = np.zeros((groups.count, weather.hours))
+    for g, n in enumerate(groups.outward):
+        every[g] = plane_illuminance(
+            weather, sky, n, daylight.ground_reflectance, daylight.north_deg
+        )
+    mask = np.asarray(weather.occupied(*daylight.occupancy, weekdays=daylight.weekdays))
+    if not mask.any():
+        raise WeatherError("the occupancy schedule holds no hour of the weather file")
+    exterior = np.ascontiguousarray(every[:, mask])
+    mid = weather.times - np.timedelta64(30, "m")
+    months = np.asarray(mid.month)[mask].astype(np.int8)
+    srt = prefix = None
+    if groups.count == 1:
+        srt = np.sort(exterior[0])
+        prefix = np.concatenate([[0.0], np.cumsum(srt)])
+    year = DaylightYear(
+        weather.name, str(path), weather.times, every, mask, exterior, months, srt, prefix
+    )
+    if len(_YEARS) >= MAX_CACHED_YEARS:
+        _YEARS.pop(next(iter(_YEARS)))
+    _YEARS[key] = year
+    return year
+
+
+# -- statistics over the occupied hours -----------------------------------------------------
+
+
+def _thresholds(lux: float, a: np.ndarray) -> np.ndarray:
+    """lux / a, +inf where a <= 0 (no daylight there reaches any positive level)."""
+    with np.errstate(divide="ignore", invalid="ignore"):
+        return np.where(a > 0, lux / np.where(a > 0, a, 1.0), np.inf)
+
+
+def hours_from(year: DaylightYear, a: np.ndarray, lux: float) -> np.ndarray:
+    """Occupied hours with daylight >= ``lux`` at receivers of coefficients ``a``
+    (..., G): counts of shape a.shape[:-1]."""
+    a = np.asarray(a, dtype=float)
+    if year.sorted is not None:
+        thr = _thresholds(lux, a[..., 0])
+        return year.hours - np.searchsorted(year.sorted, thr, side="left")
+    flat = a.reshape(-1, a.shape[-1])
+    out = np.empty(len(flat), np.int64)
+    for i in range(0, len(flat), 256):  # (256, T) lux at a time
+        out[i : i + 256] = ((flat[i : i + 256] @ year.exterior) >= lux).sum(axis=1)
+    return out.reshape(a.shape[:-1])
+
+
+def hours_within(year: DaylightYear, a: np.ndarray, lo: float, hi: float) -> np.ndarray:
+    """Occupied hours with ``lo`` <= daylight <= ``hi`` (counts, a.shape[:-1])."""
+    a = np.asarray(a, dtype=float)
+    if year.sorted is not None:
+        upper = np.searchsorted(year.sorted, _thresholds(hi, a[..., 0]), side="right")
+        return upper - np.searchsorted(year.sorted, _thresholds(lo, a[..., 0]), side="left")
+    flat = a.reshape(-1, a.shape[-1])
+    out = np.empty(len(flat), np.int64)
+    for i in range(0, len(flat), 256):
+        lux = flat[i : i + 256] @ year.exterior
+        out[i : i + 256] = ((lux >= lo) & (lux <= hi)).sum(axis=1)
+    return out.reshape(a.shape[:-1])
+
+
+def dimming_sum(
+    year: DaylightYear, b: np.ndarray, full: np.ndarray, target: float, min_level: float
+) -> np.ndarray:
+    """Sum over the occupied hours of the dimming level clip((target - b.E(t)) / full,
+    min_level, 1) for m candidates: ``b`` (m, G) the control plane's mean daylight per
+    exterior lux, ``full`` (m,) its mean electric lux at full output (> 0)."""
+    b = np.atleast_2d(np.asarray(b, dtype=float))
+    A = np.maximum(np.asarray(full, dtype=float), 1e-9)
+    if year.sorted is None:
+        day = b @ year.exterior
+        return np.clip((target - day) / A[:, None], min_level, 1.0).sum(axis=1)
+    s, S, T = year.sorted, year.prefix, year.hours
+    b0 = b[:, 0]
+    # level 1 while E <= e1, min_level once E >= e2, (target - b E) / A between.
+    flat = b0 <= 0
+    safe = np.where(flat, 1.0, b0)
+    e1 = np.where(flat, np.inf, (target - A) / safe)
+    e2 = np.where(flat, np.inf, (target - min_level * A) / safe)
+    i1 = np.searchsorted(s, e1, side="right")
+    i2 = np.searchsorted(s, e2, side="left")
+    i2 = np.maximum(i2, i1)
+    middle = (target * (i2 - i1) - b0 * (S[i2] - S[i1])) / A
+    total = i1 + middle + min_level * (T - i2)
+    # Without daylight the level is one constant all year.
+    const = np.clip(target / A, min_level, 1.0) * T
+    return np.where(flat, const, total)
+
+
+def dimming_levels(
+    year: DaylightYear, b: np.ndarray, full: float, target: float, min_level: float
+) -> np.ndarray:
+    """The dimming level (0-1) of one layout in each occupied hour: ``b`` (G,)."""
+    day = np.asarray(b, dtype=float) @ year.exterior
+    return np.clip((target - day) / max(float(full), 1e-9), min_level, 1.0)
