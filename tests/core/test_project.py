@@ -563,11 +563,13 @@ ERRORS = [
     (
         _set("goals[0].kind", "max_light"),
         "goals[0].kind: expected one of 'min_electric_power', 'max_light_power', 'match', "
-        "'min_installed_power', 'min_luminaire_count', 'min_annual_energy', 'max_sda', 'min_glazing_area', got string 'max_light'",
+        "'min_installed_power', 'min_luminaire_count', 'min_annual_energy', 'max_sda', "
+        "'min_glazing_area', got string 'max_light'",
     ),
     (
         _set("intentions[0].quantity", "cd"),
-        "intentions[0].quantity: expected one of 'lux', 'C', 'df', 'da', 'udi', 'sda', got string 'cd'",
+        "intentions[0].quantity: expected one of 'lux', 'C', 'df', 'da', 'udi', 'sda', "
+        "got string 'cd'",
     ),
     (_set("rules[2].axis", "x"), "rules[2].axis: expected one of 'u', 'v', got string 'x'"),
     (_set("results.pareto.objectives[0]", "cost"), "results.pareto.objectives[0]: expected one of"),

@@ -14,11 +14,9 @@ from dataclasses import replace
 import numpy as np
 import pytest
 
-pytest.importorskip("pvlib")
-
-from lightinv_core.climate.metrics import daylight_metrics, dimming_energy  # noqa: E402
-from lightinv_core.design.en12464 import preset_intention  # noqa: E402
-from lightinv_core.design.model import (  # noqa: E402
+from lightinv_core.climate.metrics import daylight_metrics, dimming_energy
+from lightinv_core.design.en12464 import preset_intention
+from lightinv_core.design.model import (
     Daylight,
     Design,
     DesignError,
@@ -28,21 +26,21 @@ from lightinv_core.design.model import (  # noqa: E402
     Source,
     Workplane,
 )
-from lightinv_core.light.daylight_year import (  # noqa: E402
+from lightinv_core.light.daylight_year import (
     DaylightYear,
     daylight_year,
     dimming_sum,
     hours_from,
     hours_within,
 )
-from lightinv_core.light.grids import grid_light  # noqa: E402
-from lightinv_core.light.model import LightModel  # noqa: E402
-from lightinv_core.operator.build import build_operator  # noqa: E402
-from lightinv_core.operator.settings import OperatorSettings  # noqa: E402
-from lightinv_core.optimize.problem import DesignProblem  # noqa: E402
-from lightinv_core.project import project_from_dict, project_to_dict  # noqa: E402
-from lightinv_core.scene.builtin import builtin_scene  # noqa: E402
-from lightinv_core.scene.patches import mesh_patches  # noqa: E402
+from lightinv_core.light.grids import grid_light
+from lightinv_core.light.model import LightModel
+from lightinv_core.operator.build import build_operator
+from lightinv_core.operator.settings import OperatorSettings
+from lightinv_core.optimize.problem import DesignProblem
+from lightinv_core.project import project_from_dict, project_to_dict
+from lightinv_core.scene.builtin import builtin_scene
+from lightinv_core.scene.patches import mesh_patches
 
 
 def _year(exterior: np.ndarray) -> DaylightYear:
