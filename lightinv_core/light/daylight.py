@@ -31,6 +31,12 @@ from lightinv_core.light.daylight_year import (
     hours_from,
     hours_within,
 )
+from lightinv_core.light.intentions import (
+    BoundCheck,
+    bound_checks,
+    intention_patches,
+    intention_stats,
+)
 from lightinv_core.sources.emission import source_electric_power
 
 SDA_SHARE = 0.5
@@ -168,6 +174,26 @@ class LayoutDaylight:
     installed_w: float
     control: str | None
     floor_m2: float
+    surface: object = None  # the scene's Patches
+
+    def quantity(self, intention: Intention) -> tuple[np.ndarray, np.ndarray]:
+        """(values (R,), weights (R,)) of the intention's quantity in its scenario at its
+        receivers: grid points (weight 1) or patches (weight = area, m²)."""
+        if intention.grid is not None:
+            if self.points is None or intention.grid not in self.grids.spans:
+                raise DesignError(f"intention {intention.name!r}: no work plane {intention.grid!r}")
+            span = self.grids.spans[intention.grid]
+            q = self.points.quantity(intention, span)[:, 0]
+            return q, np.ones(len(q))
+        idx = intention_patches(intention, self.surface)
+        q = self.patches.quantity(intention, idx, self.surface.rho[idx])[:, 0]
+        return q, self.surface.area[idx]
+
+    def checks(self, intention: Intention) -> list[BoundCheck]:
+        """The intention's bound checks on this layout, in its scenario (see
+        ``light.intentions.bound_checks``; values in the quantity's units)."""
+        q, w = self.quantity(intention)
+        return bound_checks(intention, intention_stats(q[:, None], w))
 
     def energy(self) -> AnnualEnergy:
         """Daylight-linked dimming over the weather year (reads the weather file); LENI
@@ -249,5 +275,12 @@ def layout_daylight(light, design: Design, sources=None, arrays=None) -> LayoutD
     if plane is not None:
         floor = float(light.patches.area[light.patches.group_index(plane.group)].sum())
     return LayoutDaylight(
-        design, at_patches, at_points, grids, watts, None if plane is None else plane.name, floor
+        design,
+        at_patches,
+        at_points,
+        grids,
+        watts,
+        None if plane is None else plane.name,
+        floor,
+        light.patches,
     )

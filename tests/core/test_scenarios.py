@@ -318,3 +318,24 @@ def test_layout_daylight_agrees_with_the_problem(office):
     assert np.allclose(lux, want)
     with pytest.raises(DesignError, match="outside the year"):
         lay.hour_lux(9000)
+
+
+def test_layout_checks_agree_with_the_solution_in_every_scenario(office):
+    from lightinv_core.light.daylight import layout_daylight
+
+    intentions = (
+        Intention("night", grid="wp", average=1e6, scenario="night"),
+        Intention("over", grid="wp", uniformity=0.99, scenario="overcast"),
+        Intention("desks", group="desks", average=1e6, scenario="overcast"),
+        Intention("udi", grid="wp", quantity="udi", average=0.999),
+    )
+    design = _design(intentions)
+    problem = DesignProblem(design, office)
+    x = problem.vars.initial()
+    sol = problem.solution(x)
+    lay = layout_daylight(office, design, sol.sources, sol.arrays)
+    for v in sol.violations:
+        it = next(i for i in intentions if i.name == v.name)
+        chk = next(c for c in lay.checks(it) if str(c.bound) == v.constraint)
+        assert float(chk.value[0]) == pytest.approx(v.value, rel=1e-4)
+    assert {v.name for v in sol.violations} == {i.name for i in intentions}
