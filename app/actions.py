@@ -12,6 +12,7 @@ from collections.abc import Callable
 
 from PySide6 import QtGui, QtWidgets
 
+from app import goals
 from lightinv_core.scene.builtin import BUILTIN_SCENES
 
 MODES = (
@@ -134,10 +135,8 @@ def help_menu(win, bar: QtWidgets.QMenuBar) -> None:
         help_.addAction(act)
 
 
-GOALS = (
-    ("min_electric_power", "Least electric power (W)"),
-    ("max_light_power", "Most reflected light power (lm)"),
-)
+GOALS = tuple((str(kind), goals.menu_text(kind)) for kind in goals.MENU_GOALS)
+"""(goal kind, menu text) of Design > Goals: the power goals, the climate goals."""
 
 
 def design_menu(win, bar: QtWidgets.QMenuBar) -> None:
@@ -147,12 +146,15 @@ def design_menu(win, bar: QtWidgets.QMenuBar) -> None:
         design.addAction(act)
     win.act_add_rule = action(win, "Add a geometric &rule...", lambda _=False: win.add_rule())
     design.addAction(win.act_add_rule)
-    goals = design.addMenu("&Goals (both: a Pareto front)")
+    # Two goals make a Pareto front: both power goals, or annual energy and glazing area.
+    menu = design.addMenu("&Goals (two: a Pareto front)")
     win.goal_actions = {}
-    for kind, text in GOALS:
+    for k, (kind, text) in enumerate(GOALS):
+        if k == 2:
+            menu.addSection("Climate (a weather file and a work plane)")
         act = action(win, text, lambda on, k=kind: win.set_goal(k, on), checkable=True)
         win.goal_actions[kind] = act
-        goals.addAction(act)
+        menu.addAction(act)
     design.addSeparator()
     for act in win.mode_actions.values():
         design.addAction(act)

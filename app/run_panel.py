@@ -11,6 +11,7 @@ from __future__ import annotations
 
 from PySide6 import QtCore, QtWidgets
 
+from app import goals
 from app.document import Document
 from app.plots import ConvergencePlot
 from lightinv_core.errors import LightInvError
@@ -18,11 +19,8 @@ from lightinv_core.kinds import GoalKind
 from lightinv_core.optimize.method import OptimizationMethod
 from lightinv_core.optimize.registry import METHODS, get_method
 
-GOAL_LABELS = {
-    GoalKind.MIN_ELECTRIC_POWER: ("least electric power", "electric power (W)"),
-    GoalKind.MAX_LIGHT_POWER: ("most light power", "light power (lm)"),
-    GoalKind.MATCH: ("match a target lighting", "match error e"),
-}
+GOAL_LABELS = {k: (goals.short_name(k), goals.axis_label(k)) for k in GoalKind}
+"""Per goal kind: (its name in the goal list, the plotted objective with its units)."""
 
 
 def sweep_count(method: OptimizationMethod, design) -> tuple[str, str] | None:
@@ -105,9 +103,11 @@ class RunPanel(QtWidgets.QWidget):
         self.method.setCurrentIndex(self.method.findData(o.method))
         self.goal.clear()
         design = self.doc.design
-        kinds = [GoalKind.MIN_ELECTRIC_POWER, GoalKind.MAX_LIGHT_POWER]
+        kinds = list(goals.MENU_GOALS)
         if design.target_sources:
-            kinds.append(GoalKind.MATCH)
+            kinds.insert(2, GoalKind.MATCH)
+        if design.goals[0].kind not in kinds:  # a goal set in the file (installed power)
+            kinds.append(GoalKind(design.goals[0].kind))
         for k in kinds:
             self.goal.addItem(GOAL_LABELS[k][0], str(k))
         self.goal.setCurrentIndex(self.goal.findData(str(design.goals[0].kind)))
@@ -151,7 +151,11 @@ class RunPanel(QtWidgets.QWidget):
     def _goal_edited(self) -> None:
         kind = self.goal.currentData()
         if kind is not None:
-            self.doc.set_primary_goal(kind)
+            try:  # the climate goals need a work plane
+                self.doc.set_primary_goal(kind)
+            except LightInvError as exc:
+                QtWidgets.QMessageBox.warning(self, "LightInv", str(exc))
+                self.refresh()
 
     def _runs_edited(self, value: int) -> None:
         method = get_method(self.doc.project.optimizer.method)

@@ -729,6 +729,39 @@ def _array_summary(a) -> dict:
     }
 
 
+def _daylight_summary(light, design, sol) -> dict:
+    """The solution's daylight on the control work plane: DF (overcast), DA300, sDA, UDI
+    and the dimming energy over the weather year (or why the year could not be read)."""
+    from lightinv_core.light.daylight import layout_daylight
+
+    lay = layout_daylight(light, design, sol.sources, sol.arrays)
+    span = lay.grids.spans[lay.control]
+    df = 100 * lay.points.overcast_daylight(span)[:, 0]
+    out = {
+        "workplane": lay.control,
+        "df_mean": float(df.mean()),
+        "df_median": float(np.median(df)),
+        "df_min": float(df.min()),
+    }
+    try:
+        da = lay.points.da(span)[:, 0]
+        energy = lay.energy()
+    except LightInvError as exc:
+        out["annual_error"] = str(exc)
+        return out
+    out.update(
+        site=lay.patches.year().site,
+        da300_mean=float(da.mean()),
+        sda300_50=float((da >= 0.5).mean()),
+        udi_100_3000_mean=float(lay.points.udi(span)[:, 0].mean()),
+        energy_kwh=energy.energy_kwh,
+        full_output_kwh=energy.full_kwh,
+        leni_kwh_m2=energy.leni,
+        monthly_kwh=list(energy.monthly_kwh),
+    )
+    return out
+
+
 def cmd_solve(args) -> int:
     """Optimise a project file; optionally save it with the results."""
     from dataclasses import replace
@@ -783,6 +816,8 @@ def cmd_solve(args) -> int:
             out["workplanes"] = grid_results(
                 prepared.light, grids, best.sources, best.arrays, project.design.daylight
             )
+            if any(s.kind == SourceKind.SKYLIGHT for s in best.sources):
+                out["daylight"] = _daylight_summary(prepared.light, project.design, best)
     if result.pareto is not None:
         out["pareto"] = [
             _solution_summary(s, project.design.daylight) for s in result.pareto.solutions
@@ -834,6 +869,21 @@ def _solve_text(out: dict) -> str:
             f"Emax {g['Emax']:.0f} lux, U0 {g['U0']:.2f} ({g['points']} points; luminaires "
             "placed exactly)"
         )
+    if "daylight" in out:
+        d = out["daylight"]
+        lines.append(
+            f"  daylight on {d['workplane']}: DF mean {d['df_mean']:.2f}%, median "
+            f"{d['df_median']:.2f}%, min {d['df_min']:.2f}% (CIE overcast)"
+        )
+        if "annual_error" in d:
+            lines.append(f"  annual daylight not computed: {d['annual_error']}")
+        else:
+            lines.append(
+                f"  {d['site']}: DA300 mean {100 * d['da300_mean']:.0f}%, sDA300/50% "
+                f"{100 * d['sda300_50']:.0f}%, UDI 100-3000 {100 * d['udi_100_3000_mean']:.0f}%; "
+                f"dimmed lighting {d['energy_kwh']:.0f} kWh a year (full output "
+                f"{d['full_output_kwh']:.0f} kWh), LENI {d['leni_kwh_m2']:.2f} kWh/m² a"
+            )
     for v in out.get("violations", []):
         lines.append(
             f"  violated: {v['name']} {v['constraint']} by {100 * v['amount']:.1f}% "
@@ -850,12 +900,23 @@ def _solve_text(out: dict) -> str:
         for s in out["pareto"]:
             o = s["objectives"]
             lines.append(
-                f"  {o.get('min_electric_power', 0):9.1f} W   "
-                f"{o.get('max_light_power', 0):12.0f} lm"
+                "  " + "   ".join(_goal_text(k, o.get(k, 0.0)) for k in q["objectives"])
             )
     if "saved" in out:
         lines.append(f"saved to {out['saved']}")
     return "\n".join(lines)
+
+
+def _goal_text(kind: str, value: float) -> str:
+    """A goal's value with its unit, as the front's lines show it."""
+    from lightinv_core.optimize.problem import GOAL_UNITS
+
+    unit = GOAL_UNITS.get(kind, "")
+    if kind == "max_sda":
+        return f"sDA {100 * value:5.1f}%"
+    width = {"W": 9, "lm": 12, "kWh": 8, "m²": 6}.get(unit, 9)
+    digits = 0 if unit == "lm" else (2 if unit == "m²" else 1)
+    return f"{value:{width}.{digits}f} {unit}".rstrip()
 
 
 def _vns_printer():

@@ -22,12 +22,14 @@ import numpy as np
 from lightinv_core.design.model import ARRAY_RULES, Design, Goal, Intention, Rule, Source
 from lightinv_core.design.solution import ParetoFront, Solution, SolutionInfo
 from lightinv_core.editing import results as _results
+from lightinv_core.editing.climate import DaylightCache, weather_of
 from lightinv_core.editing import rules
 from lightinv_core.editing import zones as _zones
 from lightinv_core.editing.events import Events
 from lightinv_core.editing.lighting import ShownLight
 from lightinv_core.errors import DesignError
 from lightinv_core.kinds import GoalKind
+from lightinv_core.light.daylight import LayoutDaylight
 from lightinv_core.light.field import LightField
 from lightinv_core.light.model import LightModel
 from lightinv_core.operator.radiosity import RadiosityOperator
@@ -72,6 +74,7 @@ class DocumentModel:
         self._problem: DesignProblem | None = None
         self._light_shown: ShownLight | None = None  # the light model and the light shown
         self._preview: tuple[Source, ...] | None = None  # a running best's sources, as lit
+        self._daylight = DaylightCache()  # one layout's light in every scenario
         # Called after every edit with (label, project before, project after): the app
         # keeps them for undo and redo (a QUndoStack); ``restore`` puts a state back.
         self.on_edit: Callable[[str, Project, Project], None] | None = None
@@ -113,6 +116,7 @@ class DocumentModel:
         self._project, self.scene, self.patches = project, scene, patches
         self.operator, self.light, self._problem, self._light_shown = None, None, None, None
         self.shown, self._preview, self.rebuilt = None, None, rebuild
+        self._daylight.clear()  # it holds the old light model
         if not rebuild:
             self._browsed, self._run_mark = _results.ALL, 1
         self.selection = np.zeros(0, np.int64)
@@ -301,7 +305,12 @@ class DocumentModel:
         workplanes = tuple(workplanes)
         names = {w.name for w in workplanes}
         its = tuple(i for i in self.design.intentions if i.grid is None or i.grid in names)
-        self._set_design(replace(self.design, workplanes=workplanes, intentions=its), label)
+        daylight = self.design.daylight
+        if daylight.workplane is not None and daylight.workplane not in names:
+            daylight = replace(daylight, workplane=None)  # dimming reads the first again
+        self._set_design(
+            replace(self.design, workplanes=workplanes, intentions=its, daylight=daylight), label
+        )
 
     def grid_stats(self) -> dict[str, dict[str, float]]:
         """EN 12464-1 values (points, Em, Emin, Emax lux, U0) of each work plane in the
@@ -313,6 +322,33 @@ class DocumentModel:
         if self._light_shown is None:
             return None, None
         return self._light_shown.grids, self._light_shown.grid_lux
+
+    def set_daylight(self, **fields) -> None:
+        """Change the design's daylight and climate (weather, north_deg, occupancy,
+        weekdays, ground_reflectance, overcast_lux, target_lux, min_level, standby_w,
+        workplane, exterior_lux, transmittance: ``design.model.Daylight``); DesignError on
+        a bad value, leaving the design unchanged. The weather file is not read here
+        (``weather``)."""
+        daylight = replace(self.design.daylight, **fields)
+        if daylight != self.design.daylight:
+            self._set_design(
+                replace(self.design, daylight=daylight), f"climate: {', '.join(sorted(fields))}"
+            )
+
+    def weather(self):
+        """The design's weather file, read (``climate.weather.Weather``: site, hours);
+        WeatherError when it cannot be read."""
+        return weather_of(self.design.daylight)
+
+    def layout_daylight(self, shown: bool = False) -> LayoutDaylight | None:
+        """The light of the design as written (``shown``: of the layout shown, a running
+        best's when previewed) in every scenario, with its daylight metrics, hours and
+        annual energy (``light.daylight.LayoutDaylight``); built once per design or
+        preview, None before the operator exists."""
+        if self.light is None:
+            return None
+        preview = self._preview if shown else None
+        return self._daylight.get(self.light, self.design, preview)
 
     def set_goal(self, kind: str, on: bool) -> None:
         """Add goal ``kind`` (both power goals give a Pareto front) or remove it;
@@ -642,6 +678,9 @@ class DocumentModel:
         front = self.front() if self._project is not None else None
         if front is None or not front.solutions or self.light is None:
             return None
+        power_light = (str(GoalKind.MIN_ELECTRIC_POWER), str(GoalKind.MAX_LIGHT_POWER))
+        if tuple(front.objectives) != power_light:
+            return None  # the normalised hypervolume is defined for power against light
         scales = front_scales(self._project.design, self.light)
         return front_quality(front.solutions, scales)
 

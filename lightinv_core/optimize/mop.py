@@ -1,6 +1,7 @@
 """Multi-objective drivers: the epsilon-constraint sweep (paper eq. 10) and the
-two-step process (paper 5.5), both over artificial electric power (W, minimised)
-and total reflected light power (lm, maximised)."""
+two-step process (paper 5.5), over artificial electric power (W, minimised) and total
+reflected light power (lm, maximised); the sweep also over a design's climate pair,
+annual energy (kWh, minimised) against glazing area (m², minimised)."""
 
 from __future__ import annotations
 
@@ -13,7 +14,7 @@ import numpy as np
 
 from lightinv_core.design.model import Design, Goal
 from lightinv_core.design.solution import ParetoFront, Solution
-from lightinv_core.kinds import GoalKind, SourceKind
+from lightinv_core.kinds import MAXIMISED_GOALS, GoalKind, SourceKind
 from lightinv_core.light.model import LightModel
 from lightinv_core.optimize.method import SolutionFn
 from lightinv_core.optimize.multilevel import multilevel
@@ -29,18 +30,39 @@ if TYPE_CHECKING:
 
 POWER, LIGHT = GoalKind.MIN_ELECTRIC_POWER, GoalKind.MAX_LIGHT_POWER
 OBJECTIVES = (POWER, LIGHT)
+CLIMATE = (GoalKind.MIN_ANNUAL_ENERGY, GoalKind.MIN_GLAZING_AREA)
+"""The climate front: least annual energy for each bound on the glazing area."""
 
 
 def _light_goal(design: Design) -> Goal:
-    return next((g for g in design.goals if g.kind == LIGHT), Goal(LIGHT))
+    return _goal(design, LIGHT)
 
 
-def front_of(solutions: list[Solution], method: str) -> ParetoFront:
-    """The non-dominated feasible solutions (power minimised, light maximised), each
-    objective point once."""
+def _goal(design: Design, kind: str) -> Goal:
+    """The design's goal of ``kind`` (with its settings), or a plain one."""
+    return next((g for g in design.goals if g.kind == kind), Goal(kind))
+
+
+def front_pair(design: Design) -> tuple[GoalKind, GoalKind]:
+    """The two objectives a sweep trades: (minimised, bounded). Power against light
+    power, unless the design's goals are the climate pair and not both power goals."""
+    kinds = {GoalKind(g.kind) for g in design.goals}
+    if set(CLIMATE) <= kinds and not set(OBJECTIVES) <= kinds:
+        return CLIMATE
+    return OBJECTIVES
+
+
+def _minimised(s: Solution, kind: str) -> float:
+    value = s.objectives[kind]
+    return -value if kind in MAXIMISED_GOALS else value
+
+
+def front_of(solutions: list[Solution], method: str, pair=OBJECTIVES) -> ParetoFront:
+    """The non-dominated feasible solutions of the two objectives ``pair`` (power
+    minimised and light maximised by default), each objective point once."""
     feasible = [s for s in solutions if s.feasible]
     if feasible:
-        F = np.array([[s.objectives[POWER], -s.objectives[LIGHT]] for s in feasible])
+        F = np.array([[_minimised(s, k) for k in pair] for s in feasible])
         keep = non_dominated(F)
         # Two epsilon runs can end on the same layout (a bound below the previous
         # optimum): a front lists each point once, the first run that found it.
@@ -50,7 +72,7 @@ def front_of(solutions: list[Solution], method: str) -> ParetoFront:
         front = tuple(feasible[i] for i in order if keep[i])
     else:
         front = ()
-    return ParetoFront(tuple(map(str, OBJECTIVES)), front, method, tuple(solutions))
+    return ParetoFront(tuple(map(str, pair)), front, method, tuple(solutions))
 
 
 def _solve(
@@ -98,13 +120,33 @@ def light_power_range(
     """(light power of the least-power feasible layout, largest feasible light power), lm:
     the interval the epsilon sweep covers when none is given. Its two VNS runs report as
     runs 0 and 1 of ``runs``."""
+    return bounded_range(
+        design, light, OBJECTIVES, seed, stop, divisors, cancel, vns_progress, runs
+    )
+
+
+def bounded_range(
+    design: Design,
+    light: LightModel,
+    pair=OBJECTIVES,
+    seed: int = 0,
+    stop: StopRule | None = None,
+    divisors=(1,),
+    cancel: CancelFn | None = None,
+    vns_progress: ProgressFn | None = None,
+    runs: int = 2,
+) -> tuple[float, float]:
+    """(low, high) of the bounded objective ``pair[1]`` over the front: its value at the
+    best feasible layout of ``pair[0]`` and its own best feasible value. Two VNS runs,
+    reported as runs 0 and 1 of ``runs``."""
     stop = stop or StopRule(max_evals=5000)
-    goal = _light_goal(design)
+    first, second = _goal(design, pair[0]), _goal(design, pair[1])
     common = (light, seed, stop, divisors)
     hooks = {"cancel": cancel, "vns_progress": vns_progress, "method": "epsilon"}
-    _, _, hi = _solve(replace(design, goals=(goal, Goal(POWER))), *common, run=(0, runs), **hooks)
-    _, _, lo = _solve(replace(design, goals=(Goal(POWER), goal)), *common, run=(1, runs), **hooks)
-    return lo.objectives[LIGHT], hi.objectives[LIGHT]
+    _, _, own = _solve(replace(design, goals=(second, first)), *common, run=(0, runs), **hooks)
+    _, _, other = _solve(replace(design, goals=(first, second)), *common, run=(1, runs), **hooks)
+    a, b = own.objectives[pair[1]], other.objectives[pair[1]]
+    return min(a, b), max(a, b)
 
 
 def epsilon_constraint(
@@ -119,18 +161,22 @@ def epsilon_constraint(
     cancel: CancelFn | None = None,
     vns_progress: ProgressFn | None = None,
 ) -> ParetoFront:
-    """Minimise electric power subject to light power >= epsilon for each epsilon (lm),
-    warm-starting each run from the previous best; returns the non-dominated front.
+    """Minimise electric power subject to light power >= epsilon for each epsilon (lm) —
+    or, for the climate pair (``front_pair``), annual energy subject to glazing area <=
+    epsilon (m²) — warm-starting each run from the previous best; returns the
+    non-dominated front.
 
     ``progress(q, total, solution)`` follows the sweep; ``vns_progress`` gets every VNS
     snapshot, tagged with its run (the two range runs first when ``epsilons`` is None).
     """
     stop = stop or StopRule(max_evals=20000)
+    pair = front_pair(design)
     first = 0
     if epsilons is None:
-        lo, hi = light_power_range(
+        lo, hi = bounded_range(
             design,
             light,
+            pair,
             seed,
             stop=stop,
             divisors=divisors,
@@ -140,7 +186,7 @@ def epsilon_constraint(
         )
         epsilons = list(np.linspace(lo, hi, count))
         first = 2
-    mop = replace(design, goals=(Goal(POWER), _light_goal(design)))
+    mop = replace(design, goals=(_goal(design, pair[0]), _goal(design, pair[1])))
     solutions, x = [], None
     for q, eps in enumerate(epsilons):
         if cancel is not None and cancel():
@@ -151,7 +197,7 @@ def epsilon_constraint(
             seed + q,
             stop,
             divisors,
-            epsilon=((LIGHT, float(eps)),),
+            epsilon=((pair[1], float(eps)),),
             x0=x,
             cancel=cancel,
             vns_progress=vns_progress,
@@ -163,7 +209,7 @@ def epsilon_constraint(
         x = res.x
         if progress is not None:
             progress(q + 1, len(epsilons), sol)
-    return front_of(solutions, "epsilon-constraint")
+    return front_of(solutions, "epsilon-constraint", pair)
 
 
 def two_step(

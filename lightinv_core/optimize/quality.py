@@ -9,6 +9,11 @@ between the front and the reference point (1, 0), full power and no light: 0 for
 empty front, at most 1. The spacing (Schott 1995) is the standard deviation of each
 point's L1 distance to its nearest neighbour in the same normalised plane: 0 for evenly
 spread points; undefined (None) below two points.
+
+A climate front (annual energy E in kWh against glazing area A in m², both minimised;
+``mop.front_pair``) is measured the same way in (E/E_max, A/A_max) with reference point
+(1, 1): E_max the energy of every luminaire at full output all year, A_max the area of
+the skylights' zones.
 """
 
 from __future__ import annotations
@@ -20,26 +25,33 @@ import numpy as np
 
 from lightinv_core.design.model import Design
 from lightinv_core.design.solution import Solution
-from lightinv_core.kinds import GoalKind, SourceKind
+from lightinv_core.kinds import MAXIMISED_GOALS, GoalKind, SourceKind
 from lightinv_core.light.model import LightModel
+from lightinv_core.optimize.mop import CLIMATE, OBJECTIVES, front_pair
 from lightinv_core.optimize.pareto import hypervolume_2d
-from lightinv_core.optimize.problem import electric_scale
+from lightinv_core.optimize.problem import electric_scale, energy_scale, glazing_scale
 
 POWER, LIGHT = str(GoalKind.MIN_ELECTRIC_POWER), str(GoalKind.MAX_LIGHT_POWER)
 REFERENCE = (1.0, 0.0)
 """Reference point in (P/P_max, L/L_max): full electric power and no light."""
 
 
+def _reference(pair) -> tuple[float, float]:
+    """The reference point of ``pair`` in normalised values: 1 for a minimised
+    objective (its largest value), 0 for a maximised one (none of it)."""
+    return tuple(0.0 if k in MAXIMISED_GOALS else 1.0 for k in pair)
+
+
 @dataclass(frozen=True)
 class FrontQuality:
     """``hypervolume`` (0..1) and ``spacing`` (None below two points) of ``points``
-    front points, normalised by ``power_scale`` (W) and ``light_scale`` (lm)."""
+    front points of the two ``objectives``, normalised by ``scales`` (their units)."""
 
     hypervolume: float
     spacing: float | None
     points: int
-    power_scale: float
-    light_scale: float
+    scales: tuple[float, float]
+    objectives: tuple[str, str] = tuple(map(str, OBJECTIVES))
 
     def to_dict(self) -> dict:
         """Plain data for JSON output."""
@@ -47,34 +59,42 @@ class FrontQuality:
             "hypervolume": self.hypervolume,
             "spacing": self.spacing,
             "points": self.points,
-            "power_scale_W": self.power_scale,
-            "light_scale_lm": self.light_scale,
-            "reference": list(REFERENCE),
+            "objectives": list(self.objectives),
+            "scales": list(self.scales),
+            "reference": list(_reference(self.objectives)),
         }
 
 
 def front_scales(design: Design, light: LightModel) -> tuple[float, float]:
-    """(P_max in W, L_max in lm): the normalisation of a front of ``design``."""
+    """The normalisation of a front of ``design``: (P_max in W, L_max in lm), or for a
+    climate front (E_max in kWh, A_max in m²)."""
+    if front_pair(design) == CLIMATE:
+        return energy_scale(design, light), glazing_scale(design, light)
     goal = next((g for g in design.goals if g.kind == GoalKind.MAX_LIGHT_POWER), None)
     kinds = (goal.kinds if goal else ()) or tuple(SourceKind)
     counted = [s for s in design.sources if s.kind in kinds]
     return electric_scale(design, light), light.power_scale(counted, design.daylight)
 
 
-def normalised(F: np.ndarray, scales: tuple[float, float]) -> np.ndarray:
-    """(P, L) rows in W and lm as minimised normalised points (P/P_max, -L/L_max)."""
+def normalised(F: np.ndarray, scales: tuple[float, float], pair=OBJECTIVES) -> np.ndarray:
+    """Rows of the two objectives ``pair`` (default P in W, L in lm) as minimised
+    normalised points (P/P_max, -L/L_max)."""
     F = np.asarray(F, dtype=float).reshape(-1, 2)
-    return np.column_stack([F[:, 0] / scales[0], -F[:, 1] / scales[1]])
+    sign = [-1.0 if k in MAXIMISED_GOALS else 1.0 for k in pair]
+    return np.column_stack([sign[0] * F[:, 0] / scales[0], sign[1] * F[:, 1] / scales[1]])
 
 
-def hypervolume(F: np.ndarray, scales: tuple[float, float]) -> float:
-    """Hypervolume of the (P, L) points F (W, lm) in the normalised plane (0..1)."""
-    return hypervolume_2d(normalised(F, scales), (REFERENCE[0], -REFERENCE[1]))
+def hypervolume(F: np.ndarray, scales: tuple[float, float], pair=OBJECTIVES) -> float:
+    """Hypervolume of the points F (default (P, L) in W, lm) in the normalised plane."""
+    ref = _reference(pair)
+    sign = [-1.0 if k in MAXIMISED_GOALS else 1.0 for k in pair]
+    return hypervolume_2d(normalised(F, scales, pair), (sign[0] * ref[0], sign[1] * ref[1]))
 
 
-def spacing(F: np.ndarray, scales: tuple[float, float]) -> float | None:
-    """Schott's spacing of the (P, L) points F (W, lm), normalised; None below 2 points."""
-    Z = normalised(F, scales)
+def spacing(F: np.ndarray, scales: tuple[float, float], pair=OBJECTIVES) -> float | None:
+    """Schott's spacing of the points F (default (P, L) in W, lm), normalised; None
+    below 2 points."""
+    Z = normalised(F, scales, pair)
     if len(Z) < 2:
         return None
     D = np.abs(Z[:, None, :] - Z[None, :, :]).sum(axis=2)
@@ -84,6 +104,14 @@ def spacing(F: np.ndarray, scales: tuple[float, float]) -> float | None:
 
 
 def front_quality(solutions: Sequence[Solution], scales: tuple[float, float]) -> FrontQuality:
-    """Hypervolume and spacing of a front's solutions (their P and L objectives)."""
-    F = np.array([[s.objectives[POWER], s.objectives[LIGHT]] for s in solutions]).reshape(-1, 2)
-    return FrontQuality(hypervolume(F, scales), spacing(F, scales), len(F), *scales)
+    """Hypervolume and spacing of a front's solutions: their P and L objectives, or the
+    climate pair when the solutions have no power and light objectives."""
+    climate = bool(solutions) and all(
+        POWER not in s.objectives and all(str(k) in s.objectives for k in CLIMATE)
+        for s in solutions
+    )
+    pair = tuple(map(str, CLIMATE if climate else OBJECTIVES))
+    F = np.array([[s.objectives[k] for k in pair] for s in solutions]).reshape(-1, 2)
+    return FrontQuality(
+        hypervolume(F, scales, pair), spacing(F, scales, pair), len(F), tuple(scales), pair
+    )

@@ -119,10 +119,11 @@ OPTIMIZER = ObjectSpec(
         ),
         Field(
             "epsilons",
-            _optional(lambda v, p: _list(v, p, lambda x, q: _number(x, q, lo=0.0), "lm values", 1)),
+            _optional(lambda v, p: _list(v, p, lambda x, q: _number(x, q, lo=0.0), "bounds", 1)),
             None,
             "list of numbers >= 0",
-            "`epsilon`: the light-power bounds (lm) to sweep; null: automatic",
+            "`epsilon`: the light-power bounds (lm) to sweep, or the glazing-area bounds (m²) "
+            "for the climate pair `min_annual_energy`, `min_glazing_area`; null: automatic",
         ),
         Field(
             "epsilon_count",
@@ -130,7 +131,8 @@ OPTIMIZER = ObjectSpec(
             12,
             "integer >= 1",
             "`epsilon`: number of automatic bounds, evenly spread between the light power "
-            "of the least-power layout and the largest feasible light power",
+            "of the least-power layout and the largest feasible light power (climate pair: "
+            "between the least glazing area and the glazing of the least-energy layout)",
         ),
     ),
     write_defaults=True,  # a saved file shows every setting of its run

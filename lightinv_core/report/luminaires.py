@@ -16,14 +16,18 @@ from collections.abc import Sequence
 import numpy as np
 
 from lightinv_core.design.model import Design, LuminaireArray
-from lightinv_core.kinds import Bound
+from lightinv_core.errors import LightInvError
+from lightinv_core.kinds import Bound, Quantity, Scenario
 from lightinv_core.light.arrays import Product, resolve_product
+from lightinv_core.light.daylight import LayoutDaylight
 from lightinv_core.light.grids import DesignGrids
+from lightinv_core.light.intentions import QUANTITY_UNITS
 from lightinv_core.report.figures import new_figure
-from lightinv_core.report.tables import FAIL, PASS, Table, fmt
+from lightinv_core.report.tables import FAIL, METRIC_NAMES, PASS, Table, fmt
 from lightinv_core.transport.workplane import grid_statistics
 
 ISO_LEVELS = 8  # iso-lux lines per plan
+EN_LABELS = {Bound.AVERAGE: "Em", Bound.MIN: "Emin", Bound.MAX: "Emax", Bound.UNIFORMITY: "U0"}
 
 
 def luminaire_table(arrays: Sequence[LuminaireArray]) -> Table | None:
@@ -101,11 +105,17 @@ def polar_figure(products: Sequence[Product]):
     return fig
 
 
-def grid_table(design: Design, grids: DesignGrids, lux: np.ndarray) -> Table | None:
-    """EN 12464-1 values of each work plane with its intentions' verdicts."""
+def grid_table(
+    design: Design, grids: DesignGrids, lux: np.ndarray, daylight: LayoutDaylight | None = None
+) -> Table | None:
+    """EN 12464-1 values of each work plane (``lux``: the design scenario) with its
+    intentions' verdicts. With ``daylight`` (the layout's ``LayoutDaylight``) each
+    intention is judged in its own scenario and quantity (``LayoutDaylight.checks``);
+    without, on ``lux``."""
     if not grids.spans:
         return None
     rows, flags = [], []
+    other = False
     for name, span in grids.spans.items():
         st = grid_statistics(lux[span])
         g = grids.grids[name]
@@ -117,18 +127,43 @@ def grid_table(design: Design, grids: DesignGrids, lux: np.ndarray) -> Table | N
             Bound.UNIFORMITY: st["U0"],
         }
         required = []
-        ok = True
+        ok, unknown = True, False
         for it in asks:
+            q = Quantity(it.quantity)
+            checks = None
+            if daylight is not None:
+                try:
+                    checks = {c.bound: c for c in daylight.checks(it)}
+                except LightInvError:
+                    checks = {}
             for bound in Bound:
                 limit = getattr(it, bound)
                 if limit is None:
                     continue
-                label = {"average": "Em", "min": "Emin", "max": "Emax", "uniformity": "U0"}
                 sign = "≤" if bound == Bound.MAX else "≥"
-                required.append(f"{label[bound]} {sign} {fmt(limit)}")
-                v = values[bound]
-                met = v <= limit * 1.001 if bound == Bound.MAX else v >= limit * 0.999
+                if q == Quantity.LUX:
+                    text = f"{EN_LABELS[bound]} {sign} {fmt(limit)}"
+                    if it.scenario != Scenario.DESIGN:
+                        text += f" ({it.scenario})"
+                        other = True
+                else:
+                    units = QUANTITY_UNITS[q] if bound != Bound.UNIFORMITY else ""
+                    label = "U0" if bound == Bound.UNIFORMITY else str(bound)
+                    text = f"{METRIC_NAMES[q]} {label} {sign} {fmt(limit)}"
+                    text += f" {units}" if units else ""
+                    other = True
+                required.append(text)
+                if checks is not None:
+                    chk = checks.get(bound)
+                    if chk is None:
+                        unknown = True
+                        continue
+                    met = bool(chk.met[0])
+                else:
+                    v = values[bound]
+                    met = v <= limit * 1.001 if bound == Bound.MAX else v >= limit * 0.999
                 ok = ok and met
+        verdict = PASS if ok and not unknown else FAIL if not ok else "—"
         rows.append(
             (
                 name,
@@ -138,10 +173,20 @@ def grid_table(design: Design, grids: DesignGrids, lux: np.ndarray) -> Table | N
                 fmt(st["Emax"]),
                 fmt(st["U0"], 3),
                 ", ".join(required) or "—",
-                (PASS if ok else FAIL) if asks else "—",
+                verdict if asks else "—",
             )
         )
-        flags.append(("pass" if ok else "fail") if asks else "")
+        flags.append({PASS: "pass", FAIL: "fail"}.get(verdict, "") if asks else "")
+    note = (
+        "Maintained values (maintenance factor applied) with the luminaires placed "
+        "exactly; grid spacing by p = 0.2 x 5^log10(d). A bound met to within 0.1% passes."
+    )
+    if other:
+        note += (
+            " Em to U0 are in the design scenario; a requirement in another scenario "
+            "(bracketed) or on a daylight metric is judged in its own: its value is in "
+            "the lighting intentions table."
+        )
     return Table(
         "Work planes (EN 12464-1)",
         (
@@ -156,8 +201,7 @@ def grid_table(design: Design, grids: DesignGrids, lux: np.ndarray) -> Table | N
         ),
         tuple(rows),
         tuple(flags),
-        note="Maintained values (maintenance factor applied) with the luminaires placed "
-        "exactly; grid spacing by p = 0.2 x 5^log10(d). A bound met to within 0.1% passes.",
+        note=note,
     )
 
 

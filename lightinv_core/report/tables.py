@@ -16,20 +16,44 @@ from lightinv_core.design.geometry import rule_names, rule_violations
 from lightinv_core.design.model import Design, Source
 from lightinv_core.design.solution import Solution
 from lightinv_core.design.variables import array_layout
-from lightinv_core.kinds import Bound, Quantity, SourceKind
+from lightinv_core.errors import LightInvError
+from lightinv_core.kinds import MAXIMISED_GOALS, Bound, GoalKind, Quantity, Scenario, SourceKind
 from lightinv_core.light.arrays import array_shapes
+from lightinv_core.light.daylight import LayoutDaylight
 from lightinv_core.light.field import LightField
+from lightinv_core.light.intentions import (
+    QUANTITY_UNITS,
+    BoundCheck,
+    bounds_set,
+    intention_stats,
+)
+from lightinv_core.optimize.problem import GOAL_UNITS
 from lightinv_core.scene.patches import Patches
 from lightinv_core.scene.zone_grid import zone_grid
 from lightinv_core.sources.emission import source_electric_power, source_flux
 
 PASS, FAIL = "pass", "FAIL"
 
-OBJECTIVES = {
-    "min_electric_power": ("Electric power", "W"),
-    "max_light_power": ("Reflected light power", "lm"),
-    "match": ("Match error e", ""),
+GOAL_NAMES = {
+    GoalKind.MIN_ELECTRIC_POWER: "Electric power",
+    GoalKind.MAX_LIGHT_POWER: "Reflected light power",
+    GoalKind.MATCH: "Match error e",
+    GoalKind.MIN_INSTALLED_POWER: "Installed power",
+    GoalKind.MIN_LUMINAIRE_COUNT: "Luminaire count",
+    GoalKind.MIN_ANNUAL_ENERGY: "Annual lighting energy",
+    GoalKind.MAX_SDA: "sDA300/50%",
+    GoalKind.MIN_GLAZING_AREA: "Glazing area",
 }
+"""How the report names each goal (its units are the optimiser's ``GOAL_UNITS``)."""
+OBJECTIVES = {str(k): (GOAL_NAMES.get(k, str(k)), GOAL_UNITS.get(k, "")) for k in GoalKind}
+"""Goal kind -> (name, units) as the report shows it."""
+METRIC_NAMES = {
+    Quantity.DF: "DF",
+    Quantity.DA: "DA300",
+    Quantity.UDI: "UDI 100-3000",
+    Quantity.SDA: "sDA300/50%",
+}
+"""Daylight-metric quantities as the intention table names them."""
 
 
 @dataclass(frozen=True)
@@ -70,6 +94,13 @@ def objective_text(kind: str, value: float) -> str:
     """ "Electric power: 123.4 W" and the like."""
     name, units = OBJECTIVES.get(kind, (kind, ""))
     return f"{name}: {fmt(value)}{' ' + units if units else ''}"
+
+
+def goal_label(kind: str) -> str:
+    """A goal as an axis label: "electric power (W)", "glazing area (m²)", "sDA300/50%"."""
+    name, units = OBJECTIVES.get(kind, (kind, ""))
+    name = name[:1].lower() + name[1:] if name[1:2].islower() else name
+    return f"{name} ({units})" if units else name
 
 
 def source_table(solution: Solution, design: Design) -> Table:
@@ -155,7 +186,7 @@ def rules_table(solution: Solution, design: Design, patches: Patches) -> Table |
                 flags.append("fail")
     for v in solution.violations:
         if v.constraint == "epsilon":
-            sign = "≥" if "light" in v.name else "≤"
+            sign = "≥" if v.name.removeprefix("epsilon ") in MAXIMISED_GOALS else "≤"
             rows.append(
                 (
                     f"{v.name} {sign} {fmt(v.bound)} {v.units}",
@@ -173,53 +204,144 @@ def rules_table(solution: Solution, design: Design, patches: Patches) -> Table |
     return Table("Geometric rules", ("rule", "type", "result"), tuple(rows), tuple(flags))
 
 
-def intention_table(solution: Solution, design: Design, field: LightField) -> Table | None:
-    """One row per bound of every lighting intention: required vs achieved and pass/fail.
+def intention_table(
+    solution: Solution,
+    design: Design,
+    field: LightField,
+    daylight: LayoutDaylight | None = None,
+) -> Table | None:
+    """One row per bound of every lighting intention: its scenario, required vs
+    achieved and pass/fail.
 
-    The achieved values come from the solution's light ``field``; pass/fail is the
-    solution's own verdict (its violations) when its intentions were judged (finite
-    penalty), else the verdict of the field, with the same 0.1% tolerance. Intentions on
-    work-plane grids have their own table (``report/luminaires.py``).
+    Intentions on patches in the design scenario take their values from the solution's
+    light ``field``. With ``daylight`` (the solution's ``LayoutDaylight``) every other
+    intention, work-plane grids included, is measured in its own scenario and units
+    (``LayoutDaylight.checks``); without it, only the intentions on patches are listed
+    and those in another scenario show no value. Pass/fail is the solution's own
+    verdict (its violations) when its intentions were judged (finite penalty), else the
+    verdict of the values, with the same 0.1% tolerance. An annual intention whose
+    weather file cannot be read shows no value (the note says why).
     """
-    patch_intentions = [it for it in design.intentions if it.grid is None]
-    if not patch_intentions:
+    listed = [it for it in design.intentions if daylight is not None or it.grid is None]
+    if not listed:
         return None
     judged = math.isfinite(solution.penalty)
     failed = {(v.name, v.constraint) for v in solution.violations}
     rows, flags = [], []
-    for it in patch_intentions:
-        res = field.intention(it)
-        st = res.stats
-        u0 = float(st.uniformity[0]) if st.average[0] > 0 else float("nan")
-        units = "lux" if it.quantity == Quantity.LUX else "lm/m²"
-        where = {None: f"{len(res.patches)} picked", "*": "all"}.get(it.group, it.group)
-        stats = f"{fmt(st.min[0])} / {fmt(st.average[0])} / {fmt(st.max[0])}"
-        for chk in res.checks:
-            bad = (it.name, chk.bound) in failed if judged else not chk.met[0]
-            c = float(chk.c[0])
-            u = "" if chk.bound == Bound.UNIFORMITY else f" {units}"
-            label = "U0" if chk.bound == Bound.UNIFORMITY else str(chk.bound)
-            sign = "≤" if chk.bound == Bound.MAX else "≥"
+    problems: dict[str, list[str]] = {}
+    for it in listed:
+        q = Quantity(it.quantity)
+        units = QUANTITY_UNITS[q]
+        where, stats, checks = _measured(it, field, daylight, problems)
+        scenario = str(it.scenario) + (f", {METRIC_NAMES[q]}" if q in METRIC_NAMES else "")
+        u0 = float("nan")
+        if (
+            stats is not None
+            and stats.average[0] > 0
+            and q in (Quantity.LUX, Quantity.C, Quantity.DF)
+        ):
+            u0 = float(stats.uniformity[0])
+        summary = "—"
+        if stats is not None:
+            summary = f"{fmt(stats.min[0])} / {fmt(stats.average[0])} / {fmt(stats.max[0])}"
+            summary += f" {units}" if units else ""
+        for bound, limit, chk in checks:
+            u = "" if bound == Bound.UNIFORMITY or not units else f" {units}"
+            label = "U0" if bound == Bound.UNIFORMITY else str(bound)
+            sign = "≤" if bound == Bound.MAX else "≥"
+            met = chk is None or bool(chk.met[0])
+            bad = (it.name, bound) in failed if judged else not met
+            c = float(chk.c[0]) if chk is not None else float("nan")
+            if chk is None and not judged:
+                result, flag = "—", ""
+            elif bad:
+                result = f"{FAIL} ({100 * max(c, 0):.1f}%)" if chk is not None else FAIL
+                flag = "fail"
+            else:
+                result, flag = PASS, "pass"
             rows.append(
                 (
                     it.name,
                     where,
-                    f"{label} {sign} {fmt(chk.limit)}{u}",
-                    f"{fmt(chk.value[0])}{u}",
-                    stats + f" {units}",
+                    f"{label} {sign} {fmt(limit)}{u}",
+                    scenario,
+                    f"{fmt(chk.value[0])}{u}" if chk is not None else "—",
+                    summary,
                     fmt(u0, 3),
-                    f"{FAIL} ({100 * max(c, 0):.1f}%)" if bad else PASS,
+                    result,
                 )
             )
-            flags.append("fail" if bad else "pass")
+            flags.append(flag)
+    used = {it.scenario for it in listed}
+    scenarios = [f"{sc} ({text})" for sc, text in _scenario_texts(design).items() if sc in used]
+    note = (
+        "Averages are area-weighted (grid points: plain means); U0 = min / average. "
+        f"Each intention is judged in its scenario: {', '.join(scenarios)}. FAIL gives how "
+        "far past the bound, relative to it; a bound met to within 0.1% passes."
+    )
+    for why, names in problems.items():
+        note += f" Not measured ({', '.join(names)}): {why}."
     return Table(
         "Lighting intentions",
-        ("intention", "patches", "required", "achieved", "min / avg / max", "U0", "result"),
+        (
+            "intention",
+            "patches",
+            "required",
+            "scenario",
+            "achieved",
+            "min / avg / max",
+            "U0",
+            "result",
+        ),
         tuple(rows),
         tuple(flags),
-        note="Averages are area-weighted; U0 = min / average. FAIL gives how far past the "
-        "bound, relative to it; a bound met to within 0.1% passes.",
+        note=note,
     )
+
+
+def _scenario_texts(design: Design) -> dict[str, str]:
+    """What each scenario's light is, for the tables' notes."""
+    d = design.daylight
+    return {
+        Scenario.DESIGN: f"luminaires plus daylight at {fmt(d.exterior_lux)} lux exterior",
+        Scenario.NIGHT: "luminaires only",
+        Scenario.OVERCAST: f"luminaires plus the CIE overcast sky of {fmt(d.overcast_lux)} "
+        "lux; DF in % of the exterior",
+        Scenario.ANNUAL: "shares 0-1 of the occupied hours of the weather year",
+    }
+
+
+def _measured(
+    it, field: LightField, daylight: LayoutDaylight | None, problems: dict[str, list[str]]
+):
+    """(where, stats or None, [(bound, limit, BoundCheck or None)]) of one intention."""
+    design_patch = it.grid is None and it.scenario == Scenario.DESIGN
+    stats, checks = None, None
+    if design_patch:
+        res = field.intention(it)
+        where = {None: f"{len(res.patches)} picked", "*": "all"}.get(it.group, it.group)
+        stats, checks = res.stats, list(res.checks)
+    else:
+        if it.grid is not None:
+            span = daylight.grids.spans.get(it.grid) if daylight.grids is not None else None
+            n = "?" if span is None else str(len(daylight.grids.points[span]))
+            where = f"grid {it.grid} ({n} points)"
+        else:
+            picked = f"{len(set(it.patches or ()))} picked"
+            where = {None: picked, "*": "all"}.get(it.group, it.group)
+        if daylight is not None:
+            try:
+                q, w = daylight.quantity(it)
+                stats = intention_stats(q[:, None], w)
+                checks = daylight.checks(it)
+            except LightInvError as exc:
+                problems.setdefault(str(exc).rstrip("."), []).append(it.name)
+        else:
+            why = f"the {it.scenario} scenario was not computed"
+            problems.setdefault(why, []).append(it.name)
+    by_bound: dict[Bound, BoundCheck] = {c.bound: c for c in checks or ()}
+    out = [(b, getattr(it, b), by_bound.get(b)) for b in bounds_set(it)]
+    return where, stats, out
 
 
 def group_table(field: LightField) -> Table:
