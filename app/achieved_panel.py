@@ -4,22 +4,26 @@ For each bound of each intention: what is required, what the design as shown (ha
 edits, a dragged source, a loaded result) achieves on every patch of the intention,
 and whether it holds (to the tolerance the optimiser judges with). It refreshes with
 the light, so dragging a source shows the desks' average and U0 change as it moves.
-Intentions on a work plane read its grid points (EN 12464-1: Em the plain mean).
+Intentions on a work plane read its grid points (EN 12464-1: Em the plain mean). Each
+intention is judged in its scenario (``LayoutDaylight.checks``): design, night (the
+luminaires alone), overcast (the CIE overcast sky) or, for DA, UDI and sDA, the
+occupied hours of the weather year.
 """
 
 from __future__ import annotations
 
-import numpy as np
+from typing import NamedTuple
+
 from PySide6 import QtGui, QtWidgets
 
 from app.document import Document
 from app.results_panel import distinct
+from lightinv_core.climate.weather import WeatherError
 from lightinv_core.errors import LightInvError
 from lightinv_core.kinds import Bound
-from lightinv_core.light.intentions import bound_checks, intention_stats
 
-COLUMNS = ("intention", "bound", "required", "achieved", "units", "")
-OK, NOT_OK = "met", "not met"
+COLUMNS = ("intention", "scenario", "bound", "required", "achieved", "units", "")
+OK, NOT_OK, UNKNOWN = "met", "not met", "cannot tell"
 LABELS = {
     Bound.MIN: "min ≥",
     Bound.MAX: "max ≤",
@@ -28,8 +32,22 @@ LABELS = {
 }
 
 
+class Row(NamedTuple):
+    """One bound of one intention as the tab lists it: ``met`` None when it cannot be
+    judged (``achieved`` then says why, e.g. an unreadable weather file)."""
+
+    intention: str
+    bound: str
+    required: str
+    achieved: str
+    units: str
+    met: bool | None
+    scenario: str
+
+
 class AchievedPanel(QtWidgets.QWidget):
-    """Required against achieved for every intention bound of the design on screen."""
+    """Required against achieved for every intention bound of the design on screen, each
+    in its intention's scenario (design, night, overcast, or the weather year)."""
 
     def __init__(self, doc: Document, parent: QtWidgets.QWidget | None = None):
         super().__init__(parent)
@@ -49,30 +67,40 @@ class AchievedPanel(QtWidgets.QWidget):
         doc.sceneChanged.connect(self.refresh)
         self.refresh()
 
-    def rows(self) -> list[tuple[str, str, str, str, str, bool]]:
-        """(intention, bound, required, achieved, units, met) of the design's light."""
+    def rows(self) -> list[Row]:
+        """The bounds of every intention judged on the design as written, in its
+        scenario (``LayoutDaylight.checks``)."""
         d = self.doc
-        field = d.design_field() if d.project is not None else None
-        if field is None:
+        ld = None
+        if d.project is not None and d.design_field() is not None:
+            try:
+                ld = d.layout_daylight()
+            except LightInvError:
+                ld = None
+        if ld is None:
             return []
         out = []
-        grids, lux = d.shown_grids()
         for it in d.design.intentions:
-            if it.grid is not None:
-                if grids is None or lux is None or it.grid not in grids.spans:
-                    continue
-                q = lux[grids.spans[it.grid]][:, None]
-                checks = bound_checks(it, intention_stats(q, np.ones(len(q))))
-            else:
-                try:
-                    checks = field.intention(it).checks
-                except LightInvError:
-                    continue  # its patches are not in this scene (the tree says why)
+            try:
+                checks = ld.checks(it)
+            except WeatherError as exc:  # an annual metric without a readable weather year
+                out.append(Row(it.name, "-", "-", str(exc), "", None, str(it.scenario)))
+                continue
+            except LightInvError:
+                continue  # its patches or plane are not in this scene (the tree says why)
             for chk in checks:
                 achieved, required = distinct(float(chk.value[0]), float(chk.limit))
                 units = "" if chk.bound == Bound.UNIFORMITY else chk.units
                 out.append(
-                    (it.name, LABELS[chk.bound], required, achieved, units, bool(chk.met[0]))
+                    Row(
+                        it.name,
+                        LABELS[chk.bound],
+                        required,
+                        achieved,
+                        units,
+                        bool(chk.met[0]),
+                        str(it.scenario),
+                    )
                 )
         return out
 
@@ -86,17 +114,40 @@ class AchievedPanel(QtWidgets.QWidget):
                 "No lighting intentions yet: double-click a group in the tree to add one."
             )
         else:
-            bad = sum(not r[5] for r in rows)
-            self.summary.setText(
+            bad = sum(r.met is False for r in rows)
+            unknown = sum(r.met is None for r in rows)
+            text = (
                 "The design on screen meets every lighting intention."
                 if not bad
                 else f"The design on screen misses {bad} of {len(rows)} bounds (red)."
             )
+            if unknown:
+                why = next(r.achieved for r in rows if r.met is None)
+                judged = len(rows) - unknown
+                text = (
+                    f"{unknown} intention{'s' * (unknown != 1)} cannot be judged (grey): {why}"
+                    + (f"\nOf the others' {judged} bounds, {bad} are missed." if judged else "")
+                )
+            self.summary.setText(text)
         self.table.setRowCount(len(rows))
-        red, green = QtGui.QColor("#fbd5d5"), QtGui.QColor("#d9f2d9")
-        for r, (*cells, met) in enumerate(rows):
-            for c, text in enumerate((*cells, OK if met else NOT_OK)):
+        colours = {
+            True: QtGui.QColor("#d9f2d9"),
+            False: QtGui.QColor("#fbd5d5"),
+            None: QtGui.QColor("#e4e4e4"),
+        }
+        for r, row in enumerate(rows):
+            status = {True: OK, False: NOT_OK, None: UNKNOWN}[row.met]
+            cells = (
+                row.intention,
+                row.scenario,
+                row.bound,
+                row.required,
+                row.achieved,
+                row.units,
+                status,
+            )
+            for c, text in enumerate(cells):
                 item = QtWidgets.QTableWidgetItem(text)
-                item.setBackground(green if met else red)
+                item.setBackground(colours[row.met])
                 self.table.setItem(r, c, item)
         self.table.resizeColumnsToContents()

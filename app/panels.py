@@ -13,7 +13,7 @@ from app.document import Document
 from lightinv_core.design.model import CORNERS, DesignError, Intention, Rule
 from lightinv_core.editing.rules import rule_text
 from lightinv_core.errors import LightInvError, SceneError
-from lightinv_core.kinds import Bound, Quantity, SourceKind
+from lightinv_core.kinds import DAYLIGHT_QUANTITIES, Bound, Quantity, Scenario, SourceKind
 
 
 class DesignTree(QtWidgets.QTreeWidget):
@@ -67,7 +67,7 @@ class DesignTree(QtWidgets.QTreeWidget):
                 f"{k} {getattr(it, k):g}" for k in Bound if getattr(it, k) is not None
             )
             QtWidgets.QTreeWidgetItem(
-                its, [it.name, f"{intention_target(it)}: {bounds} {it.quantity}"]
+                its, [it.name, f"{intention_target(it)}: {bounds} {it.quantity}, {it.scenario}"]
             ).setData(0, 256, ("intention", it.name))
         if d.design.arrays:
             arrays = QtWidgets.QTreeWidgetItem(
@@ -411,8 +411,37 @@ def optional_number(
     return check, box
 
 
+QUANTITIES = {
+    Quantity.LUX: "illuminance (lux)",
+    Quantity.C: "reflected exitance C (lm/m²)",
+    Quantity.DF: "daylight factor DF (%)",
+    Quantity.DA: "daylight autonomy DA300 (share of occupied hours, 0-1)",
+    Quantity.UDI: "useful daylight UDI 100-3000 lux (share of hours, 0-1)",
+    Quantity.SDA: "sDA300/50%: the average is the share of the area",
+}
+"""The quantities an intention bounds, as the dialog lists them."""
+SCENARIOS = {
+    Scenario.DESIGN: "design: luminaires + skylights at the design exterior lux",
+    Scenario.NIGHT: "night: luminaires only",
+    Scenario.OVERCAST: "overcast: luminaires + the CIE overcast sky",
+    Scenario.ANNUAL: "annual: every occupied hour of the weather year",
+}
+"""The scenarios an intention is judged in (annual: the daylight metrics only)."""
+METRIC_BOUNDS = {
+    # quantity: (decimals, largest value, defaults min, max, average, U0)
+    Quantity.LUX: (1, 1e6, (300.0, 1000.0, 500.0, 0.6)),
+    Quantity.C: (1, 1e6, (300.0, 1000.0, 500.0, 0.6)),
+    Quantity.DF: (2, 100.0, (1.0, 10.0, 2.0, 0.3)),
+    Quantity.DA: (3, 1.0, (0.3, 1.0, 0.5, 0.3)),
+    Quantity.UDI: (3, 1.0, (0.3, 1.0, 0.5, 0.3)),
+    Quantity.SDA: (3, 1.0, (0.0, 1.0, 0.55, 0.3)),
+}
+"""Per quantity: the bounds' decimals, their largest value and the values offered."""
+
+
 class IntentionDialog(QtWidgets.QDialog):
-    """Name, quantity and bounds of a new lighting intention on a group or the selection."""
+    """Name, quantity, scenario and bounds of a lighting intention on a group, the
+    selection or a work plane."""
 
     def __init__(self, target: str, parent: QtWidgets.QWidget | None = None):
         super().__init__(parent)
@@ -421,9 +450,17 @@ class IntentionDialog(QtWidgets.QDialog):
         self.name = QtWidgets.QLineEdit(target)
         form.addRow("Name", self.name)
         self.quantity = QtWidgets.QComboBox()
-        self.quantity.addItem("illuminance (lux)", str(Quantity.LUX))
-        self.quantity.addItem("reflected exitance C (lm/m²)", str(Quantity.C))
+        for q, text in QUANTITIES.items():
+            self.quantity.addItem(text, str(q))
         form.addRow("Quantity", self.quantity)
+        self.scenario = QtWidgets.QComboBox()
+        for sc, text in SCENARIOS.items():
+            self.scenario.addItem(text, str(sc))
+        self.scenario.setToolTip(
+            "The light the intention is judged in. A daylight metric has its own: the "
+            "daylight factor the overcast sky, DA, UDI and sDA the weather year (Climate tab)."
+        )
+        form.addRow("Scenario", self.scenario)
         self.fields = {}
         for bound, (label, default) in BOUND_FIELDS.items():
             key, u0 = str(bound), bound == Bound.UNIFORMITY
@@ -433,13 +470,50 @@ class IntentionDialog(QtWidgets.QDialog):
         self.fields[str(Bound.AVERAGE)][0].setChecked(True)
         self.fields[str(Bound.UNIFORMITY)][0].setChecked(True)
         form.addRow(dialogs.ok_cancel(self))
+        self.quantity.currentIndexChanged.connect(self._quantity_changed)
+        self._quantity_changed()
+
+    def _quantity_changed(self) -> None:
+        """A daylight metric fixes the scenario and takes bounds in its own units."""
+        q = Quantity(self.quantity.currentData())
+        forced = DAYLIGHT_QUANTITIES.get(q)
+        annual = self.scenario.model().item(self.scenario.findData(str(Scenario.ANNUAL)))
+        annual.setEnabled(forced == Scenario.ANNUAL)
+        if forced is not None:
+            self.scenario.setCurrentIndex(self.scenario.findData(str(forced)))
+        elif self.scenario.currentData() in (Scenario.ANNUAL, Scenario.OVERCAST) and (
+            self._last_metric()
+        ):
+            self.scenario.setCurrentIndex(self.scenario.findData(str(Scenario.DESIGN)))
+        self.scenario.setEnabled(forced is None)
+        self._metric = forced is not None
+        decimals, top, defaults = METRIC_BOUNDS[q]
+        for key, value in zip(("min", "max", "average"), defaults, strict=False):
+            box = self.fields[key][1]
+            box.setDecimals(decimals)
+            box.setMaximum(top)
+            box.setValue(value)
+        self.fields["uniformity"][1].setValue(defaults[3])
+        if q == Quantity.SDA:  # sDA is the average of a 0/1 mark: only that bound tells
+            self.set_values(min=None, max=None, uniformity=None, average=defaults[2])
+
+    def _last_metric(self) -> bool:
+        return getattr(self, "_metric", False)
 
     def load(self, intention: Intention) -> None:
-        """Show an existing intention's name, quantity and bounds (to edit it)."""
+        """Show an existing intention's name, quantity, scenario and bounds (to edit
+        it)."""
         self.setWindowTitle(f"Edit lighting intention {intention.name}")
         self.name.setText(intention.name)
         self.quantity.setCurrentIndex(max(0, self.quantity.findData(str(intention.quantity))))
+        self.scenario.setCurrentIndex(max(0, self.scenario.findData(str(intention.scenario))))
         self.set_values(**{str(b): getattr(intention, str(b)) for b in Bound})
+
+    def set_quantity(self, quantity: str, scenario: str | None = None) -> None:
+        """Choose the quantity (and the scenario of lux or C) (tests, scripted use)."""
+        self.quantity.setCurrentIndex(self.quantity.findData(str(quantity)))
+        if scenario is not None and self.scenario.isEnabled():
+            self.scenario.setCurrentIndex(self.scenario.findData(str(scenario)))
 
     def set_values(self, **values) -> None:
         """Pre-fill bounds (tests, scripted use): key=None unticks a bound."""
@@ -460,6 +534,7 @@ class IntentionDialog(QtWidgets.QDialog):
             patches=None if patches is None else tuple(int(i) for i in patches),
             quantity=self.quantity.currentData(),
             grid=grid,
+            scenario=self.scenario.currentData(),
             **bounds,
         )
 

@@ -10,6 +10,7 @@ import numpy as np
 import pyqtgraph as pg
 from PySide6 import QtCore, QtWidgets
 
+from app.goals import axis_label
 from lightinv_core.kinds import GoalKind, SourceKind
 
 PENALTY_FLOOR = 1e-6
@@ -86,9 +87,30 @@ class ConvergencePlot(QtWidgets.QWidget):
         return np.asarray(self._data.get(run, []), dtype=float)
 
 
+def _goal(kind: GoalKind):
+    return lambda s: s.objectives.get(kind)
+
+
+GOAL_AXES = {
+    GoalKind.MIN_ELECTRIC_POWER: "power",
+    GoalKind.MAX_LIGHT_POWER: "light",
+    GoalKind.MATCH: "match",
+    GoalKind.MIN_INSTALLED_POWER: "installed",
+    GoalKind.MIN_LUMINAIRE_COUNT: "count",
+    GoalKind.MIN_ANNUAL_ENERGY: "energy",
+    GoalKind.MAX_SDA: "sda",
+    GoalKind.MIN_GLAZING_AREA: "glazing",
+}
+"""The scatter axis of each goal's value."""
+
 AXES = {
-    "power": ("electric power (W)", lambda s: s.objectives.get(GoalKind.MIN_ELECTRIC_POWER)),
-    "light": ("light power (lm)", lambda s: s.objectives.get(GoalKind.MAX_LIGHT_POWER)),
+    "power": (axis_label(GoalKind.MIN_ELECTRIC_POWER), _goal(GoalKind.MIN_ELECTRIC_POWER)),
+    "light": (axis_label(GoalKind.MAX_LIGHT_POWER), _goal(GoalKind.MAX_LIGHT_POWER)),
+    "energy": (axis_label(GoalKind.MIN_ANNUAL_ENERGY), _goal(GoalKind.MIN_ANNUAL_ENERGY)),
+    "glazing": (axis_label(GoalKind.MIN_GLAZING_AREA), _goal(GoalKind.MIN_GLAZING_AREA)),
+    "sda": (axis_label(GoalKind.MAX_SDA), _goal(GoalKind.MAX_SDA)),
+    "installed": (axis_label(GoalKind.MIN_INSTALLED_POWER), _goal(GoalKind.MIN_INSTALLED_POWER)),
+    "count": (axis_label(GoalKind.MIN_LUMINAIRE_COUNT), _goal(GoalKind.MIN_LUMINAIRE_COUNT)),
     "sky_area": (
         "skylight area (m²)",
         lambda s: sum(x.area for x in s.sources if x.kind == SourceKind.SKYLIGHT),
@@ -106,8 +128,16 @@ AXES = {
         lambda s: sum(x.flux or 0.0 for x in s.sources if x.kind == SourceKind.LUMINAIRE),
     ),
     "penalty": ("penalty P", lambda s: s.penalty),
-    "match": ("match error e", lambda s: s.objectives.get(GoalKind.MATCH)),
+    "match": (axis_label(GoalKind.MATCH), _goal(GoalKind.MATCH)),
 }
+"""Scatter axes: key -> (label with units, value of a solution or None)."""
+
+
+def front_axes(objectives) -> tuple[str, str]:
+    """The (x, y) scatter axes of a front of two goal kinds: the first objective across,
+    the second up, except that a glazing area goes across (energy against glazing)."""
+    a, b = (GOAL_AXES[GoalKind(k)] for k in tuple(objectives)[:2])
+    return (b, a) if b == "glazing" else (a, b)
 
 
 def _mean(values) -> float | None:

@@ -21,11 +21,12 @@ import numpy as np
 from PySide6 import QtCore, QtWidgets
 
 from app.document import Document
-from app.plots import AXES, SolutionScatter, axis_value
+from app.plots import AXES, SolutionScatter, axis_value, front_axes
 from lightinv_core.editing.results import ALL, SAVED, browse, run_label
 from lightinv_core.errors import LightInvError
 
 COLUMNS = ("result", "feasible", "power (W)", "light (lm)", "penalty", "pinned")
+"""The table's columns; the two values are those of the scatter's x and y axes."""
 
 
 def _fmt(v: float) -> str:
@@ -54,6 +55,7 @@ class SolutionsPanel(QtWidgets.QWidget):
         super().__init__(parent)
         self.doc = doc
         self.entries: list = []  # results.Entry (label, solution, run) as listed
+        self._front_objectives: tuple | None = None  # the front whose axes are chosen
         self.pinned_list: list = []  # the pinned results the compare list offers
         outer = QtWidgets.QVBoxLayout(self)
         outer.setContentsMargins(0, 0, 0, 0)
@@ -124,6 +126,7 @@ class SolutionsPanel(QtWidgets.QWidget):
         if self.doc.project is None:
             return
         self._fill_runs()
+        self._front_axes()
         self.entries = self.doc.results()
         sols = [e.solution for e in self.entries]
         on_front = [self.doc.on_front(s) for s in sols]
@@ -131,14 +134,18 @@ class SolutionsPanel(QtWidgets.QWidget):
         chosen = self.index_of(self.doc.shown)
         self.table.blockSignals(True)
         self.table.setRowCount(len(sols))
+        ax, ay = self.x_axis.currentData(), self.y_axis.currentData()
+        self.table.setHorizontalHeaderLabels(
+            (*COLUMNS[:2], AXES[ax][0], AXES[ay][0], *COLUMNS[4:])
+        )
         rows = zip(self.entries, on_front, pinned, strict=True)
         for r, (entry, front, pin) in enumerate(rows):
             s = entry.solution
             cells = (
                 entry.label + (" (front)" if front else ""),
                 "yes" if s.feasible else "no",
-                _fmt(axis_value(s, "power")),
-                _fmt(axis_value(s, "light")),
+                _fmt(axis_value(s, ax)),
+                _fmt(axis_value(s, ay)),
                 f"{s.penalty:.3g}",
                 "pinned" if pin else "",
             )
@@ -173,6 +180,24 @@ class SolutionsPanel(QtWidgets.QWidget):
             if sols
             else "No results yet: press Run."
         )
+
+    def _front_axes(self) -> None:
+        """Put the browsed front's two objectives on the axes when the front's
+        objectives change (power against light, or annual energy against glazing area);
+        the axes picked by hand stay while they do not."""
+        front = self.doc.front()
+        objectives = tuple(front.objectives) if front is not None else None
+        if objectives is None or objectives == self._front_objectives:
+            return
+        self._front_objectives = objectives
+        try:
+            x, y = front_axes(objectives)
+        except (KeyError, ValueError):  # a goal kind this window does not know
+            return
+        for box, key in ((self.x_axis, x), (self.y_axis, y)):
+            box.blockSignals(True)
+            box.setCurrentIndex(max(box.findData(key), 0))
+            box.blockSignals(False)
 
     def _fill_runs(self) -> None:
         """The run picker: every run, the saved results (when there are some), or all."""
@@ -228,9 +253,10 @@ class SolutionsPanel(QtWidgets.QWidget):
         self.compare.blockSignals(True)
         self.compare.clear()
         self.pinned_list = self.doc.pinned()
+        ax = self.x_axis.currentData()
         for i, s in enumerate(self.pinned_list):
-            power = _fmt(axis_value(s, "power"))
-            self.compare.addItem(f"pinned: {_pinned_label(self.doc, s)}, {power} W", i)
+            value = f"{AXES[ax][0]} {_fmt(axis_value(s, ax))}"
+            self.compare.addItem(f"pinned: {_pinned_label(self.doc, s)}, {value}", i)
         if current is not None and self.compare.findData(current) >= 0:
             self.compare.setCurrentIndex(self.compare.findData(current))
         self.compare.blockSignals(False)

@@ -180,6 +180,8 @@ class Viewport(QtWidgets.QWidget):
         self.cmap = "inferno"
         self.clim: tuple[float, float] | None = None  # None: automatic
         self.units = "lux"
+        self.label_format = "%.0f"  # the colour bar's labels
+        self.caption: str | None = None  # the line along the top (set_caption)
         self.mode = "navigate"  # navigate | select | move | zone | polygon
         # A polygon zone being drawn: its surface and the corners clicked so far.
         self._poly: tuple[ZoneFrame, list[tuple[float, float]]] | None = None
@@ -230,6 +232,7 @@ class Viewport(QtWidgets.QWidget):
         self.frames = {z: ZoneFrame(patches, z) for z in zones}
         self.plotter.clear()  # every actor goes, the veil and the axes too
         self.busy_text = None
+        caption, self.caption = self.caption, None
         self.plotter.add_mesh(
             self.mesh,
             name="scene",
@@ -246,9 +249,10 @@ class Viewport(QtWidgets.QWidget):
                 "width": 0.06,
                 "height": 0.7,
                 "color": "black",
-                "fmt": "%.0f",
+                "fmt": self.label_format,
             },
         )
+        self.set_caption(caption)
         self.set_zone_outlines()
         self.axes_frame = None
         if old is not None:
@@ -262,8 +266,11 @@ class Viewport(QtWidgets.QWidget):
         else:
             self.camera("iso")
 
-    def set_values(self, per_patch: np.ndarray | None, units: str = "lux") -> None:
-        """Colour the patches (in place, no new actor); None paints them grey (no lighting)."""
+    def set_values(
+        self, per_patch: np.ndarray | None, units: str = "lux", fmt: str = "%.0f"
+    ) -> None:
+        """Colour the patches (in place, no new actor); None paints them grey (no
+        lighting). ``units`` titles the colour bar, ``fmt`` its labels (printf style)."""
         if self.mesh is None:
             return
         values = (
@@ -276,11 +283,25 @@ class Viewport(QtWidgets.QWidget):
         self.mesh.cell_data["value"][:] = values
         lo, hi = self.clim if self.clim is not None else (0.0, float(max(values.max(), 1e-6)))
         self.plotter.actors["scene"].mapper.scalar_range = (lo, hi)
-        if units != self.units:
-            self.units = units
+        if units != self.units or fmt != self.label_format:
+            self.units, self.label_format = units, fmt
             for bar in self.plotter.scalar_bars.values():
                 bar.SetTitle(units)
+                bar.SetLabelFormat(fmt)
         self.render_now()
+
+    def set_caption(self, text: str | None) -> None:
+        """A line of text along the top of the view (what the colours show: the hour of
+        the year, a daylight map, or why it cannot be shown); None removes it."""
+        if text == self.caption:
+            return
+        self.caption = text
+        self.plotter.remove_actor("caption", render=False)
+        if text:
+            self.plotter.add_text(
+                text, position="upper_edge", font_size=10, color="#202020", name="caption"
+            )
+        self.request_render()
 
     def _paint_grey(self, grey: bool) -> None:
         """No light model: the patches plain light grey (a colour map at zero is black)."""

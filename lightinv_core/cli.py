@@ -899,9 +899,7 @@ def _solve_text(out: dict) -> str:
         )
         for s in out["pareto"]:
             o = s["objectives"]
-            lines.append(
-                "  " + "   ".join(_goal_text(k, o.get(k, 0.0)) for k in q["objectives"])
-            )
+            lines.append("  " + "   ".join(_goal_text(k, o.get(k, 0.0)) for k in q["objectives"]))
     if "saved" in out:
         lines.append(f"saved to {out['saved']}")
     return "\n".join(lines)

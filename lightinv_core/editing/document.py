@@ -22,9 +22,9 @@ import numpy as np
 from lightinv_core.design.model import ARRAY_RULES, Design, Goal, Intention, Rule, Source
 from lightinv_core.design.solution import ParetoFront, Solution, SolutionInfo
 from lightinv_core.editing import results as _results
-from lightinv_core.editing.climate import DaylightCache, weather_of
 from lightinv_core.editing import rules
 from lightinv_core.editing import zones as _zones
+from lightinv_core.editing.climate import DaylightCache, weather_of
 from lightinv_core.editing.events import Events
 from lightinv_core.editing.lighting import ShownLight
 from lightinv_core.errors import DesignError

@@ -17,7 +17,7 @@ import numpy as np
 from lightinv_core.design.geometry import rule_names
 from lightinv_core.design.solution import SolutionInfo
 from lightinv_core.errors import DesignError
-from lightinv_core.kinds import GoalKind
+from lightinv_core.kinds import MAXIMISED_GOALS
 from lightinv_core.optimize.problem import DesignProblem, Evaluation
 from lightinv_core.optimize.progress import CancelFn, Progress
 from lightinv_core.optimize.result import HistoryRow, OptimizationResult, status_of
@@ -110,7 +110,7 @@ def goal_of(problem: DesignProblem, ev: Evaluation, j: int) -> float:
 
 def reached(problem: DesignProblem, goal: float, target: float) -> bool:
     """Whether the primary goal value ``goal`` meets ``target`` (at least, for light power)."""
-    if problem.primary == GoalKind.MAX_LIGHT_POWER:
+    if problem.primary in MAXIMISED_GOALS:
         return goal >= target
     return goal <= target
 

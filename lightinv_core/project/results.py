@@ -135,7 +135,8 @@ SOLUTION = ObjectSpec(
             _objectives,
             type="object",
             meaning="goal kind -> value: `min_electric_power` in W, `max_light_power` in lm, "
-            "`match` as e, `min_installed_power` in W, `min_luminaire_count`",
+            "`match` as e, `min_installed_power` in W, `min_luminaire_count`, "
+            "`min_annual_energy` in kWh, `max_sda` as a fraction, `min_glazing_area` in m²",
         ),
         Field(
             "penalty",

@@ -130,12 +130,12 @@ def grid_table(
         ok, unknown = True, False
         for it in asks:
             q = Quantity(it.quantity)
-            checks = None
+            checks, broken = None, False
             if daylight is not None:
                 try:
                     checks = {c.bound: c for c in daylight.checks(it)}
-                except LightInvError:
-                    checks = {}
+                except LightInvError:  # not measurable (an unreadable weather file)
+                    broken = True
             for bound in Bound:
                 limit = getattr(it, bound)
                 if limit is None:
@@ -153,12 +153,12 @@ def grid_table(
                     text += f" {units}" if units else ""
                     other = True
                 required.append(text)
+                if broken:
+                    unknown = True
+                    continue
                 if checks is not None:
-                    chk = checks.get(bound)
-                    if chk is None:
-                        unknown = True
-                        continue
-                    met = bool(chk.met[0])
+                    chk = checks.get(bound)  # none for a bound of 0: it bounds nothing
+                    met = chk is None or bool(chk.met[0])
                 else:
                     v = values[bound]
                     met = v <= limit * 1.001 if bound == Bound.MAX else v >= limit * 0.999
@@ -205,33 +205,58 @@ def grid_table(
     )
 
 
+def plan_figure(
+    pts: np.ndarray,
+    val: np.ndarray,
+    spacing: tuple[float, float],
+    title: str,
+    label: str,
+    *,
+    cmap: str = "inferno",
+    level_format: str = "%.0f",
+    vmax: float | None = None,
+    outlines: list | None = None,
+):
+    """A plan of one work plane's grid points ``pts`` (q, 3) coloured by ``val`` (q,)
+    from 0, with iso-lines labelled by ``level_format``, a colour bar labelled ``label``
+    and, optionally, 3-D ``outlines`` (``views.Outline``) drawn in plan."""
+    fig = new_figure()
+    ax = fig.add_axes([0.08, 0.1, 0.78, 0.8])
+    ax.set_title(title, fontsize=12)
+    sc = ax.scatter(pts[:, 0], pts[:, 1], c=val, cmap=cmap, s=30, vmin=0.0, vmax=vmax)
+    if len(pts) >= 4 and np.ptp(val) > 0:
+        levels = np.linspace(val.min(), val.max(), ISO_LEVELS + 2)[1:-1]
+        cs = ax.tricontour(pts[:, 0], pts[:, 1], val, levels=levels, colors="0.2", linewidths=0.8)
+        ax.clabel(cs, fmt=level_format, fontsize=7)
+    pad = 0.5 * max(spacing)
+    lo = pts[:, :2].min(axis=0) - pad
+    hi = pts[:, :2].max(axis=0) + pad
+    for o in outlines or ():
+        xy = np.asarray(o.points, float)[:, :2]
+        closed = np.vstack([xy, xy[:1]])
+        ax.plot(closed[:, 0], closed[:, 1], color="#00a5c0", lw=1.4, ls="--", zorder=3)
+        ax.annotate(o.label, xy.mean(axis=0), color="#00a5c0", fontsize=8, ha="center", va="center")
+        lo, hi = np.minimum(lo, xy.min(axis=0) - pad), np.maximum(hi, xy.max(axis=0) + pad)
+    ax.set_aspect("equal")
+    ax.set_xlim(lo[0], hi[0])
+    ax.set_ylim(lo[1], hi[1])
+    ax.set_xlabel("x (m)")
+    ax.set_ylabel("y (m)")
+    cb = fig.colorbar(sc, cax=fig.add_axes([0.88, 0.1, 0.02, 0.8]))
+    cb.set_label(label)
+    return fig
+
+
 def isolux_figures(grids: DesignGrids, lux: np.ndarray) -> list:
     """A plan of each work plane: the grid points coloured by lux, with iso-lux lines."""
     figs = []
     for name, span in grids.spans.items():
         pts, val = grids.points[span], lux[span]
-        fig = new_figure()
-        ax = fig.add_axes([0.08, 0.1, 0.78, 0.8])
         st = grid_statistics(val)
-        ax.set_title(
+        title = (
             f"Work plane {name} at z = {pts[0, 2]:.2f} m: Em {st['Em']:.0f} lux, "
-            f"Emin {st['Emin']:.0f}, Emax {st['Emax']:.0f}, U0 {st['U0']:.2f}",
-            fontsize=12,
+            f"Emin {st['Emin']:.0f}, Emax {st['Emax']:.0f}, U0 {st['U0']:.2f}"
         )
-        sc = ax.scatter(pts[:, 0], pts[:, 1], c=val, cmap="inferno", s=30, vmin=0.0)
-        if len(pts) >= 4 and np.ptp(val) > 0:
-            levels = np.linspace(val.min(), val.max(), ISO_LEVELS + 2)[1:-1]
-            cs = ax.tricontour(
-                pts[:, 0], pts[:, 1], val, levels=levels, colors="0.2", linewidths=0.8
-            )
-            ax.clabel(cs, fmt="%.0f", fontsize=7)
-        ax.set_aspect("equal")
-        pad = 0.5 * max(grids.grids[name].spacing)
-        ax.set_xlim(pts[:, 0].min() - pad, pts[:, 0].max() + pad)
-        ax.set_ylim(pts[:, 1].min() - pad, pts[:, 1].max() + pad)
-        ax.set_xlabel("x (m)")
-        ax.set_ylabel("y (m)")
-        cb = fig.colorbar(sc, cax=fig.add_axes([0.88, 0.1, 0.02, 0.8]))
-        cb.set_label("illuminance (lux)")
-        figs.append(fig)
+        spacing = grids.grids[name].spacing
+        figs.append(plan_figure(pts, val, spacing, title, "illuminance (lux)"))
     return figs

@@ -4,8 +4,9 @@ Pages, in order: title (project, scene, operator, solution status and objectives
 the false-colour views (top, front, iso), the tables (sources and geometric rules,
 lighting intentions and illuminance per group), the luminaire schedule and polar curves
 (designs with luminaire arrays), the work planes' EN 12464-1 values and iso-lux plans
-(designs with work planes), convergence (when the solution recorded a history) and the
-Pareto front (multi-objective projects).
+(designs with work planes), the daylight and energy section (designs with skylights and
+work planes: ``report/daylight.py``), convergence (when the solution recorded a history)
+and the Pareto front (multi-objective projects).
 
 The PDF is written atomically: a failed or cancelled report leaves neither a PDF nor
 any of its PNG pages behind, and an older file at ``path`` is kept untouched.
@@ -27,11 +28,23 @@ from matplotlib.figure import Figure
 
 from lightinv_core.atomic import atomic_writer
 from lightinv_core.errors import CancelledError
+from lightinv_core.kinds import GoalKind, SourceKind
 from lightinv_core.light.arrays import resolve_product
+from lightinv_core.light.daylight import layout_daylight
 from lightinv_core.light.grids import design_grids, grid_light
 from lightinv_core.optimize.quality import front_quality, front_scales
 from lightinv_core.project import Project
 from lightinv_core.report.chosen import Chosen, choose_solution, solution_field
+from lightinv_core.report.daylight import (
+    climate_table,
+    da_figures,
+    daylight_section,
+    daylight_table,
+    df_figures,
+    energy_table,
+    has_daylight,
+    monthly_energy_figure,
+)
 from lightinv_core.report.figures import (
     convergence_figure,
     pareto_figure,
@@ -186,7 +199,9 @@ def write_report(
     field = solution_field(project, prepared, sol)
     H = field.illuminance
     outlines = source_outlines(patches, sol.sources) + luminaire_outlines(patches, sol.arrays)
-    intentions = intention_table(sol, design, field)
+    # The layout's light in every scenario: intentions are judged in their own.
+    lay = layout_daylight(prepared.light, design, sol.sources, sol.arrays)
+    intentions = intention_table(sol, design, field, lay)
 
     def view(name):
         # Each view has its own colour bar, from 0 to the 99th percentile of what it
@@ -218,14 +233,33 @@ def write_report(
         products = [resolve_product(a.product, a.watts) for a in sol.arrays]
         plan.append(("polar", lambda: polar_figure(products)))
     if grids is not None:
-        plan.append(("workplanes", lambda: table_pages([grid_table(design, grids, grid_lux)])))
+        plan.append(("workplanes", lambda: table_pages([grid_table(design, grids, grid_lux, lay)])))
         plan.append(("isolux", lambda: isolux_figures(grids, grid_lux)))
+    if has_daylight(design, sol.sources) and lay.points is not None:
+        skylights = [s for s in sol.sources if s.kind == SourceKind.SKYLIGHT]
+        section = daylight_section(lay, skylights)
+
+        def daylight_tables():
+            tables = [climate_table(section), daylight_table(section)]
+            if section.energy is not None:
+                tables.append(energy_table(section))
+            return table_pages(tables)
+
+        plan.append(("daylight", daylight_tables))
+        if section.energy is not None:
+            plan.append(("energy-monthly", lambda: monthly_energy_figure(section)))
+        plan.append(("df-plan", lambda: df_figures(section, outlines)))
+        if section.problem == "":
+            plan.append(("da-plan", lambda: da_figures(section, outlines)))
     history = sol.info.history
     if history:
         plan.append(("convergence", lambda: convergence_figure(sol, primary)))
     if project.pareto is not None and project.pareto.solutions:
-        scales = front_scales(project.design, prepared.light)
-        quality = front_quality(project.pareto.solutions, scales)
+        quality = None
+        power_light = {str(GoalKind.MIN_ELECTRIC_POWER), str(GoalKind.MAX_LIGHT_POWER)}
+        if power_light <= set(project.pareto.objectives):  # the measure of those fronts
+            scales = front_scales(project.design, prepared.light)
+            quality = front_quality(project.pareto.solutions, scales)
         plan.append(("pareto", lambda: pareto_figure(project.pareto, sol, quality)))
     names = ["title", *(n for n, _ in plan)]
     plan.insert(0, ("title", lambda: _title_page(project, prepared, chosen, names, intentions)))

@@ -339,3 +339,31 @@ def test_layout_checks_agree_with_the_solution_in_every_scenario(office):
         chk = next(c for c in lay.checks(it) if str(c.bound) == v.constraint)
         assert float(chk.value[0]) == pytest.approx(v.value, rel=1e-4)
     assert {v.name for v in sol.violations} == {i.name for i in intentions}
+
+
+def test_climate_front_trades_glazing_area_for_annual_energy(office):
+    from lightinv_core.optimize.mop import CLIMATE, epsilon_constraint, front_pair
+    from lightinv_core.optimize.quality import front_quality, front_scales
+    from lightinv_core.optimize.termination import StopRule
+
+    sky = replace(SKY, free=("u0", "v0", "u1", "v1"))
+    design = Design(
+        (sky, LUM),
+        (Goal("min_annual_energy"), Goal("min_glazing_area")),
+        intentions=(Intention("n", group="desks", average=150.0, scenario="night"),),
+        workplanes=(Workplane("wp"),),
+        daylight=DAYLIGHT,
+    )
+    assert front_pair(design) == CLIMATE
+    front = epsilon_constraint(design, office, epsilons=[1.0, 6.0], stop=StopRule(max_evals=1500))
+    assert front.objectives == ("min_annual_energy", "min_glazing_area")
+    pts = sorted(
+        (s.objectives["min_glazing_area"], s.objectives["min_annual_energy"])
+        for s in front.candidates
+    )
+    assert all(s.feasible for s in front.candidates)
+    assert pts[0][0] <= 1.0 * (1 + 1e-3) and pts[1][0] <= 6.0 * (1 + 1e-3)
+    assert pts[1][1] < pts[0][1]  # more glazing, less energy
+    q = front_quality(front.solutions, front_scales(design, office))
+    assert q.objectives == ("min_annual_energy", "min_glazing_area")
+    assert 0 < q.hypervolume < 1
