@@ -64,11 +64,11 @@ case "${1:-}" in
   demo)
     setup
     if [ -n "${DISPLAY:-}" ] || [ -n "${WAYLAND_DISPLAY:-}" ]; then
-      say "opening the LightInv window on the office demo project"
-      exec .venv/bin/lightinv resources/projects/office-demo.json
+      say "opening the LightInv window on the integrated office demo project"
+      exec .venv/bin/lightinv resources/projects/office-integrated.json
     fi
-    say "no display: optimising the office demo project headless (lightinv-cli solve)"
-    exec .venv/bin/lightinv-cli solve resources/projects/office-demo.json
+    say "no display: optimising the integrated office demo headless (lightinv-cli solve)"
+    exec .venv/bin/lightinv-cli solve resources/projects/office-integrated.json
     ;;
   test)
     setup

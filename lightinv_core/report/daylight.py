@@ -243,7 +243,7 @@ def daylight_table(section: DaylightSection) -> Table:
         "the points (UDI 100-3000 = the middle two). Percentages."
     )
     if section.problem:
-        note += " " + _missing(section)
+        note += " The annual columns are empty: the weather year could not be used (above)."
     return Table(
         "Daylight per work plane",
         (

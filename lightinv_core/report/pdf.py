@@ -240,16 +240,14 @@ def write_report(
         section = daylight_section(lay, skylights)
 
         def daylight_tables():
-            tables = [climate_table(section), daylight_table(section)]
-            if section.energy is not None:
-                tables.append(energy_table(section))
+            tables = [climate_table(section), daylight_table(section), energy_table(section)]
             return table_pages(tables)
 
         plan.append(("daylight", daylight_tables))
         if section.energy is not None:
             plan.append(("energy-monthly", lambda: monthly_energy_figure(section)))
         plan.append(("df-plan", lambda: df_figures(section, outlines)))
-        if section.problem == "":
+        if any(p.da is not None for p in section.planes):
             plan.append(("da-plan", lambda: da_figures(section, outlines)))
     history = sol.info.history
     if history:
