@@ -16,8 +16,9 @@ from matplotlib.figure import Figure
 from matplotlib.ticker import StrMethodFormatter
 
 from lightinv_core.design.solution import ParetoFront, Solution
+from lightinv_core.kinds import GoalKind
 from lightinv_core.optimize.quality import FrontQuality
-from lightinv_core.report.tables import OBJECTIVES, Table
+from lightinv_core.report.tables import Table, goal_label
 from lightinv_core.report.views import A4_LANDSCAPE
 
 PASS_COLOUR, FAIL_COLOUR, HEAD_COLOUR = "#d9f2d9", "#f8d0d0", "#e4e8f0"
@@ -169,14 +170,15 @@ def convergence_figure(solution: Solution, primary: str) -> Figure | None:
     total = solution.info.evaluations
     end = max(float(total), ev[-1]) if isinstance(total, int | float) else ev[-1]
     x = np.r_[ev, end]
-    name, units = OBJECTIVES.get(primary, (primary, ""))
+    name = goal_label(primary)
+    short = name.split(" (")[0]
     fig = new_figure(layout="constrained")
     ax1, ax2 = fig.subplots(2, 1, sharex=True)
     goal = np.r_[H[:, 3], H[-1, 3]]
     ok = np.isfinite(goal)
     ax1.step(x[ok], goal[ok], where="post", color="C0", lw=1.6)
-    ax1.set_ylabel(f"best {name.lower()}{f' ({units})' if units else ''}")
-    ax1.set_title(f"Convergence: {name.lower()} (the optimised goal) and penalty")
+    ax1.set_ylabel(f"best {name}")
+    ax1.set_title(f"Convergence: {short} (the optimised goal) and penalty")
     pen = np.r_[H[:, 2], H[-1, 2]]
     ok = np.isfinite(pen)
     ax2.step(x[ok], pen[ok], where="post", color="C3", lw=1.6)
@@ -227,21 +229,19 @@ MAX_LABELLED_POINTS = 20
 def pareto_figure(
     front: ParetoFront, chosen: Solution | None, quality: FrontQuality | None = None
 ) -> Figure | None:
-    """Reflected light power (lm) against electric power (W) of the front's solutions
-    (and the other candidates), the reported solution marked, the front's hypervolume
-    and spacing in the title when ``quality`` is given; None when empty."""
+    """The front's second objective against its first (``front.objectives``: reflected
+    light power (lm) against electric power (W) for the power/light fronts, e.g. glazing
+    area against annual energy for a climate front) of its solutions and the other
+    candidates, the reported solution marked, the front's hypervolume and spacing in
+    the title when ``quality`` is given; None when empty."""
     if not front.solutions:
         return None
+    default = (str(GoalKind.MIN_ELECTRIC_POWER), str(GoalKind.MAX_LIGHT_POWER))
+    kinds = tuple(front.objectives[:2]) if len(front.objectives) >= 2 else default
 
     def xy(sols):
         return np.array(
-            [
-                [
-                    s.objectives.get("min_electric_power", np.nan),
-                    s.objectives.get("max_light_power", np.nan),
-                ]
-                for s in sols
-            ],
+            [[s.objectives.get(k, np.nan) for k in kinds] for s in sols],
             dtype=float,
         ).reshape(-1, 2)
 
@@ -281,8 +281,10 @@ def pareto_figure(
         )
     if np.nanmax(np.abs(F[:, 1]), initial=0) >= 1e4:
         ax.yaxis.set_major_formatter(StrMethodFormatter("{x:,.0f}"))
-    ax.set_xlabel("electric power (W)")
-    ax.set_ylabel("reflected light power (lm)")
+    if np.nanmax(np.abs(F[:, 0]), initial=0) >= 1e4:
+        ax.xaxis.set_major_formatter(StrMethodFormatter("{x:,.0f}"))
+    ax.set_xlabel(goal_label(kinds[0]))
+    ax.set_ylabel(goal_label(kinds[1]))
     method = f" ({front.method})" if front.method else ""
     title = (
         f"Pareto front{method}: {len(front.solutions)} non-dominated of "

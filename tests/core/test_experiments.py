@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import json
 from dataclasses import replace
+from itertools import pairwise
 from pathlib import Path
 
 import numpy as np
@@ -51,6 +52,7 @@ def test_all_example_projects_load():
         "experiment5-twostep",
         "office-arrays",
         "office-demo",
+        "office-integrated",
     ]
     for n in names:
         assert load_project(PROJECTS / f"{n}.json").design.goals
@@ -210,3 +212,20 @@ def test_cli_solve_json_and_saved_results(tmp_path, capsys):
     assert cli.main(["solve", str(path), "--max-evals", "3000", "--seed", "2", "--json"]) == 0
     again = json.loads(capsys.readouterr().out)
     assert again["sources"] == out["sources"] and again["objective"] == out["objective"]
+
+
+def test_integrated_office_demo_gives_a_front_of_glazing_against_energy():
+    project = coarse("office-integrated", 0.5)
+    project = replace(
+        project, optimizer=replace(project.optimizer, max_evals=2000, epsilon_count=3)
+    )
+    r = solve(project, prepare(project), seed=0)
+    assert r.status == "feasible"
+    pts = sorted(
+        (s.objectives["min_glazing_area"], s.objectives["min_annual_energy"])
+        for s in r.pareto.solutions
+    )
+    assert len(pts) >= 3
+    # More glazing, less energy along the front; every point lights the desks at night.
+    assert all(b[1] < a[1] for a, b in pairwise(pts))
+    assert all(s.feasible for s in r.pareto.solutions)
