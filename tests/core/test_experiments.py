@@ -216,9 +216,7 @@ def test_cli_solve_json_and_saved_results(tmp_path, capsys):
 
 def test_integrated_office_demo_gives_a_front_of_glazing_against_energy():
     project = coarse("office-integrated", 0.5)
-    project = replace(
-        project, optimizer=replace(project.optimizer, max_evals=2000, epsilon_count=3)
-    )
+    project = replace(project, optimizer=replace(project.optimizer, epsilon_count=3))
     r = solve(project, prepare(project), seed=0)
     assert r.status == "feasible"
     pts = sorted(

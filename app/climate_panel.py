@@ -1,0 +1,494 @@
+"""The "Climate" tab: the project's weather and site, occupancy and daylight-linked
+dimming, an hour-of-year slider that relights the view, and the monthly lighting energy.
+
+Every field is the design's ``Daylight`` (written through ``DocumentModel.set_daylight``,
+so Edit > Undo takes it back and a saved project keeps it). The light of the design in
+every scenario is built once per design change (``DocumentModel.layout_daylight``); the
+slider only sums it for one hour (``LayoutDaylight.hour_lux``: a few microseconds).
+What cannot be shown (an unreadable weather file, no skylights, no work plane to dim
+on) is said in the panel, never raised. The daylight maps of the view (DF, DA300, UDI,
+one hour) are computed by ``map_values`` here for the window's "Colour by".
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+import pyqtgraph as pg
+from PySide6 import QtCore, QtWidgets
+
+from app import dialogs
+from app.document import Document
+from lightinv_core.climate.weather import BUILTIN
+from lightinv_core.editing.climate import (
+    HOURS_PER_YEAR,
+    MONTHS,
+    hour_date,
+    hour_index,
+    hour_state,
+    month_days,
+    site_text,
+)
+from lightinv_core.errors import LightInvError
+from lightinv_core.kinds import Scenario
+
+WEATHER_FILTER = "Weather files (*.epw *.csv);;EnergyPlus weather (*.epw);;TMY3 (*.csv)"
+DEFAULT_HOUR = hour_index(6, 21, 12)  # midsummer noon
+MAPS = {
+    # key: (Colour by text, colour bar title, its label format)
+    "night": ("illuminance at night: luminaires only (lux)", "lux, night", "%.0f"),
+    "overcast": ("illuminance under the overcast sky (lux)", "lux, overcast", "%.0f"),
+    "df": ("daylight factor DF (%)", "DF %", "%.1f"),
+    "da": ("daylight autonomy DA300 (% of occupied hours)", "DA300 %", "%.0f"),
+    "udi": ("useful daylight UDI 100-3000 lux (% of hours)", "UDI %", "%.0f"),
+    "hour": ("illuminance at the hour of the year (lux)", "lux", "%.0f"),
+}
+"""The view's daylight maps, each from the layout shown's ``LayoutDaylight``."""
+PERCENT_MAPS = ("da", "udi")  # drawn 0-100 % whatever the range set
+
+
+class MapResult:
+    """A daylight map for the view: ``values`` per patch (None: nothing to show), the
+    colour bar's ``units`` and label ``fmt``, a ``caption`` and a fixed ``clim`` (None:
+    the view's range)."""
+
+    def __init__(self, values, units: str, fmt: str, caption: str | None, clim=None):
+        self.values, self.units, self.fmt = values, units, fmt
+        self.caption, self.clim = caption, clim
+
+
+def map_values(doc: Document, key: str, hour: int) -> MapResult:
+    """The map ``key`` (a key of ``MAPS``) of the layout shown; its values None and the
+    caption saying why when it cannot be computed (no light model, no weather)."""
+    _, units, fmt = MAPS[key]
+    try:
+        ld = doc.layout_daylight(shown=True)
+        if ld is None:
+            return MapResult(None, units, fmt, None)
+        p = ld.patches
+        no_sky = not p.groups.count
+        hint = " (the design has no skylights: no daylight)" if no_sky else ""
+        if key in (Scenario.NIGHT, Scenario.OVERCAST):
+            cap = "Luminaires only" if key == Scenario.NIGHT else "CIE overcast sky"
+            return MapResult(p.lux(key)[:, 0], units, fmt, cap + hint)
+        if key == "df":
+            return MapResult(
+                100.0 * p.overcast_daylight()[:, 0],
+                units,
+                fmt,
+                "Daylight factor under the CIE overcast sky" + hint,
+            )
+        if key in PERCENT_MAPS:
+            share = p.da() if key == "da" else p.udi()
+            year = p.year() if not no_sky else None
+            what = "DA300: hours with 300 lux of daylight" if key == "da" else "UDI 100-3000 lux"
+            over = f", {year.hours:,} occupied hours" if year is not None else ""
+            return MapResult(100.0 * share[:, 0], units, fmt, what + over + hint, (0.0, 100.0))
+        state = hour_state(ld, _weather_or_none(doc), hour)
+        return MapResult(ld.hour_lux(state.hour), units, fmt, state.text())
+    except LightInvError as exc:
+        return MapResult(None, units, fmt, f"{MAPS[key][0]}: {exc}")
+
+
+def _weather_or_none(doc: Document):
+    try:
+        return doc.weather()
+    except LightInvError:
+        return None
+
+
+def _spin(lo: float, hi: float, step: float, decimals: int, suffix: str = ""):
+    box = QtWidgets.QDoubleSpinBox(decimals=decimals, singleStep=step, suffix=suffix)
+    box.setRange(lo, hi)
+    box.setKeyboardTracking(False)  # one edit when typing is done, not one per digit
+    return box
+
+
+class EnergyChart(pg.PlotWidget):
+    """Lighting energy per month (kWh) as bars."""
+
+    def __init__(self, parent: QtWidgets.QWidget | None = None):
+        super().__init__(parent)
+        self.setMinimumHeight(150)
+        self.setMouseEnabled(x=False, y=False)
+        self.hideButtons()
+        self.setMenuEnabled(False)
+        self.showGrid(y=True, alpha=0.3)
+        self.setLabel("left", "kWh")
+        self.getAxis("bottom").setTicks([[(i + 1, m) for i, m in enumerate(MONTHS)]])
+        self.bars = pg.BarGraphItem(
+            x=np.arange(1, 13), height=np.zeros(12), width=0.7, brush="#3b7dd8"
+        )
+        self.addItem(self.bars)
+        self.setXRange(0.4, 12.6, padding=0)
+        self.monthly = np.zeros(12)
+
+    def set_months(self, kwh) -> None:
+        """Draw 12 monthly values (kWh); None empties the chart."""
+        self.monthly = np.zeros(12) if kwh is None else np.asarray(kwh, float)
+        self.bars.setOpts(height=self.monthly)
+        self.setYRange(0.0, max(float(self.monthly.max()) * 1.1, 1e-3), padding=0)
+
+
+class ClimatePanel(QtWidgets.QWidget):
+    """Weather, site and controls of the design's daylight; the hour of the year; the
+    monthly energy. ``hourChanged(hour)`` when the hour moves, ``showHourToggled(on)``
+    when the view should (not) be lit at that hour."""
+
+    hourChanged = QtCore.Signal(int)
+    showHourToggled = QtCore.Signal(bool)
+
+    def __init__(self, doc: Document, parent: QtWidgets.QWidget | None = None):
+        super().__init__(parent)
+        self.doc = doc
+        self._stale = True  # the weather-dependent parts wait until the tab is seen
+        outer = QtWidgets.QVBoxLayout(self)
+        outer.setContentsMargins(4, 4, 4, 4)
+        self.message = QtWidgets.QLabel("")
+        self.message.setWordWrap(True)
+        self.message.setStyleSheet("color: #a01010;")
+        self.message.hide()
+        outer.addWidget(self.message)
+        row = QtWidgets.QHBoxLayout()
+        outer.addLayout(row, 1)
+        row.addWidget(self._site_group())
+        row.addWidget(self._control_group())
+        row.addWidget(self._hour_group())
+        row.addWidget(self._energy_group(), 1)
+        self._fields = (
+            self.north,
+            self.ground,
+            self.overcast,
+            self.start,
+            self.end,
+            self.weekdays,
+            self.target,
+            self.min_level,
+            self.standby,
+            self.plane,
+        )
+        doc.designChanged.connect(self.refresh_fields)
+        doc.sceneChanged.connect(self.refresh_fields)
+        doc.lightingChanged.connect(self.refresh_light)
+        doc.sceneChanged.connect(self.refresh_light)
+        self.set_hour(DEFAULT_HOUR)
+        self.refresh_fields()
+
+    # -- layout ---------------------------------------------------------------------------
+    def _site_group(self) -> QtWidgets.QGroupBox:
+        group = QtWidgets.QGroupBox("Weather and site")
+        form = QtWidgets.QFormLayout(group)
+        self.weather_path = QtWidgets.QLineEdit()
+        self.weather_path.setReadOnly(True)
+        self.browse_button = QtWidgets.QPushButton("Browse...")
+        self.browse_button.setToolTip("An EnergyPlus (.epw) or TMY3 (.csv) weather file")
+        self.builtin_button = QtWidgets.QPushButton("Built-in")
+        self.builtin_button.setToolTip("The shipped Greensboro, NC TMY3 year")
+        wrow = QtWidgets.QHBoxLayout()
+        wrow.addWidget(self.weather_path, 1)
+        wrow.addWidget(self.browse_button)
+        wrow.addWidget(self.builtin_button)
+        form.addRow("Weather", wrow)
+        self.site = QtWidgets.QLabel("-")
+        self.site.setWordWrap(True)
+        form.addRow("Site", self.site)
+        self.north = _spin(-360.0, 360.0, 5.0, 1, "°")
+        self.north.setToolTip("Compass bearing of the scene's +y axis (0: +y points north)")
+        form.addRow("North (+y bearing)", self.north)
+        self.ground = _spin(0.0, 0.99, 0.05, 2)
+        form.addRow("Ground reflectance", self.ground)
+        self.overcast = _spin(0.0, 2e5, 1000.0, 0, " lux")
+        self.overcast.setToolTip("Horizontal exterior illuminance of the design overcast sky")
+        form.addRow("Overcast sky", self.overcast)
+        self.browse_button.clicked.connect(lambda: self.browse())
+        self.builtin_button.clicked.connect(lambda: self.set_weather("builtin"))
+        self.north.valueChanged.connect(lambda v: self._set(north_deg=v))
+        self.ground.valueChanged.connect(lambda v: self._set(ground_reflectance=v))
+        self.overcast.valueChanged.connect(lambda v: self._set(overcast_lux=v))
+        return group
+
+    def _control_group(self) -> QtWidgets.QGroupBox:
+        group = QtWidgets.QGroupBox("Occupancy and dimming")
+        form = QtWidgets.QFormLayout(group)
+        self.start = _spin(0.0, 24.0, 0.5, 1, " h")
+        self.end = _spin(0.0, 24.0, 0.5, 1, " h")
+        orow = QtWidgets.QHBoxLayout()
+        orow.addWidget(self.start)
+        orow.addWidget(QtWidgets.QLabel("to"))
+        orow.addWidget(self.end)
+        form.addRow("Occupied", orow)
+        self.weekdays = QtWidgets.QCheckBox("weekdays only (Monday to Friday)")
+        form.addRow("", self.weekdays)
+        self.target = _spin(0.0, 1e5, 50.0, 0, " lux")
+        self.target.setToolTip("Daylight-linked dimming keeps the work plane's mean at this")
+        form.addRow("Dimming target", self.target)
+        self.min_level = _spin(0.0, 1.0, 0.05, 2)
+        self.min_level.setToolTip("The lowest output the luminaires dim to while occupied (0-1)")
+        form.addRow("Minimum level", self.min_level)
+        self.standby = _spin(0.0, 1e6, 1.0, 1, " W")
+        self.standby.setToolTip("Drawn by the controls all year, on or off")
+        form.addRow("Standby", self.standby)
+        self.plane = QtWidgets.QComboBox()
+        self.plane.setToolTip("The work plane the dimming, the annual energy and sDA read")
+        form.addRow("Control work plane", self.plane)
+        self.start.valueChanged.connect(self._occupancy_edited)
+        self.end.valueChanged.connect(self._occupancy_edited)
+        self.weekdays.toggled.connect(lambda on: self._set(weekdays=on))
+        self.target.valueChanged.connect(lambda v: self._set(target_lux=v))
+        self.min_level.valueChanged.connect(lambda v: self._set(min_level=v))
+        self.standby.valueChanged.connect(lambda v: self._set(standby_w=v))
+        self.plane.activated.connect(lambda _i: self._set(workplane=self.plane.currentData()))
+        return group
+
+    def _hour_group(self) -> QtWidgets.QGroupBox:
+        group = QtWidgets.QGroupBox("Hour of the year")
+        lay = QtWidgets.QVBoxLayout(group)
+        self.slider = QtWidgets.QSlider(QtCore.Qt.Horizontal)
+        self.slider.setRange(0, HOURS_PER_YEAR - 1)
+        self.slider.setPageStep(24)  # Page Up / Down: a day
+        self.slider.setMinimumWidth(240)
+        lay.addWidget(self.slider)
+        drow = QtWidgets.QHBoxLayout()
+        self.month = QtWidgets.QComboBox()
+        self.month.addItems(MONTHS)
+        self.day = QtWidgets.QSpinBox(minimum=1, maximum=31)
+        self.hour = QtWidgets.QSpinBox(minimum=0, maximum=23, suffix=":00")
+        self.hour.setWrapping(True)
+        for label, w in (("Month", self.month), ("Day", self.day), ("Hour", self.hour)):
+            drow.addWidget(QtWidgets.QLabel(label))
+            drow.addWidget(w)
+        drow.addStretch(1)
+        lay.addLayout(drow)
+        self.when = QtWidgets.QLabel("-")
+        self.exterior = QtWidgets.QLabel("-")
+        self.level = QtWidgets.QLabel("-")
+        for w in (self.when, self.exterior, self.level):
+            w.setWordWrap(True)
+            lay.addWidget(w)
+        self.show_hour = QtWidgets.QCheckBox("light the view at this hour")
+        self.show_hour.setToolTip(
+            "Daylight of the hour plus the luminaires as the dimming sets them "
+            "(off outside the occupied hours); also View > Colour by"
+        )
+        lay.addWidget(self.show_hour)
+        lay.addStretch(1)
+        self.slider.valueChanged.connect(self._slider_moved)
+        self.month.currentIndexChanged.connect(self._date_edited)
+        self.day.valueChanged.connect(self._date_edited)
+        self.hour.valueChanged.connect(self._date_edited)
+        self.show_hour.toggled.connect(self.showHourToggled)
+        return group
+
+    def _energy_group(self) -> QtWidgets.QGroupBox:
+        group = QtWidgets.QGroupBox("Annual lighting energy (daylight-linked dimming)")
+        lay = QtWidgets.QVBoxLayout(group)
+        self.chart = EnergyChart()
+        lay.addWidget(self.chart, 1)
+        self.energy_text = QtWidgets.QLabel("-")
+        self.energy_text.setWordWrap(True)
+        lay.addWidget(self.energy_text)
+        return group
+
+    # -- document -> widgets ----------------------------------------------------------------
+    def refresh_fields(self) -> None:
+        """Show the design's daylight fields (signals blocked: showing is not editing)."""
+        d = self.doc
+        has = d.project is not None
+        for w in (*self._fields, self.browse_button, self.builtin_button):
+            w.setEnabled(has)
+        if not has:
+            return
+        day = d.design.daylight
+        for w in self._fields:
+            w.blockSignals(True)
+        try:
+            self.weather_path.setText(
+                "built-in: Greensboro, NC (TMY3)" if day.weather == "builtin" else day.weather
+            )
+            self.weather_path.setToolTip(str(BUILTIN) if day.weather == "builtin" else day.weather)
+            self.north.setValue(day.north_deg)
+            self.ground.setValue(day.ground_reflectance)
+            self.overcast.setValue(day.overcast_lux)
+            self.start.setValue(day.occupancy[0])
+            self.end.setValue(day.occupancy[1])
+            self.weekdays.setChecked(day.weekdays)
+            self.target.setValue(day.target_lux)
+            self.min_level.setValue(day.min_level)
+            self.standby.setValue(day.standby_w)
+            self.plane.clear()
+            planes = [w.name for w in d.design.workplanes]
+            if planes:
+                self.plane.addItem(f"the first ({planes[0]})", None)
+                for name in planes:
+                    self.plane.addItem(name, name)
+                self.plane.setCurrentIndex(max(self.plane.findData(day.workplane), 0))
+            else:
+                self.plane.addItem("none: add a work plane (Luminaires)", None)
+            self.plane.setEnabled(bool(planes))
+        finally:
+            for w in self._fields:
+                w.blockSignals(False)
+
+    def refresh_light(self) -> None:
+        """The site, the hour and the energy of the design (now if the tab is seen, else
+        when it is: the first look reads the weather file, about a second)."""
+        if not self.isVisible():
+            self._stale = True
+            return
+        self._stale = False
+        problems = []
+        d = self.doc
+        if d.project is None:
+            return
+        try:
+            self.site.setText(site_text(d.weather()))
+        except LightInvError as exc:
+            self.site.setText("cannot be read")
+            problems.append(str(exc))
+        ld = None
+        try:
+            ld = d.layout_daylight()
+        except LightInvError as exc:
+            problems.append(str(exc))
+        if ld is None and d.light is None:
+            self.when.setText("The hours and the energy appear once the light model is ready.")
+            self.exterior.setText("")
+            self.level.setText("")
+            self.chart.set_months(None)
+            self.energy_text.setText("-")
+            self._say(problems)
+            return
+        if ld is not None and not ld.patches.groups.count:
+            problems.append(
+                "The design has no skylights: no daylight reaches the room (DF, DA and UDI "
+                "are 0; the luminaires dim only to the target)."
+            )
+        self._show_hour(ld, problems)
+        self._show_energy(ld, problems)
+        self._say(problems)
+
+    def _say(self, problems: list[str]) -> None:
+        unique = list(dict.fromkeys(problems))
+        self.message.setText("\n".join(unique))
+        self.message.setVisible(bool(unique))
+
+    def _show_hour(self, ld, problems: list[str]) -> None:
+        if ld is None:
+            return
+        try:
+            weather = self.doc.weather()
+        except LightInvError:
+            weather = None
+        try:
+            s = hour_state(ld, weather, self.slider.value())
+        except LightInvError as exc:
+            problems.append(str(exc))
+            for w in (self.when, self.exterior, self.level):
+                w.setText("-")
+            return
+        self.when.setText(f"{s.when} ({'occupied' if s.occupied else 'unoccupied'})")
+        glazing = ", ".join(f"{x:,.0f}" for x in s.glazing_lux)
+        self.exterior.setText(
+            f"Exterior: {s.horizontal_lux:,.0f} lux horizontal"
+            + (f"; {glazing} lux on the glazing" if glazing else "")
+        )
+        self.level.setText(
+            f"Luminaires dimmed to {100 * s.level:.0f}%" if s.occupied else "Luminaires off"
+        )
+
+    def _show_energy(self, ld, problems: list[str]) -> None:
+        if ld is None:
+            return
+        try:
+            e = ld.energy()
+        except LightInvError as exc:
+            problems.append(f"Annual energy: {exc}")
+            self.chart.set_months(None)
+            self.energy_text.setText(f"Not measured: {exc}")
+            return
+        self.chart.set_months(e.monthly_kwh)
+        if ld.installed_w <= 0:
+            self.energy_text.setText("No luminaires: no electric lighting energy.")
+            return
+        saved = 1.0 - e.energy_kwh / e.full_kwh if e.full_kwh > 0 else 0.0
+        self.energy_text.setText(
+            f"Annual {e.energy_kwh:,.1f} kWh ({e.full_kwh:,.1f} kWh at full output: "
+            f"{100 * saved:.0f}% saved); LENI {e.leni:.2f} kWh/m²·a over {e.floor_m2:,.0f} m²; "
+            f"mean level {100 * e.mean_level:.0f}%; {ld.installed_w:,.0f} W installed "
+            f"on plane {ld.control}."
+        )
+
+    def showEvent(self, event) -> None:
+        super().showEvent(event)
+        if self._stale:
+            QtCore.QTimer.singleShot(0, self.refresh_light)
+
+    # -- the hour ---------------------------------------------------------------------------
+    def set_hour(self, hour: int) -> None:
+        """Move to hour ``hour`` of the year (0-8759)."""
+        self.slider.setValue(int(hour))
+        self._slider_moved(self.slider.value())
+
+    def current_hour(self) -> int:
+        """The hour of the year shown (0-8759)."""
+        return self.slider.value()
+
+    def _slider_moved(self, hour: int) -> None:
+        month, day, h = hour_date(hour)
+        for w in (self.month, self.day, self.hour):
+            w.blockSignals(True)
+        self.month.setCurrentIndex(month - 1)
+        self.day.setMaximum(month_days(month))
+        self.day.setValue(day)
+        self.hour.setValue(h)
+        for w in (self.month, self.day, self.hour):
+            w.blockSignals(False)
+        if self.isVisible():
+            try:
+                ld = self.doc.layout_daylight()
+            except LightInvError:
+                ld = None
+            problems: list[str] = []
+            self._show_hour(ld, problems)
+        self.hourChanged.emit(hour)
+
+    def _date_edited(self) -> None:
+        month = self.month.currentIndex() + 1
+        self.day.setMaximum(month_days(month))
+        self.slider.setValue(hour_index(month, self.day.value(), self.hour.value()))
+
+    # -- widgets -> document ----------------------------------------------------------------
+    def _set(self, **fields) -> bool:
+        try:
+            self.doc.set_daylight(**fields)
+        except LightInvError as exc:
+            self._say([str(exc)])
+            self.refresh_fields()
+            return False
+        return True
+
+    def _occupancy_edited(self) -> None:
+        self._set(occupancy=(self.start.value(), self.end.value()))
+
+    def set_weather(self, path: str) -> bool:
+        """Use the weather file ``path`` ("builtin": the shipped one): it is read first,
+        and an unreadable file is refused with a message (the design keeps its weather)."""
+        from lightinv_core.climate.weather import read_weather
+
+        value = "builtin" if path == "builtin" else str(Path(path).resolve())
+        try:
+            if value != "builtin":
+                read_weather(value)
+        except LightInvError as exc:
+            self._say([f"Weather file not changed: {exc}"])
+            return False
+        ok = self._set(weather=value)
+        if ok:
+            self.refresh_light()
+        return ok
+
+    def browse(self) -> bool:
+        """Choose a weather file (EPW or TMY3)."""
+        path = dialogs.open_file(self, "Weather file", WEATHER_FILTER)
+        return bool(path) and self.set_weather(path)
