@@ -7,10 +7,13 @@ and next to a GUI without touching its backend. See docs/report.md.
 - ``render_view(patches, values, camera, ...)``: one false-colour view (``views.py``);
 - ``source_table``, ``intention_table``, ... : the tables as data (``tables.py``);
 - ``convergence_figure``, ``pareto_figure``: the plots (``figures.py``);
+- ``daylight_section``: the daylight and energy section's numbers, tables and plans
+  (``daylight.py``; designs with skylights and work planes);
 - ``solution_field``: the illuminance of a saved solution (``chosen.py``).
 """
 
 from lightinv_core.report.chosen import choose_solution, solution_field
+from lightinv_core.report.daylight import DaylightSection, daylight_section
 from lightinv_core.report.figures import convergence_figure, pareto_figure
 from lightinv_core.report.pdf import ReportInfo, write_report
 from lightinv_core.report.tables import (
@@ -25,11 +28,13 @@ from lightinv_core.report.views import CAMERAS, Camera, Outline, render_view, so
 __all__ = [
     "CAMERAS",
     "Camera",
+    "DaylightSection",
     "Outline",
     "ReportInfo",
     "Table",
     "choose_solution",
     "convergence_figure",
+    "daylight_section",
     "group_table",
     "intention_table",
     "pareto_figure",

@@ -31,7 +31,7 @@ from lightinv_core.errors import LightInvError
 from lightinv_core.kinds import SourceKind
 from lightinv_core.light.daylight import SDA_SHARE, AnnualEnergy, LayoutDaylight
 from lightinv_core.light.daylight_year import hours_from, hours_within
-from lightinv_core.report.figures import new_figure
+from lightinv_core.report.figures import draw_table, new_figure
 from lightinv_core.report.luminaires import plan_figure
 from lightinv_core.report.tables import Table, fmt
 from lightinv_core.report.views import Outline
@@ -50,6 +50,12 @@ def pct(share: float | None, digits: int = 1) -> str:
     if share is None or not np.isfinite(share):
         return "—"
     return f"{100.0 * float(share):.{digits}f}"
+
+
+def _percent(share: float | None) -> str:
+    """ "74.2%", or "—" when missing."""
+    text = pct(share)
+    return text if text == "—" else f"{text}%"
 
 
 @dataclass(frozen=True, eq=False)
@@ -240,21 +246,21 @@ def daylight_table(section: DaylightSection) -> Table:
         f"at least {DA_THRESHOLD:.0f} lux of daylight, averaged over the points; "
         f"sDA300/50%: share of the points with DA300 >= {100 * SDA_SHARE:.0f}%; UDI: "
         "shares of the occupied hours in each band of daylight illuminance, averaged over "
-        "the points (UDI 100-3000 = the middle two). Percentages."
+        "the points (UDI 100-3000 = the middle two)."
     )
     if section.problem:
         note += " The annual columns are empty: the weather year could not be used (above)."
     return Table(
-        "Daylight per work plane",
+        "Daylight per work plane (%)",
         (
             "work plane",
             "points",
-            "DF mean %",
-            "DF median %",
-            "DF min %",
-            "DA300 mean %",
-            "sDA300/50% %",
-            *(f"{b} %" for b in UDI_NAMES),
+            "DF mean",
+            "DF median",
+            "DF min",
+            "DA300 mean",
+            "sDA300/50%",
+            *UDI_NAMES,
         ),
         tuple(rows),
         note=note,
@@ -277,8 +283,8 @@ def energy_table(section: DaylightSection) -> Table:
         rows += [
             ("annual energy with dimming", f"{fmt(e.energy_kwh)} kWh"),
             ("annual energy at full output", f"{fmt(e.full_kwh)} kWh"),
-            ("savings by dimming", f"{pct(section.savings)}%"),
-            ("mean dimming level", f"{pct(e.mean_level)}%"),
+            ("savings by dimming", _percent(section.savings)),
+            ("mean dimming level", _percent(e.mean_level)),
             ("LENI", f"{fmt(e.leni)} kWh/m² a (over {fmt(e.floor_m2)} m² of floor)"),
         ]
     note = (
@@ -288,38 +294,29 @@ def energy_table(section: DaylightSection) -> Table:
     )
     if e is None:
         note = _missing(section)
-    return Table("Daylight-linked dimming energy", ("", "value"), tuple(rows), note=note)
+    return Table("Daylight-linked dimming energy", ("item", "value"), tuple(rows), note=note)
 
 
-def monthly_energy_figure(section: DaylightSection) -> Figure | None:
-    """Bars of the lighting energy (kWh) of each month; None without the energy."""
+def energy_figure(section: DaylightSection) -> Figure | None:
+    """The energy page: the dimming table above a bar chart of each month's lighting
+    energy (kWh); None without the energy (no weather year)."""
     e = section.energy
     if e is None:
         return None
-    fig = new_figure(layout="constrained")
-    ax = fig.add_subplot()
+    fig = new_figure()
+    y = draw_table(fig, energy_table(section), 0.94)
+    ax = fig.add_axes((0.08, 0.06, 0.87, max(y - 0.12, 0.15)))
     months = [calendar.month_abbr[m] for m in range(1, 13)]
     kwh = np.asarray(e.monthly_kwh, float)
-    bars = ax.bar(months, kwh, color="C0", label="with daylight-linked dimming")
+    bars = ax.bar(months, kwh, color="C0")
     ax.bar_label(bars, labels=[fmt(v, 3) for v in kwh], fontsize=8, padding=2)
-    ax.set_ylabel("electric lighting energy (kWh)")
-    ax.set_ylim(0, max(float(kwh.max()), 1e-9) * 1.15)
+    ax.set_ylabel("kWh")
+    ax.set_ylim(0, max(float(kwh.max()), 1e-9) * 1.2)
     ax.grid(axis="y", alpha=0.3)
     ax.set_title(
-        f"Lighting energy per month: {fmt(e.energy_kwh)} kWh a year with dimming, "
-        f"{fmt(e.full_kwh)} kWh at full output ({pct(section.savings)}% saved); "
-        f"LENI {fmt(e.leni)} kWh/m² a",
+        f"Lighting energy per month with dimming (kWh; {fmt(e.energy_kwh)} kWh a year)",
         fontsize=11,
-    )
-    ax.annotate(
-        f"Control plane {section.control}, target {fmt(section.daylight.target_lux)} lux, "
-        f"{fmt(section.installed_w)} W installed; {section.site}, {section.hours:,} occupied "
-        "hours",
-        (0.01, 0.98),
-        xycoords="axes fraction",
-        va="top",
-        fontsize=9,
-        color="0.3",
+        loc="left",
     )
     return fig
 
@@ -362,7 +359,7 @@ def da_figures(section: DaylightSection, outlines=()) -> list[Figure]:
             continue
         title = (
             f"Daylight autonomy DA300 on work plane {p.name}: mean {pct(p.da_mean)}%, "
-            f"sDA300/50% {pct(p.sda)}% ({section.site}, {section.hours:,} occupied hours)"
+            f"sDA300/50% {pct(p.sda)}%\n{section.site}, {section.hours:,} occupied hours"
         )
         figs.append(
             plan_figure(
@@ -370,7 +367,7 @@ def da_figures(section: DaylightSection, outlines=()) -> list[Figure]:
                 100.0 * p.da,
                 p.spacing,
                 title,
-                f"DA300 (% of occupied hours with >= {DA_THRESHOLD:.0f} lux daylight)",
+                f"DA300 (% of occupied hours with daylight >= {DA_THRESHOLD:.0f} lux)",
                 cmap="viridis",
                 level_format="%.0f",
                 vmax=100.0,

@@ -295,5 +295,5 @@ def pareto_figure(
         title += f"\nhypervolume {quality.hypervolume:.4f}, spacing {spread} (normalised)"
     ax.set_title(title)
     ax.grid(alpha=0.3)
-    ax.legend(loc="lower right")
+    ax.legend(loc="lower right" if kinds == default else "best")
     return fig

@@ -28,10 +28,11 @@ from matplotlib.figure import Figure
 
 from lightinv_core.atomic import atomic_writer
 from lightinv_core.errors import CancelledError
-from lightinv_core.kinds import GoalKind, SourceKind
+from lightinv_core.kinds import SourceKind
 from lightinv_core.light.arrays import resolve_product
 from lightinv_core.light.daylight import layout_daylight
 from lightinv_core.light.grids import design_grids, grid_light
+from lightinv_core.optimize.mop import front_pair
 from lightinv_core.optimize.quality import front_quality, front_scales
 from lightinv_core.project import Project
 from lightinv_core.report.chosen import Chosen, choose_solution, solution_field
@@ -41,9 +42,8 @@ from lightinv_core.report.daylight import (
     daylight_section,
     daylight_table,
     df_figures,
-    energy_table,
+    energy_figure,
     has_daylight,
-    monthly_energy_figure,
 )
 from lightinv_core.report.figures import (
     convergence_figure,
@@ -239,13 +239,10 @@ def write_report(
         skylights = [s for s in sol.sources if s.kind == SourceKind.SKYLIGHT]
         section = daylight_section(lay, skylights)
 
-        def daylight_tables():
-            tables = [climate_table(section), daylight_table(section), energy_table(section)]
-            return table_pages(tables)
-
-        plan.append(("daylight", daylight_tables))
+        daylight_tables = [climate_table(section), daylight_table(section)]
+        plan.append(("daylight", lambda: table_pages(daylight_tables)))
         if section.energy is not None:
-            plan.append(("energy-monthly", lambda: monthly_energy_figure(section)))
+            plan.append(("energy", lambda: energy_figure(section)))
         plan.append(("df-plan", lambda: df_figures(section, outlines)))
         if any(p.da is not None for p in section.planes):
             plan.append(("da-plan", lambda: da_figures(section, outlines)))
@@ -254,8 +251,9 @@ def write_report(
         plan.append(("convergence", lambda: convergence_figure(sol, primary)))
     if project.pareto is not None and project.pareto.solutions:
         quality = None
-        power_light = {str(GoalKind.MIN_ELECTRIC_POWER), str(GoalKind.MAX_LIGHT_POWER)}
-        if power_light <= set(project.pareto.objectives):  # the measure of those fronts
+        # Measured (hypervolume, spacing) when the front is of the design's own pair
+        # (power and light, or the climate pair): the pair its scales normalise.
+        if set(project.pareto.objectives) == set(map(str, front_pair(design))):
             scales = front_scales(project.design, prepared.light)
             quality = front_quality(project.pareto.solutions, scales)
         plan.append(("pareto", lambda: pareto_figure(project.pareto, sol, quality)))

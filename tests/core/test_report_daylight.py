@@ -19,12 +19,13 @@ from lightinv_core.design.model import Daylight, Design, Goal, Intention, Source
 from lightinv_core.design.solution import ParetoFront
 from lightinv_core.light.daylight import layout_daylight
 from lightinv_core.optimize.problem import DesignProblem
+from lightinv_core.optimize.quality import front_quality, front_scales
 from lightinv_core.project import OperatorSettings, Project, SceneSpec
 from lightinv_core.report import intention_table, pareto_figure, solution_field, write_report
 from lightinv_core.report.daylight import (
     daylight_section,
     df_figures,
-    monthly_energy_figure,
+    energy_figure,
     pct,
 )
 from lightinv_core.report.tables import fmt, objective_text
@@ -53,7 +54,7 @@ INTENTIONS = (
     Intention("sda", grid="wp", quantity="sda", average=0.99),
 )
 CLIMATE = ("min_annual_energy", "min_glazing_area")
-SECTION_PAGES = ["daylight", "energy-monthly", "df-plan", "da-plan"]
+SECTION_PAGES = ["daylight", "energy", "df-plan", "da-plan"]
 
 
 def _design(sources=(SKY, LUM), intentions=INTENTIONS, daylight=DAYLIGHT) -> Design:
@@ -137,8 +138,8 @@ def test_monthly_chart_and_plans_are_drawn(daylit):
     sol = project.solutions[0]
     lay = layout_daylight(prepared.light, project.design, sol.sources, sol.arrays)
     section = daylight_section(lay, [SKY])
-    fig = monthly_energy_figure(section)
-    heights = [b.get_height() for b in fig.axes[0].patches]
+    fig = energy_figure(section)
+    heights = [b.get_height() for b in fig.axes[-1].patches]
     np.testing.assert_allclose(heights, section.energy.monthly_kwh)
     [plan] = df_figures(section)
     shown = plan.axes[0].collections[0].get_array()
@@ -179,7 +180,7 @@ def test_intentions_are_judged_in_their_scenarios(daylit):
 
 
 def test_a_climate_front_is_plotted_on_its_own_goals(daylit):
-    project, _, info = daylit
+    project, prepared, info = daylit
     front = project.pareto
     fig = pareto_figure(front, project.solutions[0])
     ax = fig.axes[0]
@@ -191,6 +192,9 @@ def test_a_climate_front_is_plotted_on_its_own_goals(daylit):
     assert len({w[1] for w in want}) == 3  # three glazing areas
     text = squash(pdf_text(info.path))
     assert "Pareto front (test): 3 non-dominated of 3 solutions" in text
+    q = front_quality(front.solutions, front_scales(project.design, prepared.light))
+    assert q.objectives == CLIMATE
+    assert f"hypervolume {q.hypervolume:.4f}, spacing {q.spacing:.4f} (normalised)" in text
 
 
 def test_no_skylights_no_section(daylit, tmp_path):
@@ -208,11 +212,13 @@ def test_unreadable_weather_file_is_said_in_text(daylit, tmp_path):
     _, prepared, _ = daylit
     bad = tmp_path / "broken.epw"
     bad.write_text("not a weather file\n")
-    design = _design(daylight=replace(DAYLIGHT, weather=str(bad)))
-    project, _ = _project(design, "Broken weather", prepared)
+    # Solved with the weather, reported after the file broke.
+    project, _ = _project(_design(), "Broken weather", prepared)
+    design = replace(project.design, daylight=replace(DAYLIGHT, weather=str(bad)))
+    project = replace(project, design=design)
     info = write_report(project, prepared, tmp_path / "r.pdf", png_dir=tmp_path / "png")
     assert "daylight" in info.pages and "df-plan" in info.pages
-    assert "energy-monthly" not in info.pages and "da-plan" not in info.pages
+    assert "energy" not in info.pages and "da-plan" not in info.pages
     text = squash(pdf_text(info.path))
     assert "The weather year could not be used: broken.epw: not a readable EPW" in text
     assert "annual metrics (DA300, sDA, UDI) and the dimming energy are not shown" in text
