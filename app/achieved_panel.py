@@ -72,7 +72,9 @@ class AchievedPanel(QtWidgets.QWidget):
         scenario (``LayoutDaylight.checks``)."""
         d = self.doc
         ld = None
-        if d.project is not None and d.design_field() is not None:
+        if d.project is None or not d.design.intentions:
+            return []
+        if d.design_field() is not None:
             try:
                 ld = d.layout_daylight()
             except LightInvError:
@@ -123,10 +125,10 @@ class AchievedPanel(QtWidgets.QWidget):
             )
             if unknown:
                 why = next(r.achieved for r in rows if r.met is None)
-                judged = len(rows) - unknown
+                judged = len(rows) - unknown  # the bounds judged
                 text = (
                     f"{unknown} intention{'s' * (unknown != 1)} cannot be judged (grey): {why}"
-                    + (f"\nOf the others' {judged} bounds, {bad} are missed." if judged else "")
+                    + (f"\nThe others miss {bad} of {judged} bounds (red)." if bad else "")
                 )
             self.summary.setText(text)
         self.table.setRowCount(len(rows))

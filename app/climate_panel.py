@@ -12,6 +12,7 @@ one hour) are computed by ``map_values`` here for the window's "Colour by".
 
 from __future__ import annotations
 
+from dataclasses import replace
 from pathlib import Path
 
 import numpy as np
@@ -29,6 +30,7 @@ from lightinv_core.editing.climate import (
     hour_state,
     month_days,
     site_text,
+    weather_of,
 )
 from lightinv_core.errors import LightInvError
 from lightinv_core.kinds import Scenario
@@ -50,45 +52,71 @@ PERCENT_MAPS = ("da", "udi")  # drawn 0-100 % whatever the range set
 
 class MapResult:
     """A daylight map for the view: ``values`` per patch (None: nothing to show), the
-    colour bar's ``units`` and label ``fmt``, a ``caption`` and a fixed ``clim`` (None:
-    the view's range)."""
+    colour bar's ``units`` and label ``fmt``, a ``caption``, a fixed ``clim`` (None:
+    the view's range) and the work planes' ``grids`` with the same quantity at their
+    points (``grid_values``; None without work planes)."""
 
     def __init__(self, values, units: str, fmt: str, caption: str | None, clim=None):
         self.values, self.units, self.fmt = values, units, fmt
         self.caption, self.clim = caption, clim
+        self.grids, self.grid_values = None, None
+
+    @property
+    def label_format(self) -> str:
+        """The iso-lines' label format (str.format) matching the colour bar's."""
+        return "{:" + self.fmt.lstrip("%") + "}"
 
 
 def map_values(doc: Document, key: str, hour: int) -> MapResult:
-    """The map ``key`` (a key of ``MAPS``) of the layout shown; its values None and the
-    caption saying why when it cannot be computed (no light model, no weather)."""
+    """The map ``key`` (a key of ``MAPS``) of the layout shown, on the patches and the
+    work planes' points; its values None and the caption saying why when it cannot be
+    computed (no light model, an unreadable weather file)."""
     _, units, fmt = MAPS[key]
     try:
         ld = doc.layout_daylight(shown=True)
         if ld is None:
             return MapResult(None, units, fmt, None)
-        p = ld.patches
-        no_sky = not p.groups.count
-        hint = " (the design has no skylights: no daylight)" if no_sky else ""
-        if key in (Scenario.NIGHT, Scenario.OVERCAST):
-            cap = "Luminaires only" if key == Scenario.NIGHT else "CIE overcast sky"
-            return MapResult(p.lux(key)[:, 0], units, fmt, cap + hint)
-        if key == "df":
-            return MapResult(
-                100.0 * p.overcast_daylight()[:, 0],
-                units,
-                fmt,
-                "Daylight factor under the CIE overcast sky" + hint,
-            )
-        if key in PERCENT_MAPS:
-            share = p.da() if key == "da" else p.udi()
-            year = p.year() if not no_sky else None
-            what = "DA300: hours with 300 lux of daylight" if key == "da" else "UDI 100-3000 lux"
-            over = f", {year.hours:,} occupied hours" if year is not None else ""
-            return MapResult(100.0 * share[:, 0], units, fmt, what + over + hint, (0.0, 100.0))
-        state = hour_state(ld, _weather_or_none(doc), hour)
-        return MapResult(ld.hour_lux(state.hour), units, fmt, state.text())
+        shown = _map(ld, doc, key, hour, units, fmt)
+        if ld.points is not None:
+            shown.grids = ld.grids
+            shown.grid_values = _on(ld.points, ld, key, hour)
+        return shown
     except LightInvError as exc:
         return MapResult(None, units, fmt, f"{MAPS[key][0]}: {exc}")
+
+
+def _map(ld, doc: Document, key: str, hour: int, units: str, fmt: str) -> MapResult:
+    p = ld.patches
+    values = _on(p, ld, key, hour)
+    hint = "\nThe design has no skylights: no daylight." if not p.groups.count else ""
+    if key in (Scenario.NIGHT, Scenario.OVERCAST):
+        cap = "Luminaires only" if key == Scenario.NIGHT else "Luminaires + the CIE overcast sky"
+        return MapResult(values, units, fmt, cap + hint)
+    if key == "df":
+        return MapResult(values, units, fmt, "Daylight factor, CIE overcast sky" + hint)
+    if key in PERCENT_MAPS:
+        over = f" of {p.year().hours:,} occupied hours" if p.groups.count else ""
+        what = "with 300 lux of daylight" if key == "da" else "with 100-3000 lux of daylight"
+        head = "DA300" if key == "da" else "UDI 100-3000"
+        return MapResult(values, units, fmt, f"{head}: share{over}\n{what}" + hint, (0.0, 100.0))
+    state = hour_state(ld, _weather_or_none(doc), hour)
+    return MapResult(values, units, fmt, state.text())
+
+
+def _on(light, ld, key: str, hour: int) -> np.ndarray:
+    """The map ``key`` at the receivers of ``light`` (the layout's patches or points)."""
+    if key in (Scenario.NIGHT, Scenario.OVERCAST):
+        return light.lux(key)[:, 0]
+    if key == "df":
+        return 100.0 * light.overcast_daylight()[:, 0]
+    if key in PERCENT_MAPS:
+        return 100.0 * (light.da() if key == "da" else light.udi())[:, 0]
+    if light is ld.patches:
+        return ld.hour_lux(hour)
+    # The same sum as ``LayoutDaylight.hour_lux``, at the work planes' points.
+    year = light.year()
+    day = np.tensordot(year.every[:, hour], light.sky[:, :, 0], axes=1) if light.groups.count else 0
+    return light.electric[:, 0] * ld.level_at(hour) + day
 
 
 def _weather_or_none(doc: Document):
@@ -96,6 +124,13 @@ def _weather_or_none(doc: Document):
         return doc.weather()
     except LightInvError:
         return None
+
+
+def _form(group: QtWidgets.QGroupBox) -> QtWidgets.QFormLayout:
+    """A form whose fields keep their natural width (the tab is wide and short)."""
+    form = QtWidgets.QFormLayout(group)
+    form.setFieldGrowthPolicy(QtWidgets.QFormLayout.FieldsStayAtSizeHint)
+    return form
 
 
 def _spin(lo: float, hi: float, step: float, decimals: int, suffix: str = ""):
@@ -123,6 +158,9 @@ class EnergyChart(pg.PlotWidget):
         self.addItem(self.bars)
         self.setXRange(0.4, 12.6, padding=0)
         self.monthly = np.zeros(12)
+
+    def sizeHint(self) -> QtCore.QSize:
+        return QtCore.QSize(380, 200)  # not a plot widget's 640 x 480: the tab is short
 
     def set_months(self, kwh) -> None:
         """Draw 12 monthly values (kWh); None empties the chart."""
@@ -160,6 +198,8 @@ class ClimatePanel(QtWidgets.QWidget):
             self.north,
             self.ground,
             self.overcast,
+            self.exterior_lux,
+            self.transmittance,
             self.start,
             self.end,
             self.weekdays,
@@ -178,39 +218,50 @@ class ClimatePanel(QtWidgets.QWidget):
     # -- layout ---------------------------------------------------------------------------
     def _site_group(self) -> QtWidgets.QGroupBox:
         group = QtWidgets.QGroupBox("Weather and site")
-        form = QtWidgets.QFormLayout(group)
+        form = _form(group)
         self.weather_path = QtWidgets.QLineEdit()
         self.weather_path.setReadOnly(True)
+        self.weather_path.setMinimumWidth(200)
         self.browse_button = QtWidgets.QPushButton("Browse...")
         self.browse_button.setToolTip("An EnergyPlus (.epw) or TMY3 (.csv) weather file")
         self.builtin_button = QtWidgets.QPushButton("Built-in")
         self.builtin_button.setToolTip("The shipped Greensboro, NC TMY3 year")
+        form.addRow("Weather", self.weather_path)
         wrow = QtWidgets.QHBoxLayout()
-        wrow.addWidget(self.weather_path, 1)
         wrow.addWidget(self.browse_button)
         wrow.addWidget(self.builtin_button)
-        form.addRow("Weather", wrow)
+        wrow.addStretch(1)
+        form.addRow("", wrow)
         self.site = QtWidgets.QLabel("-")
-        self.site.setWordWrap(True)
         form.addRow("Site", self.site)
         self.north = _spin(-360.0, 360.0, 5.0, 1, "°")
         self.north.setToolTip("Compass bearing of the scene's +y axis (0: +y points north)")
-        form.addRow("North (+y bearing)", self.north)
+        form.addRow("North", self.north)
         self.ground = _spin(0.0, 0.99, 0.05, 2)
         form.addRow("Ground reflectance", self.ground)
         self.overcast = _spin(0.0, 2e5, 1000.0, 0, " lux")
         self.overcast.setToolTip("Horizontal exterior illuminance of the design overcast sky")
         form.addRow("Overcast sky", self.overcast)
+        self.exterior_lux = _spin(0.0, 2e5, 1000.0, 0, " lux")
+        self.exterior_lux.setToolTip(
+            "The design scenario's exterior lux on every skylight (the paper's model)"
+        )
+        form.addRow("Design sky", self.exterior_lux)
+        self.transmittance = _spin(0.0, 1.0, 0.05, 2)
+        self.transmittance.setToolTip("Of the glazing, in every scenario")
+        form.addRow("Transmittance", self.transmittance)
         self.browse_button.clicked.connect(lambda: self.browse())
         self.builtin_button.clicked.connect(lambda: self.set_weather("builtin"))
         self.north.valueChanged.connect(lambda v: self._set(north_deg=v))
         self.ground.valueChanged.connect(lambda v: self._set(ground_reflectance=v))
         self.overcast.valueChanged.connect(lambda v: self._set(overcast_lux=v))
+        self.exterior_lux.valueChanged.connect(lambda v: self._set(exterior_lux=v))
+        self.transmittance.valueChanged.connect(lambda v: self._set(transmittance=v))
         return group
 
     def _control_group(self) -> QtWidgets.QGroupBox:
         group = QtWidgets.QGroupBox("Occupancy and dimming")
-        form = QtWidgets.QFormLayout(group)
+        form = _form(group)
         self.start = _spin(0.0, 24.0, 0.5, 1, " h")
         self.end = _spin(0.0, 24.0, 0.5, 1, " h")
         orow = QtWidgets.QHBoxLayout()
@@ -218,7 +269,8 @@ class ClimatePanel(QtWidgets.QWidget):
         orow.addWidget(QtWidgets.QLabel("to"))
         orow.addWidget(self.end)
         form.addRow("Occupied", orow)
-        self.weekdays = QtWidgets.QCheckBox("weekdays only (Monday to Friday)")
+        self.weekdays = QtWidgets.QCheckBox("weekdays only")
+        self.weekdays.setToolTip("Monday to Friday; unticked: every day of the week")
         form.addRow("", self.weekdays)
         self.target = _spin(0.0, 1e5, 50.0, 0, " lux")
         self.target.setToolTip("Daylight-linked dimming keeps the work plane's mean at this")
@@ -263,8 +315,8 @@ class ClimatePanel(QtWidgets.QWidget):
         self.when = QtWidgets.QLabel("-")
         self.exterior = QtWidgets.QLabel("-")
         self.level = QtWidgets.QLabel("-")
-        for w in (self.when, self.exterior, self.level):
-            w.setWordWrap(True)
+        self.glazing = QtWidgets.QLabel("")
+        for w in (self.when, self.exterior, self.glazing, self.level):
             lay.addWidget(w)
         self.show_hour = QtWidgets.QCheckBox("light the view at this hour")
         self.show_hour.setToolTip(
@@ -274,6 +326,8 @@ class ClimatePanel(QtWidgets.QWidget):
         lay.addWidget(self.show_hour)
         lay.addStretch(1)
         self.slider.valueChanged.connect(self._slider_moved)
+        # Moving the hour by hand lights the view at it.
+        self.slider.actionTriggered.connect(lambda _a: self.show_hour.setChecked(True))
         self.month.currentIndexChanged.connect(self._date_edited)
         self.day.valueChanged.connect(self._date_edited)
         self.hour.valueChanged.connect(self._date_edited)
@@ -286,7 +340,6 @@ class ClimatePanel(QtWidgets.QWidget):
         self.chart = EnergyChart()
         lay.addWidget(self.chart, 1)
         self.energy_text = QtWidgets.QLabel("-")
-        self.energy_text.setWordWrap(True)
         lay.addWidget(self.energy_text)
         return group
 
@@ -310,6 +363,8 @@ class ClimatePanel(QtWidgets.QWidget):
             self.north.setValue(day.north_deg)
             self.ground.setValue(day.ground_reflectance)
             self.overcast.setValue(day.overcast_lux)
+            self.exterior_lux.setValue(day.exterior_lux)
+            self.transmittance.setValue(day.transmittance)
             self.start.setValue(day.occupancy[0])
             self.end.setValue(day.occupancy[1])
             self.weekdays.setChecked(day.weekdays)
@@ -352,8 +407,9 @@ class ClimatePanel(QtWidgets.QWidget):
         except LightInvError as exc:
             problems.append(str(exc))
         if ld is None and d.light is None:
-            self.when.setText("The hours and the energy appear once the light model is ready.")
-            self.exterior.setText("")
+            self.when.setText("The hours and the energy appear")
+            self.exterior.setText("once the light model is ready.")
+            self.glazing.setText("")
             self.level.setText("")
             self.chart.set_months(None)
             self.energy_text.setText("-")
@@ -384,15 +440,13 @@ class ClimatePanel(QtWidgets.QWidget):
             s = hour_state(ld, weather, self.slider.value())
         except LightInvError as exc:
             problems.append(str(exc))
-            for w in (self.when, self.exterior, self.level):
+            for w in (self.when, self.exterior, self.glazing, self.level):
                 w.setText("-")
             return
         self.when.setText(f"{s.when} ({'occupied' if s.occupied else 'unoccupied'})")
         glazing = ", ".join(f"{x:,.0f}" for x in s.glazing_lux)
-        self.exterior.setText(
-            f"Exterior: {s.horizontal_lux:,.0f} lux horizontal"
-            + (f"; {glazing} lux on the glazing" if glazing else "")
-        )
+        self.exterior.setText(f"Exterior {s.horizontal_lux:,.0f} lux (horizontal)")
+        self.glazing.setText(f"On the glazing {glazing} lux" if glazing else "No glazing")
         self.level.setText(
             f"Luminaires dimmed to {100 * s.level:.0f}%" if s.occupied else "Luminaires off"
         )
@@ -405,7 +459,7 @@ class ClimatePanel(QtWidgets.QWidget):
         except LightInvError as exc:
             problems.append(f"Annual energy: {exc}")
             self.chart.set_months(None)
-            self.energy_text.setText(f"Not measured: {exc}")
+            self.energy_text.setText(f"Not measured:\n{exc}")
             return
         self.chart.set_months(e.monthly_kwh)
         if ld.installed_w <= 0:
@@ -413,10 +467,10 @@ class ClimatePanel(QtWidgets.QWidget):
             return
         saved = 1.0 - e.energy_kwh / e.full_kwh if e.full_kwh > 0 else 0.0
         self.energy_text.setText(
-            f"Annual {e.energy_kwh:,.1f} kWh ({e.full_kwh:,.1f} kWh at full output: "
-            f"{100 * saved:.0f}% saved); LENI {e.leni:.2f} kWh/m²·a over {e.floor_m2:,.0f} m²; "
-            f"mean level {100 * e.mean_level:.0f}%; {ld.installed_w:,.0f} W installed "
-            f"on plane {ld.control}."
+            f"Annual {e.energy_kwh:,.1f} kWh, LENI {e.leni:.2f} kWh/m²·a ({e.floor_m2:,.0f} m²)\n"
+            f"{100 * saved:.0f}% less than at full output ({e.full_kwh:,.1f} kWh); "
+            f"mean level {100 * e.mean_level:.0f}%\n"
+            f"{ld.installed_w:,.0f} W installed, dimmed on work plane {ld.control}"
         )
 
     def showEvent(self, event) -> None:
@@ -427,8 +481,10 @@ class ClimatePanel(QtWidgets.QWidget):
     # -- the hour ---------------------------------------------------------------------------
     def set_hour(self, hour: int) -> None:
         """Move to hour ``hour`` of the year (0-8759)."""
-        self.slider.setValue(int(hour))
-        self._slider_moved(self.slider.value())
+        if self.slider.value() == int(hour):
+            self._slider_moved(self.slider.value())  # shown anew (the first call)
+        else:
+            self.slider.setValue(int(hour))
 
     def current_hour(self) -> int:
         """The hour of the year shown (0-8759)."""
@@ -454,12 +510,14 @@ class ClimatePanel(QtWidgets.QWidget):
         self.hourChanged.emit(hour)
 
     def _date_edited(self) -> None:
+        self.show_hour.setChecked(True)
         month = self.month.currentIndex() + 1
         self.day.setMaximum(month_days(month))
         self.slider.setValue(hour_index(month, self.day.value(), self.hour.value()))
 
     # -- widgets -> document ----------------------------------------------------------------
     def _set(self, **fields) -> bool:
+        self._say([])
         try:
             self.doc.set_daylight(**fields)
         except LightInvError as exc:
@@ -474,12 +532,9 @@ class ClimatePanel(QtWidgets.QWidget):
     def set_weather(self, path: str) -> bool:
         """Use the weather file ``path`` ("builtin": the shipped one): it is read first,
         and an unreadable file is refused with a message (the design keeps its weather)."""
-        from lightinv_core.climate.weather import read_weather
-
         value = "builtin" if path == "builtin" else str(Path(path).resolve())
         try:
-            if value != "builtin":
-                read_weather(value)
+            weather_of(replace(self.doc.design.daylight, weather=value))
         except LightInvError as exc:
             self._say([f"Weather file not changed: {exc}"])
             return False

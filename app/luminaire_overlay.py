@@ -54,14 +54,24 @@ def grid_surface(points: np.ndarray, spacing: tuple[float, float], lux: np.ndarr
     return cloud.delaunay_2d(alpha=alpha)
 
 
-def draw(plotter, patches, arrays, grids=None, lux=None) -> None:
+def draw(plotter, patches, arrays, grids=None, lux=None, fmt="{:.0f}", clim=None) -> None:
     """Draw (or clear) the luminaires of ``arrays`` and the work planes of ``grids`` with
-    their illuminance ``lux`` at the points."""
-    for name in NAMES:
-        plotter.remove_actor(name, render=False)
+    their illuminance ``lux`` at the points (or another value, e.g. a daylight metric:
+    ``fmt`` labels the iso-lines, ``clim`` fixes the colour range)."""
+    plotter.remove_actor("luminaires", render=False)
     glyphs = luminaire_glyphs(patches, arrays) if arrays else None
     if glyphs is not None:
-        plotter.add_mesh(glyphs, name="luminaires", color=GLYPH_COLOUR, lighting=False)
+        plotter.add_mesh(
+            glyphs, name="luminaires", color=GLYPH_COLOUR, lighting=False, render=False
+        )
+    draw_planes(plotter, grids, lux, fmt, clim)
+
+
+def draw_planes(plotter, grids, lux, fmt="{:.0f}", clim=None) -> None:
+    """Draw (or clear: ``grids`` None) the work planes with a value at each grid point
+    (lux by default) and iso-lines of it labelled with ``fmt``."""
+    for name in NAMES[1:]:
+        plotter.remove_actor(name, render=False)
     if grids is None or lux is None or not len(grids.points):
         return
     surfaces = []
@@ -76,18 +86,24 @@ def draw(plotter, patches, arrays, grids=None, lux=None) -> None:
         cmap="inferno",
         opacity=0.55,
         show_scalar_bar=False,
+        clim=clim,
         lighting=False,
         point_size=6,
         render_points_as_spheres=True,
+        render=False,
     )
     lo, hi = float(np.min(lux)), float(np.max(lux))
     if plane.n_cells and hi > lo:
         levels = np.linspace(lo, hi, ISO_LEVELS + 2)[1:-1]
         lines = plane.contour(isosurfaces=levels, scalars="lux")
         if lines.n_points:
-            plotter.add_mesh(lines, name="isolux", color="white", line_width=2, lighting=False)
+            plotter.add_mesh(
+                lines, name="isolux", color="white", line_width=2, lighting=False, render=False
+            )
             ends = lines.points[:: max(1, lines.n_points // 12)]
-            labels = [f"{v:.0f}" for v in lines.point_data["lux"][:: max(1, lines.n_points // 12)]]
+            labels = [
+                fmt.format(v) for v in lines.point_data["lux"][:: max(1, lines.n_points // 12)]
+            ]
             plotter.add_point_labels(
                 ends,
                 labels,
@@ -97,4 +113,5 @@ def draw(plotter, patches, arrays, grids=None, lux=None) -> None:
                 shape=None,
                 show_points=False,
                 always_visible=True,
+                render=False,
             )

@@ -22,6 +22,7 @@ from app.achieved_panel import AchievedPanel
 from app.autosave import Autosaver, Recoverable
 from app.autosave import offer_recovery as _offer_recovery
 from app.autosave import recover as _recover
+from app.climate_panel import MAPS, ClimatePanel, map_values
 from app.document import Document
 from app.files import MAX_RECENT, ProjectFiles
 from app.luminaires_panel import LuminairesPanel
@@ -90,6 +91,7 @@ class MainWindow(QtWidgets.QMainWindow):
         self.achieved_panel = AchievedPanel(self.doc)
         self.materials_panel = MaterialsPanel(self.doc)
         self.luminaires_panel = LuminairesPanel(self.doc)
+        self.climate_panel = ClimatePanel(self.doc)
         self._docks()
         self.files = ProjectFiles(self)
         self.tasks = BackgroundTasks(self)
@@ -147,11 +149,13 @@ class MainWindow(QtWidgets.QMainWindow):
         self.tabs.addTab(self.achieved_panel, "Achieved")
         self.tabs.addTab(self.solutions_panel, "Solutions")
         self.tabs.addTab(self.violations_panel, "Violations")
+        self.tabs.addTab(self.climate_panel, "Climate")
         self._dock(
             "Optimisation", "optimisation", self.tabs, QtCore.Qt.BottomDockWidgetArea, scroll=True
         )
         for tab in (self.run_panel, self.solutions_panel, self.violations_panel):
             tab.setMinimumHeight(0)
+        self.climate_panel.setMinimumHeight(0)
 
     def _view_options(self) -> QtWidgets.QGroupBox:
         group = QtWidgets.QGroupBox("View")
@@ -159,6 +163,13 @@ class MainWindow(QtWidgets.QMainWindow):
         self.colour_by = QtWidgets.QComboBox()
         self.colour_by.addItem("illuminance (lux)", "lux")
         self.colour_by.addItem("radiosity B (lm/m²)", "B")
+        for key, (text, _units, _fmt) in MAPS.items():
+            self.colour_by.addItem(text, key)
+        self.colour_by.setToolTip(
+            "The design's light (illuminance: the design scenario), or a daylight map of the "
+            "layout shown (weather, occupancy and the hour of the year: the Climate tab). "
+            "DA and UDI are drawn 0-100%; the daylight factor on its own range."
+        )
         form.addRow("Colour by", self.colour_by)
         self.cmap = QtWidgets.QComboBox()
         self.cmap.addItems(COLORMAPS)
@@ -238,6 +249,9 @@ class MainWindow(QtWidgets.QMainWindow):
         self.violations_panel.highlightChanged.connect(
             lambda: self.viewport.set_highlight(self.violations_panel.highlighted())
         )
+        self.climate_panel.hourChanged.connect(self._hour_moved)
+        self.climate_panel.showHourToggled.connect(self._show_hour)
+        self.colour_by.currentIndexChanged.connect(self._colour_by_changed)
 
     # -- document -> views ---------------------------------------------------------------------
     def set_warnings(self, source: str, messages: list[str]) -> None:
@@ -332,30 +346,73 @@ class MainWindow(QtWidgets.QMainWindow):
         self.viewport.clim = None if self.auto_range.isChecked() else (0.0, self.range_max.value())
         d = self.doc
         if d.project is not None and self.viewport.mesh is not None:
-            grids, lux = d.shown_grids() if field is not None else (None, None)
-            luminaire_overlay.draw(self.viewport.plotter, d.patches, d.design.arrays, grids, lux)
+            luminaire_overlay.draw(self.viewport.plotter, d.patches, d.design.arrays)
         if field is None:
+            self.viewport.set_caption(None)
             self.viewport.set_values(None)
             return
+        self._paint(field)
+        self.last_render_ms = 1e3 * (time.perf_counter() - t0)
+        self.status_eval.setText(
+            f"lighting {self.doc.last_eval_ms:.1f} ms, view {self.last_render_ms:.1f} ms"
+        )
+
+    def _paint(self, field) -> None:
+        """Colour the patches as View > Colour by says: the light shown, a pinned
+        result's difference, or a daylight map (``climate_panel.map_values``)."""
         other = self.solutions_panel.compared()
         cmap = "coolwarm" if other is not None else self.cmap.currentText()
         if cmap != self.viewport.cmap:
             self.viewport.set_colormap(cmap)
+        key, fmt, caption = self.colour_by.currentData(), "%.0f", None
+        grids, grid_values = self.doc.shown_grids()
+        label, plane_clim = "{:.0f}", None
         if other is not None:
             # Difference view: the loaded layout minus a pinned one, centred on zero.
             values = field.illuminance - self.doc.lighting_of(other.sources)
             m = float(np.abs(values).max()) or 1.0
             self.viewport.clim = (-m, m)
             units = "lux, loaded − pinned"
-        elif self.colour_by.currentData() == "B":
+        elif key == "B":
             values, units = field.radiosity, "lm/m²"
+        elif key in MAPS:
+            shown = map_values(self.doc, key, self.climate_panel.current_hour())
+            values, units, fmt, caption = shown.values, shown.units, shown.fmt, shown.caption
+            grids, grid_values = shown.grids, shown.grid_values
+            label, plane_clim = shown.label_format, shown.clim
+            if shown.clim is not None:
+                self.viewport.clim = shown.clim
+            elif key == "df":
+                self.viewport.clim = None  # a few percent: the lux range means nothing
         else:
             values, units = field.illuminance, "lux"
-        self.viewport.set_values(values, units)
-        self.last_render_ms = 1e3 * (time.perf_counter() - t0)
-        self.status_eval.setText(
-            f"lighting {self.doc.last_eval_ms:.1f} ms, view {self.last_render_ms:.1f} ms"
-        )
+        if self.viewport.mesh is not None:
+            # The work planes show the same quantity as the patches, iso-lines labelled.
+            luminaire_overlay.draw_planes(
+                self.viewport.plotter, grids, grid_values, label, plane_clim
+            )
+        self.viewport.set_caption(caption)
+        self.viewport.set_values(values, units, fmt)
+
+    def _hour_moved(self, _hour: int) -> None:
+        """The hour slider moved: relight the view if it shows that hour (a sum over the
+        layout's light built once per design change: no new light is computed)."""
+        if self.colour_by.currentData() == "hour" and self.doc.field is not None:
+            auto = self.auto_range.isChecked()
+            self.viewport.clim = None if auto else (0.0, self.range_max.value())
+            self._paint(self.doc.field)
+
+    def _show_hour(self, on: bool) -> None:
+        """The Climate tab's "light the view at this hour" ticked or not."""
+        want = "hour" if on else "lux"
+        if (self.colour_by.currentData() == "hour") != on:
+            self.colour_by.setCurrentIndex(self.colour_by.findData(want))
+
+    def _colour_by_changed(self) -> None:
+        box = self.climate_panel.show_hour
+        box.blockSignals(True)
+        box.setChecked(self.colour_by.currentData() == "hour")
+        box.blockSignals(False)
 
     def _title(self) -> None:
         d = self.doc

@@ -135,9 +135,7 @@ class SolutionsPanel(QtWidgets.QWidget):
         self.table.blockSignals(True)
         self.table.setRowCount(len(sols))
         ax, ay = self.x_axis.currentData(), self.y_axis.currentData()
-        self.table.setHorizontalHeaderLabels(
-            (*COLUMNS[:2], AXES[ax][0], AXES[ay][0], *COLUMNS[4:])
-        )
+        self.table.setHorizontalHeaderLabels((*COLUMNS[:2], AXES[ax][0], AXES[ay][0], *COLUMNS[4:]))
         rows = zip(self.entries, on_front, pinned, strict=True)
         for r, (entry, front, pin) in enumerate(rows):
             s = entry.solution

@@ -16,6 +16,8 @@ rather than blanking.
 
 from __future__ import annotations
 
+import textwrap
+
 import numpy as np
 import pyvista as pv
 import vtk
@@ -291,15 +293,25 @@ class Viewport(QtWidgets.QWidget):
         self.render_now()
 
     def set_caption(self, text: str | None) -> None:
-        """A line of text along the top of the view (what the colours show: the hour of
-        the year, a daylight map, or why it cannot be shown); None removes it."""
+        """A line or two of text in the top corner of the view (what the colours show:
+        the hour of the year, a daylight map, or why it cannot be shown); None removes
+        it. Hidden while the view is veiled (its own text is there)."""
         if text == self.caption:
             return
         self.caption = text
+        self._draw_caption()
+
+    def _draw_caption(self) -> None:
         self.plotter.remove_actor("caption", render=False)
-        if text:
+        if self.caption and self.busy_text is None:
+            lines = [w for line in self.caption.split("\n") for w in textwrap.wrap(line, 64)]
             self.plotter.add_text(
-                text, position="upper_edge", font_size=10, color="#202020", name="caption"
+                "\n".join(lines),
+                position="upper_left",
+                font_size=11,
+                color="#202020",
+                name="caption",
+                render=False,
             )
         self.request_render()
 
@@ -310,6 +322,8 @@ class Viewport(QtWidgets.QWidget):
         if actor is not None:
             actor.mapper.scalar_visibility = not grey
             actor.prop.color = "#d8d8d8"
+        for bar in self.plotter.scalar_bars.values():
+            bar.SetVisibility(not grey)  # no colours: no scale of zeros either
 
     def set_busy(self, text: str | None) -> None:
         """Veil the picture and say why (the light model being built: ``text``); None
@@ -324,7 +338,7 @@ class Viewport(QtWidgets.QWidget):
             self.plotter.add_text(
                 text, position="upper_left", font_size=11, color="#202020", name="busy"
             )
-        self.request_render()
+        self._draw_caption()
 
     def show_axes(self, frame: ZoneFrame | None, title: str = "") -> None:
         """The origin and u, v axes of ``frame`` (a zone, or the surface a zone is being

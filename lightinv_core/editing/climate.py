@@ -74,13 +74,12 @@ def weather_of(daylight: Daylight) -> Weather:
 
 
 def site_text(weather: Weather) -> str:
-    """A weather file's site in one line: name, latitude, longitude, time zone."""
+    """A weather file's site in two lines: its name; latitude, longitude, time zone."""
     ns = "N" if weather.latitude >= 0 else "S"
     ew = "E" if weather.longitude >= 0 else "W"
     return (
-        f"{weather.name.title()}: {abs(weather.latitude):.2f}° {ns}, "
-        f"{abs(weather.longitude):.2f}° {ew}, UTC{weather.utc_offset_h:+g} h, "
-        f"{weather.hours:,} hours"
+        f"{weather.name.title()}\n{abs(weather.latitude):.2f}° {ns}, "
+        f"{abs(weather.longitude):.2f}° {ew}, UTC{weather.utc_offset_h:+g} h"
     )
 
 
@@ -99,13 +98,17 @@ class HourState:
     level: float
 
     def text(self) -> str:
-        """The hour in one line, as the view's caption shows it."""
+        """The hour in two lines, as the view's caption shows it."""
         glazing = ", ".join(f"{x:,.0f}" for x in self.glazing_lux)
-        sky = f"exterior {self.horizontal_lux:,.0f} lux"
+        sky = f"Exterior {self.horizontal_lux:,.0f} lux"
         if glazing:
             sky += f" (on the glazing {glazing} lux)"
-        use = f"luminaires at {100 * self.level:.0f}%" if self.occupied else "unoccupied"
-        return f"{self.when}: {sky}, {use}"
+        use = (
+            f"occupied: luminaires at {100 * self.level:.0f}%"
+            if self.occupied
+            else "unoccupied: luminaires off"
+        )
+        return f"{self.when}, {use}\n{sky}"
 
 
 def hour_state(ld: LayoutDaylight, weather: Weather | None, hour: int) -> HourState:

@@ -27,12 +27,13 @@ from lightinv_core.editing import zones as _zones
 from lightinv_core.editing.climate import DaylightCache, weather_of
 from lightinv_core.editing.events import Events
 from lightinv_core.editing.lighting import ShownLight
-from lightinv_core.errors import DesignError
+from lightinv_core.errors import DesignError, LightInvError
 from lightinv_core.kinds import GoalKind
 from lightinv_core.light.daylight import LayoutDaylight
 from lightinv_core.light.field import LightField
 from lightinv_core.light.model import LightModel
 from lightinv_core.operator.radiosity import RadiosityOperator
+from lightinv_core.optimize.mop import front_pair
 from lightinv_core.optimize.problem import DesignProblem
 from lightinv_core.optimize.quality import FrontQuality, front_quality, front_scales
 from lightinv_core.project import (
@@ -674,14 +675,17 @@ class DocumentModel:
 
     def front_quality(self) -> FrontQuality | None:
         """Hypervolume and spacing of the front browsed (None without a front or a light
-        model)."""
+        model, or when the design's goals no longer make that front: its scales are the
+        design's, power and light or annual energy and glazing area)."""
         front = self.front() if self._project is not None else None
         if front is None or not front.solutions or self.light is None:
             return None
-        power_light = (str(GoalKind.MIN_ELECTRIC_POWER), str(GoalKind.MAX_LIGHT_POWER))
-        if tuple(front.objectives) != power_light:
-            return None  # the normalised hypervolume is defined for power against light
-        scales = front_scales(self._project.design, self.light)
+        if tuple(front.objectives) != tuple(map(str, front_pair(self.design))):
+            return None
+        try:
+            scales = front_scales(self._project.design, self.light)
+        except LightInvError:  # the climate scales read the weather file
+            return None
         return front_quality(front.solutions, scales)
 
     def on_front(self, solution: Solution) -> bool:

@@ -39,6 +39,10 @@ def result_label(s: Solution) -> str:
     """A short name for a result: which run found it."""
     info = s.info
     if info.epsilon is not None:
+        # A climate sweep bounds the glazing area (m²), the power sweep the light (lm).
+        climate = {"min_annual_energy", "min_glazing_area"} <= set(s.objectives)
+        if climate and not {"min_electric_power", "max_light_power"} <= set(s.objectives):
+            return f"epsilon {info.epsilon:,.2f} m²"
         return f"epsilon {info.epsilon:,.0f} lm"
     if info.method == "nsga2" and "min_electric_power" in s.objectives:
         return f"NSGA-II {s.objectives['min_electric_power']:,.1f} W"
