@@ -867,7 +867,7 @@ def _solve_text(out: dict) -> str:
         lines.append(
             f"  work plane {name}: Em {g['Em']:.0f} lux, Emin {g['Emin']:.0f} lux, "
             f"Emax {g['Emax']:.0f} lux, U0 {g['U0']:.2f} ({g['points']} points; luminaires "
-            "placed exactly)"
+            "placed exactly; skylights at the design exterior lux)"
         )
     if "daylight" in out:
         d = out["daylight"]

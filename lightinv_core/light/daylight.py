@@ -30,6 +30,7 @@ from lightinv_core.light.daylight_year import (
     dimming_levels,
     hours_from,
     hours_within,
+    reaches_share,
 )
 from lightinv_core.light.intentions import (
     BoundCheck,
@@ -88,6 +89,12 @@ class ScenarioLight:
         y = self.year()
         return hours_from(y, self.coefficients(idx), DA_THRESHOLD) / y.hours
 
+    def sda_mark(self, idx=slice(None)) -> np.ndarray:
+        """Whether DA300 >= 50% (the points sDA300/50% counts) at receivers idx, (R', m)."""
+        if not self.groups.count:
+            return np.zeros(self.electric[idx].shape, bool)
+        return reaches_share(self.year(), self.coefficients(idx), DA_THRESHOLD, SDA_SHARE)
+
     def udi(self, idx=slice(None)) -> np.ndarray:
         """UDI 100-3000 (share of occupied hours, 0-1) at receivers idx, (R', m)."""
         if not self.groups.count:
@@ -106,7 +113,7 @@ class ScenarioLight:
         if q == Quantity.UDI:
             return self.udi(idx)
         if q == Quantity.SDA:
-            return (self.da(idx) >= SDA_SHARE).astype(float)
+            return self.sda_mark(idx).astype(float)
         lux = self.lux(intention.scenario, idx)
         if q == Quantity.C:
             return lux * (rho[:, None] if lux.ndim == 2 else rho)

@@ -186,6 +186,20 @@ def hours_from(year: DaylightYear, a: np.ndarray, lux: float) -> np.ndarray:
     return out.reshape(a.shape[:-1])
 
 
+def reaches_share(year: DaylightYear, a: np.ndarray, lux: float, share: float) -> np.ndarray:
+    """Whether daylight >= ``lux`` for at least ``share`` of the occupied hours at
+    receivers of coefficients ``a`` (..., G) (DA300 >= 50%: the sDA mark). With one sky
+    group no search is needed: it holds where a x (the h-th largest exterior lux) >= lux,
+    h = ceil(share x T)."""
+    a = np.asarray(a, dtype=float)
+    need = int(np.ceil(share * year.hours - 1e-9))
+    if need <= 0:
+        return np.ones(a.shape[:-1], bool)
+    if year.sorted is not None:
+        return a[..., 0] * year.sorted[year.hours - need] >= lux
+    return hours_from(year, a, lux) >= need
+
+
 def hours_within(year: DaylightYear, a: np.ndarray, lo: float, hi: float) -> np.ndarray:
     """Occupied hours with ``lo`` <= daylight <= ``hi`` (counts, a.shape[:-1])."""
     a = np.asarray(a, dtype=float)

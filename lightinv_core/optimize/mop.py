@@ -120,9 +120,10 @@ def light_power_range(
     """(light power of the least-power feasible layout, largest feasible light power), lm:
     the interval the epsilon sweep covers when none is given. Its two VNS runs report as
     runs 0 and 1 of ``runs``."""
-    return bounded_range(
+    lo, hi, _ = bounded_range(
         design, light, OBJECTIVES, seed, stop, divisors, cancel, vns_progress, runs
     )
+    return lo, hi
 
 
 def bounded_range(
@@ -135,18 +136,20 @@ def bounded_range(
     cancel: CancelFn | None = None,
     vns_progress: ProgressFn | None = None,
     runs: int = 2,
-) -> tuple[float, float]:
+) -> tuple[float, float, np.ndarray]:
     """(low, high) of the bounded objective ``pair[1]`` over the front: its value at the
-    best feasible layout of ``pair[0]`` and its own best feasible value. Two VNS runs,
-    reported as runs 0 and 1 of ``runs``."""
+    best feasible layout of ``pair[0]`` and its own best feasible value; and the layout
+    at the low end. Two VNS runs, reported as runs 0 and 1 of ``runs``."""
     stop = stop or StopRule(max_evals=5000)
     first, second = _goal(design, pair[0]), _goal(design, pair[1])
     common = (light, seed, stop, divisors)
     hooks = {"cancel": cancel, "vns_progress": vns_progress, "method": "epsilon"}
-    _, _, own = _solve(replace(design, goals=(second, first)), *common, run=(0, runs), **hooks)
-    _, _, other = _solve(replace(design, goals=(first, second)), *common, run=(1, runs), **hooks)
+    _, r_own, own = _solve(replace(design, goals=(second, first)), *common, run=(0, runs), **hooks)
+    _, r_other, other = _solve(
+        replace(design, goals=(first, second)), *common, run=(1, runs), **hooks
+    )
     a, b = own.objectives[pair[1]], other.objectives[pair[1]]
-    return min(a, b), max(a, b)
+    return min(a, b), max(a, b), (r_own.x if a <= b else r_other.x)
 
 
 def epsilon_constraint(
@@ -171,9 +174,9 @@ def epsilon_constraint(
     """
     stop = stop or StopRule(max_evals=20000)
     pair = front_pair(design)
-    first = 0
+    first, x = 0, None
     if epsilons is None:
-        lo, hi = bounded_range(
+        lo, hi, x_lo = bounded_range(
             design,
             light,
             pair,
@@ -186,8 +189,12 @@ def epsilon_constraint(
         )
         epsilons = list(np.linspace(lo, hi, count))
         first = 2
+        if pair[1] not in MAXIMISED_GOALS:
+            # The least value of a minimised bound leaves a band only the tolerance
+            # wide (glazing area at its rule's minimum): start where it was reached.
+            x = x_lo
     mop = replace(design, goals=(_goal(design, pair[0]), _goal(design, pair[1])))
-    solutions, x = [], None
+    solutions = []
     for q, eps in enumerate(epsilons):
         if cancel is not None and cancel():
             break

@@ -48,7 +48,7 @@ from lightinv_core.light.arrays import (
     arrays_field,
     resolve_product,
 )
-from lightinv_core.light.daylight import SDA_SHARE, ScenarioLight
+from lightinv_core.light.daylight import ScenarioLight
 from lightinv_core.light.daylight_year import dimming_sum, sky_groups
 from lightinv_core.light.grids import DesignGrids, design_grids
 from lightinv_core.light.intentions import (
@@ -473,10 +473,13 @@ class DesignProblem:
         sky = np.zeros((self.sky.count, *electric.shape))
         for g, gcols in enumerate(self.sky.cols):
             on = gcols[np.any(V_sky[gcols] != 0, axis=1)]
-            if len(on):
+            if not len(on):
+                continue
+            Vg = V_sky
+            if self.sky.count > 1:  # only this group's rows (the product may read all)
                 Vg = np.zeros_like(V_sky)
                 Vg[on] = V_sky[on]
-                sky[g] = self.light.illuminance(Vg, level.receivers, on)
+            sky[g] = self.light.illuminance(Vg, level.receivers, on)
         parts = ScenarioLight(d.daylight, self.sky, electric, sky, self._year_box)
         return Lit(V, by_kind, cols, parts.lux(Scenario.DESIGN), parts)
 
@@ -544,7 +547,7 @@ class DesignProblem:
             levels = np.clip(d.target_lux / np.maximum(full, 1e-9), d.min_level, 1.0) * year.hours
         standby = d.standby_w * year.every.shape[1]
         energy = (electric * levels + standby) / 1000.0
-        sda = (parts.da(idx) >= SDA_SHARE).mean(axis=0)
+        sda = parts.sda_mark(idx).mean(axis=0)
         return energy, sda
 
     def _penalty(self, lighting: list, n_intent: int, m: int) -> np.ndarray:

@@ -32,6 +32,7 @@ from lightinv_core.light.daylight_year import (
     dimming_sum,
     hours_from,
     hours_within,
+    reaches_share,
 )
 from lightinv_core.light.grids import grid_light
 from lightinv_core.light.model import LightModel
@@ -63,6 +64,9 @@ def test_sorted_hour_statistics_equal_counting_hour_by_hour(groups):
     a[0, 0] = 0.0  # a point no skylight reaches
     lux = np.einsum("pmg,gt->pmt", a, E)
     assert np.array_equal(hours_from(year, a, 300.0), (lux >= 300.0).sum(axis=2))
+    for share in (0.0, 0.3, 0.5, 0.999, 1.0):
+        want = (lux >= 300.0).sum(axis=2) >= np.ceil(share * E.shape[1])
+        assert np.array_equal(reaches_share(year, a, 300.0, share), want)
     within = ((lux >= 100.0) & (lux <= 3000.0)).sum(axis=2)
     assert np.array_equal(hours_within(year, a, 100.0, 3000.0), within)
     b = a.mean(axis=0)  # (m, G): the control plane's mean
