@@ -15,7 +15,7 @@ import argparse
 import sys
 from pathlib import Path
 
-DEMO = Path(__file__).resolve().parent.parent / "resources" / "projects" / "office-demo.json"
+DEMO = Path(__file__).resolve().parent.parent / "resources" / "projects" / "office-integrated.json"
 
 
 def parse_args(argv: list[str]) -> argparse.Namespace:

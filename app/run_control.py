@@ -20,7 +20,7 @@ from app import dialogs
 from app.workers import RunWorker, stop_and_wait
 from lightinv_core.design.solution import ParetoFront, Solution, SolutionInfo
 from lightinv_core.errors import LightInvError
-from lightinv_core.kinds import GoalKind
+from lightinv_core.kinds import MAXIMISED_GOALS
 from lightinv_core.optimize.problem import DesignProblem
 from lightinv_core.optimize.registry import get_method
 
@@ -225,7 +225,7 @@ def _best_of(solutions: tuple[Solution, ...], problem: DesignProblem) -> Solutio
     """The best of several runs' results: feasible first, then by the primary goal."""
     if not solutions:
         return None
-    sign = -1.0 if problem.primary == GoalKind.MAX_LIGHT_POWER else 1.0
+    sign = -1.0 if problem.primary in MAXIMISED_GOALS else 1.0
 
     def key(s: Solution):
         return (not s.feasible, s.penalty, sign * s.objectives.get(problem.primary, np.inf))

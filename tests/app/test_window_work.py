@@ -15,6 +15,8 @@ from PySide6 import QtCore, QtGui, QtTest, QtWidgets
 
 from app import dialogs
 from app.__main__ import DEMO
+
+PAPER_DEMO = DEMO.parent / "office-demo.json"  # power goals: the goal-editing test's start
 from tests.app.conftest import wait_for_operator
 
 pytestmark = pytest.mark.slow
@@ -75,7 +77,7 @@ def test_a_demo_opens_as_an_untitled_copy(qtbot, window, tmp_path, monkeypatch):
     shipped = DEMO.read_bytes()
     assert window.open_path(DEMO)
     assert window.doc.path is None and window.doc.project.name
-    assert "copy of office-demo.json" in window.statusBar().currentMessage()
+    assert f"copy of {DEMO.name}" in window.statusBar().currentMessage()
     target = tmp_path / "my-office"
     monkeypatch.setattr(QtWidgets.QFileDialog, "getSaveFileName", lambda *a, **k: (str(target), ""))
     assert window.save()
@@ -379,7 +381,7 @@ def test_rules_and_goals_are_seen_and_edited(qtbot, window):
     a second goal needed editing the file."""
     from app.panels import RuleDialog
 
-    assert window.open_path(DEMO)
+    assert window.open_path(PAPER_DEMO)
     wait_for_operator(qtbot, window)
     d, tree = window.doc, window.tree
     shown = [
