@@ -107,25 +107,6 @@ def _tagged(progress: ProgressFn | None, run: int, runs: int) -> ProgressFn | No
     return lambda p: progress(replace(p, run=run, runs=runs))
 
 
-def light_power_range(
-    design: Design,
-    light: LightModel,
-    seed: int = 0,
-    stop: StopRule | None = None,
-    divisors=(1,),
-    cancel: CancelFn | None = None,
-    vns_progress: ProgressFn | None = None,
-    runs: int = 2,
-) -> tuple[float, float]:
-    """(light power of the least-power feasible layout, largest feasible light power), lm:
-    the interval the epsilon sweep covers when none is given. Its two VNS runs report as
-    runs 0 and 1 of ``runs``."""
-    lo, hi, _ = bounded_range(
-        design, light, OBJECTIVES, seed, stop, divisors, cancel, vns_progress, runs
-    )
-    return lo, hi
-
-
 def bounded_range(
     design: Design,
     light: LightModel,

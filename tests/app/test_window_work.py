@@ -15,9 +15,9 @@ from PySide6 import QtCore, QtGui, QtTest, QtWidgets
 
 from app import dialogs
 from app.__main__ import DEMO
+from tests.app.conftest import wait_for_operator
 
 PAPER_DEMO = DEMO.parent / "office-demo.json"  # power goals: the goal-editing test's start
-from tests.app.conftest import wait_for_operator
 
 pytestmark = pytest.mark.slow
 

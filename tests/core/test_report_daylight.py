@@ -15,7 +15,7 @@ import pytest
 from matplotlib.image import imread
 
 from lightinv_core.climate.metrics import daylight_metrics
-from lightinv_core.design.model import Daylight, Design, Goal, Intention, Source, Workplane
+from lightinv_core.design.model import Design, Goal, Intention, Workplane
 from lightinv_core.design.solution import ParetoFront
 from lightinv_core.light.daylight import layout_daylight
 from lightinv_core.optimize.problem import DesignProblem
@@ -31,22 +31,12 @@ from lightinv_core.report.daylight import (
 from lightinv_core.report.tables import fmt, objective_text
 from lightinv_core.study import prepare
 from tests.core.test_report import pdf_page_count, pdf_text, squash
+from tests.core.test_scenarios import DAYLIGHT, LUM, SKY
 
 pytestmark = pytest.mark.slow  # PDF reports rendered and read back
 
 SCENE = SceneSpec(builtin="office", resolution=0.5)
 FAST = OperatorSettings(rays=256)
-DAYLIGHT = Daylight(exterior_lux=10000.0, transmittance=0.6, occupancy=(10.0, 14.0))
-SKY = Source("S", "skylight", "skylight", (1.0, 0.5, 3.0, 1.5), free=("u0", "v0", "u1", "v1"))
-LUM = Source(
-    "L",
-    "lum_west",
-    "luminaire",
-    (0.5, 2.0, 1.5, 4.0),
-    free=("flux",),
-    flux=8000.0,
-    flux_range=(0.0, 20000.0),
-)
 INTENTIONS = (
     Intention("desks", group="desks", average=100.0),
     Intention("night", grid="wp", average=150.0, scenario="night"),
