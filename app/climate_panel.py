@@ -403,7 +403,7 @@ class ClimatePanel(QtWidgets.QWidget):
             problems.append(str(exc))
         ld = None
         try:
-            ld = d.layout_daylight()
+            ld = d.layout_daylight(shown=True)
         except LightInvError as exc:
             problems.append(str(exc))
         if ld is None and d.light is None:
@@ -502,7 +502,7 @@ class ClimatePanel(QtWidgets.QWidget):
             w.blockSignals(False)
         if self.isVisible():
             try:
-                ld = self.doc.layout_daylight()
+                ld = self.doc.layout_daylight(shown=True)
             except LightInvError:
                 ld = None
             problems: list[str] = []

@@ -550,6 +550,11 @@ class Daylight:
         start, end = (_finite(h, "daylight occupancy", 0.0, 24.0) for h in hours)
         if not start < end:
             raise DesignError(f"daylight occupancy: start {start:g} h is not before end {end:g} h")
+        if not any(start <= h + 0.5 < end for h in range(24)):
+            raise DesignError(
+                f"daylight occupancy {start:g}-{end:g} h holds no hour: an hour counts when "
+                "its middle (e.g. 8:30 for 8-9) lies in [start, end)"
+            )
         object.__setattr__(self, "occupancy", (start, end))
         if not isinstance(self.weekdays, bool):
             raise DesignError(

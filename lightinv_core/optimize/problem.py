@@ -30,7 +30,7 @@ from functools import cached_property
 import numpy as np
 
 from lightinv_core.design.geometry import rule_names, rule_violations
-from lightinv_core.design.model import Design
+from lightinv_core.design.model import Design, DesignError
 from lightinv_core.design.solution import Solution, SolutionInfo, Violation
 from lightinv_core.design.variables import ArrayLayout, Variables
 from lightinv_core.kinds import (
@@ -257,6 +257,10 @@ class DesignProblem:
         self._year_box: list = []  # the weather year, read at the first annual use
         plane = design.control_plane
         self.control = None if plane is None or self.grids is None else self.grids.spans[plane.name]
+        if self.annual_goals and self.control is None:
+            raise DesignError(
+                "the annual energy and sDA goals are measured on a work plane: add one"
+            )
         self.primary = str(design.goals[0].kind)
         self.objectives = tuple(GoalKind(g.kind) for g in design.goals)
         self.scales = {
@@ -644,11 +648,19 @@ class DesignProblem:
             if g > 0
         ]
         penalty = float("inf")
+        goals = ev.goals
         if ev.ok[0]:
             # Penalty and violations from one computation, at the judging tolerance.
             excess: list[np.ndarray] = []
+            judged = None
+            if self.design.intentions or (self.annual_goals and self.design.arrays):
+                judged = self._judged_light(x, lv)
+            if self.annual_goals and self.design.arrays:
+                # The year's goals from the arrays placed exactly, as the intentions.
+                energy, sda = self._annual_goals(judged, lv, ev.goals["min_electric_power"])
+                goals = {**ev.goals, "min_annual_energy": energy, "max_sda": sda}
             if self.design.intentions:
-                checks = self._checks(self._judged_light(x, lv), lv)
+                checks = self._checks(judged, lv)
                 excess += [chk.c - JUDGED_TOL for chk in checks]
                 for chk in checks:
                     if chk.c[0] > JUDGED_TOL:
@@ -664,17 +676,17 @@ class DesignProblem:
                             )
                         )
             n_intent = len(excess)
-            for kind, bound, c in self._epsilon_terms(ev.goals):
+            for kind, bound, c in self._epsilon_terms(goals):
                 excess.append(c - JUDGED_TOL)
                 if c[0] > JUDGED_TOL:
-                    value = float(ev.goals[kind][0])
+                    value = float(goals[kind][0])
                     units = GOAL_UNITS[GoalKind(kind)]
                     viol.append(
                         Violation(f"epsilon {kind}", "epsilon", float(c[0]), value, bound, units)
                     )
             penalty = float(self._penalty(excess, n_intent, 1)[0])
         wanted = {g.kind for g in self.design.goals} | {k for k, _ in self.epsilon}
-        objectives = {str(k): float(ev.goals[k][0]) for k in GoalKind if k in wanted}
+        objectives = {str(k): float(goals[k][0]) for k in GoalKind if k in wanted}
         return Solution(
             self.sources_at(x),
             objectives,

@@ -26,6 +26,7 @@ import numpy as np
 from lightinv_core.design.model import Design
 from lightinv_core.design.solution import Solution
 from lightinv_core.kinds import MAXIMISED_GOALS, GoalKind, SourceKind
+from lightinv_core.light.arrays import resolve_product
 from lightinv_core.light.model import LightModel
 from lightinv_core.optimize.mop import CLIMATE, OBJECTIVES, front_pair
 from lightinv_core.optimize.pareto import hypervolume_2d
@@ -68,12 +69,14 @@ class FrontQuality:
 def front_scales(design: Design, light: LightModel) -> tuple[float, float]:
     """The normalisation of a front of ``design``: (P_max in W, L_max in lm), or for a
     climate front (E_max in kWh, A_max in m²)."""
+    # The arrays' products count towards the scales, as the optimiser's own.
+    products = [resolve_product(a.product, a.watts) for a in design.arrays]
     if front_pair(design) == CLIMATE:
-        return energy_scale(design, light), glazing_scale(design, light)
+        return energy_scale(design, light, products), glazing_scale(design, light)
     goal = next((g for g in design.goals if g.kind == GoalKind.MAX_LIGHT_POWER), None)
     kinds = (goal.kinds if goal else ()) or tuple(SourceKind)
     counted = [s for s in design.sources if s.kind in kinds]
-    return electric_scale(design, light), light.power_scale(counted, design.daylight)
+    return electric_scale(design, light, products), light.power_scale(counted, design.daylight)
 
 
 def normalised(F: np.ndarray, scales: tuple[float, float], pair=OBJECTIVES) -> np.ndarray:
