@@ -365,3 +365,57 @@ def test_the_calendar_of_the_hour_slider():
     for h in (0, 23, 24, 1416, 4116, 8759):
         assert hour_index(*hour_date(h)) == h
     assert hour_index(2, 31, 5) == hour_index(2, 28, 5)  # past the month's end: its last day
+
+
+def test_the_integrated_demo_from_run_to_report(qtbot, window, tmp_path):
+    """The session the demo is for: open it, run its front of glazing against energy,
+    load its two ends (the view and the Climate tab follow), export the report."""
+    import subprocess
+    from dataclasses import replace
+    from pathlib import Path
+
+    from app.__main__ import DEMO
+    from lightinv_core.project import OperatorSettings, load_project
+
+    project = load_project(DEMO)
+    project = replace(
+        project,
+        scene=replace(project.scene, resolution=0.5),
+        operator=OperatorSettings(rays=256),
+        optimizer=replace(project.optimizer, epsilon_count=3, max_evals=3000),
+    )
+    assert window.load_project(project)
+    wait_for_operator(qtbot, window)
+    with qtbot.waitSignal(window.runs.finished, timeout=120_000) as blocker:
+        assert window.runs.start()
+    assert blocker.args[0] == "feasible"
+    front = window.doc.project.runs[-1].pareto
+    assert front.objectives == ("min_annual_energy", "min_glazing_area")
+    ends = sorted(front.solutions, key=lambda s: s.objectives["min_glazing_area"])
+    small, large = ends[0], ends[-1]
+    assert small.objectives["min_annual_energy"] > large.objectives["min_annual_energy"]
+    panel = window.solutions_panel
+    energies = []
+    for sol in (small, large):
+        assert panel.load(panel.index_of(sol))
+        window.tabs.setCurrentWidget(window.climate_panel)
+        QtWidgets.QApplication.processEvents()
+        e = window.doc.layout_daylight().energy().energy_kwh
+        assert e == pytest.approx(sol.objectives["min_annual_energy"], rel=1e-6)
+        assert f"Annual {e:,.1f} kWh" in window.climate_panel.energy_text.text()
+        energies.append(e)
+        window.tabs.setCurrentWidget(panel)
+    assert energies[0] > energies[1]
+    _grab(window, "/tmp/climate_demo_front.png")
+    window.tabs.setCurrentWidget(window.climate_panel)
+    _grab(window, "/tmp/climate_demo_climate.png")
+    pdf = tmp_path / "demo.pdf"
+    assert window.export_report(pdf)
+    qtbot.waitUntil(lambda: window.tasks.worker is None, timeout=120_000)
+    assert pdf.read_bytes()[:4] == b"%PDF"
+    if shutil.which("pdftotext"):
+        text = subprocess.run(
+            ["pdftotext", str(pdf), "-"], capture_output=True, text=True, check=True
+        ).stdout
+        assert "Daylight-linked dimming energy" in text and "LENI" in text
+    assert Path(pdf).stat().st_size > 10_000
