@@ -123,6 +123,8 @@ def daylight_year(groups: SkyGroups, daylight: Daylight) -> DaylightYear:
     path = weather_path(daylight)
     try:
         stat = os.stat(path)
+    except FileNotFoundError:
+        raise WeatherError(f"weather file {str(path)!r} does not exist; check the path") from None
     except OSError as exc:
         raise WeatherError(f"weather file {str(path)!r}: {exc.strerror or exc}") from None
     key = (

@@ -1105,6 +1105,39 @@ def _(d):
     return project_error(d, change)
 
 
+@case(
+    "project-occupancy-empty",
+    "project file",
+    "a daylight occupancy from 8:36 to 9:24 (`[8.6, 9.4]`), which holds no hour's middle",
+    ProjectError,
+    "holds no hour",
+)
+def _(d):
+    return project_error(d, setter("daylight", {"occupancy": [8.6, 9.4]}))
+
+
+@case(
+    "project-annual-lux",
+    "project file",
+    'an illuminance intention in the annual scenario (`"scenario": "annual"`)',
+    ProjectError,
+    "the annual scenario bounds a daylight metric",
+)
+def _(d):
+    return project_error(d, setter("intentions.0.scenario", "annual"))
+
+
+@case(
+    "project-annual-goal-no-plane",
+    "project file",
+    "the goal least annual energy in a design without a work plane",
+    ProjectError,
+    "are measured on a work plane",
+)
+def _(d):
+    return project_error(d, setter("goals", [{"kind": "min_annual_energy"}]))
+
+
 # --- project files: when the scene is loaded and the problem built ------------------------
 
 
@@ -1219,6 +1252,23 @@ def _(d):
     return problem_error(
         d, setter("intentions.0", {"name": "floor light", "patches": [99999], "min": 1})
     )
+
+
+@case(
+    "project-weather-missing",
+    "project scene",
+    "a DA300 intention with a weather file that is not there (`nowhere.epw`)",
+    WeatherError,
+    "nowhere.epw",
+    "does not exist; check the path",
+)
+def _(d):
+    def change(data):
+        data["daylight"] = {"weather": "nowhere.epw"}
+        data["intentions"] = [{"name": "da", "group": "floor", "quantity": "da", "average": 0.5}]
+
+    problem = build_problem(d, change)
+    return raised(lambda: problem.evaluate(problem.vars.initial()[None]))
 
 
 # --- constraints infeasible on their face ------------------------------------------------
