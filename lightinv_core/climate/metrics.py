@@ -74,6 +74,13 @@ def daylight_metrics(lux: np.ndarray) -> DaylightMetrics:
     return DaylightMetrics(da, udi, float((da >= 0.5).mean()))
 
 
+def lighting_kwh(watts, level_hours, standby_w: float, standby_hours: float):
+    """Energy (kWh) of luminaires drawing ``watts`` (W) at full output for
+    ``level_hours`` (their dimming level summed over the hours they are on), plus
+    ``standby_w`` (W) drawn for ``standby_hours``: power proportional to the level."""
+    return (watts * level_hours + standby_w * standby_hours) / 1000.0
+
+
 @dataclass(frozen=True)
 class Dimming:
     """Daylight-linked dimming over a year: the level (0-1) per occupied hour, the
@@ -106,6 +113,6 @@ def dimming_energy(
         raise LightInvError("LENI needs a floor area above 0 m²")
     need = (target_lux - np.asarray(daylight_mean, dtype=float)) / electric_mean
     levels = np.clip(need, min_level, 1.0)
-    energy = (installed_w * levels.sum() + standby_w * hours_per_year) / 1000.0
-    full = (installed_w * len(levels) + standby_w * hours_per_year) / 1000.0
+    energy = lighting_kwh(installed_w, levels.sum(), standby_w, hours_per_year)
+    full = lighting_kwh(installed_w, len(levels), standby_w, hours_per_year)
     return Dimming(levels, float(energy), float(energy / floor_area_m2), float(full))

@@ -87,6 +87,27 @@ def _column(df, names: tuple[str, ...], source: str) -> np.ndarray:
     raise WeatherError(f"{source}: no column {names[0]!r}; is it an EPW or TMY3 weather file?")
 
 
+_LOADED: dict[tuple, Weather] = {}
+MAX_LOADED = 4
+
+
+def load_weather(path: str | os.PathLike) -> Weather:
+    """``read_weather``, remembered while the file is unchanged (its path, size and
+    modification time): the optimiser's year and the window read a file once."""
+    p = BUILTIN if str(path) == "builtin" else Path(path)
+    try:
+        stat = p.stat()
+    except OSError:
+        return read_weather(p)  # says why: missing or unreadable
+    key = (str(p), stat.st_mtime_ns, stat.st_size)
+    if key not in _LOADED:
+        weather = read_weather(p)
+        if len(_LOADED) >= MAX_LOADED:
+            _LOADED.pop(next(iter(_LOADED)))
+        _LOADED[key] = weather
+    return _LOADED[key]
+
+
 def read_weather(path: str | os.PathLike) -> Weather:
     """Read an EPW (``.epw``) or TMY3 (``.csv``) weather file; ``"builtin"`` reads the
     shipped Greensboro TMY3 file."""

@@ -11,14 +11,14 @@ sky and the dimming do in one hour (docs/daylight.md).
 from __future__ import annotations
 
 import datetime as _dt
-import os
 from dataclasses import dataclass
 
 import numpy as np
 
-from lightinv_core.climate.weather import BUILTIN, Weather, WeatherError, read_weather
+from lightinv_core.climate.weather import Weather, load_weather
 from lightinv_core.design.model import Daylight, Design
 from lightinv_core.light.daylight import LayoutDaylight, layout_daylight
+from lightinv_core.light.daylight_year import weather_path
 
 MONTHS = ("Jan", "Feb", "Mar", "Apr", "May", "Jun", "Jul", "Aug", "Sep", "Oct", "Nov", "Dec")
 HOURS_PER_YEAR = 8760
@@ -48,29 +48,10 @@ def month_days(month: int) -> int:
     return (nxt - _dt.date(_YEAR, month, 1)).days
 
 
-_WEATHER: dict[tuple, Weather] = {}
-
-
-def weather_path(daylight: Daylight) -> str:
-    """The weather file a daylight names ("builtin": the shipped TMY3)."""
-    return str(BUILTIN) if daylight.weather == "builtin" else daylight.weather
-
-
 def weather_of(daylight: Daylight) -> Weather:
     """The weather file ``daylight`` names, read once while the file is unchanged
     (WeatherError when it cannot be read)."""
-    path = weather_path(daylight)
-    try:
-        stat = os.stat(path)
-    except OSError as exc:
-        raise WeatherError(f"weather file {path!r}: {exc.strerror or exc}") from None
-    key = (path, stat.st_mtime_ns, stat.st_size)
-    if key not in _WEATHER:
-        weather = read_weather(path)
-        if len(_WEATHER) >= 4:
-            _WEATHER.pop(next(iter(_WEATHER)))
-        _WEATHER[key] = weather
-    return _WEATHER[key]
+    return load_weather(weather_path(daylight))
 
 
 def site_text(weather: Weather) -> str:

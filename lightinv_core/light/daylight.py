@@ -20,7 +20,7 @@ from dataclasses import dataclass, field, replace
 
 import numpy as np
 
-from lightinv_core.climate.metrics import DA_THRESHOLD, UDI_BANDS
+from lightinv_core.climate.metrics import DA_THRESHOLD, UDI_BANDS, lighting_kwh
 from lightinv_core.design.model import Daylight, Design, DesignError, Intention
 from lightinv_core.kinds import Quantity, Scenario, SourceKind
 from lightinv_core.light.daylight_year import (
@@ -142,20 +142,21 @@ def annual_energy(
     d = light.daylight
     y = light.year()
     full = float(light.electric[grid_idx, 0].mean())
-    b = light.sky[:, grid_idx, 0].mean(axis=1) if light.groups.count else np.zeros(0)
-    if light.groups.count:
-        levels = dimming_levels(y, b, full, d.target_lux, d.min_level)
-    else:
-        levels = np.full(y.hours, np.clip(d.target_lux / max(full, 1e-9), d.min_level, 1.0))
+    # Without skylights there are no sky groups: b is empty and the daylight zero.
+    b = light.sky[:, grid_idx, 0].mean(axis=1)
+    levels = dimming_levels(y, b, full, d.target_lux, d.min_level)
     hours_year = y.every.shape[1]
-    standby = d.standby_w * hours_year / 1000.0
-    energy = installed_w * levels.sum() / 1000.0 + standby
-    full_kwh = installed_w * y.hours / 1000.0 + standby
-    monthly = []
+    energy = lighting_kwh(installed_w, levels.sum(), d.standby_w, hours_year)
+    full_kwh = lighting_kwh(installed_w, y.hours, d.standby_w, hours_year)
     per_month = np.bincount(np.asarray(y.times.month) - 1, minlength=12)
-    for mth in range(1, 13):
-        lit = installed_w * levels[y.months == mth].sum() / 1000.0
-        monthly.append(float(lit + d.standby_w * per_month[mth - 1] / 1000.0))
+    monthly = [
+        float(
+            lighting_kwh(
+                installed_w, levels[y.months == mth].sum(), d.standby_w, per_month[mth - 1]
+            )
+        )
+        for mth in range(1, 13)
+    ]
     floor = max(float(floor_m2), 1e-9)
     return AnnualEnergy(
         float(energy),

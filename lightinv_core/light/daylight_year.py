@@ -20,7 +20,6 @@ docs/daylight.md gives both speeds).
 
 from __future__ import annotations
 
-import os
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -118,19 +117,12 @@ def daylight_year(groups: SkyGroups, daylight: Daylight) -> DaylightYear:
     """The year of ``groups`` under ``daylight``'s weather, orientation and schedule
     (remembered while the file is unchanged; pvlib is imported here only)."""
     from lightinv_core.climate.transposition import plane_illuminance, sun_and_sky
-    from lightinv_core.climate.weather import WeatherError, read_weather
+    from lightinv_core.climate.weather import WeatherError, load_weather
 
-    path = weather_path(daylight)
-    try:
-        stat = os.stat(path)
-    except FileNotFoundError:
-        raise WeatherError(f"weather file {str(path)!r} does not exist; check the path") from None
-    except OSError as exc:
-        raise WeatherError(f"weather file {str(path)!r}: {exc.strerror or exc}") from None
+    weather = load_weather(weather_path(daylight))
+    # The weather is one object while its file is unchanged: it keys the year.
     key = (
-        str(path),
-        stat.st_mtime_ns,
-        stat.st_size,
+        weather,
         daylight.north_deg,
         daylight.ground_reflectance,
         daylight.occupancy,
@@ -139,7 +131,6 @@ def daylight_year(groups: SkyGroups, daylight: Daylight) -> DaylightYear:
     )
     if key in _YEARS:
         return _YEARS[key]
-    weather = read_weather(path)
     sky = sun_and_sky(weather)
     every = np.zeros((groups.count, weather.hours))
     for g, n in enumerate(groups.outward):
@@ -157,7 +148,7 @@ def daylight_year(groups: SkyGroups, daylight: Daylight) -> DaylightYear:
         srt = np.sort(exterior[0])
         prefix = np.concatenate([[0.0], np.cumsum(srt)])
     year = DaylightYear(
-        weather.name, str(path), weather.times, every, mask, exterior, months, srt, prefix
+        weather.name, weather.source, weather.times, every, mask, exterior, months, srt, prefix
     )
     if len(_YEARS) >= MAX_CACHED_YEARS:
         _YEARS.pop(next(iter(_YEARS)))
@@ -174,6 +165,16 @@ def _thresholds(lux: float, a: np.ndarray) -> np.ndarray:
         return np.where(a > 0, lux / np.where(a > 0, a, 1.0), np.inf)
 
 
+def _count_hours(year: DaylightYear, a: np.ndarray, test) -> np.ndarray:
+    """Occupied hours whose daylight passes ``test`` at receivers of coefficients ``a``
+    (..., G), counted hour by hour: the way for several sky groups."""
+    flat = a.reshape(-1, a.shape[-1])
+    out = np.empty(len(flat), np.int64)
+    for i in range(0, len(flat), 256):  # (256, T) lux at a time
+        out[i : i + 256] = test(flat[i : i + 256] @ year.exterior).sum(axis=1)
+    return out.reshape(a.shape[:-1])
+
+
 def hours_from(year: DaylightYear, a: np.ndarray, lux: float) -> np.ndarray:
     """Occupied hours with daylight >= ``lux`` at receivers of coefficients ``a``
     (..., G): counts of shape a.shape[:-1]."""
@@ -181,11 +182,7 @@ def hours_from(year: DaylightYear, a: np.ndarray, lux: float) -> np.ndarray:
     if year.sorted is not None:
         thr = _thresholds(lux, a[..., 0])
         return year.hours - np.searchsorted(year.sorted, thr, side="left")
-    flat = a.reshape(-1, a.shape[-1])
-    out = np.empty(len(flat), np.int64)
-    for i in range(0, len(flat), 256):  # (256, T) lux at a time
-        out[i : i + 256] = ((flat[i : i + 256] @ year.exterior) >= lux).sum(axis=1)
-    return out.reshape(a.shape[:-1])
+    return _count_hours(year, a, lambda lux_t: lux_t >= lux)
 
 
 def reaches_share(year: DaylightYear, a: np.ndarray, lux: float, share: float) -> np.ndarray:
@@ -208,12 +205,7 @@ def hours_within(year: DaylightYear, a: np.ndarray, lo: float, hi: float) -> np.
     if year.sorted is not None:
         upper = np.searchsorted(year.sorted, _thresholds(hi, a[..., 0]), side="right")
         return upper - np.searchsorted(year.sorted, _thresholds(lo, a[..., 0]), side="left")
-    flat = a.reshape(-1, a.shape[-1])
-    out = np.empty(len(flat), np.int64)
-    for i in range(0, len(flat), 256):
-        lux = flat[i : i + 256] @ year.exterior
-        out[i : i + 256] = ((lux >= lo) & (lux <= hi)).sum(axis=1)
-    return out.reshape(a.shape[:-1])
+    return _count_hours(year, a, lambda lux: (lux >= lo) & (lux <= hi))
 
 
 def dimming_sum(

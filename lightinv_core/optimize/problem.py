@@ -29,6 +29,7 @@ from functools import cached_property
 
 import numpy as np
 
+from lightinv_core.climate.metrics import lighting_kwh
 from lightinv_core.design.geometry import rule_names, rule_violations
 from lightinv_core.design.model import Design, DesignError
 from lightinv_core.design.solution import Solution, SolutionInfo, Violation
@@ -544,13 +545,10 @@ class DesignProblem:
         idx = len(level.rows) + np.arange(self.control.start, self.control.stop)
         year = parts.year()
         full = parts.electric[idx].mean(axis=0)
-        if self.sky.count:
-            b = parts.sky[:, idx].mean(axis=1).T
-            levels = dimming_sum(year, b, full, d.target_lux, d.min_level)
-        else:
-            levels = np.clip(d.target_lux / np.maximum(full, 1e-9), d.min_level, 1.0) * year.hours
-        standby = d.standby_w * year.every.shape[1]
-        energy = (electric * levels + standby) / 1000.0
+        # Without skylights there are no sky groups: b is (m, 0) and the daylight zero.
+        b = parts.sky[:, idx].mean(axis=1).T
+        levels = dimming_sum(year, b, full, d.target_lux, d.min_level)
+        energy = lighting_kwh(electric, levels, d.standby_w, year.every.shape[1])
         sda = parts.sda_mark(idx).mean(axis=0)
         return energy, sda
 
