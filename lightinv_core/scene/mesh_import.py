@@ -484,6 +484,7 @@ def read_ply(path: Path) -> Model:
         )
     v = np.asarray(mesh.vertices, float)
     tri = np.asarray(faces, np.int64)
+    _check_vertex_numbers(tri, len(v), path)
     if getattr(mesh.visual, "kind", None) != "face":
         return Model([Part(v, tri, path.stem, None, f"{clip(path.stem)}")], {}, [], "PLY colour")
     rgb = np.asarray(mesh.visual.face_colors)[:, :3]
@@ -495,6 +496,27 @@ def read_ply(path: Path) -> Model:
         lin = srgb_to_linear(colour / 255.0)
         model.colours[group] = float(0.2126 * lin[0] + 0.7152 * lin[1] + 0.0722 * lin[2])
     return model
+
+
+def _check_vertex_numbers(tri: np.ndarray, nv: int, path: Path) -> None:
+    """ObjImportError naming the first face whose vertex numbers are not those of a
+    vertex of the file (0 to nv - 1; trimesh passes them through unchecked)."""
+    bad = np.flatnonzero(((tri < 0) | (tri >= nv)).any(axis=1))
+    if len(bad) == 0:
+        return
+    k = int(bad[0])
+    number = int(tri[k][(tri[k] < 0) | (tri[k] >= nv)][0])
+    # trimesh splits polygons into triangles: the triangle is the face when the file
+    # declares as many faces as there are triangles.
+    declared = ply_counts(path).faces
+    where = f"face {k + 1:,}"
+    if declared != len(tri):
+        where = f"triangle {k + 1:,} (of its faces split)"
+    has = f"{nv:,} vertices (numbered 0 to {nv - 1:,})" if nv else "no vertices"
+    raise ObjImportError(
+        f"{path.name}: {where} names vertex {number:,}, but the file has {has}; the file "
+        "is damaged, export it again"
+    )
 
 
 # --- to the OBJ importer's faces -------------------------------------------------------------

@@ -527,3 +527,31 @@ def test_bad_ply_files(tmp_path):
     (tmp_path / "b.ply").write_text(cloud)
     with pytest.raises(ObjImportError, match=r"b\.ply: no faces found \(3 vertices\)"):
         load_mesh(tmp_path / "b.ply")
+
+
+PLY_HEAD = (
+    "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+    "property float z\nelement face {n}\nproperty list uchar int vertex_indices\nend_header\n"
+    "0 0 0\n1 0 0\n0 1 0\n"
+)
+
+
+@pytest.mark.parametrize(
+    ("faces", "where", "number"),
+    [
+        (["3 0 1 99999999"], "face 1", "99,999,999"),
+        (["3 0 1 2", "3 2 1 -1"], "face 2", "-1"),
+        (["4 0 1 2 7"], "triangle 2 (of its faces split)", "7"),
+    ],
+)
+def test_a_ply_face_naming_a_missing_vertex_is_a_one_line_error(tmp_path, faces, where, number):
+    """trimesh passes vertex numbers through unchecked: 99,999,999 of 3 was an IndexError
+    traceback, and -1 silently took the last vertex."""
+    path = tmp_path / "bad.ply"
+    path.write_text(PLY_HEAD.format(n=len(faces)) + "\n".join(faces) + "\n")
+    with pytest.raises(ObjImportError) as info:
+        load_mesh(path)
+    assert str(info.value) == (
+        f"bad.ply: {where} names vertex {number}, but the file has 3 vertices (numbered 0 "
+        "to 2); the file is damaged, export it again"
+    )
