@@ -17,6 +17,7 @@ IFC file is read: the core works without them.
 from __future__ import annotations
 
 import os
+import re
 from collections.abc import Iterator
 from pathlib import Path
 
@@ -142,14 +143,59 @@ def _open(ifcopenshell, path: Path):
         raise ObjImportError(
             f"IFC file '{path}' is not a file (a folder or device); give the path of the file"
         )
+    _check_complete(path)
+    log = getattr(ifcopenshell, "get_log", lambda: "")
+    log()  # the parser's log is read and cleared: start from an empty one
     try:
-        return ifcopenshell.open(str(path))
+        model = ifcopenshell.open(str(path))
     except Exception as exc:  # ifcopenshell raises its own and plain errors on bad files
         text = " ".join(str(exc).split())[:80] or type(exc).__name__
         raise ObjImportError(
             f"{fname}: cannot read it as IFC ({text}); export the model as IFC2X3 or IFC4 "
             "(STEP, .ifc)"
         ) from None
+    _check_references(log(), fname)
+    return model
+
+
+STEP_START = b"ISO-10303-21;"
+STEP_END = b"END-ISO-10303-21;"
+TAIL_BYTES = 4096
+
+
+def _check_complete(path: Path) -> None:
+    """ObjImportError if a STEP file does not end with ``END-ISO-10303-21;``: a file cut
+    short (a copy or download that stopped) reads without an error in ifcopenshell and
+    would import as a partial building. Files that do not start as STEP files are left
+    to ifcopenshell's own error."""
+    size = path.stat().st_size
+    with open(path, "rb") as fh:
+        head = fh.read(64).lstrip(b"\xef\xbb\xbf \t\r\n")
+        fh.seek(max(0, size - TAIL_BYTES))
+        tail = fh.read()
+    if not head.upper().startswith(STEP_START) or STEP_END in tail.upper():
+        return
+    last = tail.rstrip().rsplit(b"\n", 1)[-1].decode("latin-1").strip()
+    raise ObjImportError(
+        f"{path.name}: the file is cut short (it ends after {size:,} bytes with "
+        f"{clip(last[:40])}, not with END-ISO-10303-21; as every IFC file does), so it holds "
+        "only part of the model; copy or export it again"
+    )
+
+
+def _check_references(log: str, fname: str) -> None:
+    """ObjImportError if the parser found references to entities missing from the file
+    (``#12 used by #40 ... not found``): a damaged file that would import with elements
+    or parts of them silently missing."""
+    missing = re.findall(r"Instance reference (#\d+) used by instance (#\d+)", log)
+    if not missing:
+        return
+    shown = ", ".join(f"{a} (used by {b})" for a, b in missing[:LISTED])
+    more = ", ..." if len(missing) > LISTED else ""
+    raise ObjImportError(
+        f"{fname}: {len(missing)} reference(s) to entities that are not in the file "
+        f"({shown}{more}); the file is damaged or incomplete, export it again"
+    )
 
 
 def _elements(ifcopenshell, model, fname: str) -> tuple[list[Element], list[str]]:
