@@ -189,7 +189,10 @@ def _scene(args):
 
 
 def cmd_scene_info(args) -> int:
-    """Patch count, area, groups and emitter zones of a scene."""
+    """Patch count, area, groups and emitter zones of a scene, and for a model file its
+    import report (what each element or group became, what was dropped and why)."""
+    from lightinv_core.scene.import_report import report_of
+
     scene = _scene(args)
     p = mesh_patches(scene)
     groups = [
@@ -225,6 +228,9 @@ def cmd_scene_info(args) -> int:
         "zones": zones,
         "warnings": list(scene.info.get("warnings", [])),
     }
+    report = report_of(scene)
+    if report is not None:
+        info["import_report"] = report.to_dict()
     lines = [
         f"{scene.name}: {p.n:,} patches, {info['area_m2']:.1f} m² "
         f"(resolution {scene.resolution} m)",
@@ -240,6 +246,8 @@ def cmd_scene_info(args) -> int:
         + (f", polygon of {len(z['outline'])} corners" if z["outline"] else "")
         for z in zones
     ]
+    if report is not None:
+        lines += ["import report:", *(f"  {line}" for line in report.lines())]
     lines += [f"warning: {w}" for w in info["warnings"]]
     _out(args, info, "\n".join(lines))
     return 0

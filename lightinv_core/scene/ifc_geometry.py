@@ -42,6 +42,17 @@ class Element:
     roof_host: bool = False  # a window in an opening of a roof or roof slab
 
 
+@dataclass(frozen=True)
+class Part:
+    """A part merged into the element of the window it makes up (a frame, a pane): its
+    id, class and name, and the window's id in the file."""
+
+    id: int
+    ifc_class: str
+    name: str
+    window: int
+
+
 @dataclass
 class Plane:
     """The faces of one element in one plane: unit normal, offset (n . x), in-plane axes
@@ -103,9 +114,11 @@ def planes_of(elements: list[Element], role: Callable[[Element, np.ndarray], str
     return out
 
 
-def cut_contacts(planes: list[Plane], shapely) -> float:
+def cut_contacts(planes: list[Plane], shapely, failed: list | None = None) -> float:
     """Cut from every plane the faces of planes lying on it facing the other way (two
-    elements touching, a window in its opening); returns the area cut (m²)."""
+    elements touching, a window in its opening); returns the area cut (m²). A cut that
+    shapely cannot make is skipped (the plane kept whole) and recorded in ``failed`` as
+    ``Failure``."""
     from scipy.spatial import cKDTree
 
     if not planes:
@@ -125,7 +138,13 @@ def cut_contacts(planes: list[Plane], shapely) -> float:
             cut.append(p.shape)
             continue
         touching = [_project(planes[j], p, shapely) for j in others]
-        cut.append(p.shape.difference(shapely.union_all(touching, grid_size=GRID), grid_size=GRID))
+        try:
+            cut.append(
+                p.shape.difference(shapely.union_all(touching, grid_size=GRID), grid_size=GRID)
+            )
+        except shapely.errors.GEOSException as exc:
+            cut.append(p.shape)
+            _record(failed, p.element, planes[others[0]].element, "contact", exc)
     for p, shape in zip(planes, cut, strict=True):
         p.shape = shape
     return before - sum(p.shape.area for p in planes)
@@ -142,11 +161,14 @@ def _project(q: Plane, p: Plane, shapely):
     return shapely.transform(q.shape, to_p)
 
 
-def cut_sections(planes: list[Plane], elements: list[Element], shapely) -> float:
+def cut_sections(
+    planes: list[Plane], elements: list[Element], shapely, failed: list | None = None
+) -> float:
     """Cut from every plane what other elements occupy just in front of it (a slab
     running into a wall, a wall through a slab): each element near the plane is sliced
     ``SECTION_OFFSET`` in front of it and the section's inside (even-odd) is removed;
-    returns the area cut (m²)."""
+    returns the area cut (m²). A section shapely cannot cut away is skipped (that part
+    of the plane kept) and recorded in ``failed`` as ``Failure``."""
     if not planes:
         return 0.0
     lo = np.array([e.vertices.min(axis=0) for e in elements])
@@ -166,14 +188,50 @@ def cut_sections(planes: list[Plane], elements: list[Element], shapely) -> float
         for k in np.flatnonzero(near):
             if not _straddles(corners[k], p.normal, level):
                 continue
-            section = _section(elements[k], edges[k], p, level, shapely)
-            if section is not None and section.intersects(p.shape):
-                sections.append(section)
+            try:
+                section = _section(elements[k], edges[k], p, level, shapely)
+                if section is not None and section.intersects(p.shape):
+                    sections.append((int(k), section))
+            except shapely.errors.GEOSException as exc:
+                _record(failed, p.element, int(k), "section", exc)
         if sections:
-            p.shape = p.shape.difference(
-                shapely.union_all(sections, grid_size=GRID), grid_size=GRID
-            )
+            p.shape = _cut_away(p, sections, shapely, failed)
     return before - sum(p.shape.area for p in planes)
+
+
+@dataclass(frozen=True)
+class Failure:
+    """A cut shapely could not make: plane of element ``element`` against element
+    ``other`` (indices into the element list), at ``stage`` ("contact", "section"), with
+    GEOS's message."""
+
+    element: int
+    other: int
+    stage: str
+    message: str
+
+
+def _record(failed: list | None, element: int, other: int, stage: str, exc: Exception) -> None:
+    if failed is None:
+        raise exc
+    failed.append(Failure(element, other, stage, " ".join(str(exc).split())[:120]))
+
+
+def _cut_away(p: Plane, sections: list[tuple[int, object]], shapely, failed):
+    """``p.shape`` less the sections (element index, area): all at once, or, when
+    shapely fails on that, one by one, skipping those it cannot cut."""
+    try:
+        union = shapely.union_all([s for _, s in sections], grid_size=GRID)
+        return p.shape.difference(union, grid_size=GRID)
+    except shapely.errors.GEOSException:
+        pass
+    shape = p.shape
+    for k, section in sections:
+        try:
+            shape = shape.difference(section, grid_size=GRID)
+        except shapely.errors.GEOSException as exc:
+            _record(failed, p.element, k, "section", exc)
+    return shape
 
 
 SECTION_OFFSET = 0.73e-3
@@ -217,7 +275,12 @@ def _section(e: Element, edges, p: Plane, level: float, shapely):
     seg = per_tri[tri][crossing[per_tri[tri]]].reshape(-1, 2)
     area = None
     for ring in _rings(seg.tolist()):
-        face = shapely.make_valid(shapely.Polygon(point[ring]))
+        # A ring that runs out and back along itself (a zero-thickness part of the
+        # element) is made valid as lines besides areas: only the areas are a section.
+        face = polygons(shapely.make_valid(shapely.Polygon(point[ring])))
+        if not face:
+            continue
+        face = shapely.union_all(face, grid_size=GRID)
         area = face if area is None else area.symmetric_difference(face, grid_size=GRID)
     return area
 
@@ -278,12 +341,17 @@ def _samples(poly, shapely) -> np.ndarray:
 
 
 def cull_outside(
-    planes: list[Plane], elements: list[Element], centre: np.ndarray, shapely
+    planes: list[Plane],
+    elements: list[Element],
+    centre: np.ndarray,
+    shapely,
+    keep: Callable[[Plane], bool] | None = None,
 ) -> float:
     """Split each plane into its polygons and keep those that see the inside of the
     building: at least ``INSIDE`` of the rays from their front hit a front face (rays
-    that escape, or that start inside an element and hit a back face, do not); returns
-    the area left out (m²)."""
+    that escape, or that start inside an element and hit a back face, do not); planes
+    for which ``keep(plane)`` is true are kept without the test. Returns the area left
+    out (m²)."""
     from embreex import rtcore_scene as rtcs
     from embreex.mesh_construction import TriangleMesh
 
@@ -295,8 +363,12 @@ def cull_outside(
     local = _hemisphere(RAYS)
     pieces, origins, dirs, owner = [], [], [], []
     for p in planes:
+        kept = keep is not None and keep(p)
         for poly in polygons(p.shape):
             if poly.area < MIN_PIECE:
+                continue
+            if kept:
+                p.pieces.append(poly)
                 continue
             uv = _samples(poly, shapely)
             xyz = p.offset * p.normal + uv[:, :1] * p.u + uv[:, 1:2] * p.v - centre

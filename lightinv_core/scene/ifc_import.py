@@ -28,6 +28,7 @@ from lightinv_core.scene.facets import row_ids
 from lightinv_core.scene.ifc_geometry import (
     GRID,
     Element,
+    Part,
     Plane,
     centre_of,
     cull_outside,
@@ -36,6 +37,8 @@ from lightinv_core.scene.ifc_geometry import (
     planes_of,
     rectangles,
 )
+from lightinv_core.scene.ifc_report import SKIPPED_REASONS, Stages, ifc_report
+from lightinv_core.scene.import_report import KEY as REPORT_KEY
 from lightinv_core.scene.mesh_import import FacePlaces
 from lightinv_core.scene.model import Scene
 from lightinv_core.scene.obj_geometry import z_up
@@ -45,14 +48,8 @@ from lightinv_core.scene.obj_size import check_ifc_size
 
 MISSING = "IFC import needs the optional extra: pip install 'lightinv[ifc]'"
 IFC_SUFFIXES = (".ifc",)
-SKIPPED = (
-    "IfcSpace",  # the room's air, not a surface
-    "IfcOpeningElement",  # voids, already cut from their walls and slabs
-    "IfcSite",  # terrain around the building
-    "IfcAnnotation",
-    "IfcGrid",
-    "IfcVirtualElement",
-)
+SKIPPED = tuple(SKIPPED_REASONS)
+"""Classes not meshed (spaces, openings, the site, ...; why: ``SKIPPED_REASONS``)."""
 ROLE_REFLECTANCE = {"floor": 0.2, "wall": 0.5, "ceiling": 0.7, "furniture": 0.2, "glazing": 0.1}
 """Default reflectance by role: the lower end of the ranges EN 12464-1:2011 (4.2.2)
 recommends (ceiling 0.7-0.9, walls 0.5-0.8, floor 0.2-0.4, major objects such as
@@ -106,13 +103,29 @@ def load_ifc(
     mats = load_materials(materials)
     fname = path.name
     model = _open(ifcopenshell, path)
-    elements, spaces = _elements(ifcopenshell, model, fname)
+    elements, spaces, parts = _elements(ifcopenshell, model, fname)
     planes = planes_of(elements, _role, shapely)
-    contact = cut_contacts(planes, shapely) + cut_sections(planes, elements, shapely)
+    stages = Stages(len(elements))
+    stages.record("faces", planes)
+    failed: list = []
+    contact = cut_contacts(planes, shapely, failed)
+    contact += cut_sections(planes, elements, shapely, failed)
+    stages.record("cut", planes)
     centre = centre_of(elements)
-    exterior = cull_outside(planes, elements, centre, shapely)
+
+    def underside(p: Plane) -> bool:
+        # A ceiling covering's underside faces a room whatever the rays find: in a model
+        # without floor slabs they escape, and its zone was lost.
+        return elements[p.element].ceiling and p.normal[2] < -UPWARD
+
+    exterior = cull_outside(planes, elements, centre, shapely, keep=underside)
+    stages.record_pieces(planes)
     warnings: list[str] = []
-    zones = _zones(planes, elements, shapely, warnings, fname)
+    zones, notes = _zones(planes, elements, shapely, warnings, fname)
+    names = _group_names(elements)
+    report = ifc_report(
+        fname, model, elements, names, stages, zones, notes, parts, failed, warnings
+    )
     data, places, counts = _faces(planes, elements, zones, scale, up, path)
     data.warnings.extend(warnings)
     scene = assemble_scene(
@@ -127,6 +140,7 @@ def load_ifc(
         "exterior_m2": exterior,
     }
     scene.info["ifc"] = info
+    scene.info[REPORT_KEY] = report.to_dict()
     desc = (
         f"Imported from {fname}: {len(elements)} elements ({counts} faces), "
         f"{len(scene.zones)} emitter zones ({wall} wall windows); {contact:.1f} m² where "
@@ -198,9 +212,9 @@ def _check_references(log: str, fname: str) -> None:
     )
 
 
-def _elements(ifcopenshell, model, fname: str) -> tuple[list[Element], list[str]]:
-    """The building elements with geometry, ordered by their id in the file, and the
-    names of the spaces."""
+def _elements(ifcopenshell, model, fname: str):
+    """The building elements with geometry, ordered by their id in the file; the names
+    of the spaces; and the parts merged into windows (``Part``s)."""
     settings = ifcopenshell.geom.settings()
     settings.set("use-world-coords", True)
     # Elements are meshed in parallel, leaving a core for the window (on this 2-core
@@ -220,18 +234,18 @@ def _elements(ifcopenshell, model, fname: str) -> tuple[list[Element], list[str]
         welded[ids] = v
         v, t = welded, ids[t]
         cls = entity.is_a()
-        label = entity.Name if isinstance(entity.Name, str) and entity.Name.strip() else None
         out.append(
             Element(
                 shape.id,
                 cls,
-                (label or entity.GlobalId).strip(),
+                _label(entity),
                 v,
                 t,
                 ceiling=cls == "IfcCovering" and _predefined(entity) == "CEILING",
                 roof_host=cls == "IfcWindow" and _in_roof(entity),
             )
         )
+    out, parts = _windows_of_parts(model, out)
     if not out:
         raise ObjImportError(
             f"{fname}: no building elements with geometry (walls, slabs, roofs, ...); "
@@ -239,7 +253,54 @@ def _elements(ifcopenshell, model, fname: str) -> tuple[list[Element], list[str]
         )
     out.sort(key=lambda e: e.id)
     spaces = sorted((s.Name or s.LongName or s.GlobalId) for s in model.by_type("IfcSpace"))
-    return out, spaces
+    return out, spaces, parts
+
+
+def _label(entity) -> str:
+    """An entity's Name, else its GlobalId."""
+    name = getattr(entity, "Name", None)
+    return (name if isinstance(name, str) and name.strip() else entity.GlobalId).strip()
+
+
+def _windows_of_parts(model, elements: list[Element]) -> tuple[list[Element], list[Part]]:
+    """Windows without a body of their own that aggregate parts (IfcMember frames, an
+    IfcPlate pane: how IfcOpenShell and many IFC4 exporters write them) as one element
+    each, of their parts' triangles; the parts, which are no elements of their own then."""
+    by_id = {e.id: e for e in elements}
+    parts: list[Part] = []
+    merged: list[Element] = []
+    for window in model.by_type("IfcWindow"):
+        if window.id() in by_id:
+            continue
+        mine = [
+            by_id.pop(p.id())
+            for p in _decomposition(window)
+            if p.id() in by_id and by_id[p.id()].ifc_class != "IfcWindow"
+        ]
+        if not mine:
+            continue
+        offsets = np.cumsum([0] + [len(e.vertices) for e in mine])
+        v = np.concatenate([e.vertices for e in mine])
+        t = np.concatenate([e.triangles + o for e, o in zip(mine, offsets, strict=False)])
+        ids = row_ids(np.round(v / GRID).astype(np.int64))
+        welded = np.zeros((ids.max() + 1, 3))
+        welded[ids] = v
+        name = _label(window)
+        merged.append(
+            Element(window.id(), "IfcWindow", name, welded, ids[t], roof_host=_in_roof(window))
+        )
+        parts += [Part(e.id, e.ifc_class, e.name, window.id()) for e in mine]
+    return list(by_id.values()) + merged, parts
+
+
+def _decomposition(entity) -> list:
+    """The parts an entity aggregates or nests (IfcRelAggregates; IFC2x3's
+    IfcRelDecomposes; IfcRelNests)."""
+    out = []
+    for attr in ("IsDecomposedBy", "IsNestedBy"):
+        for rel in getattr(entity, attr, ()) or ():
+            out += list(rel.RelatedObjects)
+    return out
 
 
 def _shapes(it) -> Iterator:
@@ -282,17 +343,19 @@ def _in_roof(window) -> bool:
 # --- zones and faces ----------------------------------------------------------------------
 
 
-def _zones(planes, elements, shapely, warnings, fname) -> dict[str, tuple[object, str]]:
+def _zones(planes, elements, shapely, warnings, fname):
     """Zone name -> (the rectangle piece, "roof window" / "wall window" / "ceiling"), its
-    piece replaced in its plane by the rectangle; windows and ceiling coverings whose
-    largest face is not a rectangle get a warning instead."""
+    piece replaced in its plane by the rectangle; and element index -> why a window or
+    ceiling covering with faces left is no zone. Those whose largest face is not a
+    rectangle, or whose face towards the room was left out, get a warning."""
     names = _group_names(elements)
     by_element: dict[int, list[tuple[Plane, object]]] = {}
     for p in planes:
         for poly in p.pieces:
             by_element.setdefault(p.element, []).append((p, poly))
     out: dict[str, tuple[object, str]] = {}
-    odd = []
+    notes: dict[int, str] = {}
+    odd, lost = [], []
     for k, e in enumerate(elements):
         if e.ifc_class != "IfcWindow" and not e.ceiling:
             continue
@@ -300,11 +363,15 @@ def _zones(planes, elements, shapely, warnings, fname) -> dict[str, tuple[object
             (p, poly) for p, poly in by_element.get(k, []) if not e.ceiling or p.normal[2] < -UPWARD
         ]
         if not found:
+            if by_element.get(k):  # faces left, but none that makes the zone
+                lost.append(names[k])
+                notes[k] = NO_ROOM_FACE
             continue
         plane, poly = max(found, key=lambda f: f[1].area)
         rect = poly.minimum_rotated_rectangle
         if poly.area < RECTANGLE * rect.area:
             odd.append(names[k])
+            notes[k] = NOT_RECTANGLE
             continue
         plane.pieces = [q for q in plane.pieces if q is not poly] + [rect]
         if e.ceiling:
@@ -315,13 +382,30 @@ def _zones(planes, elements, shapely, warnings, fname) -> dict[str, tuple[object
             kind = "wall window"
         out[names[k]] = (rect, kind)
     if odd:
-        shown = ", ".join(clip(n) for n in odd[:LISTED]) + (", ..." if len(odd) > LISTED else "")
         warnings.append(
-            f"{fname}: {len(odd)} window(s) or ceiling(s) ({shown}) have no rectangular face "
-            "towards the room, so they are plain surfaces and not emitter zones; draw zones "
-            "on them in the window or split them in the model"
+            f"{fname}: {len(odd)} window(s) or ceiling(s) ({_shown(odd)}) have no rectangular "
+            "face towards the room, so they are plain surfaces and not emitter zones; draw "
+            "zones on them in the window or split them in the model"
         )
-    return out
+    if lost:
+        warnings.append(
+            f"{fname}: {len(lost)} window(s) or ceiling(s) ({_shown(lost)}) are no emitter "
+            "zones: their face towards the room was left out (it looks out of the building "
+            "or lies against another element), so only their other faces are kept; see the "
+            "import report"
+        )
+    return out, notes
+
+
+NOT_RECTANGLE = "not a zone: no rectangular face towards the room"
+NO_ROOM_FACE = (
+    "not a zone: its face towards the room was left out (it looks out of the building or "
+    "lies against another element); only its other faces are kept"
+)
+
+
+def _shown(names: list[str]) -> str:
+    return ", ".join(clip(n) for n in names[:LISTED]) + (", ..." if len(names) > LISTED else "")
 
 
 def _group_names(elements: list[Element]) -> list[str]:

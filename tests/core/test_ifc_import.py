@@ -29,9 +29,10 @@ SKY = (2.5, 3.5, 1.5, 2.5)  # roof opening: x from, x to, y from, y to
 CEILING = (4.0, 6.0, 2.7, 0.02)  # covering: x from, x to, height of its underside, thickness
 
 
-def ifc_room(path: Path, unit: str = "mm", extra=None) -> Path:
+def ifc_room(path: Path, unit: str = "mm", extra=None, floor: bool = True) -> Path:
     """Write the test room as IFC4 with lengths in ``unit`` ("mm" or "m"); ``extra(box,
-    file)`` may add elements (``box(cls, name, x, y, z, lx, ly, lz, ...)``, metres)."""
+    file)`` may add elements (``box(cls, name, x, y, z, lx, ly, lz, ...)``, metres);
+    ``floor=False`` leaves the floor slab out (as in models of one discipline)."""
     import ifcopenshell.api.aggregate
     import ifcopenshell.api.context
     import ifcopenshell.api.feature
@@ -73,7 +74,8 @@ def ifc_room(path: Path, unit: str = "mm", extra=None) -> Path:
             api.spatial.assign_container(f, relating_structure=storey, products=[e])
         return e
 
-    box("IfcSlab", "Floor", -T, -T, -T, L + 2 * T, W + 2 * T, T, predefined="FLOOR")
+    if floor:
+        box("IfcSlab", "Floor", -T, -T, -T, L + 2 * T, W + 2 * T, T, predefined="FLOOR")
     south = box("IfcWall", "South", -T, -T, 0, L + 2 * T, T, H)
     box("IfcWall", "North", -T, W, 0, L + 2 * T, T, H)
     box("IfcWall", "West", -T, 0, 0, T, W, H)
