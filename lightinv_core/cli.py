@@ -440,6 +440,8 @@ def _annual(args, lit, F, caster, grid, factors, luminaires, plane, electric=Non
     """Annual daylight metrics on the grid (and dimming energy with luminaires);
     ``electric`` is the grid's light from the luminaires alone when already solved."""
     weather = read_weather(args.weather)
+    for note in weather.notes:
+        _warn(f"weather {Path(weather.source).name}: {note}")
     year = annual_daylight(
         lit,
         F,
@@ -456,12 +458,7 @@ def _annual(args, lit, F, caster, grid, factors, luminaires, plane, electric=Non
     lux = year.lux[:, occupied]
     metrics = daylight_metrics(lux)
     out = {
-        "weather": {
-            "site": weather.name,
-            "latitude": weather.latitude,
-            "longitude": weather.longitude,
-            "file": weather.source,
-        },
+        "weather": weather.describe(),
         "occupied_hours": int(occupied.sum()),
         "occupancy": [start, end],
         "north_deg": args.north,
@@ -510,8 +507,11 @@ def _annual(args, lit, F, caster, grid, factors, luminaires, plane, electric=Non
 
 
 def _annual_lines(a: dict) -> list[str]:
+    w = a["weather"]
     lines = [
-        f"annual daylight ({a['weather']['site']}, {a['occupied_hours']} occupied hours, "
+        f"weather: {w['format']}, {w['hours']} hours ({w['time_convention']}); "
+        f"illuminance {w['illuminance']}",
+        f"annual daylight ({w['site']}, {a['occupied_hours']} occupied hours, "
         f"weekdays {a['occupancy'][0]:g}-{a['occupancy'][1]:g} h): DA300 mean "
         f"{100 * a['da300_mean']:.0f}%, sDA300/50% {100 * a['sda300_50']:.0f}%",
         f"UDI <100 {100 * a['udi_n']:.0f}%, 100-300 {100 * a['udi_s']:.0f}%, 300-3000 "
@@ -757,8 +757,12 @@ def _daylight_summary(light, design, sol) -> dict:
     except LightInvError as exc:
         out["annual_error"] = str(exc)
         return out
+    year = lay.patches.year()
+    for note in year.weather.get("notes", []):
+        _warn(f"weather {Path(year.source).name}: {note}")
     out.update(
-        site=lay.patches.year().site,
+        site=year.site,
+        weather=year.weather,
         da300_mean=float(da.mean()),
         sda300_50=float((da >= 0.5).mean()),
         udi_100_3000_mean=float(lay.points.udi(span)[:, 0].mean()),

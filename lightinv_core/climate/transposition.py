@@ -58,7 +58,7 @@ def _efficacy(lux: np.ndarray, watts: np.ndarray) -> np.ndarray:
 def sun_and_sky(weather: Weather) -> SunAndSky:
     """Sun positions at mid-hour and the component efficacies of ``weather``."""
     pvlib = require_pvlib()
-    mid = weather.times - np.timedelta64(30, "m")
+    mid = weather.midpoints
     with warnings.catch_warnings():
         # pvlib's own use of pandas APIs that pandas deprecates: not the user's concern.
         warnings.simplefilter("ignore", DeprecationWarning)

@@ -148,7 +148,7 @@ def annual_energy(
     hours_year = y.every.shape[1]
     energy = lighting_kwh(installed_w, levels.sum(), d.standby_w, hours_year)
     full_kwh = lighting_kwh(installed_w, y.hours, d.standby_w, hours_year)
-    per_month = np.bincount(np.asarray(y.times.month) - 1, minlength=12)
+    per_month = np.bincount(np.asarray(y.midpoints.month) - 1, minlength=12)
     monthly = [
         float(
             lighting_kwh(

@@ -20,7 +20,7 @@ docs/daylight.md gives both speeds).
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
@@ -85,7 +85,8 @@ class DaylightYear:
     for every hour of the file, ``occupied`` the mask of the schedule's hours and
     ``exterior`` (G, T) those hours; ``months`` (T,) 1-12 of each occupied hour;
     ``site`` names the weather. With one group, ``sorted`` (T,) is its exterior lux in
-    increasing order and ``prefix`` (T + 1,) their cumulative sums."""
+    increasing order and ``prefix`` (T + 1,) their cumulative sums. ``weather`` is
+    ``Weather.describe()``: the format, the illuminance decision and the notes."""
 
     site: str
     source: str
@@ -96,11 +97,17 @@ class DaylightYear:
     months: np.ndarray
     sorted: np.ndarray | None
     prefix: np.ndarray | None
+    weather: dict = field(default_factory=dict)
 
     @property
     def hours(self) -> int:
         """Occupied hours T."""
         return self.exterior.shape[1]
+
+    @property
+    def midpoints(self):
+        """The middle of every hour of the file (``Weather.midpoints``)."""
+        return self.times - np.timedelta64(30, "m")
 
 
 def weather_path(daylight: Daylight) -> Path:
@@ -141,14 +148,23 @@ def daylight_year(groups: SkyGroups, daylight: Daylight) -> DaylightYear:
     if not mask.any():
         raise WeatherError("the occupancy schedule holds no hour of the weather file")
     exterior = np.ascontiguousarray(every[:, mask])
-    mid = weather.times - np.timedelta64(30, "m")
+    mid = weather.midpoints
     months = np.asarray(mid.month)[mask].astype(np.int8)
     srt = prefix = None
     if groups.count == 1:
         srt = np.sort(exterior[0])
         prefix = np.concatenate([[0.0], np.cumsum(srt)])
     year = DaylightYear(
-        weather.name, weather.source, weather.times, every, mask, exterior, months, srt, prefix
+        weather.name,
+        weather.source,
+        weather.times,
+        every,
+        mask,
+        exterior,
+        months,
+        srt,
+        prefix,
+        weather.describe(),
     )
     if len(_YEARS) >= MAX_CACHED_YEARS:
         _YEARS.pop(next(iter(_YEARS)))

@@ -115,6 +115,7 @@ class DaylightSection:
     installed_w: float
     skylights: tuple[Source, ...]
     problem: str = ""
+    weather_info: dict | None = None
 
     @property
     def savings(self) -> float | None:
@@ -188,6 +189,7 @@ def daylight_section(lay: LayoutDaylight, skylights=()) -> DaylightSection:
         lay.installed_w,
         tuple(skylights),
         problem,
+        None if year is None else year.weather,
     )
 
 
@@ -198,6 +200,19 @@ def _missing(section: DaylightSection) -> str:
     )
 
 
+def _weather_rows(info: dict | None) -> list[tuple[str, str]]:
+    """How the weather file was read: its format and hours, the time convention, the
+    illuminance decision and every note (filled values, a doubtful clock)."""
+    if not info:
+        return []
+    rows = [
+        ("weather data", f"{info['format']}, {info['hours']:,} hours, {info['time_convention']}"),
+        ("daylight illuminance", info["illuminance"]),
+    ]
+    rows += [("weather note", note) for note in info.get("notes", [])]
+    return rows
+
+
 def climate_table(section: DaylightSection) -> Table:
     """The weather, schedule and daylight settings the section's numbers assume."""
     d = section.daylight
@@ -206,6 +221,7 @@ def climate_table(section: DaylightSection) -> Table:
     rows = [
         ("weather site", section.site or "— (weather file not read)"),
         ("weather file", section.weather),
+        *_weather_rows(section.weather_info),
         ("occupancy", f"{d.occupancy[0]:g}-{d.occupancy[1]:g} h local standard time, {days}"),
         ("occupied hours a year", hours),
         ("north", f"{d.north_deg:g}° (compass bearing of the scene's +y axis)"),

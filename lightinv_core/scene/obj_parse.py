@@ -25,6 +25,7 @@ import numpy as np
 from lightinv_core.errors import ObjImportError, SceneError
 from lightinv_core.scene.model import ZONE_KINDS, check_reflectance
 from lightinv_core.scene.obj_geometry import z_up
+from lightinv_core.textcodec import decode_text
 
 UP_AXES = ("z", "y")
 # Statements LightInv does not need and skips silently (texture coordinates, normals,
@@ -106,28 +107,7 @@ def read_text(path: Path, what: str, guard: Callable[[Path, str], object] | None
         raise ObjImportError(
             f"cannot read {what} '{path}': {_reason(exc)}; check that it is readable"
         ) from None
-    return decode_text(data)
-
-
-def decode_text(data: bytes) -> str:
-    """Text of a file: UTF-16 (with a byte-order mark, or zero bytes in every other
-    place, as Windows tools write), else UTF-8, else latin-1 (which never fails)."""
-    if data[:2] in (b"\xff\xfe", b"\xfe\xff"):
-        try:
-            return data.decode("utf-16")
-        except UnicodeDecodeError:
-            pass
-    head = data[:4096]
-    if len(head) >= 4 and head.count(0) >= 0.4 * len(head):
-        order = "utf-16-le" if head[1::2].count(0) > head[0::2].count(0) else "utf-16-be"
-        try:
-            return data[: len(data) // 2 * 2].decode(order)
-        except UnicodeDecodeError:
-            pass
-    try:
-        return data.decode("utf-8-sig")
-    except UnicodeDecodeError:
-        return data.decode("latin-1")
+    return decode_text(data)[0]
 
 
 def _reason(exc: Exception) -> str:

@@ -138,7 +138,7 @@ def test_bad_weather_files(tmp_path):
     with pytest.raises(WeatherError, match="does not exist"):
         read_weather(tmp_path / "none.epw")
     (tmp_path / "x.epw").write_text("not,a,weather\nfile\n")
-    with pytest.raises(WeatherError, match=r"x\.epw: not a readable EPW or TMY3") as info:
+    with pytest.raises(WeatherError, match=r"x\.epw: an EPW file starts with a LOCATION") as info:
         read_weather(tmp_path / "x.epw")
     assert "\n" not in str(info.value)
 

@@ -647,13 +647,161 @@ def _(d):
     "weather file",
     "a text file that is not an EPW (`--weather notes.epw`)",
     WeatherError,
-    "notes.epw: not a readable EPW or TMY3 weather file",
+    "notes.epw: an EPW file starts with a LOCATION line; this one does not",
 )
 def _(d):
     from lightinv_core.climate.weather import read_weather
 
     (d / "notes.epw").write_text("meeting notes\nnothing hourly here\n")
     return raised(lambda: read_weather(d / "notes.epw"))
+
+
+def weather_error(d: Path, lines: list[str], name: str = "year.csv") -> BaseException | None:
+    from lightinv_core.climate.weather import read_weather
+
+    (d / name).write_text("\n".join(lines) + "\n")
+    return raised(lambda: read_weather(d / name))
+
+
+def tmy3() -> list[str]:
+    from lightinv_core.climate.weather import BUILTIN
+
+    return BUILTIN.read_text().splitlines()
+
+
+def with_field(lines: list[str], row: int, col: int, value: str) -> list[str]:
+    f = lines[row].split(",")
+    f[col] = value
+    return [*lines[:row], ",".join(f), *lines[row + 1 :]]
+
+
+@case(
+    "weather-half-year",
+    "weather file",
+    "half a TMY3 year (January to June)",
+    WeatherError,
+    "year.csv: 4380 hourly records where a year has 8760: 4380 hours are missing",
+    "annual figures need the whole year",
+)
+def _(d):
+    return weather_error(d, tmy3()[: 2 + 4380])
+
+
+@case(
+    "weather-repeated",
+    "weather file",
+    "a TMY3 year with January appended again (9,504 records)",
+    WeatherError,
+    "year.csv: 744 records repeat an hour already given (first: line 8763, 01-01 01:00)",
+)
+def _(d):
+    lines = tmy3()
+    return weather_error(d, lines + lines[2 : 2 + 744])
+
+
+@case(
+    "weather-cut",
+    "weather file",
+    "a TMY3 file cut in the middle of a line",
+    WeatherError,
+    "year.csv: line 4382 has 12 fields where the column line has 71",
+    "the file may be cut short",
+)
+def _(d):
+    lines = tmy3()
+    return weather_error(d, [*lines[:4381], ",".join(lines[4381].split(",")[:12])])
+
+
+@case(
+    "weather-not-a-number",
+    "weather file",
+    "a GHI value `abc` in a TMY3 file",
+    WeatherError,
+    "year.csv: line 4095: GHI (W/m^2) 'abc' is not a number",
+)
+def _(d):
+    return weather_error(d, with_field(tmy3(), 4094, 4, "abc"))
+
+
+@case(
+    "weather-absurd",
+    "weather file",
+    "a GHI of 1e9 W/m² in a TMY3 file",
+    WeatherError,
+    "year.csv: line 4095: GHI 1e+09 W/m² is beyond any sunlight (at most 1500)",
+)
+def _(d):
+    return weather_error(d, with_field(tmy3(), 4094, 4, "1e9"))
+
+
+@case(
+    "weather-gaps",
+    "weather file",
+    "GHI missing (empty) at every noon of a TMY3 year",
+    WeatherError,
+    "year.csv: GHI is missing in 365 daylight hours (first: line 15); at most 47 can be filled",
+)
+def _(d):
+    lines = tmy3()
+    for r in range(2 + 12, len(lines), 24):
+        lines = with_field(lines, r, 4, "")
+    return weather_error(d, lines)
+
+
+@case(
+    "weather-gap-filled",
+    "weather file",
+    "GHI `NaN` in one daylight hour of a TMY3 year",
+    WARNING,
+    "GHI was missing in 1 daylight hours: filled from the neighbouring hours",
+)
+def _(d):
+    from lightinv_core.climate.weather import read_weather
+
+    (d / "year.csv").write_text("\n".join(with_field(tmy3(), 4094, 4, "NaN")) + "\n")
+    notes = read_weather(d / "year.csv").notes
+    return Warned(notes[0]) if notes else None
+
+
+@case(
+    "weather-latitude",
+    "weather file",
+    "a latitude of 136.1 in a TMY3 header",
+    WeatherError,
+    "year.csv: latitude 136.1 is not within -90 to 90 degrees",
+)
+def _(d):
+    lines = tmy3()
+    return weather_error(d, [lines[0].replace(",36.100,", ",136.100,"), *lines[1:]])
+
+
+@case(
+    "weather-clock",
+    "weather file",
+    "a TMY3 file whose header gives UTC+3 for North Carolina",
+    WARNING,
+    "1854 hours have direct sun (DNI > 50 W/m²) while the sun is below the horizon",
+    "every record 8 h later than its time stamp",
+)
+def _(d):
+    from lightinv_core.climate.weather import read_weather
+
+    lines = tmy3()
+    (d / "year.csv").write_text("\n".join([lines[0].replace(",-5.0,", ",+3.0,"), *lines[1:]]))
+    notes = [n for n in read_weather(d / "year.csv").notes if "horizon" in n]
+    return Warned(notes[0]) if notes else None
+
+
+@case(
+    "weather-subhourly",
+    "weather file",
+    "an EPW file with 4 records an hour",
+    WeatherError,
+    "sub.epw: 4 records an hour: only hourly EPW files are read",
+)
+def _(d):
+    head = ["LOCATION,X,-,-,-,0,50,8,1,100"] + [f"H{i}" for i in range(6)]
+    return weather_error(d, [*head, "DATA PERIODS,1,4,Data,Sunday, 1/ 1,12/31"], "sub.epw")
 
 
 @case(
