@@ -19,6 +19,7 @@ from __future__ import annotations
 import os
 import re
 from collections.abc import Iterator
+from dataclasses import replace
 from pathlib import Path
 
 import numpy as np
@@ -39,6 +40,7 @@ from lightinv_core.scene.ifc_geometry import (
 )
 from lightinv_core.scene.ifc_report import SKIPPED_REASONS, Stages, ifc_report
 from lightinv_core.scene.import_report import KEY as REPORT_KEY
+from lightinv_core.scene.import_report import report_of
 from lightinv_core.scene.mesh_import import FacePlaces
 from lightinv_core.scene.model import Scene
 from lightinv_core.scene.obj_geometry import z_up
@@ -140,7 +142,9 @@ def load_ifc(
         "exterior_m2": exterior,
     }
     scene.info["ifc"] = info
-    scene.info[REPORT_KEY] = report.to_dict()
+    faces = report_of(scene)  # the faces assemble_scene dropped, if any
+    skipped = report.skipped + (faces.skipped if faces is not None else ())
+    scene.info[REPORT_KEY] = replace(report, skipped=skipped).to_dict()
     desc = (
         f"Imported from {fname}: {len(elements)} elements ({counts} faces), "
         f"{len(scene.zones)} emitter zones ({wall} wall windows); {contact:.1f} m² where "

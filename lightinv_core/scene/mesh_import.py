@@ -27,6 +27,7 @@ import numpy as np
 
 from lightinv_core.errors import ObjImportError
 from lightinv_core.scene.facets import join_coplanar
+from lightinv_core.scene.import_report import ImportItem
 from lightinv_core.scene.loading import default_up
 from lightinv_core.scene.model import Scene
 from lightinv_core.scene.obj_geometry import z_up
@@ -70,6 +71,7 @@ class Model:
     colours: dict[str, float] = field(default_factory=dict)
     warnings: list[str] = field(default_factory=list)
     colour_source: str = "glTF baseColor"
+    left: list[ImportItem] = field(default_factory=list)  # what the reader left out
 
 
 def load_mesh(
@@ -122,7 +124,10 @@ def load_mesh(
         check_counts(gltf_counts(header, path), fname)
         model = read_gltf(path, header, binary, group_by)
     data, places = _faces(model, path, scale, up)
-    return assemble_scene(data, places, mats, model.colours, res, scale, skip_degenerate, name)
+    places.item_kind = "PLY colour" if fmt == "PLY" else f"glTF {group_by}"
+    return assemble_scene(
+        data, places, mats, model.colours, res, scale, skip_degenerate, name, tuple(model.left)
+    )
 
 
 def _check_file(path: Path, what: str) -> None:
@@ -288,6 +293,11 @@ def read_gltf(path: Path, header: dict, binary: bytes | None, group_by: str) -> 
         geom = scene.geometry[gname]
         if not isinstance(geom, trimesh.Trimesh):
             skipped += 1
+            i = _order(scene, frame)[0]
+            node = nodes[i] if 0 <= i < len(nodes) and isinstance(nodes[i], dict) else {}
+            why = "lines or points: LightInv reads triangles only"
+            label = _node_label(node, meshes, i)
+            model.left.append(ImportItem("glTF primitive", label, "dropped", None, why))
             continue
         if len(geom.faces) == 0:
             continue

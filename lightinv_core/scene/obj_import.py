@@ -24,6 +24,8 @@ from pathlib import Path
 import numpy as np
 
 from lightinv_core.errors import ObjImportError, SceneError
+from lightinv_core.scene.import_report import KEY as REPORT_KEY
+from lightinv_core.scene.import_report import ImportItem, ImportReport
 from lightinv_core.scene.model import (
     EmitterZone,
     Rect,
@@ -111,6 +113,7 @@ class Places:
 
     what = "OBJ file"  # "... do not occur in the OBJ file"
     colour = "MTL Kd"  # where a material's colour comes from
+    item_kind = "OBJ group"  # what a lighting group is in the import report
 
     def __init__(self, path: Path):
         self.path = path
@@ -138,23 +141,29 @@ def assemble_scene(
     scale: float,
     skip_degenerate: bool,
     name: str | None,
+    extra_items: tuple[ImportItem, ...] = (),
 ) -> Scene:
     """The Scene of parsed polygons ``data`` (metres, z up): degenerate and repeated
     faces, rectangles, triangulation, zones and reflectances, as for an OBJ file.
 
     ``kd`` is each material's colour as a reflectance guess (MTL Kd, glTF baseColor);
-    ``places`` names the file and its faces in messages. Raises ObjImportError.
+    ``places`` names the file and its faces in messages; ``extra_items`` are what the
+    reader left out, for the import report (``info["import_report"]``, with one item
+    per group). Raises ObjImportError.
     """
     fname = places.fname
     warnings = data.warnings
     geom = face_geometry(data.vertices, data.faces)
+    before = len(warnings)
     keep = _check_degenerate(data.faces, geom, skip_degenerate, places, warnings)
     keep = _drop_duplicates(data.vertices, data.faces, keep, places, warnings)
+    dropped = [w for w in warnings[before:] if w.startswith(f"{fname}: dropped ")]
     rho = Reflectances(mats, kd, places)
     groups = _build_groups(data.vertices, data.faces, geom, keep, rho, places, warnings, res)
     warnings += rho.warnings()
     _scale_warning(data.vertices, scale, fname, warnings)
-    info = {"source": str(places.path), "warnings": warnings}
+    report = face_report(data.faces, geom, keep, places, dropped, extra_items)
+    info = {"source": str(places.path), "warnings": warnings, REPORT_KEY: report.to_dict()}
     try:
         surfaces, zones = _surfaces(groups)
         desc = f"Imported from {fname}: {int(keep.sum())} faces, {len(zones)} emitter zones."
@@ -162,6 +171,30 @@ def assemble_scene(
     except SceneError as exc:
         # A safety net: the checks above should leave nothing the model can reject.
         raise ObjImportError(f"{fname}: {exc}") from None
+
+
+def face_report(faces, geom: FaceGeom, keep, places: Places, dropped, extra=()) -> ImportReport:
+    """One item per group, in order of first appearance: the emitter zone of a
+    ``zone:NAME:KIND`` group, a lighting group, or dropped when none of its faces is
+    kept; the faces dropped (``dropped``: the warnings saying so) as skipped lines."""
+    count: dict[str, list] = {}
+    for i, f in enumerate(faces):
+        row = count.setdefault(f.group, [0, 0, 0.0])
+        row[0] += 1
+        if keep[i]:
+            row[1] += 1
+            row[2] += float(geom.area[i])
+    items = []
+    for group, (n, kept, area) in count.items():
+        spec = zone_spec(group, places.fname)
+        becomes = spec[0] if spec else group
+        if not kept:
+            why = f"all its {n} face(s) were dropped (degenerate or repeated)"
+            items.append(ImportItem(places.item_kind, group, "dropped", None, why))
+        else:
+            outcome = "zone" if spec else "group"
+            items.append(ImportItem(places.item_kind, group, outcome, becomes, "", area))
+    return ImportReport(places.fname, (*items, *extra), tuple(dropped))
 
 
 def check_options(path, resolution, scale, up, fmt: str) -> tuple[Path, float, float]:

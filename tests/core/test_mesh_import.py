@@ -17,6 +17,7 @@ from lightinv_core.errors import ObjImportError
 from lightinv_core.project import ProjectError
 from lightinv_core.project.scene import SCENE, SceneSpec
 from lightinv_core.scene.facets import join_coplanar
+from lightinv_core.scene.import_report import report_of
 from lightinv_core.scene.loading import load_scene
 from lightinv_core.scene.mesh_import import load_mesh, srgb_to_linear
 from lightinv_core.scene.obj_import import load_obj
@@ -194,7 +195,9 @@ def test_a_gltf_room_imports_as_the_same_scene_as_its_obj(tmp_path, name):
         assert [s.reflectance for s in scene.surfaces if s.group == g] == pytest.approx(
             [grey] * len([s for s in scene.surfaces if s.group == g])
         )
-    assert scene.info == {"source": str(tmp_path / name), "warnings": []}
+    assert scene.info["source"] == str(tmp_path / name)
+    assert scene.info["warnings"] == []
+    assert report_of(scene).summary() == f"{name}: 3 items: 0 zones, 3 groups, 0 dropped"
 
 
 def test_a_closed_gltf_room_keeps_its_light(tmp_path):
@@ -555,3 +558,34 @@ def test_a_ply_face_naming_a_missing_vertex_is_a_one_line_error(tmp_path, faces,
         f"bad.ply: {where} names vertex {number}, but the file has 3 vertices (numbered 0 "
         "to 2); the file is damaged, export it again"
     )
+
+
+def test_a_gltf_primitive_of_lines_is_in_the_import_report(tmp_path):
+    """Primitives of lines or points are left out (a warning said how many): the import
+    report names them, beside a group per node."""
+    g = Gltf()
+    for name, polys in box_polygons().items():
+        g.part(name, polys)
+    g.doc["accessors"].append(
+        {
+            "componentType": 5126,
+            "count": 2,
+            "type": "VEC3",
+            "bufferView": g.doc["accessors"][0]["bufferView"],
+            "min": [0, 0, 0],
+            "max": [4, 3, 0],
+        }
+    )
+    g.node("guide lines", g.mesh([]))
+    lines = len(g.doc["accessors"]) - 1
+    g.doc["meshes"][-1]["primitives"] = [{"attributes": {"POSITION": lines}, "mode": 1}]
+    scene = load_mesh(g.save(tmp_path / "room.glb"), up="z")
+    report = report_of(scene)
+    assert [(it.kind, it.name, it.outcome) for it in report.items] == [
+        ("glTF node", "floor", "group"),
+        ("glTF node", "ceiling", "group"),
+        ("glTF node", "walls", "group"),
+        ("glTF primitive", "guide lines", "dropped"),
+    ]
+    assert report.dropped[0].reason == "lines or points: LightInv reads triangles only"
+    assert any("ignored 1 primitive(s) of lines or points" in w for w in scene.info["warnings"])

@@ -13,6 +13,7 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 from lightinv_core.errors import ObjImportError
+from lightinv_core.scene.import_report import report_of
 from lightinv_core.scene.obj_import import load_obj
 from lightinv_core.scene.obj_parse import KD_CAP
 from lightinv_core.scene.patches import count_patches, mesh_patches
@@ -95,7 +96,17 @@ def test_box_room_groups_areas_and_patches(tmp_path):
     # Every front face looks into the room.
     inward = ((np.array([2.0, 1.5, 1.25]) - p.centroid) * p.normal).sum(axis=1)
     assert np.all(inward > 0)
-    assert scene.info == {"source": str(tmp_path / "room.obj"), "warnings": []}
+    assert scene.info["source"] == str(tmp_path / "room.obj")
+    assert scene.info["warnings"] == []
+    report = report_of(scene)
+    assert [(it.name, it.outcome, it.becomes) for it in report.items] == [
+        ("floor", "group", "floor"),
+        ("ceiling", "group", "ceiling"),
+        ("walls", "group", "walls"),
+    ]
+    assert report.items[2].area_m2 == pytest.approx(2 * (4 + 3) * 2.5)
+    assert report.summary() == "room.obj: 3 items: 0 zones, 3 groups, 0 dropped"
+    assert not report.needs_attention
 
 
 def test_rectangles_become_grids_other_quads_triangles(tmp_path):
@@ -553,6 +564,17 @@ def test_degenerate_faces(tmp_path):
     ]
     many = SQUARE + "f 1 2 2\n" * 7
     msg = fails(tmp_path, many, "degenerate")
+    # The import report lists the group whose faces were all dropped and what was.
+    mixed = DEGENERATE.replace("f 1 2 2\n", "g sliver\nf 1 2 2\ng default\n")
+    report = report_of(load(tmp_path, mixed, skip_degenerate=True))
+    by = {it.name: it for it in report.items}
+    assert by["sliver"].outcome == "dropped"
+    assert by["sliver"].reason == "all its 1 face(s) were dropped (degenerate or repeated)"
+    assert report.skipped == (
+        "room.obj: dropped 3 degenerate face(s) (repeated vertices or zero area) at lines "
+        "8, 10, 12",
+    )
+    assert report.needs_attention
     assert "at lines 5, 6, 7, 8, 9 and 2 more;" in msg
     fails(
         tmp_path,
