@@ -16,6 +16,7 @@ from app.workers import LoadWorker
 from lightinv_core.editing import blank_project, obj_project
 from lightinv_core.errors import LightInvError
 from lightinv_core.project import Project, load_project
+from lightinv_core.scene.import_report import report_of
 
 MAX_RECENT = 8
 LOAD_DIALOG_MS = 500  # a load shorter than this shows no progress dialog
@@ -159,7 +160,29 @@ class ProjectFiles(QtCore.QObject):
         except LightInvError as exc:
             dialogs.error(self.win, "cannot import", str(exc))
             return False
-        return self.load_project(project)
+        if not self.load_project(project):
+            return False
+        self.show_import_report()
+        return True
+
+    def show_import_report(self) -> None:
+        """Say what the import made of the file: its summary in the status bar, and the
+        import report (not blocking the window) when something was dropped, skipped or
+        is no zone."""
+        from app.import_report_dialog import ImportReportDialog, import_summary
+
+        report = report_of(self.doc.scene) if self.doc.scene is not None else None
+        if report is None:
+            return
+        old = getattr(self.win, "import_report", None)
+        if old is not None:  # the report of the file imported before
+            old.close()
+            old.deleteLater()
+            self.win.import_report = None
+        self.win.statusBar().showMessage(import_summary(report), 15000)
+        if report.needs_attention:
+            self.win.import_report = ImportReportDialog(report, self.win)
+            self.win.import_report.show()
 
     def open_dialog(self) -> None:
         path = dialogs.open_file(self.win, "Open project")
