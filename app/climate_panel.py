@@ -30,12 +30,15 @@ from lightinv_core.editing.climate import (
     hour_state,
     month_days,
     site_text,
+    weather_notes,
     weather_of,
 )
 from lightinv_core.errors import LightInvError
 from lightinv_core.kinds import Scenario
 
-WEATHER_FILTER = "Weather files (*.epw *.csv);;EnergyPlus weather (*.epw);;TMY3 (*.csv)"
+WEATHER_FILTER = (
+    "Weather files (*.epw *.csv *.tm2);;EnergyPlus weather (*.epw);;TMY3 (*.csv);;TMY2 (*.tm2)"
+)
 DEFAULT_HOUR = hour_index(6, 21, 12)  # midsummer noon
 MAPS = {
     # key: (Colour by text, colour bar title, its label format)
@@ -223,7 +226,9 @@ class ClimatePanel(QtWidgets.QWidget):
         self.weather_path.setReadOnly(True)
         self.weather_path.setMinimumWidth(200)
         self.browse_button = QtWidgets.QPushButton("Browse...")
-        self.browse_button.setToolTip("An EnergyPlus (.epw) or TMY3 (.csv) weather file")
+        self.browse_button.setToolTip(
+            "An EnergyPlus (.epw), TMY3 (.csv) or TMY2 (.tm2) weather file"
+        )
         self.builtin_button = QtWidgets.QPushButton("Built-in")
         self.builtin_button.setToolTip("The shipped Greensboro, NC TMY3 year")
         form.addRow("Weather", self.weather_path)
@@ -397,7 +402,10 @@ class ClimatePanel(QtWidgets.QWidget):
         if d.project is None:
             return
         try:
-            self.site.setText(site_text(d.weather()))
+            weather = d.weather()
+            self.site.setText(site_text(weather))
+            self.site.setToolTip(f"{weather.hours:,} hours; illuminance {weather.illuminance}")
+            problems += weather_notes(weather)
         except LightInvError as exc:
             self.site.setText("cannot be read")
             problems.append(str(exc))

@@ -1,7 +1,7 @@
 """Benchmark: the integrated office demo's front of glazing area against annual energy,
 over seeds. Prints JSON.
 
-    python bench/integrated_demo.py [--seeds 10]
+    python bench/integrated_demo.py [--seeds 10] [--weather FILE]
 
 Runs the demo as shipped (resources/projects/office-integrated.json: the epsilon
 method, its evaluation budget and bound count) once per seed and reports, per seed, the
@@ -15,9 +15,11 @@ UDI, kWh, full-output kWh and LENI, as ``lightinv-cli solve`` prints them.
 from __future__ import annotations
 
 import argparse
+import gzip
 import json
 import os
 import statistics
+import tempfile
 import time
 from dataclasses import replace
 from pathlib import Path
@@ -31,13 +33,28 @@ PROJECT = (
 )
 
 
+def _plain(path: str) -> str:
+    """The weather file's path; a gzipped one (tests/data/weather) decompressed first."""
+    if not path.endswith(".gz"):
+        return str(Path(path).resolve())
+    out = Path(tempfile.mkdtemp()) / Path(path).name[:-3]
+    out.write_bytes(gzip.decompress(Path(path).read_bytes()))
+    return str(out)
+
+
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--seeds", type=int, default=10)
+    ap.add_argument(
+        "--weather", default=None, help="another weather file (EPW, TMY3, TMY2) for the demo"
+    )
     args = ap.parse_args()
     from lightinv_core.cli import _daylight_summary
 
     project = load_project(PROJECT)
+    if args.weather:
+        daylight = replace(project.design.daylight, weather=_plain(args.weather))
+        project = replace(project, design=replace(project.design, daylight=daylight))
     prepared = prepare(project)
     scales = front_scales(project.design, prepared.light)
     runs = []
@@ -71,6 +88,7 @@ def main() -> None:
         json.dumps(
             {
                 "project": "office-integrated",
+                "weather": args.weather or project.design.daylight.weather,
                 "patches": prepared.patches.n,
                 "cores": os.cpu_count(),
                 "seeds": args.seeds,

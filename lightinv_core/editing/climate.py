@@ -55,13 +55,19 @@ def weather_of(daylight: Daylight) -> Weather:
 
 
 def site_text(weather: Weather) -> str:
-    """A weather file's site in two lines: its name; latitude, longitude, time zone."""
+    """A weather file's site in two lines: its name; latitude, longitude, time zone and
+    the file's format (``weather.illuminance`` says where its illuminance comes from)."""
     ns = "N" if weather.latitude >= 0 else "S"
     ew = "E" if weather.longitude >= 0 else "W"
     return (
         f"{weather.name.title()}\n{abs(weather.latitude):.2f}° {ns}, "
-        f"{abs(weather.longitude):.2f}° {ew}, UTC{weather.utc_offset_h:+g} h"
+        f"{abs(weather.longitude):.2f}° {ew}, UTC{weather.utc_offset_h:+g} h, {weather.format}"
     )
+
+
+def weather_notes(weather: Weather) -> list[str]:
+    """What reading the weather file filled, decided or doubts, one line each."""
+    return [f"Weather file: {note}." for note in weather.notes]
 
 
 @dataclass(frozen=True)

@@ -10,10 +10,11 @@ from __future__ import annotations
 
 import shutil
 import time
+from pathlib import Path
 
 import numpy as np
 import pytest
-from PySide6 import QtWidgets
+from PySide6 import QtCore, QtWidgets
 
 from app.panels import IntentionDialog
 from lightinv_core.climate.weather import BUILTIN
@@ -419,3 +420,25 @@ def test_the_integrated_demo_from_run_to_report(qtbot, window, tmp_path):
         ).stdout
         assert "Daylight-linked dimming energy" in text and "LENI" in text
     assert Path(pdf).stat().st_size > 10_000
+
+
+def test_a_weather_files_doubts_are_shown(qtbot, window, tmp_path, monkeypatch):
+    # Mannheim's EPW (Latin-1, direct sun at night in its data), chosen with the
+    # Browse... button: the site says what was read, the panel what was doubted.
+    import gzip
+
+    data = Path(__file__).resolve().parents[1] / "data" / "weather" / "mannheim.epw.gz"
+    epw = tmp_path / "mannheim.epw"
+    epw.write_bytes(gzip.decompress(data.read_bytes()))
+    d, panel = _office(qtbot, window)
+    monkeypatch.setattr("app.dialogs.open_file", lambda *a, **k: str(epw))
+    button = next(b for b in panel.findChildren(QtWidgets.QPushButton) if b.text() == "Browse...")
+    qtbot.mouseClick(button, QtCore.Qt.MouseButton.LeftButton)
+    qtbot.waitUntil(lambda: "Mannheim" in panel.site.text(), timeout=10_000)
+    assert d.design.daylight.weather == str(epw)
+    assert panel.site.text().endswith("UTC+1 h, EPW")
+    assert panel.site.toolTip().startswith("8,760 hours; illuminance lux, as in the file")
+    text = panel.message.text()
+    assert not panel.message.isHidden()
+    assert "Weather file: 646 hours have direct sun" in text and "read as latin-1 text" in text
+    _grab(window, "/tmp/climate_weather_notes.png")

@@ -10,7 +10,6 @@ same year written in another format.
 from __future__ import annotations
 
 import gzip
-import os
 import math
 from pathlib import Path
 
@@ -407,7 +406,7 @@ def _mutate(data: bytes, edit: str, r: st.DataObject) -> bytes:
 
 
 @settings(
-    max_examples=40, deadline=None, suppress_health_check=[HealthCheck.function_scoped_fixture]
+    max_examples=25, deadline=None, suppress_health_check=[HealthCheck.function_scoped_fixture]
 )
 @given(edit=_EDITS, r=st.data())
 def test_fuzzed_weather_files(tmp_path, edit, r):
