@@ -111,6 +111,8 @@ def test_section_numbers_are_the_layouts(daylit):
 
     text = squash(pdf_text(info.path))
     assert f"weather site {year.site}" in text and f"occupied hours a year {year.hours:,}" in text
+    assert "weather data TMY3, 8,760 hours, hour ending, local standard time" in text
+    assert "daylight illuminance hundreds of lux in the file, multiplied by 100" in text
     row = [fmt(df.mean(), 3), fmt(np.median(df), 3), fmt(df.min(), 3)]
     row += [pct(da.mean()), pct((da >= 0.5).mean()), *(pct(u) for u in plane.udi_mean)]
     assert f"wp {len(df)} " + " ".join(row) in text
