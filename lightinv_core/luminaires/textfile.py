@@ -14,6 +14,7 @@ from pathlib import Path
 import numpy as np
 
 from lightinv_core.luminaires.photometry import fail, quote
+from lightinv_core.textcodec import decode_text
 
 MAX_FILE_BYTES = 20_000_000
 """Bytes (20 MB); real IES and LDT files are under 1 MB."""
@@ -65,25 +66,17 @@ def read_bytes(path: str | os.PathLike) -> bytes:
 
 
 def decode_lines(data: bytes | str, source: str) -> list[str]:
-    """The file's lines (any of CRLF, CR, LF ends a line): UTF-8, else Latin-1.
+    """The file's lines (any of CRLF, CR, LF ends a line), decoded as every LightInv text
+    file is (``lightinv_core.textcodec``: UTF-16 with or without a byte-order mark,
+    UTF-8, else Latin-1).
 
     Refuses binary data (NUL bytes) and empty files with the line where it shows."""
-    if isinstance(data, bytes):
-        nul = data.find(b"\0")
-        if nul >= 0:
-            line = data.count(b"\n", 0, nul) + 1
-            raise fail(source, line, "binary data (NUL bytes), not a text file", "check the file")
-        if data.startswith(b"\xef\xbb\xbf"):
-            data = data[3:]
-        try:
-            text = data.decode("utf-8")
-        except UnicodeDecodeError:
-            text = data.decode("latin-1")  # the usual encoding of older files; never fails
-    else:
-        text = data.removeprefix("\ufeff")
-        if "\0" in text:
-            line = text.count("\n", 0, text.index("\0")) + 1
-            raise fail(source, line, "binary data (NUL bytes), not a text file", "check the file")
+    text = decode_text(data)[0] if isinstance(data, bytes) else data
+    text = text.removeprefix("\ufeff")
+    nul = text.find("\0")
+    if nul >= 0:
+        line = text.count("\n", 0, nul) + 1
+        raise fail(source, line, "binary data (NUL bytes), not a text file", "check the file")
     lines = _LINE_BREAK.split(text)
     if len(lines) > 1 and not lines[-1]:
         lines.pop()  # the break ends the last line; it does not start another

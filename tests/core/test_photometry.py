@@ -562,6 +562,67 @@ def test_eulumdat_ies_conversion_reads_as_the_same_intensities(tmp_path):
 
 
 # ---------------------------------------------------------------------------------------
+# Real files (tests/data/photometry, SOURCES.md there), other encodings
+
+DATA = ROOT / "tests" / "data" / "photometry"
+ROUND = DATA / "rab-round-4.ies"  # a 0.3175 m disc (IES width and length -1.041667 ft)
+SQUARE = DATA / "rab-square-1.ies"  # 1.47 x 1.47 ft
+
+
+def _utf16(text: str, variant: str) -> bytes:
+    """``text`` as Windows tools write "Unicode": UTF-16 with a byte-order mark (either
+    order), or without one."""
+    order = "utf-16-le" if variant.startswith("le") else "utf-16-be"
+    bom = {"utf-16-le": b"\xff\xfe", "utf-16-be": b"\xfe\xff"}[order]
+    return (bom if variant.endswith("bom") else b"") + text.encode(order)
+
+
+def test_real_files_integrate_to_the_flux_an_independent_program_gives():
+    # Photometric Toolbox's flux of the same files (the source repository's summary).
+    assert read_photometry(ROUND).flux() == pytest.approx(5821.76, rel=5e-4)
+    assert read_photometry(SQUARE).flux() == pytest.approx(9217.18, rel=5e-4)
+    ph = read_photometry(ROUND)
+    assert ph.opening[:2] == pytest.approx((-0.3175, -0.3175), abs=1e-4)  # feet -> m, kept
+    assert ph.input_watts == 88.7 and ph.lamp_lumens is None
+
+
+@pytest.mark.parametrize("variant", ["le-bom", "be-bom", "le", "be"])
+def test_utf16_ies_files_read_as_the_same_table(tmp_path, variant):
+    original = read_photometry(ROUND)
+    text = ROUND.read_bytes().decode("latin-1")  # the manufacturer's encoding
+    for name in ("round.ies", "round.txt"):  # by extension, and by content
+        path = tmp_path / name
+        path.write_bytes(_utf16(text, variant))
+        ph = read_photometry(path)
+        np.testing.assert_array_equal(ph.candela, original.candela)
+        assert ph.catalogue_number == original.catalogue_number  # a Latin-1 byte, kept
+        assert (ph.name, ph.opening, ph.input_watts) == (
+            original.name,
+            original.opening,
+            original.input_watts,
+        )
+
+
+@pytest.mark.parametrize("variant", ["le-bom", "be-bom", "le", "be"])
+def test_utf16_ldt_files_read_as_the_same_table(tmp_path, variant):
+    text = _sub(LDT_OK, "Acme\n", "Lichtfabrik Müller\n").replace("\n", "\r\n")
+    for name in ("u.ldt", "u.dat"):
+        path = tmp_path / name
+        path.write_bytes(_utf16(text, variant))
+        ph = read_photometry(path)
+        assert ph.manufacturer == "Lichtfabrik Müller"
+        np.testing.assert_array_equal(ph.candela, parse_ldt(LDT_OK, "x").candela)
+
+
+def test_binary_data_is_still_refused_where_it_shows(tmp_path):
+    for data in (b"IESNA:LM-63-2002\n\0\x01\x02", bytes(64), b"\xff\xfe" + bytes(63)):
+        path = tmp_path / "bin.ies"
+        path.write_bytes(data)
+        with pytest.raises(PhotometryError, match="binary data"):
+            read_photometry(path)
+
+
+# ---------------------------------------------------------------------------------------
 # Dispatch, size limit, missing files
 
 
