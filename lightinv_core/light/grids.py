@@ -70,7 +70,7 @@ def _design_grids(light: LightModel, workplanes: Sequence[Workplane]) -> DesignG
     grids, spans, floor_z, chunks = {}, {}, {}, []
     start = 0
     for wp in workplanes:
-        g = work_plane_grid(patches, caster, WorkPlane(wp.height, wp.border, wp.group))
+        g = work_plane_grid(patches, caster, WorkPlane(wp.height, wp.border, wp.group, wp.name))
         grids[wp.name] = g
         spans[wp.name] = slice(start, start + len(g.points))
         floor_z[wp.name] = float(g.points[0, 2] - wp.height)

@@ -21,7 +21,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from lightinv_core.errors import LightInvError
+from lightinv_core.errors import LightInvError, SceneError
 from lightinv_core.scene.patches import Patches
 from lightinv_core.transport.raycast import RayCaster
 
@@ -53,11 +53,12 @@ def grid_counts(width: float, depth: float) -> tuple[int, int, float]:
 @dataclass(frozen=True)
 class WorkPlane:
     """What to lay a grid on: ``height`` m above floor group ``group``, ``border`` m
-    left out along its edges."""
+    left out along its edges; ``name`` names it in messages."""
 
     height: float = DEFAULT_HEIGHT
     border: float = DEFAULT_BORDER
     group: str = "floor"
+    name: str = ""
 
     def __post_init__(self) -> None:
         for what, value in (("height", self.height), ("border", self.border)):
@@ -88,6 +89,24 @@ def _floor_below(caster: RayCaster, xy: np.ndarray, z: float, floor: np.ndarray)
     o = np.column_stack([xy, np.full(len(xy), z)])
     hit = caster.hit_patches(o, np.broadcast_to(-UP, o.shape))
     return (hit >= 0) & floor[np.maximum(hit, 0)]
+
+
+def _room_top(patches: Patches, caster: RayCaster, xy: np.ndarray, z: float) -> float:
+    """Height (m) of the highest first surface straight above points ``xy`` (m, 2) looking
+    up from level ``z``: the top of the room over the floor (inf where nothing is above)."""
+    o = np.column_stack([xy, np.full(len(xy), z)])
+    hit = caster.hit_patches(o, np.broadcast_to(UP, o.shape))
+    seen = hit >= 0
+    if not seen.any():
+        return math.inf
+    hit, o = hit[seen], o[seen]
+    n, at = patches.normal[hit], patches.origin[hit]
+    nz = n[:, 2]
+    tilted = np.abs(nz) > 1e-6
+    # The height of the hit face's plane straight above the point (a wall: its centroid).
+    rise = -np.einsum("ij,ij->i", n[:, :2], o[:, :2] - at[:, :2]) / np.where(tilted, nz, 1.0)
+    z_hit = np.where(tilted, at[:, 2] + rise, patches.centroid[hit, 2])
+    return float(z_hit.max())
 
 
 def work_plane_grid(patches: Patches, caster: RayCaster, plane: WorkPlane) -> Grid:
@@ -130,6 +149,15 @@ def work_plane_grid(patches: Patches, caster: RayCaster, plane: WorkPlane) -> Gr
         for t in np.arange(BORDER_DIRECTIONS) * 2 * np.pi / BORDER_DIRECTIONS:
             step = plane.border * np.array([np.cos(t), np.sin(t)])
             keep &= _floor_below(caster, xy + step, z_probe, floor)
+    top = _room_top(patches, caster, xy, z_probe)
+    if floor_z + plane.height >= top - 1e-9:
+        raise SceneError(
+            f"{f'work plane {plane.name!r}' if plane.name else 'the work plane'} "
+            f"{plane.height} m above {plane.group!r} (at z = "
+            f"{floor_z + plane.height:.2f} m) is not inside its room, which spans z = "
+            f"{floor_z:.2f} to {top:.2f} m ({top - floor_z:.2f} m high): give a height "
+            f"below {top - floor_z:.2f} m"
+        )
     pts = np.column_stack([xy, np.full(len(xy), floor_z + plane.height)])
     # Inside a solid object, looking up meets the back of a face: drop such points.
     up = np.broadcast_to(UP, pts.shape)

@@ -1328,6 +1328,22 @@ def _(d):
 
 
 @case(
+    "project-workplane-above-room",
+    "project scene",
+    'a work plane 5 m above the floor of the 2.5 m box (`"height": 5`)',
+    SceneError,
+    "work plane 'wp' 5.0 m above 'floor'",
+    "is not inside its room, which spans z = 0.00 to 2.50 m",
+)
+def _(d):
+    def change(data):
+        with_array()(data)
+        data["workplanes"] = [{"name": "wp", "height": 5}]
+
+    return problem_error(d, change)
+
+
+@case(
     "project-obj-missing",
     "project scene",
     "a project whose OBJ file is missing (`project.scene.load()`)",
