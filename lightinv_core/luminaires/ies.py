@@ -1,10 +1,10 @@
 """IES LM-63 photometric files (1986/1991, 1995, 2002, 2019): reading and writing.
 
 Read: the version line (absent in 1986 files), ``[KEYWORD] value`` lines with
-``[MORE]`` continuations, ``TILT=NONE`` or ``TILT=INCLUDE`` (its table is read and
-ignored; ``TILT=<file>`` is refused), then numbers separated by spaces, commas or line
-breaks in any layout: the ten-number line, ballast factor / second factor / input
-watts, vertical angles, horizontal angles, candela. Type C horizontal symmetry (one
+``[MORE]`` continuations, ``TILT=NONE`` or ``TILT=INCLUDE`` (its table is read, not
+applied, and a warning; ``TILT=<file>`` is refused), then numbers separated by spaces,
+commas or line breaks in any layout: the ten-number line, ballast factor / second
+factor / input watts, vertical angles, horizontal angles, candela. Type C horizontal symmetry (one
 angle, 0-90, 0-180, 90-270, 0-360) is expanded to the full circle. Written: LM-63-2002,
 ``TILT=NONE``, metres, the fewest C planes the table's symmetry allows.
 """
@@ -30,6 +30,7 @@ from lightinv_core.luminaires.photometry import (
     expand_c,
     fail,
     quote,
+    with_output_ratio_warning,
 )
 from lightinv_core.luminaires.textfile import (
     MAX_ANGLES,
@@ -98,14 +99,20 @@ def _header(
     )
 
 
-def _skip_tilt(tokens: Tokens) -> int:
-    """Read past an included lamp-tilt table; returns its number of angles."""
+def _skip_tilt(tokens: Tokens) -> str:
+    """Read past an included lamp-tilt table; returns the warning that it is not applied
+    (with its angles and the range of its factors, so the user sees how much it could
+    matter)."""
     tokens.integer("lamp-to-luminaire geometry of the tilt table", 1, 3)
     n, _ = tokens.integer("number of tilt angles", 1, MAX_ANGLES)
     angles, lines = tokens.numbers(n, "tilt angles")
     check_angles(tokens.source, angles, lines, "tilt angle", 0.0, 180.0)
-    tokens.numbers(n, "tilt multiplying factors")
-    return n
+    factors, _ = tokens.numbers(n, "tilt multiplying factors")
+    return (
+        f"TILT=INCLUDE: the lamp-tilt factors ({n} angle{'s' * (n != 1)}, "
+        f"{factors.min():g} to {factors.max():g}) are not applied; the light is computed "
+        "with the lamp as photometered"
+    )
 
 
 def _positive(tokens: Tokens, what: str, allow_zero: bool = False) -> float:
@@ -148,9 +155,9 @@ def parse_ies(data: bytes | str, source: str = "<ies>") -> Photometry:
     keywords, free, tilt_at, tilt = _header(lines, start, source)
     tokens = Tokens(lines, tilt_at + 1, source)
     notes: list[str] = []
+    warnings: list[str] = []
     if tilt.upper() == "INCLUDE":
-        n = _skip_tilt(tokens)
-        notes.append(f"TILT=INCLUDE: the {n}-angle lamp-tilt table was read and ignored")
+        warnings.append(_skip_tilt(tokens))
     elif tilt.upper() != "NONE":
         raise fail(
             source,
@@ -222,7 +229,7 @@ def parse_ies(data: bytes | str, source: str = "<ies>") -> Photometry:
         notes.append("no version line: read as LM-63-1986/1991")
 
     name = keywords.get("LUMINAIRE") or (free[0] if free and not keywords else "")
-    return Photometry(
+    ph = Photometry(
         kind=kind,
         c_angles=c,
         gamma_angles=v,
@@ -237,7 +244,9 @@ def parse_ies(data: bytes | str, source: str = "<ies>") -> Photometry:
         n_lamps=n_lamps,
         lamp=keywords.get("LAMP", ""),
         notes=tuple(notes),
+        warnings=tuple(warnings),
     )
+    return with_output_ratio_warning(ph)
 
 
 def _wrap(values, digits: int = 7, per_line: int = 10) -> list[str]:
@@ -272,7 +281,7 @@ def format_ies(ph: Photometry, file_name: str = "") -> str:
     for key, value in (("LUMCAT", ph.catalogue_number), ("LUMINAIRE", ph.name), ("LAMP", ph.lamp)):
         if one_line(value):
             out.append(f"[{key}] {one_line(value)}")
-    for note in ph.notes:
+    for note in (*ph.notes, *ph.warnings):
         out.append(f"[OTHER] {one_line(note)}")
     out.append("TILT=NONE")
     w, length, height = ph.opening

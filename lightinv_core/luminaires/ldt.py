@@ -13,8 +13,8 @@ Intensities in candela (what ``Photometry.candela`` holds) are
 
 where F is the total luminous flux of the FIRST lamp set (line 26c): the flux the
 table is relative to. LORL is not applied: cd/klm in EULUMDAT already include the
-luminaire's losses (its light output ratio). Further lamp sets are alternatives and
-are noted, not added. A negative number of lamps marks absolute photometry (the
+luminaire's losses (its light output ratio). Further lamp sets are alternatives:
+not added, and a warning. A negative number of lamps marks absolute photometry (the
 DIAL/Lighting Analysts convention of 2009: F is then the luminaire's flux); it gives
 ``lamp_lumens = None`` and the same candela formula.
 """
@@ -38,6 +38,7 @@ from lightinv_core.luminaires.photometry import (
     Photometry,
     expand_c,
     fail,
+    with_output_ratio_warning,
 )
 from lightinv_core.luminaires.textfile import (
     MAX_ANGLES,
@@ -215,10 +216,13 @@ def parse_ldt(data: bytes | str, source: str = "<ldt>") -> Photometry:
     else:
         mirrors = MIRRORS[{0: NONE, 2: BILATERAL_C0, 3: BILATERAL_C90, 4: QUADRANT}[isym]]
         c_full, candela = expand_c(_stored_angles(isym, c, c_lines, source), rows, mirrors)
-    notes = []
+    warnings = []
     if n_sets > 1:
-        notes.append(f"{n_sets} lamp sets: intensities scaled by the first ({lamp_flux:g} lm)")
-    return Photometry(
+        warnings.append(
+            f"{n_sets} lamp sets: the intensities are scaled by the first ({lamp_flux:g} lm); "
+            "the other sets are not used"
+        )
+    ph = Photometry(
         kind="C",
         c_angles=c_full,
         gamma_angles=g,
@@ -232,8 +236,10 @@ def parse_ldt(data: bytes | str, source: str = "<ldt>") -> Photometry:
         source=source,
         n_lamps=abs(lamps),
         lamp=lamp_type,
-        notes=tuple(notes),
+        warnings=tuple(warnings),
     )
+    return with_output_ratio_warning(ph)
+
 
 
 _SIZES = (

@@ -10,8 +10,8 @@ of the file (candela multiplier, ballast factor, conversion factor) already appl
 from __future__ import annotations
 
 import math
-from collections.abc import Callable, Sequence
-from dataclasses import dataclass, field
+from collections.abc import Callable, Iterable, Sequence
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 
@@ -129,7 +129,10 @@ class Photometry:
     cannot be interpolated or integrated. ``lamp_lumens`` is the rated lamp flux (lm)
     the table was measured with, or None for absolute photometry; ``opening`` is the
     luminous opening (width across C90-C270, length along C0-C180, height), metres, as
-    the file gives it (IES shape codes such as a negative width are kept).
+    the file gives it (IES shape codes such as a negative width are kept). ``notes`` say what the reader did that the user may
+    want to know; ``warnings`` what changes the light or makes the table doubtful (a
+    lamp-tilt table not applied, a light output ratio above 100%), for the user to see
+    (``light_warnings``).
     """
 
     kind: str
@@ -146,6 +149,7 @@ class Photometry:
     n_lamps: int = 1
     lamp: str = ""
     notes: tuple[str, ...] = field(default=())
+    warnings: tuple[str, ...] = field(default=())
 
     def __post_init__(self) -> None:
         src = self.source or "photometry"
@@ -182,6 +186,7 @@ class Photometry:
         object.__setattr__(self, "candela", cd)
         object.__setattr__(self, "opening", tuple(float(x) for x in self.opening))
         object.__setattr__(self, "notes", tuple(self.notes))
+        object.__setattr__(self, "warnings", tuple(self.warnings))
 
     def _require_c(self, what: str) -> None:
         if self.kind != "C":
@@ -271,3 +276,43 @@ class Photometry:
         if lo not in keys or hi not in keys:
             return np.array([], dtype=int)
         return np.nonzero((c >= lo - ANGLE_TOL) & (c <= hi + ANGLE_TOL))[0]
+
+
+LOR_ALLOWANCE = 0.01
+"""A light output ratio up to 1 + this passes: a table's flux differs from the lamps'
+by the integration rule and the digits printed (0.01-0.1% in the files tested)."""
+
+
+def output_ratio_warning(ph: Photometry) -> str | None:
+    """The warning for relative type C photometry whose table integrates to more than
+    its lamps give (light output ratio = table flux / rated lamp lumens above 100%), or
+    None."""
+    if ph.kind != "C" or ph.lamp_lumens is None:
+        return None
+    flux = ph.flux()
+    ratio = flux / ph.lamp_lumens
+    if ratio <= 1.0 + LOR_ALLOWANCE:
+        return None
+    return (
+        f"light output ratio {100.0 * ratio:.1f}%: the table integrates to {flux:,.0f} lm, "
+        f"more than the {ph.lamp_lumens:,.0f} lm of its lamps; check the lamp lumens and "
+        "the multipliers (the table is used as it is)"
+    )
+
+
+def with_output_ratio_warning(ph: Photometry) -> Photometry:
+    """``ph`` with ``output_ratio_warning`` added to its warnings (if there is one)."""
+    warning = output_ratio_warning(ph)
+    return ph if warning is None else replace(ph, warnings=(*ph.warnings, warning))
+
+
+def light_warnings(tables: Iterable[Photometry]) -> list[str]:
+    """Every warning of ``tables`` once, each after its file: "FILE: warning". The one
+    list the command line, the window and the report show."""
+    out: list[str] = []
+    for ph in tables:
+        for warning in ph.warnings:
+            line = f"{ph.source or ph.name or 'photometry'}: {warning}"
+            if line not in out:
+                out.append(line)
+    return out

@@ -375,11 +375,17 @@ def test_lm63_1986_without_version_line_takes_its_name_from_the_header():
     np.testing.assert_array_equal(ph91.candela, ph.candela)
 
 
-def test_tilt_include_is_read_and_ignored():
+def test_tilt_include_is_read_ignored_and_a_warning():
     text = _sub(IES_OK, "TILT=NONE\n", "TILT=INCLUDE\n1\n3\n0 45\n90\n1.0 0.95 0.9\n")
     ph = parse_ies(text, "t.ies")
     np.testing.assert_array_equal(ph.candela, parse_ies(IES_OK, "t.ies").candela)
-    assert any("TILT=INCLUDE" in note for note in ph.notes)
+    # It changes the light (the lamp's tilt is not accounted for): a warning, not a note.
+    assert ph.warnings == (
+        "TILT=INCLUDE: the lamp-tilt factors (3 angles, 0.9 to 1) are not applied; "
+        "the light is computed with the lamp as photometered",
+    )
+    assert not any("TILT" in note for note in ph.notes)
+    assert parse_ies(IES_OK, "t.ies").warnings == ()
 
 
 def test_numbers_in_any_layout_commas_crlf_and_feet():
@@ -562,7 +568,7 @@ def test_eulumdat_ies_conversion_reads_as_the_same_intensities(tmp_path):
 
 
 # ---------------------------------------------------------------------------------------
-# Real files (tests/data/photometry, SOURCES.md there), other encodings
+# Real files (tests/data/photometry, SOURCES.md there), other encodings, warnings
 
 DATA = ROOT / "tests" / "data" / "photometry"
 ROUND = DATA / "rab-round-4.ies"  # a 0.3175 m disc (IES width and length -1.041667 ft)
@@ -583,7 +589,7 @@ def test_real_files_integrate_to_the_flux_an_independent_program_gives():
     assert read_photometry(SQUARE).flux() == pytest.approx(9217.18, rel=5e-4)
     ph = read_photometry(ROUND)
     assert ph.opening[:2] == pytest.approx((-0.3175, -0.3175), abs=1e-4)  # feet -> m, kept
-    assert ph.input_watts == 88.7 and ph.lamp_lumens is None
+    assert ph.input_watts == 88.7 and ph.lamp_lumens is None and ph.warnings == ()
 
 
 @pytest.mark.parametrize("variant", ["le-bom", "be-bom", "le", "be"])
@@ -620,6 +626,62 @@ def test_binary_data_is_still_refused_where_it_shows(tmp_path):
         path.write_bytes(data)
         with pytest.raises(PhotometryError, match="binary data"):
             read_photometry(path)
+
+
+def _relative(lumens_per_lamp: float) -> str:
+    """The round real file as relative photometry: ``lumens_per_lamp`` for its table."""
+    text = ROUND.read_bytes().decode("latin-1")
+    return _sub(text, "1 -1 0.9687 73", f"1 {lumens_per_lamp:g} 0.9687 73")
+
+
+def test_a_light_output_ratio_above_100_percent_is_a_warning():
+    ph = parse_ies(_relative(5000.0), "rel.ies")  # the table holds 5,820 lm
+    assert ph.lamp_lumens == 5000.0
+    assert ph.warnings == (
+        "light output ratio 116.4%: the table integrates to 5,820 lm, more than the "
+        "5,000 lm of its lamps; check the lamp lumens and the multipliers (the table is "
+        "used as it is)",
+    )
+    # Within 1% (integration and printed digits) and below 100%: no warning.
+    assert parse_ies(_relative(5800.0), "rel.ies").warnings == ()
+    assert parse_ies(_relative(8000.0), "rel.ies").warnings == ()
+    assert (
+        parse_ies(_sub(IES_OK, "1 1000 1 3", "1 1 1 3"), "x.ies")
+        .warnings[0]
+        .startswith("light output ratio 2")
+    )
+
+
+def test_an_ldt_whose_table_exceeds_its_lamps_is_a_warning(tmp_path):
+    bright = downlight(2000.0, watts=20.0)
+    path = tmp_path / "bright.ldt"
+    write_ldt(bright, path)
+    text = _sub(path.read_text(encoding="latin-1"), "\n2000\n", "\n1600\n")  # lamp flux
+    ph = parse_ldt(text, "bright.ldt")  # cd/klm x 1.6 klm: 1,601 lm from 1,600 lm lamps
+    assert ph.warnings == ()
+    text = _sub(text, "\n1\n0\n1\n", "\n1.25\n0\n1\n")  # conversion factor 1.25
+    ph = parse_ldt(text, "bright.ldt")
+    assert ph.warnings == (
+        "light output ratio 125.1%: the table integrates to 2,001 lm, more than the "
+        "1,600 lm of its lamps; check the lamp lumens and the multipliers (the table is "
+        "used as it is)",
+    )
+
+
+def test_extra_lamp_sets_are_a_warning():
+    lines = LDT_OK.splitlines()
+    lines[25] = "2"  # line 26: two lamp sets
+    lines[32:32] = ["2", "LED", "2000", "4000K", "80", "20"]
+    ph = parse_ldt("\n".join(lines), "two.ldt")
+    assert ph.warnings == (
+        "2 lamp sets: the intensities are scaled by the first (1000 lm); the other sets "
+        "are not used",
+    )
+
+
+def test_the_shipped_catalogue_gives_no_warnings():
+    for entry in builtin_catalogue():
+        assert entry.photometry().warnings == (), entry.name
 
 
 # ---------------------------------------------------------------------------------------
