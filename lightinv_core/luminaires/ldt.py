@@ -229,7 +229,7 @@ def parse_ldt(data: bytes | str, source: str = "<ldt>") -> Photometry:
         candela=candela,
         lamp_lumens=None if lamps < 0 else lamp_flux,
         input_watts=watts if watts > 0 else None,
-        opening=(sizes[4] / 1000.0, sizes[3] / 1000.0, float(np.mean(sizes[5:9])) / 1000.0),
+        opening=_opening(sizes),
         name=name,
         manufacturer=company,
         catalogue_number=number,
@@ -240,6 +240,16 @@ def parse_ldt(data: bytes | str, source: str = "<ldt>") -> Photometry:
     )
     return with_output_ratio_warning(ph)
 
+
+def _opening(sizes: list[float]) -> tuple[float, float, float]:
+    """(width, length, height) of the luminous area, m, from lines 13-21 (mm). A width
+    of 0 with a length marks a circle of that diameter: it becomes LM-63's code for one
+    (width and length both minus the diameter), so one convention holds everywhere."""
+    length, width = sizes[3] / 1000.0, sizes[4] / 1000.0
+    height = float(np.mean(sizes[5:9])) / 1000.0
+    if width == 0.0 and length > 0.0:
+        return (-length, -length, height)
+    return (width, length, height)
 
 
 _SIZES = (
@@ -309,7 +319,8 @@ def format_ldt(ph: Photometry, file_name: str = "") -> str:
         ref, lamps = (flux if flux > 0 else 1000.0), -ph.n_lamps
     else:
         ref, lamps = ph.lamp_lumens, ph.n_lamps
-    w_mm, l_mm, h_mm = (1000.0 * x for x in ph.opening)
+    w_mm, l_mm, h_mm = (1000.0 * abs(x) for x in ph.opening)
+    circle = ph.opening[0] < 0 and ph.opening[1] < 0 and w_mm == l_mm  # IES's circle code
     linear = ph.symmetry() != AXIAL and l_mm >= 2 * w_mm > 0
     ityp = 1 if isym == 1 else 2 if linear else 3
     out = [
@@ -326,7 +337,8 @@ def format_ldt(ph: Photometry, file_name: str = "") -> str:
         one_line(file_name, TEXT_WIDTH),
         "LightInv",  # date/user: no date, so the output is reproducible
     ]
-    out += [fmt_number(x) for x in (l_mm, w_mm, h_mm, l_mm, w_mm, h_mm, h_mm, h_mm, h_mm)]
+    area_w = 0.0 if circle else w_mm  # EULUMDAT: a luminous width of 0 marks a circle
+    out += [fmt_number(x) for x in (l_mm, w_mm, h_mm, l_mm, area_w, h_mm, h_mm, h_mm, h_mm)]
     dff = 100.0 * ph.flux(90.0) / flux if flux > 0 else 100.0
     out += [fmt_number(dff), fmt_number(100.0 * flux / ref), "1", "0", "1"]
     out += [str(lamps), one_line(ph.lamp, TEXT_WIDTH), fmt_number(ref, 10), "", ""]

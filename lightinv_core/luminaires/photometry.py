@@ -129,7 +129,8 @@ class Photometry:
     cannot be interpolated or integrated. ``lamp_lumens`` is the rated lamp flux (lm)
     the table was measured with, or None for absolute photometry; ``opening`` is the
     luminous opening (width across C90-C270, length along C0-C180, height), metres, as
-    the file gives it (IES shape codes such as a negative width are kept). ``notes`` say what the reader did that the user may
+    the file gives it (IES shape codes such as a negative width are kept; a EULUMDAT
+    circle is read as the IES one). ``notes`` say what the reader did that the user may
     want to know; ``warnings`` what changes the light or makes the table doubtful (a
     lamp-tilt table not applied, a light output ratio above 100%), for the user to see
     (``light_warnings``).

@@ -12,21 +12,22 @@ times the luminaire's ``dimming``.
 
 The point-source law holds beyond about five times the luminous opening (the
 "five-times rule"). A luminaire whose opening is longer or wider than ``SEGMENT`` is
-therefore split along it into equal segments, each a point source with its share
-of the intensity (as lighting programs do for linear luminaires): a 1.2 m batwing
-becomes 6 sources 0.2 m apart, exact beyond 1 m. Place the photometric centre at
-least a centimetre off the mounting surface: a point source on a surface lights it
-at grazing angles.
+therefore split into cells of equal area, each a point source with its share of the
+intensity (as lighting programs do for linear luminaires): a 1.2 m batwing becomes 6
+sources 0.2 m apart, exact beyond 1 m; a round opening (IES width and length
+negative) becomes points on its disc, a 0.6 m one 19 (``luminaires.opening``). Place
+the photometric centre at least a centimetre off the mounting surface: a point source
+on a surface lights it at grazing angles.
 """
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
 
 import numpy as np
 
 from lightinv_core.errors import LightInvError
+from lightinv_core.luminaires.opening import opening_points
 from lightinv_core.luminaires.photometry import Photometry
 from lightinv_core.scene.patches import Patches
 from lightinv_core.transport.raycast import RayCaster, patch_points
@@ -92,14 +93,9 @@ class PlacedLuminaire:
     @property
     def segments(self) -> np.ndarray:
         """(k, 3) positions (m) of the point sources the opening is split into (see
-        the module); each carries 1/k of the intensity."""
-        width, length = self.photometry.opening[0], self.photometry.opening[1]
-        n_len = max(1, math.ceil(length / SEGMENT - 1e-9))
-        n_wid = max(1, math.ceil(width / SEGMENT - 1e-9))
-        a = (np.arange(n_len) + 0.5) / n_len - 0.5
-        b = (np.arange(n_wid) + 0.5) / n_wid - 0.5
-        ga, gb = np.meshgrid(a * length, b * width, indexing="ij")
-        return self.position + ga.reshape(-1, 1) * self.c0 + gb.reshape(-1, 1) * self.c90
+        the module and ``luminaires.opening``); each carries 1/k of the intensity."""
+        offsets = opening_points(self.photometry.opening, SEGMENT)
+        return self.position + offsets[:, :1] * self.c0 + offsets[:, 1:] * self.c90
 
     @property
     def lumens(self) -> float:

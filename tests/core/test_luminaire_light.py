@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import json
 import math
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -256,3 +257,125 @@ def test_a_linear_luminaire_is_split_along_its_length():
     ref = sum(f.illuminance(near, up, None) for f in fine)
     # One point source at the centre is far off near the end of the tube.
     assert abs(one.illuminance(near, up, None)[0] / ref[0] - 1) > 0.1
+
+
+# ---------------------------------------------------------------------------------------
+# Round openings (IES width and length negative): points on the disc, equal areas
+
+ROUND_IES = Path(__file__).resolve().parents[1] / "data" / "photometry" / "rab-round-4.ies"
+
+
+def disc_lux(ph: Photometry, radius: float, p, n, nr: int = 96, nt: int = 288) -> float:
+    """Illuminance (lux) at ``p`` facing ``n`` from a disc of ``radius`` (m) centred on
+    the origin, facing down (C0 along x), whose every area element emits ``ph``'s
+    intensity over the disc's area: a numerical integral over the disc (Gauss-Legendre in
+    the radius, the periodic trapezoid rule in the angle), independent of the split."""
+    x, w = np.polynomial.legendre.leggauss(nr)
+    r = (x + 1) * radius / 2
+    wr = w * radius / 2 * r
+    t = (np.arange(nt) + 0.5) * 2 * np.pi / nt
+    rr, tt = np.meshgrid(r, t, indexing="ij")
+    src = np.stack([rr * np.cos(tt), rr * np.sin(tt), np.zeros_like(rr)], axis=-1)
+    v = np.asarray(p, float) - src
+    d = np.linalg.norm(v, axis=-1)
+    u = v / d[..., None]
+    cos_in = np.maximum(-(u @ np.asarray(n, float)), 0.0)
+    gamma = np.degrees(np.arccos(np.clip(-u[..., 2], -1.0, 1.0)))
+    c = np.degrees(np.arctan2(u[..., 1], u[..., 0])) % 360.0
+    f = ph.intensity(c, gamma) * cos_in / d**2
+    return float((wr[:, None] * f).sum() * (2 * np.pi / nt)) / (np.pi * radius**2)
+
+
+def test_a_round_opening_is_split_into_points_on_its_disc():
+    import dataclasses
+
+    from lightinv_core.luminaires import read_photometry
+
+    ph = read_photometry(ROUND_IES)  # a real 0.3175 m disc (-1.041667 ft)
+    lum = PlacedLuminaire("R", (1.0, 2.0, 3.0), ph, DOWN, (0, 1, 0))
+    seg = lum.segments
+    assert len(seg) == 7  # was 1: the negative sizes were never split
+    np.testing.assert_allclose(seg.mean(axis=0), (1.0, 2.0, 3.0), atol=1e-12)
+    assert np.all(np.linalg.norm(seg - (1.0, 2.0, 3.0), axis=1) < 0.3175 / 2)
+    assert np.allclose(seg[:, 2], 3.0)  # on the opening's plane, across the aim
+    for diameter, count in ((0.2, 1), (0.6, 19), (1.0, 37)):
+        disc = dataclasses.replace(ph, opening=(-diameter, -diameter, 0.0))
+        assert len(PlacedLuminaire("R", (0, 0, 0), disc, DOWN, (1, 0, 0)).segments) == count
+    # An ellipse 0.6 m along C0 and 0.3 m across: the circle's points stretched.
+    oval = dataclasses.replace(ph, opening=(-0.3, -0.6, 0.0))
+    pts = PlacedLuminaire("E", (0, 0, 0), oval, DOWN, (1, 0, 0)).segments
+    assert len(pts) == 19 and np.all((pts[:, 0] / 0.3) ** 2 + (pts[:, 1] / 0.15) ** 2 < 1)
+
+
+def test_the_split_of_a_round_opening_conserves_the_flux():
+    """All the light of the split luminaire crosses a sphere around it: the integral of
+    its illuminance over the sphere (inward normals) is the table's flux."""
+    import dataclasses
+
+    from lightinv_core.luminaires import read_photometry
+
+    ph = dataclasses.replace(read_photometry(ROUND_IES), opening=(-0.6, -0.6, 0.0))
+    lum = PlacedLuminaire("R", (0, 0, 0), ph, DOWN, (1, 0, 0))
+    assert len(lum.segments) == 19
+    n, radius = 200_000, 1.0
+    k = np.arange(n) + 0.5  # a Fibonacci lattice: n points of equal area on the sphere
+    z = 1 - 2 * k / n
+    phi = np.pi * (1 + 5**0.5) * k
+    out = np.column_stack([np.sqrt(1 - z * z) * np.cos(phi), np.sqrt(1 - z * z) * np.sin(phi), z])
+    lux = lum.illuminance(radius * out, -out, None)
+    assert lux.sum() * 4 * np.pi * radius**2 / n == pytest.approx(ph.flux(), rel=1e-4)
+
+
+def test_a_big_round_opening_lights_its_near_field_as_its_disc_does():
+    """Against the integral over the disc: the split within 3.5% at a distance of one
+    diameter, 1.5% from 0.5 m; a single point source is off as the disc predicts
+    (brighter straight below, dimmer to the side), at least 4 times as far."""
+    import dataclasses
+
+    from lightinv_core.luminaires import read_photometry
+
+    real = read_photometry(ROUND_IES)
+    receivers = [
+        ((0, 0, -0.3), (0, 0, 1)),
+        ((0, 0, -0.6), (0, 0, 1)),
+        ((0.3, 0, -0.3), (0, 0, 1)),
+        ((0.5, 0.2, -0.5), (0, 0, 1)),
+        ((0, 0.3, -0.6), (0, 0, 1)),
+        ((0.2, 0.1, -1.0), (0, 0, 1)),
+        ((0, 0, -1.2), (0, 0, 1)),
+        ((0.6, 0, -0.3), (-1, 0, 0)),  # a wall beside it
+    ]
+    for diameter in (0.3175, 0.6):
+        ph = dataclasses.replace(real, opening=(-diameter, -diameter, 0.0))
+        lum = PlacedLuminaire("R", (0, 0, 0), ph, DOWN, (1, 0, 0))
+        one = dataclasses.replace(lum, photometry=dataclasses.replace(ph, opening=(0, 0, 0)))
+        for p, n in receivers:
+            ref = disc_lux(ph, diameter / 2, p, n)
+            split = lum.illuminance(np.array([p], float), np.array([n], float), None)[0]
+            point = one.illuminance(np.array([p], float), np.array([n], float), None)[0]
+            err, point_err = split / ref - 1, point / ref - 1
+            assert abs(err) < (0.015 if np.linalg.norm(p) >= 0.5 else 0.035), (diameter, p)
+            assert abs(point_err) > 4 * abs(err), (diameter, p)
+            if p[:2] == (0, 0):
+                assert point_err > 0  # straight below, the disc is dimmer than its centre
+        # The integral itself has converged (doubling its nodes moves it < 1e-5).
+        p, n = receivers[0]
+        assert disc_lux(ph, diameter / 2, p, n, 192, 576) == pytest.approx(
+            disc_lux(ph, diameter / 2, p, n), rel=1e-5
+        )
+
+
+def test_a_lambertian_disc_on_its_axis_matches_the_closed_form():
+    """A disc of uniform luminance L gives pi L R² / (R² + h²) on its axis: with
+    I = I0 cos(gamma) over the disc's area, I0 / (R² + h²); a point source I0 / h²."""
+    import dataclasses
+
+    i0, radius = 1000.0, 0.3
+    ph = dataclasses.replace(lambertian_down(i0), opening=(-0.6, -0.6, 0.0))
+    lum = PlacedLuminaire("L", (0, 0, 0), ph, DOWN, (1, 0, 0))
+    for h, tol in ((0.3, 0.03), (0.6, 0.01), (1.2, 0.005)):
+        exact = i0 / (radius**2 + h**2)
+        got = lum.illuminance(np.array([[0, 0, -h]]), np.array([[0, 0, 1.0]]), None)[0]
+        assert got == pytest.approx(exact, rel=tol)
+        assert i0 / h**2 > (1 + 5 * tol) * exact  # what one point source would give
+        assert disc_lux(ph, radius, (0, 0, -h), (0, 0, 1)) == pytest.approx(exact, rel=1e-4)

@@ -684,6 +684,19 @@ def test_the_shipped_catalogue_gives_no_warnings():
         assert entry.photometry().warnings == (), entry.name
 
 
+def test_ldt_round_opening_reads_as_the_ies_circle_and_writes_back(tmp_path):
+    lines = LDT_OK.splitlines()
+    lines[15], lines[16] = "400", "0"  # luminous area: length 400 mm, width 0 (a circle)
+    ph = parse_ldt("\n".join(lines), "round.ldt")
+    assert ph.opening[:2] == (-0.4, -0.4)  # LM-63's code for a 0.4 m circle
+    write_ldt(ph, tmp_path / "r.ldt")
+    written = (tmp_path / "r.ldt").read_text(encoding="latin-1").splitlines()
+    assert (written[15], written[16]) == ("400", "0")
+    assert read_ldt(tmp_path / "r.ldt").opening[:2] == (-0.4, -0.4)
+    write_ies(ph, tmp_path / "r.ies")
+    assert read_ies(tmp_path / "r.ies").opening[:2] == pytest.approx((-0.4, -0.4))
+
+
 # ---------------------------------------------------------------------------------------
 # Dispatch, size limit, missing files
 
