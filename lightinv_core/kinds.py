@@ -50,6 +50,20 @@ DAYLIGHT_QUANTITIES = {
 }
 """The daylight metrics and the scenario each is measured in."""
 
+MAX_LUX = 1e6
+"""Lux (and lm/m²): ten times full sunlight, the largest illuminance a design may name."""
+
+QUANTITY_RANGES: dict[Quantity, tuple[float, float, str]] = {
+    Quantity.LUX: (0.0, MAX_LUX, "illuminance, lux"),
+    Quantity.C: (0.0, MAX_LUX, "reflected exitance, lm/m²"),
+    Quantity.DF: (0.0, 100.0, "daylight factor, %"),
+    Quantity.DA: (0.0, 1.0, "DA300, a fraction of the occupied hours"),
+    Quantity.UDI: (0.0, 1.0, "UDI 100-3000, a fraction of the occupied hours"),
+    Quantity.SDA: (0.0, 1.0, "1 or 0 per point, its average a fraction"),
+}
+"""The values each quantity can take (low, high, unit): an intention bound outside them
+can never be met."""
+
 
 class Scenario(StrEnum):
     """The light an intention is judged in (docs/daylight.md, scenarios)."""

@@ -19,6 +19,7 @@ from lightinv_core.errors import DesignError
 from lightinv_core.kinds import (
     ANNUAL_GOALS,
     DAYLIGHT_QUANTITIES,
+    QUANTITY_RANGES,
     ArrayVariable,
     Bound,
     GoalKind,
@@ -326,10 +327,17 @@ class Intention:
             object.__setattr__(self, "patches", tuple(ids))
         if self.quantity not in tuple(Quantity):
             raise DesignError(f"{where}: quantity must be {_either(tuple(Quantity))}")
+        lo, hi, unit = QUANTITY_RANGES[Quantity(self.quantity)]
         for key in (Bound.MIN, Bound.MAX, Bound.AVERAGE):
             v = getattr(self, key)
             if v is not None:
-                object.__setattr__(self, key, _finite(v, f"{where} {key}", lo=0.0))
+                v = _finite(v, f"{where} {key}")
+                if not lo <= v <= hi:
+                    raise DesignError(
+                        f"{where}: {key} {v:g} is outside the range of {self.quantity} "
+                        f"({unit}), {lo:g} to {hi:g}; it could never be met"
+                    )
+                object.__setattr__(self, key, v)
         if self.uniformity is not None:
             object.__setattr__(
                 self, "uniformity", _finite(self.uniformity, f"{where} uniformity", 0.0, 1.0)

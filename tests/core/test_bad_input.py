@@ -1468,6 +1468,20 @@ def _(d):
 
 
 @case(
+    "intention-out-of-range",
+    "constraints",
+    'a daylight autonomy intention of average 1.5 (`"quantity": "da"`, a fraction 0-1)',
+    ProjectError,
+    "project.json: intentions[0]",
+    "intention 'da': average 1.5 is outside the range of da",
+    "0 to 1; it could never be met",
+)
+def _(d):
+    it = {"name": "da", "group": "floor", "quantity": "da", "average": 1.5}
+    return project_error(d, setter("intentions.0", it))
+
+
+@case(
     "intention-average-max",
     "constraints",
     "an intention with average 500 lux > max 300 lux",

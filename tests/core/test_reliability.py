@@ -53,3 +53,36 @@ def test_cli_refuses_a_work_plane_above_the_box(tmp_path, capsys, monkeypatch):
     argv = ["simulate", "cornell", "--emit", "light=100", "--workplane", "4", "--rays", "16"]
     assert cli.main(argv) == 2
     assert "is not inside its room" in capsys.readouterr().err
+
+
+# --- intention bounds within their quantity's range --------------------------------------
+
+
+@pytest.mark.parametrize(
+    "intention, message",
+    [
+        ({"quantity": "da", "average": 1.5}, "average 1.5 is outside the range of da"),
+        ({"quantity": "udi", "min": 2}, "min 2 is outside the range of udi"),
+        ({"quantity": "df", "min": 150}, "min 150 is outside the range of df"),
+        ({"max": 1e300}, "max 1e+300 is outside the range of lux"),
+        ({"min": -5}, "expected a number >= 0"),
+        ({"uniformity": 1.5}, "expected a number >= 0 and <= 1, got 1.5"),
+    ],
+)
+def test_intention_bounds_out_of_their_quantitys_range_are_refused(tmp_path, intention, message):
+    from lightinv_core.project import ProjectError
+
+    def change(data):
+        data["intentions"] = [{"name": "it", "group": "floor", **intention}]
+
+    with pytest.raises(ProjectError) as err:
+        build_problem(tmp_path, change)
+    assert "intentions[0]" in str(err.value) and message in str(err.value)
+
+
+def test_a_design_intention_out_of_range_names_it():
+    from lightinv_core.design.model import DesignError, Intention
+
+    with pytest.raises(DesignError, match=r"intention 'da': average 1.5 .* 0 to 1"):
+        Intention("da", group="floor", quantity="da", average=1.5)
+    assert Intention("da", group="floor", quantity="da", average=0.5).average == 0.5
