@@ -65,6 +65,8 @@ def _info_value(v: Any, path: str) -> Any:
     if isinstance(v, list | tuple):
         return [_info_value(x, _join(path, i)) for i, x in enumerate(v)]
     if isinstance(v, dict):
+        for k in getattr(v, "duplicates", ()):
+            _fail(path, f"field {k!r} is given twice")
         for k in v:
             if not isinstance(k, str):
                 _fail(path, f"expected string keys, got {_describe(k)}")
@@ -85,6 +87,8 @@ def _info(v: Any, path: str) -> SolutionInfo:
 def _objectives(v: Any, path: str) -> dict[str, float]:
     if not isinstance(v, dict):
         _fail(path, f"expected an object, got {_describe(v)}")
+    for key in getattr(v, "duplicates", ()):
+        _fail(path, f"objective {key!r} is given twice")
     out = {}
     for key, value in v.items():
         if key not in GOALS:

@@ -1130,6 +1130,30 @@ def _(d):
     return project_error(d, setter("operator.tol", 1))
 
 
+def duplicate_objective(d: Path) -> BaseException | None:
+    """A project whose saved solution gives the objective max_light_power twice."""
+    data = copy.deepcopy(PROJECT)
+    best = {"sources": data["sources"], "objectives": {"max_light_power": 1.0}, "penalty": 0}
+    data["results"] = {"solutions": [best]}
+    text = json.dumps(data, indent=2).replace(
+        '"max_light_power": 1.0', '"max_light_power": 1.0, "max_light_power": 2.0'
+    )
+    write(d, BOX)
+    return raised(lambda: load_project(write(d, text, "project.json")))
+
+
+@case(
+    "project-objective-twice",
+    "project file",
+    'a saved solution giving an objective twice (`"max_light_power": 1.0, "max_light_power": 2.0`)',
+    ProjectError,
+    "project.json: results.solutions[0].objectives",
+    "objective 'max_light_power' is given twice",
+)
+def _(d):
+    return duplicate_objective(d)
+
+
 @case(
     "project-run-twice",
     "project file",

@@ -86,3 +86,15 @@ def test_a_design_intention_out_of_range_names_it():
     with pytest.raises(DesignError, match=r"intention 'da': average 1.5 .* 0 to 1"):
         Intention("da", group="floor", quantity="da", average=1.5)
     assert Intention("da", group="floor", quantity="da", average=0.5).average == 0.5
+
+
+# --- an objective given twice in the results ---------------------------------------------
+
+
+def test_an_objective_given_twice_in_the_results_is_refused(tmp_path):
+    from lightinv_core.project import ProjectError
+    from tests.core.test_bad_input import duplicate_objective
+
+    err = duplicate_objective(tmp_path)
+    assert isinstance(err, ProjectError)
+    assert "results.solutions[0].objectives: objective 'max_light_power' is given twice" in str(err)
