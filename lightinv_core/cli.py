@@ -372,11 +372,12 @@ def _simulate_reference(args, scene, p, E, luminaires) -> int:
     ]
     if luminaires:
         result["luminaires"] = _luminaire_summary(luminaires)
-        watts = sum(x["watts"] or 0.0 for x in result["luminaires"])
-        lines.append(
-            f"{len(luminaires)} luminaire(s): {sum(x.lumens for x in luminaires):.0f} lm, "
-            f"{watts:.1f} W"
-        )
+        lines.append(_luminaire_line(result["luminaires"]))
+        from lightinv_core.luminaires.photometry import light_warnings
+
+        for w in light_warnings(x.photometry for x in luminaires):
+            _warn(f"warning: {w}")
+            warnings.append(w)  # result["warnings"] too
     lines.append(f"{'group':<14} {'min lux':>10} {'avg lux':>10} {'max lux':>10}")
     lines += [
         f"{s['group']:<14} {s['min_lux']:10.1f} {s['avg_lux']:10.1f} {s['max_lux']:10.1f}"
@@ -527,17 +528,47 @@ def _annual_lines(a: dict) -> list[str]:
 
 
 def _luminaire_summary(luminaires) -> list[dict]:
-    return [
-        {
-            "name": x.name,
-            "position_m": x.position.tolist(),
-            "file": x.photometry.source,
-            "lumens": x.lumens,
-            "watts": x.photometry.input_watts,
-            "dimming": x.dimming,
-        }
-        for x in luminaires
-    ]
+    """Each luminaire for ``--json``: ``lumens`` and ``watts_at_dimming`` at its set
+    dimming, ``lumens_rated`` and ``watts`` (the file's input watts, or None) at full
+    output; power taken as proportional to output (a linear-dimming driver), as the
+    optimiser's electric power is; ``warnings`` of its photometric file."""
+    out = []
+    for x in luminaires:
+        rated = x.photometry.input_watts
+        out.append(
+            {
+                "name": x.name,
+                "position_m": x.position.tolist(),
+                "file": x.photometry.source,
+                "lumens": x.lumens,
+                "watts": rated,
+                "dimming": x.dimming,
+                "lumens_rated": x.photometry.flux(),
+                "watts_at_dimming": None if rated is None else rated * x.dimming,
+                "warnings": list(x.photometry.warnings),
+            }
+        )
+    return out
+
+
+def _luminaire_line(summary: list[dict]) -> str:
+    """The luminaires' flux and power, both at the set dimming, then both at full output
+    (unless nothing is dimmed); luminaires whose file gives no input watts are counted."""
+    lm = sum(x["lumens"] for x in summary)
+    lm_rated = sum(x["lumens_rated"] for x in summary)
+    watts = sum(x["watts_at_dimming"] or 0.0 for x in summary)
+    rated = sum(x["watts"] or 0.0 for x in summary)
+    if all(x["dimming"] == 1.0 for x in summary):
+        text = f"{lm:.0f} lm, {watts:.1f} W at full output"
+    else:
+        text = (
+            f"{lm:.0f} lm, {watts:.1f} W at the set dimming "
+            f"(rated {lm_rated:.0f} lm, {rated:.1f} W)"
+        )
+    unknown = sum(x["watts"] is None for x in summary)
+    if unknown:
+        text += f"; {unknown} with no input watts in the file, not counted in W"
+    return f"{len(summary)} luminaire(s): {text}"
 
 
 def _failed(message: str) -> int:
