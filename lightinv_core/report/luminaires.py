@@ -1,7 +1,7 @@
 """The report's pages on luminaire arrays and work planes, in EN 12464-1's terms.
 
 - the luminaire schedule: per array its product, count, spacing, rotation, dimming,
-  flux and power, and the totals;
+  flux and power, and the totals; the products' photometry warnings in its note;
 - polar curves of each product (C0-C180 and C90-C270 planes, cd per 1000 lm);
 - per work plane: its grid and the maintained values Em, Emin, Emax and U0 against the
   intentions on it, with an iso-lux plan.
@@ -22,6 +22,7 @@ from lightinv_core.light.arrays import Product, resolve_product
 from lightinv_core.light.daylight import LayoutDaylight
 from lightinv_core.light.grids import DesignGrids
 from lightinv_core.light.intentions import QUANTITY_UNITS
+from lightinv_core.luminaires.photometry import light_warnings
 from lightinv_core.report.figures import new_figure
 from lightinv_core.report.tables import FAIL, METRIC_NAMES, PASS, Table, fmt
 from lightinv_core.transport.workplane import grid_statistics
@@ -35,9 +36,11 @@ def luminaire_table(arrays: Sequence[LuminaireArray]) -> Table | None:
     if not arrays:
         return None
     rows = []
+    products = []
     count = watts = lumens = 0.0
     for a in arrays:
         p = resolve_product(a.product, a.watts)
+        products.append(p)
         su, sv = a.spacing
         w = a.count * p.watts * a.dimming
         lm = a.count * p.lumens * a.dimming
@@ -75,8 +78,15 @@ def luminaire_table(arrays: Sequence[LuminaireArray]) -> Table | None:
         ),
         tuple(rows),
         note="Spacing along the zone's u and v axes; C0 at 0° runs along u. Output and power "
-        "scale with dimming.",
+        "scale with dimming." + _warnings_note(products),
     )
+
+
+def _warnings_note(products: Sequence[Product]) -> str:
+    """The products' photometry warnings (what changes their light), for the schedule's
+    note: the same lines the command line and the window show."""
+    warnings = light_warnings(p.photometry for p in products)
+    return "".join(f" Warning: {w}." for w in warnings)
 
 
 def polar_figure(products: Sequence[Product]):
