@@ -35,6 +35,7 @@ from lightinv_core.scene.patches import count_patches, mesh_patches
 from lightinv_core.sources.emission import source_electric_power, source_flux
 from lightinv_core.sources.luminaire_csv import read_luminaire_csv
 from lightinv_core.transport.annual import annual_daylight
+from lightinv_core.transport.escape import luminaire_escape_warnings
 from lightinv_core.transport.formfactors import (
     DEFAULT_RAYS,
     MAX_RAYS,
@@ -313,6 +314,7 @@ def _simulate_reference(args, scene, p, E, luminaires) -> int:
     t2 = time.perf_counter()
     lost = lost_fraction(F, p)
     warnings = [w for w in [escape_warning(lost)] if w]
+    warnings += luminaire_escape_warnings(luminaires, caster)
     grid = None
     if args.workplane is not None:
         border = DEFAULT_BORDER if args.border is None else args.border

@@ -36,6 +36,7 @@ from lightinv_core.operator.luminaire_basis import luminaire_responses
 from lightinv_core.operator.radiosity import RadiosityOperator
 from lightinv_core.scene.patches import Patches
 from lightinv_core.scene.zone_grid import zone_grid
+from lightinv_core.transport.escape import luminaire_escape_warnings
 from lightinv_core.transport.formfactors import DEFAULT_RAYS, form_factor_matrix
 from lightinv_core.transport.luminaires import PlacedLuminaire
 from lightinv_core.transport.raycast import RayCaster
@@ -402,6 +403,13 @@ def array_luminaires(
         prod = resolve_product(a.product, a.watts)
         out.append((a, prod, placed(a, prod, zone_frame(patches, a.zone))))
     return out
+
+
+def array_escape_warnings(patches: Patches, arrays: Sequence[LuminaireArray]) -> list[str]:
+    """A warning naming each luminaire of ``arrays`` whose light mostly leaves the model
+    (``transport.escape``): a zone on a surface facing away, or outside the room."""
+    lums = [p for _, _, ps in array_luminaires(patches, arrays) for p in ps]
+    return luminaire_escape_warnings(lums, caster_for(patches))
 
 
 def arrays_field(

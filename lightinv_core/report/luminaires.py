@@ -31,8 +31,9 @@ ISO_LEVELS = 8  # iso-lux lines per plan
 EN_LABELS = {Bound.AVERAGE: "Em", Bound.MIN: "Emin", Bound.MAX: "Emax", Bound.UNIFORMITY: "U0"}
 
 
-def luminaire_table(arrays: Sequence[LuminaireArray]) -> Table | None:
-    """The luminaire schedule (None without arrays)."""
+def luminaire_table(arrays: Sequence[LuminaireArray], warnings: Sequence[str] = ()) -> Table | None:
+    """The luminaire schedule (None without arrays); ``warnings`` about the luminaires
+    (``light.arrays.array_escape_warnings``) join the products' in its note."""
     if not arrays:
         return None
     rows = []
@@ -78,7 +79,9 @@ def luminaire_table(arrays: Sequence[LuminaireArray]) -> Table | None:
         ),
         tuple(rows),
         note="Spacing along the zone's u and v axes; C0 at 0° runs along u. Output and power "
-        "scale with dimming." + _warnings_note(products),
+        "scale with dimming."
+        + _warnings_note(products)
+        + "".join(f" Warning: {w}" for w in warnings),
     )
 
 

@@ -29,7 +29,7 @@ from matplotlib.figure import Figure
 from lightinv_core.atomic import atomic_writer
 from lightinv_core.errors import CancelledError
 from lightinv_core.kinds import SourceKind
-from lightinv_core.light.arrays import resolve_product
+from lightinv_core.light.arrays import array_escape_warnings, resolve_product
 from lightinv_core.light.daylight import layout_daylight
 from lightinv_core.light.grids import design_grids, grid_light
 from lightinv_core.optimize.mop import front_pair
@@ -229,7 +229,8 @@ def write_report(
         ("intentions", tables_second),
     ]
     if sol.arrays:
-        plan.append(("luminaires", lambda: table_pages([luminaire_table(sol.arrays)])))
+        lost = array_escape_warnings(patches, sol.arrays)
+        plan.append(("luminaires", lambda: table_pages([luminaire_table(sol.arrays, lost)])))
         products = [resolve_product(a.product, a.watts) for a in sol.arrays]
         plan.append(("polar", lambda: polar_figure(products)))
     if grids is not None:

@@ -961,6 +961,25 @@ def _(d):
     return Warned(scene.info["warnings"][0]) if scene.info["warnings"] else None
 
 
+@case(
+    "luminaire-outside-room",
+    "scene",
+    "a luminaire 5 m up in the 2.5 m box (`simulate --luminaires`: `UP,2,1.5,5,...`)",
+    WARNING,
+    "luminaire 'UP' at (2.00, 1.50, 5.00) m: 100% of its light leaves the model",
+    "outside the room, inside a solid or behind a surface facing away",
+)
+def _(d):
+    from lightinv_core.luminaires.analytic import downlight
+    from lightinv_core.transport.escape import luminaire_escape_warnings
+    from lightinv_core.transport.luminaires import PlacedLuminaire
+    from lightinv_core.transport.raycast import RayCaster
+
+    lum = PlacedLuminaire("UP", (2.0, 1.5, 5.0), downlight(2000.0, watts=20.0))
+    got = luminaire_escape_warnings([lum], RayCaster(mesh_patches(box_scene(d))))
+    return Warned(got[0]) if got else None
+
+
 # --- scenes and drawn zones ---------------------------------------------------------------
 
 

@@ -98,3 +98,63 @@ def test_an_objective_given_twice_in_the_results_is_refused(tmp_path):
     err = duplicate_objective(tmp_path)
     assert isinstance(err, ProjectError)
     assert "results.solutions[0].objectives: objective 'max_light_power' is given twice" in str(err)
+
+
+# --- luminaires whose light leaves the model ---------------------------------------------
+
+
+def _down(name, z, aim=(0.0, 0.0, -1.0)):
+    from lightinv_core.luminaires.analytic import downlight
+    from lightinv_core.transport.luminaires import PlacedLuminaire
+
+    return PlacedLuminaire(name, (3.0, 2.0, z), downlight(2000.0, watts=20.0), aim)
+
+
+def test_a_luminaire_outside_the_room_or_behind_a_surface_is_named(office):
+    from lightinv_core.transport.escape import escaping_fraction, luminaire_escape_warnings
+
+    _, caster = office
+    inside, above, behind = _down("in", 2.95), _down("out", 5.0), _down("back", 3.05)
+    assert escaping_fraction(inside, caster) < 0.01
+    assert escaping_fraction(above, caster) > 0.99
+    assert escaping_fraction(behind, caster) > 0.99  # sees the ceiling's back
+    warnings = luminaire_escape_warnings([inside, above, behind], caster)
+    assert len(warnings) == 2
+    assert warnings[0].startswith("luminaire 'out' at (3.00, 2.00, 5.00) m: 100% of its light")
+    assert "luminaire 'back'" in warnings[1]
+
+
+def test_cli_warns_of_a_luminaire_outside_the_box(tmp_path, capsys, monkeypatch):
+    import json
+
+    from lightinv_core.luminaires.analytic import downlight
+    from lightinv_core.luminaires.formats import write_photometry
+    from tests.core.test_obj_import import BOX
+
+    monkeypatch.setenv("LIGHTINV_CACHE_DIR", str(tmp_path / "cache"))
+    (tmp_path / "room.obj").write_text(BOX)
+    write_photometry(downlight(2000.0, watts=20.0), tmp_path / "down.ldt")
+    (tmp_path / "lums.csv").write_text(
+        "name,x,y,z,ies,aim_x,aim_y,aim_z,c0_x,c0_y,c0_z\n"
+        "UP,2,1.5,5,down.ldt,0,0,-1,1,0,0\nIN,2,1.5,2.4,down.ldt,0,0,-1,1,0,0\n"
+    )
+    argv = ["simulate", str(tmp_path / "room.obj"), "--resolution", "0.5", "--rays", "64"]
+    argv += ["--luminaires", str(tmp_path / "lums.csv"), "--workplane", "0.8"]
+    assert cli.main([*argv, "--json"]) == 0
+    got = capsys.readouterr()
+    warnings = json.loads(got.out)["warnings"]
+    assert [w.split(" at ")[0] for w in warnings] == ["luminaire 'UP'"]
+    assert "luminaire 'UP'" in got.err
+    assert cli.main(argv) == 0
+    assert "lightinv-cli: luminaire 'UP' at (2.00, 1.50, 5.00) m: 100%" in capsys.readouterr().err
+
+
+def test_the_luminaire_schedule_notes_the_luminaires_lost_to_the_model(tmp_path):
+    from lightinv_core.light.arrays import array_escape_warnings
+    from lightinv_core.report.luminaires import luminaire_table
+
+    problem = build_problem(tmp_path, with_array())
+    arrays = problem.design.arrays
+    assert array_escape_warnings(problem.light.patches, arrays) == []
+    note = luminaire_table(arrays, ["luminaire 'A1.1' at (0, 0, 9) m: lost"]).note
+    assert "Warning: luminaire 'A1.1' at (0, 0, 9) m: lost" in note
