@@ -44,6 +44,7 @@ from app.undo import undo_stack
 from app.viewport import Viewport, ZoneFrame
 from app.workers import PrecomputeWorker, Worker
 from lightinv_core.errors import LightInvError
+from lightinv_core.light.arrays import array_escape_warnings
 from lightinv_core.project import Project
 from lightinv_core.scene.edits import ZoneEdit
 from lightinv_core.scene.model import Rect
@@ -338,6 +339,19 @@ class MainWindow(QtWidgets.QMainWindow):
         self._focus_axes()
         self._title()
 
+    def _luminaire_warnings(self, patches, arrays) -> None:
+        """Name the design's luminaires whose light mostly leaves the model (the status
+        bar's warnings), traced again only when the patches or the arrays change."""
+        key = (id(patches), tuple(arrays))
+        if getattr(self, "_luminaire_key", None) == key:
+            return
+        self._luminaire_key = key
+        try:
+            lost = array_escape_warnings(patches, arrays)
+        except LightInvError:
+            lost = []  # a product that cannot be read is reported where it is set
+        self.set_warnings("luminaire placement", lost)
+
     def _recolour(self) -> None:
         field = self.doc.field
         if field is not None:
@@ -347,6 +361,7 @@ class MainWindow(QtWidgets.QMainWindow):
         d = self.doc
         if d.project is not None and self.viewport.mesh is not None:
             luminaire_overlay.draw(self.viewport.plotter, d.patches, d.design.arrays)
+            self._luminaire_warnings(d.patches, d.design.arrays)
         if field is None:
             self.viewport.set_caption(None)
             self.viewport.set_values(None)
