@@ -43,7 +43,7 @@ from lightinv_core.fields import (
     _unique,
     _within,
 )
-from lightinv_core.kinds import GoalKind, Quantity, RuleKind, Scenario, SourceKind
+from lightinv_core.kinds import MAX_LUX, GoalKind, Quantity, RuleKind, Scenario, SourceKind
 
 LUMINAIRE = (str(SourceKind.LUMINAIRE),)
 SKYLIGHT = (str(SourceKind.SKYLIGHT),)
@@ -55,8 +55,24 @@ def _either(values: tuple[str, ...]) -> str:
     return " or ".join(f'`"{v}"`' for v in values)
 
 
+MAX_FLUX = 1e10
+"""Lumens: the most a luminaire or a source may emit (the photometry readers' cap)."""
+MAX_EFFICACY = 683.0
+"""lm/W: the luminous efficacy of radiation at 555 nm, which no light source exceeds."""
+MAX_WATTS = 1e9
+"""W: the largest electric power a project may name."""
+
+
 def _nonneg(v: Any, p: str) -> float:
     return _number(v, p, lo=0.0)
+
+
+def _flux(v: Any, p: str) -> float:
+    return _number(v, p, lo=0.0, hi=MAX_FLUX)
+
+
+def _lux(v: Any, p: str) -> float:
+    return _number(v, p, lo=0.0, hi=MAX_LUX)
 
 
 def _variables(v: Any, p: str) -> tuple[str, ...]:
@@ -98,7 +114,7 @@ SOURCE = ObjectSpec(
         ),
         Field(
             "flux",
-            _nonneg,
+            _flux,
             None,
             "number >= 0",
             "luminous flux, lm (exitance = flux / area); the start of a free flux",
@@ -107,7 +123,7 @@ SOURCE = ObjectSpec(
         ),
         Field(
             "exitance",
-            _nonneg,
+            _lux,
             None,
             "number >= 0",
             "fixed exitance, lm/m² (a luminous panel)",
@@ -116,7 +132,7 @@ SOURCE = ObjectSpec(
         ),
         Field(
             "flux_range",
-            lambda v, p: _numbers(v, p, 2, lo=0.0),
+            lambda v, p: _numbers(v, p, 2, lo=0.0, hi=MAX_FLUX),
             _D["flux_range"],
             "2 numbers",
             "bounds of a free flux, lm; 0 <= min < max",
@@ -124,7 +140,7 @@ SOURCE = ObjectSpec(
         ),
         Field(
             "efficacy",
-            lambda v, p: _number(v, p, gt=0.0),
+            lambda v, p: _number(v, p, gt=0.0, hi=MAX_EFFICACY),
             _D["efficacy"],
             "number > 0",
             "lm/W, for the electric power",
@@ -305,7 +321,7 @@ DAYLIGHT = ObjectSpec(
     (
         Field(
             "exterior_lux",
-            _nonneg,
+            _lux,
             _DL["exterior_lux"].default,
             "number >= 0",
             "exterior diffuse illuminance, lux",
@@ -364,7 +380,7 @@ DAYLIGHT = ObjectSpec(
         ),
         Field(
             "target_lux",
-            _nonneg,
+            _lux,
             _DL["target_lux"].default,
             "number >= 0",
             "daylight-linked dimming keeps the work plane's mean at this, lux",
@@ -378,7 +394,7 @@ DAYLIGHT = ObjectSpec(
         ),
         Field(
             "standby_w",
-            _nonneg,
+            lambda v, p: _number(v, p, lo=0.0, hi=MAX_WATTS),
             _DL["standby_w"].default,
             "number >= 0",
             "standby power of the lighting controls, drawn all year, W",

@@ -1138,6 +1138,30 @@ def _(d):
 
 
 @case(
+    "project-flux-range-huge",
+    "project file",
+    'a free flux of up to 1e308 lm (`"flux_range": [0, 1e308]`)',
+    ProjectError,
+    "project.json: sources[0].flux_range[1]",
+    "expected a number >= 0 and <= 10000000000, got 1e+308",
+)
+def _(d):
+    return project_error(d, setter("sources.0.flux_range", [0, 1e308]))
+
+
+@case(
+    "project-exterior-lux-huge",
+    "project file",
+    'an exterior illuminance of 1e300 lux (`"exterior_lux": 1e300`)',
+    ProjectError,
+    "project.json: daylight.exterior_lux",
+    "expected a number >= 0 and <= 1000000, got 1e+300",
+)
+def _(d):
+    return project_error(d, setter("daylight", {"exterior_lux": 1e300}))
+
+
+@case(
     "project-tol",
     "project file",
     'an operator tolerance of 100% (`"tol": 1`)',

@@ -447,7 +447,7 @@ ERRORS = [
     (_set("sources", {}), "sources: expected a list of sources, got an object"),
     (
         _set("daylight.exterior_lux", True),
-        "daylight.exterior_lux: expected a number >= 0, got true",
+        "daylight.exterior_lux: expected a number >= 0 and <= 1000000, got true",
     ),
     (_set("operator.rays", True), "operator.rays: expected an integer from 1 to 65,536, got true"),
     (
@@ -533,9 +533,18 @@ ERRORS = [
         "optimizer.max_evals: expected an integer >= 1 of at most 2**53",
     ),
     (_set("scene.resolution", 0.001), "scene.resolution: expected a number >= 0.005, got 0.001"),
-    (_set("sources[3].flux", -1), "sources[3].flux: expected a number >= 0, got -1"),
-    (_set("sources[3].flux", 1e400), "sources[3].flux: expected a finite number >= 0, got inf"),
-    (_set("sources[3].efficacy", 0), "sources[3].efficacy: expected a number > 0, got 0"),
+    (
+        _set("sources[3].flux", -1),
+        "sources[3].flux: expected a number >= 0 and <= 10000000000, got -1",
+    ),
+    (
+        _set("sources[3].flux", 1e400),
+        "sources[3].flux: expected a finite number >= 0 and <= 10000000000, got inf",
+    ),
+    (
+        _set("sources[3].efficacy", 0),
+        "sources[3].efficacy: expected a number > 0 and <= 683, got 0",
+    ),
     (_set("sources[1].filter", 1.5), "sources[1].filter: expected a number >= 0 and <= 1, got 1.5"),
     (_set("penalty_power", 3), "penalty_power: expected an even integer >= 2, got 3"),
     (_set("sources[0].rect[0]", "inf"), "sources[0].rect[0]: expected a number, got string 'inf'"),
@@ -721,7 +730,7 @@ def test_every_bad_value_names_its_json_path(tmp_path, mutate, message):
         ),
         (
             json.dumps(valid()).replace('"flux": 2000', '"flux": NaN'),
-            r"sources\[3\]\.flux: expected a finite number >= 0, got nan",
+            r"sources\[3\]\.flux: expected a finite number >= 0 and <= 10000000000, got nan",
         ),
         ('{"schema": 1' + "0" * 5000 + "}", r"invalid JSON: a number has too many digits$"),
         ("[" * 100_000, r"invalid JSON: nested too deeply$"),

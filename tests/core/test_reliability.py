@@ -158,3 +158,23 @@ def test_the_luminaire_schedule_notes_the_luminaires_lost_to_the_model(tmp_path)
     assert array_escape_warnings(problem.light.patches, arrays) == []
     note = luminaire_table(arrays, ["luminaire 'A1.1' at (0, 0, 9) m: lost"]).note
     assert "Warning: luminaire 'A1.1' at (0, 0, 9) m: lost" in note
+
+
+# --- every physical number in a project file has a sane range ----------------------------
+
+
+@pytest.mark.parametrize(
+    "path, value, message",
+    [
+        ("sources.0.flux_range", [0, 1e308], "sources[0].flux_range[1]: expected a number >= 0"),
+        ("daylight", {"exterior_lux": 1e300}, "daylight.exterior_lux: expected a number >= 0"),
+        ("daylight", {"target_lux": 1e7}, "daylight.target_lux: expected a number >= 0"),
+        ("daylight", {"standby_w": 1e12}, "daylight.standby_w: expected a number >= 0"),
+    ],
+)
+def test_absurd_numbers_in_a_project_file_are_refused(tmp_path, path, value, message):
+    from lightinv_core.project import ProjectError
+    from tests.core.test_bad_input import project_error, setter
+
+    err = project_error(tmp_path, setter(path, value))
+    assert isinstance(err, ProjectError) and message in str(err)
