@@ -3,10 +3,13 @@
 An array is one product (from the catalogue, or an IES/EULUMDAT file) laid out evenly in
 a luminaire zone: rows and columns at the centres of equal cells of a rectangle, a
 rotation of 0 or 90 degrees, a dimming level, and which of these the optimiser may
-change. The dialog shows the spacing and the array's power as they are typed.
+change. The dialog shows the spacing and the array's power as they are typed, and the
+product's photometry warnings (what changes its light) once it is chosen.
 """
 
 from __future__ import annotations
+
+import html
 
 from PySide6 import QtWidgets
 
@@ -15,6 +18,7 @@ from lightinv_core.design.model import ARRAY_VARIABLES, LuminaireArray, Workplan
 from lightinv_core.errors import LightInvError
 from lightinv_core.light.arrays import resolve_product
 from lightinv_core.luminaires import builtin_catalogue
+from lightinv_core.luminaires.photometry import light_warnings
 
 FREE_LABELS = {
     "u0": "u0",
@@ -131,6 +135,7 @@ class ArrayDialog(QtWidgets.QDialog):
             line.addWidget(pair[1])
             form.addRow(label, line)
         self.summary = QtWidgets.QLabel()
+        self.summary.setWordWrap(True)  # a warning is a long line
         form.addRow(self.summary)
         for box in (*self.corners, self.dimming):
             box.valueChanged.connect(self._update)
@@ -138,7 +143,7 @@ class ArrayDialog(QtWidgets.QDialog):
             box.valueChanged.connect(self._update)
         self.product.currentTextChanged.connect(self._update)
         self.zone.currentTextChanged.connect(self._zone_changed)
-        dialogs.ok_cancel(self)
+        form.addRow(dialogs.ok_cancel(self))
         self._update()
 
     def _browse(self) -> None:
@@ -159,10 +164,17 @@ class ArrayDialog(QtWidgets.QDialog):
             self.summary.setText(f"<span style='color:#b00'>{exc}</span>")
             return
         su, sv = a.spacing
-        self.summary.setText(
+        text = (
             f"{a.count} luminaires, spacing {su:.2f} x {sv:.2f} m; "
             f"{a.count * p.lumens * a.dimming:,.0f} lm, {a.count * p.watts * a.dimming:,.1f} W"
         )
+        # What changes the product's light (a tilt table not applied, a light output ratio
+        # above 100%), as the panel, the status bar and the report say it.
+        for w in light_warnings([p.photometry]):
+            text += f"<br><span style='color:#a05a00'>\u26a0 {html.escape(w)}</span>"
+        self.summary.setText(text)
+        if self.isVisible():  # room for the wrapped lines
+            self.resize(self.width(), max(self.height(), self.heightForWidth(self.width())))
 
     def array(self) -> LuminaireArray:
         """The array as entered (DesignError naming the bad field)."""
@@ -207,7 +219,7 @@ class WorkplaneDialog(QtWidgets.QDialog):
         self.group.addItems(groups)
         self.group.setCurrentText(base.group)
         form.addRow("Floor group", self.group)
-        dialogs.ok_cancel(self)
+        form.addRow(dialogs.ok_cancel(self))
 
     def workplane(self) -> Workplane:
         """The work plane as entered (DesignError naming the bad field)."""

@@ -4,7 +4,9 @@ and its work planes with their EN 12464-1 values, live.
 Every edit goes through the editing model (``set_arrays``, ``set_workplanes``,
 ``add_intention``), so Edit > Undo takes it back, and the light shown (the arrays placed
 exactly, about a second for a room) follows; the work planes' Em, Emin, Emax and U0 come
-from the light shown. EN 12464-1 presets add an intention on a work plane.
+from the light shown. EN 12464-1 presets add an intention on a work plane. The arrays'
+photometry warnings (a tilt table not applied, a light output ratio above 100%) show
+under the arrays and in the status bar's warnings.
 """
 
 from __future__ import annotations
@@ -20,6 +22,7 @@ from lightinv_core.design.en12464 import REQUIREMENTS, preset_intention
 from lightinv_core.errors import LightInvError
 from lightinv_core.light.arrays import Product, resolve_product
 from lightinv_core.luminaires import builtin_catalogue
+from lightinv_core.luminaires.photometry import light_warnings
 
 ARRAY_COLUMNS = ("array", "zone", "product", "layout", "spacing m", "C0", "dimming", "W")
 PLANE_COLUMNS = ("work plane", "height m", "points", "Em lux", "Emin lux", "Emax lux", "U0")
@@ -118,6 +121,13 @@ class LuminairesPanel(QtWidgets.QWidget):
         for b in (self.add_array_button, self.edit_array_button, self.remove_array_button):
             row.addWidget(b)
         arr.addLayout(row)
+        # The arrays' photometry warnings (what changes their light), also in the status
+        # bar's warnings beside the scene's, and in the report's luminaire schedule.
+        self.array_warnings = QtWidgets.QLabel()
+        self.array_warnings.setWordWrap(True)
+        self.array_warnings.setStyleSheet("color: #a05a00")
+        self.array_warnings.hide()
+        arr.addWidget(self.array_warnings)
         self.add_array_button.clicked.connect(lambda: self.add_array())
         self.edit_array_button.clicked.connect(lambda: self.edit_array())
         self.remove_array_button.clicked.connect(self.remove_array)
@@ -306,10 +316,12 @@ class LuminairesPanel(QtWidgets.QWidget):
         design = d.design if d.project is not None else None
         arrays = design.arrays if design is not None else ()
         self.arrays.setRowCount(len(arrays))
+        products = []
         for i, a in enumerate(arrays):
             try:
                 p = resolve_product(a.product, a.watts)
                 product, watts = p.name, f"{a.count * p.watts * a.dimming:,.1f}"
+                products.append(p)
             except LightInvError:
                 product, watts = a.product, "?"
             su, sv = a.spacing
@@ -326,6 +338,7 @@ class LuminairesPanel(QtWidgets.QWidget):
             for j, text in enumerate(cells):
                 self.arrays.setItem(i, j, QtWidgets.QTableWidgetItem(text))
         self.arrays.resizeColumnsToContents()
+        self._show_warnings(light_warnings(p.photometry for p in products))
         planes = design.workplanes if design is not None else ()
         stats = d.grid_stats() if design is not None else {}
         self.planes.setRowCount(len(planes))
@@ -352,3 +365,14 @@ class LuminairesPanel(QtWidgets.QWidget):
             self.status.setText(f"{total} luminaires in {len(arrays)} arrays.")
         else:
             self.status.setText("")
+
+    def _show_warnings(self, warnings: list[str]) -> None:
+        """The arrays' photometry warnings under the arrays and in the main window's
+        status-bar warnings (source "luminaires"), where the scene's import warnings are."""
+        self.array_warnings.setText("\n".join(f"\u26a0 {w}" for w in warnings))
+        self.array_warnings.setVisible(bool(warnings))
+        window = self.parentWidget()
+        while window is not None and not hasattr(window, "set_warnings"):
+            window = window.parentWidget()  # the dock, then the main window
+        if window is not None:
+            window.set_warnings("luminaires", warnings)

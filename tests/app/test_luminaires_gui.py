@@ -158,3 +158,81 @@ def test_rules_on_arrays_are_added_in_the_rule_dialog_and_listed(qtbot, window):
     assert not d.design.rules
     window.act_undo.trigger()
     assert len(d.design.rules) == 2
+
+
+def _button(root, text: str):
+    """The visible button of ``root`` whose text (without its '&' shortcut) is ``text``."""
+    from PySide6 import QtWidgets
+
+    found = [
+        b
+        for b in root.findChildren(QtWidgets.QAbstractButton)
+        if b.text().replace("&", "") == text and b.isVisible()
+    ]
+    assert len(found) == 1, (text, [b.text() for b in root.findChildren(QtWidgets.QAbstractButton)])
+    return found[0]
+
+
+def _group(root, title: str):
+    """The group box of ``root`` titled ``title``."""
+    from PySide6 import QtWidgets
+
+    (box,) = [g for g in root.findChildren(QtWidgets.QGroupBox) if g.title() == title]
+    return box
+
+
+def test_a_product_file_with_warnings_shows_them_in_the_dialog_panel_and_status_bar(
+    qtbot, window, tmp_path, monkeypatch
+):
+    """Add array…, File… (a real IES file with a lamp-tilt table), OK: by clicks. The
+    tilt table not applied is shown in the dialog, under the arrays and in the status
+    bar's warnings; removing the array clears it, Undo brings it back."""
+    from PySide6 import QtCore, QtWidgets
+
+    from tests.core.test_luminaire_warnings import TILT_WARNING, tilted_file
+
+    d, panel = _arrays_window(qtbot, window)
+    path = tilted_file(tmp_path)
+    monkeypatch.setattr("app.dialogs.open_file", lambda *a, **k: str(path))
+    shown: list[str] = []
+    monkeypatch.setattr("app.dialogs.inform", lambda parent, text: shown.append(text))
+    before = list(window.warnings())
+    seen: dict[str, str] = {}
+
+    def fill_in() -> None:
+        dialog = QtWidgets.QApplication.activeModalWidget()
+        if not isinstance(dialog, ArrayDialog):
+            QtCore.QTimer.singleShot(50, fill_in)  # not shown yet
+            return
+        try:
+            qtbot.mouseClick(_button(dialog, "File…"), QtCore.Qt.LeftButton)
+            seen["product"] = dialog.product.currentText()
+            seen["summary"] = dialog.summary.text()
+            qtbot.wait(50)  # the summary grows a line
+            dialog.grab().save("/tmp/luminaires-array-dialog-warning.png")
+            qtbot.mouseClick(_button(dialog, "OK"), QtCore.Qt.LeftButton)
+        finally:
+            if dialog.isVisible():
+                dialog.reject()  # never leave the test waiting on a modal dialog
+
+    QtCore.QTimer.singleShot(0, fill_in)
+    qtbot.mouseClick(_button(panel, "Add array…"), QtCore.Qt.LeftButton)
+    assert seen["product"] == str(path)
+    assert "\u26a0" in seen["summary"] and "TILT=INCLUDE" in seen["summary"]
+    assert [a.product for a in d.design.arrays] == [str(path)]
+    line = f"{path}: {TILT_WARNING}"
+    assert panel.array_warnings.isVisible() and panel.array_warnings.text() == f"\u26a0 {line}"
+    assert window.warnings() == [*before, line], window._warnings
+    assert window.warnings_button.isVisible()
+    assert window.warnings_button.text().startswith(f"\u26a0 {len(before) + 1} warning")
+    qtbot.mouseClick(window.warnings_button, QtCore.Qt.LeftButton)
+    assert shown and line in shown[-1]
+    window.grab().save("/tmp/luminaires-warnings.png")
+    panel.grab().save("/tmp/luminaires-panel-warnings.png")
+    # Removing the array takes its warning away; Undo brings both back.
+    panel.arrays.selectRow(0)
+    qtbot.mouseClick(_button(_group(panel, "Luminaire arrays"), "Remove"), QtCore.Qt.LeftButton)
+    assert not d.design.arrays and window.warnings() == before
+    assert not panel.array_warnings.isVisible()
+    window.act_undo.trigger()
+    assert window.warnings() == [*before, line]
