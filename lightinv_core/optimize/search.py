@@ -14,7 +14,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from lightinv_core.design.geometry import rule_names
+from lightinv_core.design.geometry import MIN_SIDE, rule_names
 from lightinv_core.design.solution import SolutionInfo
 from lightinv_core.errors import DesignError
 from lightinv_core.kinds import MAXIMISED_GOALS
@@ -42,9 +42,42 @@ class SearchResult:
     history: list[tuple[int, float, float, float]] = field(default_factory=list)
 
 
+def check_fixed_sources(problem: DesignProblem) -> None:
+    """A DesignError naming a source whose rectangle is fixed (no corner free, no tie)
+    but degenerate or outside its zone: no search can move it, so say which it is."""
+    tied = {s for r in problem.design.rules if r.kind in ("mirror", "centred") for s in r.sources}
+    corners = {"u0", "v0", "u1", "v1"}
+    for i, src in enumerate(problem.design.sources):
+        if corners & set(src.free) or src.name in tied:
+            continue
+        u0, v0, u1, v1 = src.rect
+        w, h = abs(u1 - u0), abs(v1 - v0)
+        zw, zh = problem.zone_size[i]
+        rect = f"({u0:g}, {v0:g}, {u1:g}, {v1:g})"
+        if min(w, h) < MIN_SIDE:
+            raise DesignError(
+                f"source {src.name!r}: its fixed rect {rect} is {w:g} x {h:g} m, a line or a "
+                f"point; give it a width and a height of at least {MIN_SIDE * 1000:g} mm"
+            )
+        tol = 1e-9
+        if (
+            min(u0, u1) < -tol
+            or max(u0, u1) > zw + tol
+            or min(v0, v1) < -tol
+            or max(v0, v1) > zh + tol
+        ):
+            raise DesignError(
+                f"source {src.name!r}: its fixed rect {rect} lies outside its zone "
+                f"{src.zone!r}, which spans 0 to {zw:g} m by 0 to {zh:g} m; move it inside "
+                "or let its position be optimised"
+            )
+
+
 def random_start(problem: DesignProblem, rng: np.random.Generator) -> np.ndarray:
     """A random x meeting every geometric rule (DesignError if none is found: the rules
-    cannot be met together, e.g. a minimum area larger than the zone)."""
+    cannot be met together, e.g. a minimum area larger than the zone; a fixed source
+    that is degenerate or outside its zone is named)."""
+    check_fixed_sources(problem)
     lo, hi = problem.vars.lo, problem.vars.hi
     failing = np.zeros(len(rule_names(problem.design)), np.int64)
     for _ in range(START_TRIES // 500):

@@ -940,6 +940,37 @@ def _(d):
 
 
 @case(
+    "ifc-cut-short",
+    "IFC file",
+    "a real IFC4 model (IfcOpenHouse) cut at half its length",
+    ObjImportError,
+    "cut.ifc: the file is cut short",
+    "holds only part of the model",
+)
+def _(d):
+    import gzip
+
+    data = gzip.decompress(
+        (Path(__file__).parents[1] / "data/ifc/IfcOpenHouse_IFC4.ifc.gz").read_bytes()
+    )
+    (d / "cut.ifc").write_bytes(data[: len(data) // 2])
+    return raised(lambda: load_scene(str(d / "cut.ifc")))
+
+
+@case(
+    "ply-missing-vertex",
+    "glTF/PLY file",
+    "an ASCII PLY whose face names vertex 99,999,999 of 3",
+    ObjImportError,
+    "bad.ply: face 1 names vertex 99,999,999, but the file has 3 vertices",
+)
+def _(d):
+    head = "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+    head += "property float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n"
+    return mesh_error(d, "bad.ply", (head + "0 0 0\n1 0 0\n0 1 0\n3 0 1 99999999\n").encode())
+
+
+@case(
     "ifc-odd-ceiling",
     "IFC file",
     "a ceiling covering with a hole cut in it (not a rectangle: no luminaire zone)",
@@ -1571,6 +1602,37 @@ def _(d):
 )
 def _(d):
     return project_error(d, setter("rules.0", {"kind": "aspect", "sources": ["S1"], "max": 0.5}))
+
+
+@case(
+    "fixed-source-degenerate",
+    "run start",
+    "a fixed source (nothing free) whose rect has zero width",
+    DesignError,
+    "source 'S1': its fixed rect (0.3, 0.3, 0.3, 0.8) is 0 x 0.5 m, a line or a point",
+)
+def _(d):
+    def change(p):
+        p["sources"][0].update(rect=[0.3, 0.3, 0.3, 0.8], free=[])
+        p["rules"] = []
+
+    return start_error(d, change)
+
+
+@case(
+    "fixed-source-outside",
+    "run start",
+    "a fixed source whose rect lies partly outside its 2 x 1 m zone",
+    DesignError,
+    "source 'S1': its fixed rect (1.5, 0.2, 2.5, 0.8) lies outside its zone 'sky'",
+    "spans 0 to 2 m by 0 to 1 m",
+)
+def _(d):
+    def change(p):
+        p["sources"][0].update(rect=[1.5, 0.2, 2.5, 0.8], free=[])
+        p["rules"] = []
+
+    return start_error(d, change)
 
 
 @case(
