@@ -332,7 +332,9 @@ class Intention:
             v = getattr(self, key)
             if v is not None:
                 v = _finite(v, f"{where} {key}")
-                if not lo <= v <= hi:
+                # A maximum above the range always holds (a "no limit" of 1e9 is fine), up to
+                # a sane number; a minimum or an average outside it can never be met.
+                if v < lo or (v > hi and key != Bound.MAX) or v > 1e12:
                     raise DesignError(
                         f"{where}: {key} {v:g} is outside the range of {self.quantity} "
                         f"({unit}), {lo:g} to {hi:g}; it could never be met"
