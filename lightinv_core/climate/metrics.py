@@ -74,6 +74,13 @@ def daylight_metrics(lux: np.ndarray) -> DaylightMetrics:
     return DaylightMetrics(da, udi, float((da >= 0.5).mean()))
 
 
+def dimming_level(daylight, electric_full, target_lux: float, min_level: float):
+    """The one dimming rule (continuous, daylight-linked): the level (0-1) that tops
+    ``daylight`` (lux) up to ``target_lux`` with luminaires giving ``electric_full``
+    (lux, > 0) at full output, between ``min_level`` and 1. Arrays broadcast."""
+    return np.clip((target_lux - daylight) / electric_full, min_level, 1.0)
+
+
 def lighting_kwh(watts, level_hours, standby_w: float, standby_hours: float):
     """Energy (kWh) of luminaires drawing ``watts`` (W) at full output for
     ``level_hours`` (their dimming level summed over the hours they are on), plus
@@ -111,8 +118,9 @@ def dimming_energy(
         raise LightInvError(f"minimum dimming level must be from 0 to 1, got {min_level}")
     if not floor_area_m2 > 0:
         raise LightInvError("LENI needs a floor area above 0 m²")
-    need = (target_lux - np.asarray(daylight_mean, dtype=float)) / electric_mean
-    levels = np.clip(need, min_level, 1.0)
+    levels = dimming_level(
+        np.asarray(daylight_mean, dtype=float), electric_mean, target_lux, min_level
+    )
     energy = lighting_kwh(installed_w, levels.sum(), standby_w, hours_per_year)
     full = lighting_kwh(installed_w, len(levels), standby_w, hours_per_year)
     return Dimming(levels, float(energy), float(energy / floor_area_m2), float(full))

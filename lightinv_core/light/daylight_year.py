@@ -25,6 +25,7 @@ from pathlib import Path
 
 import numpy as np
 
+from lightinv_core.climate.metrics import dimming_level
 from lightinv_core.climate.sky import overcast_plane_illuminance
 from lightinv_core.design.model import Daylight, Design
 from lightinv_core.kinds import SourceKind
@@ -234,7 +235,7 @@ def dimming_sum(
     A = np.maximum(np.asarray(full, dtype=float), 1e-9)
     if year.sorted is None:
         day = b @ year.exterior
-        return np.clip((target - day) / A[:, None], min_level, 1.0).sum(axis=1)
+        return dimming_level(day, A[:, None], target, min_level).sum(axis=1)
     s, S, T = year.sorted, year.prefix, year.hours
     b0 = b[:, 0]
     # level 1 while E <= e1, min_level once E >= e2, (target - b E) / A between.
@@ -257,4 +258,4 @@ def dimming_levels(
 ) -> np.ndarray:
     """The dimming level (0-1) of one layout in each occupied hour: ``b`` (G,)."""
     day = np.asarray(b, dtype=float) @ year.exterior
-    return np.clip((target - day) / max(float(full), 1e-9), min_level, 1.0)
+    return dimming_level(day, max(float(full), 1e-9), target, min_level)

@@ -178,7 +178,7 @@ def test_night_and_overcast_scenarios(office):
     night = Intention("night", grid="wp", average=1e6, scenario="night")
     design_it = Intention("design", grid="wp", average=1e6)
     over = Intention("over", grid="wp", average=1e6, scenario="overcast")
-    df = Intention("df", grid="wp", quantity="df", average=1e3)
+    df = Intention("df", grid="wp", quantity="df", average=100.0)
     daylight = replace(DAYLIGHT, overcast_lux=8000.0)
     design = _design((night, design_it, over, df), daylight=daylight)
     problem = DesignProblem(design, office)
