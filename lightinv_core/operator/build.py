@@ -39,10 +39,12 @@ from lightinv_core.transport.formfactors import (
     lost_fraction,
 )
 
-OPERATOR_VERSION = 3
+OPERATOR_VERSION = 4
 """Bump whenever the operator a given (geometry, settings) produces changes, so older
 cache files are seen as stale and rebuilt (2: exact-k clustering; 3: the zone basis
-stored as its factors F, Y, G instead of the dense n x nz Phi)."""
+stored as its factors F, Y, G instead of the dense n x nz Phi; 4: Y = W M^-1 summed
+256 clusters at a time, the same bits on any number of BLAS threads: above k = 256 the
+last bits of Y change)."""
 ERROR_SAMPLES = 6
 START_DIVISOR = 64
 MAX_DIVISOR = 4

@@ -6,7 +6,10 @@ row blocks of the cluster form factors W and their cluster sums, row blocks of
 Y = W M^-1, and cluster blocks of the zone transfer G. Results are put together in
 the pieces' order on the client, so a build on a cluster gives the same operator,
 bit for bit, as one in this process (with the same libraries on the same kind of CPU:
-BLAS kernels differ between CPU types).
+BLAS kernels differ between CPU types). No piece's bits depend on the threads it runs
+on: a worker runs BLAS on one thread, this process on all cores, so the one BLAS
+product of the pieces (Y = W M^-1) is summed in parts short enough that BLAS never
+splits them (``lowrank.INNER_BLOCK``); the other pieces split their work in fixed parts.
 
 ``runner(None)`` runs the pieces here; ``runner("tcp://host:port")`` sends them to the
 Dask scheduler at that address (``dask.distributed``, the ``cluster`` extra, imported

@@ -30,6 +30,13 @@ CLUSTER_BLOCK = 1024
 """Rows of F tallied by cluster at once (float64 scratch: rows x k)."""
 ASSEMBLE_BLOCK = 2048
 """Rows of W summed per cluster at once (float64 scratch: rows x k)."""
+INNER_BLOCK = 256
+"""Clusters summed by one float32 product in ``times_inverse``. OpenBLAS sums an inner
+dimension longer than its block (``GEMM_Q``: 320 to 448 on x86-64 since Haswell, 352 and
+more on ARMv8) in parts cut one way on one thread and another on several, so the last
+bits of Y depended on the BLAS threads of whoever computed it (office at k = 587: 278,105
+of 1,706,996 entries differed between this process, two threads, and a Dask worker, one).
+Up to this length a product is summed whole whatever the threads."""
 
 
 @dataclass(eq=False)
@@ -137,10 +144,16 @@ def cluster_piece(
 
 
 def times_inverse(W_rows: np.ndarray, Minv: np.ndarray) -> np.ndarray:
-    """W_rows @ Minv (float32) by ``ASSEMBLE_BLOCK`` row blocks: rows of Y."""
+    """W_rows @ Minv (float32) by ``ASSEMBLE_BLOCK`` row blocks: rows of Y. Each block is
+    summed over ``INNER_BLOCK`` clusters at a time, the parts added in order, so its bits
+    do not depend on the BLAS threads (nor on where the piece runs); up to
+    ``INNER_BLOCK`` clusters this is the one product ``W_rows @ Minv``."""
+    k = Minv.shape[0]
     out = np.empty((W_rows.shape[0], Minv.shape[1]), np.float32)
     for s, e in _blocks(0, W_rows.shape[0], ASSEMBLE_BLOCK):
-        out[s:e] = W_rows[s:e] @ Minv
+        np.matmul(W_rows[s:e, :INNER_BLOCK], Minv[:INNER_BLOCK], out=out[s:e])
+        for a, b in _blocks(INNER_BLOCK, k, INNER_BLOCK):
+            out[s:e] += W_rows[s:e, a:b] @ Minv[a:b]
     return out
 
 
@@ -228,7 +241,7 @@ def assemble(
     Minv = la.inv(M).astype(np.float32)
     for s, e in _blocks(0, n, ASSEMBLE_BLOCK):
         _check(cancel)
-        W[s:e] = W[s:e] @ Minv
+        W[s:e] = times_inverse(W[s:e], Minv)
     return LowRank(
         Y=W,
         labels=labels.astype(np.int32),

@@ -12,11 +12,13 @@ import time
 import numpy as np
 import pytest
 from distributed import Client, LocalCluster
+from threadpoolctl import threadpool_limits
 
 from lightinv_core.errors import CancelledError, LightInvError
 from lightinv_core.operator import distributed as dist
 from lightinv_core.operator.build import build_operator
 from lightinv_core.operator.cache import get_operator
+from lightinv_core.operator.lowrank import ASSEMBLE_BLOCK, INNER_BLOCK, times_inverse
 from lightinv_core.operator.settings import OperatorSettings
 from lightinv_core.scene.builtin import builtin_scene
 from lightinv_core.scene.patches import mesh_patches
@@ -61,6 +63,33 @@ def test_a_cluster_build_is_the_local_build_bit_for_bit(cluster, office):
     assert remote.info["scheduler"] == cluster.scheduler_address
     assert local.info["scheduler"] is None
     assert seen[-1] == 1.0 and all(a <= b for a, b in itertools.pairwise(seen))
+
+
+def test_a_cluster_build_above_the_blas_block_is_the_local_build_bit_for_bit(cluster):
+    # k = 587 clusters: Y = W M^-1 sums more terms than OpenBLAS's block (GEMM_Q, 448
+    # here), which it cuts one way on this process's threads and another on a worker's
+    # one thread. Summed whole, 278,105 of Y's 1,706,996 entries differed.
+    patches = mesh_patches(builtin_scene("office", 0.35))
+    settings = OperatorSettings(rank=600, rays=128, seed=1)
+    local = build_operator(patches, settings)
+    assert local.k > 448
+    _same(local, build_operator(patches, settings, scheduler=cluster.scheduler_address))
+
+
+@pytest.mark.parametrize("rows", [1, 981, 2 * ASSEMBLE_BLOCK + 7])
+@pytest.mark.parametrize("k", [40, INNER_BLOCK, 587, 1042])
+def test_the_rows_of_y_do_not_depend_on_the_blas_threads(rows, k):
+    rng = np.random.default_rng(k)
+    W = rng.random((rows, k), dtype=np.float32)
+    Minv = rng.standard_normal((k, k), dtype=np.float32)
+    with threadpool_limits(limits=1, user_api="blas"):
+        one = times_inverse(W, Minv)
+    for threads in (2, 4):
+        with threadpool_limits(limits=threads, user_api="blas"):
+            np.testing.assert_array_equal(times_inverse(W, Minv), one)
+    if k <= INNER_BLOCK:  # one product per row block, as before the split: the same bits
+        blocks = [W[s : s + ASSEMBLE_BLOCK] @ Minv for s in range(0, rows, ASSEMBLE_BLOCK)]
+        np.testing.assert_array_equal(one, np.vstack(blocks))
 
 
 def test_get_operator_on_a_cluster_caches_what_a_local_build_reads(
