@@ -16,7 +16,7 @@ from app.workers import LoadWorker
 from lightinv_core.editing import blank_project, obj_project
 from lightinv_core.errors import LightInvError
 from lightinv_core.project import Project, load_project
-from lightinv_core.scene.import_report import report_of
+from lightinv_core.scene.importers.report import report_of
 
 MAX_RECENT = 8
 LOAD_DIALOG_MS = 500  # a load shorter than this shows no progress dialog
@@ -193,9 +193,9 @@ class ProjectFiles(QtCore.QObject):
         """Choose a model file (OBJ, glTF, GLB, PLY, IFC), then its import options (units,
         up axis, group names, materials)."""
         if dialog is None:
-            from app.import_dialog import MODEL_FILTER, ImportDialog
+            from app.import_dialog import ImportDialog, model_filter
 
-            path = dialogs.open_file(self.win, "Import model", MODEL_FILTER)
+            path = dialogs.open_file(self.win, "Import model", model_filter())
             if not path:
                 return False
 

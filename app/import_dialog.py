@@ -17,8 +17,13 @@ from PySide6 import QtWidgets
 
 from app import dialogs
 from lightinv_core.errors import LightInvError
-from lightinv_core.scene.loading import MODEL_SUFFIXES, default_up
-from lightinv_core.scene.obj_size import count_obj_lines
+from lightinv_core.scene.importers.obj_size import count_obj_lines
+from lightinv_core.scene.importers.registry import (
+    default_up,
+    importer_for,
+    importers,
+    model_suffixes,
+)
 
 UNITS = (
     ("metres", 1.0),
@@ -28,11 +33,13 @@ UNITS = (
     ("feet", 0.3048),
 )
 MAX_PREVIEW_BYTES = 200 * 2**20
-MODEL_FILTER = (
-    "Models (" + " ".join(f"*{s}" for s in MODEL_SUFFIXES) + ");;Wavefront OBJ (*.obj);;"
-    "glTF (*.gltf *.glb);;PLY (*.ply);;IFC (*.ifc)"
-)
-"""The file dialog's filter for File > Import model."""
+
+
+def model_filter() -> str:
+    """The file dialog's filter for File > Import model: all models, then each
+    registered format."""
+    models = "Models (" + " ".join(f"*{s}" for s in model_suffixes()) + ")"
+    return ";;".join([models, *(i.filter for i in importers())])
 
 
 def raw_extent(path: Path) -> float | None:
@@ -82,6 +89,8 @@ class ImportDialog(QtWidgets.QDialog):
         super().__init__(parent)
         self.path = Path(path)
         self.suffix = self.path.suffix.lower()
+        importer = importer_for(self.path)
+        self.format_options = importer.options if importer is not None else ()
         self.setWindowTitle(f"Import {self.path.name}")
         form = QtWidgets.QFormLayout(self)
         summary, self.extent = self._preview()
@@ -101,7 +110,7 @@ class ImportDialog(QtWidgets.QDialog):
         self.group_by = QtWidgets.QComboBox()
         self.group_by.addItem("node names", "node")
         self.group_by.addItem("material names", "material")
-        if self.suffix in (".gltf", ".glb"):
+        if "group_by" in self.format_options:
             form.addRow("Lighting groups", self.group_by)
         else:
             self.group_by.hide()
@@ -171,7 +180,7 @@ class ImportDialog(QtWidgets.QDialog):
             "resolution": float(self.resolution.value()),
             "skip_degenerate": self.skip.isChecked(),
         }
-        if self.suffix in (".gltf", ".glb"):
+        if "group_by" in self.format_options:
             out["group_by"] = self.group_by.currentData()
         if self.materials.text().strip():
             out["materials"] = self.materials.text().strip()

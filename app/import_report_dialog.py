@@ -10,7 +10,7 @@ from __future__ import annotations
 
 from PySide6 import QtGui, QtWidgets
 
-from lightinv_core.scene.import_report import ImportReport
+from lightinv_core.scene.importers.report import ImportReport
 
 SHOW = "Show details"
 HIDE = "Hide details"

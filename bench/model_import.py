@@ -1,5 +1,5 @@
-"""Benchmark: importing glTF/GLB and IFC models (lightinv_core/scene/mesh_import.py,
-ifc_import.py). Prints one JSON object:
+"""Benchmark: importing glTF/GLB and IFC models (lightinv_core/scene/importers/gltf.py,
+meshes.py, ifc.py). Prints one JSON object:
 
 - ``box``: the tests' 4 x 3 x 2.5 m box as OBJ and as GLB (its quads stored as
   triangles): patches at 0.5 m, and the GLB's patches had its triangles not been joined
@@ -9,7 +9,7 @@ ifc_import.py). Prints one JSON object:
   (slab, four walls, a window, a roof slab with a skylight, a ceiling panel, a space);
 - ``ifc_memory``: peak memory of importing the n-room IFC file, measured in a fresh
   process (its peak resident memory, VmHWM, after the import less before it,
-  ifcopenshell and shapely already imported): what ``obj_size.check_ifc_size``
+  ifcopenshell and shapely already imported): what ``size.check_ifc_size``
   estimates from the file's size;
 - ``files``: for IFC files given with ``--ifc``, import time, what was left out, zones,
   patches at 0.5 m and the share of light lost (area-weighted, 128 rays per patch).
@@ -32,8 +32,8 @@ import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
-from lightinv_core.scene import mesh_import
 from lightinv_core.scene.facets import Facets
+from lightinv_core.scene.importers import meshes
 from lightinv_core.scene.loading import load_scene
 from lightinv_core.scene.patches import mesh_patches
 from tests.core.test_mesh_import import Gltf, box_gltf, to_y_up
@@ -45,17 +45,17 @@ def box(d: Path) -> dict:
     glb = box_gltf(d / "room.glb")
     obj_n = mesh_patches(load_scene(str(d / "room.obj"), 0.5)).n
     glb_n = mesh_patches(load_scene(str(glb), 0.5)).n
-    real = mesh_import.join_coplanar
+    real = meshes.join_coplanar
 
     def no_join(vertices, triangles, keys):
         left = np.arange(len(triangles))
         return Facets(vertices, [], np.zeros(0, int), left, triangles)
 
-    mesh_import.join_coplanar = no_join
+    meshes.join_coplanar = no_join
     try:
         unjoined = mesh_patches(load_scene(str(glb), 0.5)).n
     finally:
-        mesh_import.join_coplanar = real
+        meshes.join_coplanar = real
     return {"obj_patches": obj_n, "glb_patches": glb_n, "glb_patches_unjoined": unjoined}
 
 

@@ -64,8 +64,8 @@ def write_round(path: Path, sides: int, radius: float = 3.0) -> None:
 CHILD = """
 import json, sys, time
 from lightinv_core.cli import peak_rss_mb
-from lightinv_core.scene.obj_import import load_obj
-from lightinv_core.scene.obj_size import count_obj_lines
+from lightinv_core.scene.importers.obj import load_obj
+from lightinv_core.scene.importers.obj_size import count_obj_lines
 from lightinv_core.scene.patches import mesh_patches
 path, res = sys.argv[1], float(sys.argv[2])
 t0 = time.perf_counter(); counts = count_obj_lines(path)

@@ -185,14 +185,14 @@ def _scene(args):
         args.scale,
         args.up,
         args.skip_degenerate,
-        args.group_by,
+        group_by=args.group_by,
     )
 
 
 def cmd_scene_info(args) -> int:
     """Patch count, area, groups and emitter zones of a scene, and for a model file its
     import report (what each element or group became, what was dropped and why)."""
-    from lightinv_core.scene.import_report import report_of
+    from lightinv_core.scene.importers.report import report_of
 
     scene = _scene(args)
     p = mesh_patches(scene)

@@ -34,12 +34,13 @@ from lightinv_core.fields import (
 )
 from lightinv_core.scene.builtin import BUILTIN_SCENES
 from lightinv_core.scene.edits import ZoneEdit, apply_zone_edits
-from lightinv_core.scene.loading import MODEL_SUFFIXES, default_up, load_scene
+from lightinv_core.scene.importers.faces import UP_AXES
+from lightinv_core.scene.importers.registry import default_up, importer_for, model_suffixes
+from lightinv_core.scene.loading import load_scene
 from lightinv_core.scene.model import MIN_RESOLUTION, ZONE_KINDS, Scene
-from lightinv_core.scene.obj_parse import UP_AXES
 
 GROUP_BY = ("node", "material")
-"""What names a glTF model's lighting groups (``mesh_import.GROUP_BY``)."""
+"""What names a glTF model's lighting groups (``importers.gltf.GROUP_BY``)."""
 
 
 def resolve_path(p: str | None, base_dir: Path | None) -> str | None:
@@ -54,8 +55,9 @@ def resolve_path(p: str | None, base_dir: Path | None) -> str | None:
 
 def _obj_path(v: Any, path: str) -> str:
     s = _path_string(v, path)
-    if not s.lower().endswith(MODEL_SUFFIXES):
-        kinds = ", ".join(MODEL_SUFFIXES[:-1]) + " or " + MODEL_SUFFIXES[-1]
+    suffixes = model_suffixes()
+    if not s.lower().endswith(suffixes):
+        kinds = ", ".join(suffixes[:-1]) + " or " + suffixes[-1]
         _fail(path, f"expected the path of a model file ({kinds}), got {s!r}")
     return s
 
@@ -355,8 +357,8 @@ class SceneSpec:
         SCENE.check_kinds(self)
         if self.obj is not None and self.up is None:
             object.__setattr__(self, "up", default_up(self.obj))
-        glb = self.obj is not None and self.obj.lower().endswith((".gltf", ".glb"))
-        if self.group_by != "node" and not glb:
+        importer = importer_for(self.obj) if self.obj is not None else None
+        if self.group_by != "node" and (importer is None or "group_by" not in importer.options):
             _fail("group_by", "only a glTF scene (.gltf or .glb) takes this")
 
     @property

@@ -7,7 +7,7 @@ import pytest
 from PySide6 import QtWidgets
 
 from app import dialogs
-from app.import_dialog import MODEL_FILTER, ImportDialog
+from app.import_dialog import ImportDialog, model_filter
 from tests.app.conftest import wait_for_operator
 from tests.core.test_mesh_import import Gltf, box_polygons
 
@@ -36,7 +36,7 @@ def test_the_file_menu_imports_every_model_format(qtbot, window, monkeypatch):
     asked = []
     monkeypatch.setattr(dialogs, "open_file", lambda parent, title, filt: asked.append(filt) or "")
     window.act_import.trigger()
-    assert asked == [MODEL_FILTER]
+    assert asked == [model_filter()]
     for pattern in ("*.obj", "*.gltf", "*.glb", "*.ply", "*.ifc"):
         assert pattern in asked[0].split(";;")[0]
 

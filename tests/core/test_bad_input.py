@@ -25,9 +25,9 @@ from lightinv_core.optimize.problem import DesignProblem
 from lightinv_core.optimize.search import random_start
 from lightinv_core.project import ProjectError, load_project
 from lightinv_core.scene.edits import ZoneEdit, apply_zone_edits
+from lightinv_core.scene.importers.obj import load_obj
 from lightinv_core.scene.loading import load_scene
 from lightinv_core.scene.model import Rect, Surface
-from lightinv_core.scene.obj_import import load_obj
 from lightinv_core.scene.patches import mesh_patches
 from lightinv_core.study import prepare
 from tests.core.test_obj_import import BOX
@@ -415,7 +415,9 @@ def _(d):
     from unittest import mock
 
     path = write(d, BOX)
-    with mock.patch("lightinv_core.scene.obj_size.available_memory_bytes", return_value=2**14):
+    with mock.patch(
+        "lightinv_core.scene.importers.size.available_memory_bytes", return_value=2**14
+    ):
         return raised(lambda: load_obj(path, resolution=0.5))
 
 
@@ -821,10 +823,8 @@ def _(d):
 
 
 def mesh_error(d: Path, name: str, data: bytes, **kw) -> BaseException | None:
-    from lightinv_core.scene.mesh_import import load_mesh
-
     (d / name).write_bytes(data)
-    return raised(lambda: load_mesh(d / name, resolution=0.5, **kw))
+    return raised(lambda: load_scene(str(d / name), resolution=0.5, **kw))
 
 
 @case(

@@ -15,7 +15,7 @@ import pytest
 from lightinv_core import cli
 from lightinv_core.errors import ObjImportError
 from lightinv_core.project.scene import SceneSpec
-from lightinv_core.scene.ifc_import import MISSING, ROLE_REFLECTANCE, load_ifc
+from lightinv_core.scene.importers.ifc import MISSING, ROLE_REFLECTANCE, load_ifc
 from lightinv_core.scene.loading import load_scene
 from lightinv_core.scene.patches import mesh_patches
 from lightinv_core.transport.formfactors import form_factor_matrix, lost_fraction
@@ -305,14 +305,12 @@ def test_bad_ifc_files_are_one_line_errors(tmp_path):
 def test_an_ifc_file_too_large_for_the_memory_is_refused_before_it_is_read(room, monkeypatch):
     """ifcopenshell holds the whole model and its geometry: a file that would need more
     than 80% of the memory available is refused up front, with what it needs."""
-    import lightinv_core.scene.obj_size as obj_size
+    import lightinv_core.scene.importers.size as size
 
-    need = obj_size.check_ifc_size(room, room.name)
-    assert need == obj_size.IFC_BASE_BYTES + obj_size.IFC_BYTES_PER_FILE_BYTE * (
-        room.stat().st_size
-    )
-    monkeypatch.setattr(obj_size, "available_memory_bytes", lambda: int(need / 0.8) - 1)
+    need = size.check_ifc_size(room, room.name)
+    assert need == size.IFC_BASE_BYTES + size.IFC_BYTES_PER_FILE_BYTE * (room.stat().st_size)
+    monkeypatch.setattr(size, "available_memory_bytes", lambda: int(need / 0.8) - 1)
     with pytest.raises(ObjImportError, match=r"^room\.ifc: importing .* of IFC needs about"):
         load_ifc(room)
-    monkeypatch.setattr(obj_size, "available_memory_bytes", lambda: int(need / 0.8) + 1)
+    monkeypatch.setattr(size, "available_memory_bytes", lambda: int(need / 0.8) + 1)
     assert load_ifc(room).zones

@@ -14,8 +14,8 @@ import pytest
 
 from lightinv_core import cli
 from lightinv_core.errors import ObjImportError
-from lightinv_core.scene.ifc_import import load_ifc
-from lightinv_core.scene.import_report import report_of
+from lightinv_core.scene.importers.ifc import load_ifc
+from lightinv_core.scene.importers.report import report_of
 from tests.core.test_ifc_import import L, T, W, ifc_room
 
 ifcopenshell = pytest.importorskip("ifcopenshell")
@@ -322,7 +322,7 @@ def test_a_cut_shapely_cannot_make_is_skipped_and_reported(tmp_path, monkeypatch
     the import report and a warning say so; never a traceback."""
     import shapely
 
-    import lightinv_core.scene.ifc_geometry as geometry
+    import lightinv_core.scene.importers.ifc_geometry as geometry
 
     real = geometry._section
 

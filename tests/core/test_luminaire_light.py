@@ -168,7 +168,7 @@ def test_a_round_floor_keeps_only_points_over_it(tmp_path):
     ring = " ".join(str(i + 1) for i in range(64))
     lines = [f"v {3 * math.cos(t):.6f} {3 * math.sin(t):.6f} 0" for t in a]
     (tmp_path / "r.obj").write_text("\n".join(lines) + f"\ng floor\nf {ring}\n")
-    from lightinv_core.scene.obj_import import load_obj
+    from lightinv_core.scene.importers.obj import load_obj
 
     p = mesh_patches(load_obj(tmp_path / "r.obj", resolution=0.5))
     grid = work_plane_grid(p, RayCaster(p), WorkPlane(0.8, 0.5))

@@ -9,8 +9,8 @@ import numpy as np
 import pytest
 
 from lightinv_core import memory
-from lightinv_core.scene import obj_size
-from lightinv_core.scene.obj_size import count_obj_lines
+from lightinv_core.scene.importers import obj_size
+from lightinv_core.scene.importers.obj_size import count_obj_lines
 
 GiB = 2**30
 

@@ -17,10 +17,12 @@ from lightinv_core.errors import ObjImportError
 from lightinv_core.project import ProjectError
 from lightinv_core.project.scene import SCENE, SceneSpec
 from lightinv_core.scene.facets import join_coplanar
-from lightinv_core.scene.import_report import report_of
+from lightinv_core.scene.importers.gltf import load_gltf
+from lightinv_core.scene.importers.meshes import srgb_to_linear
+from lightinv_core.scene.importers.obj import load_obj
+from lightinv_core.scene.importers.ply import load_ply
+from lightinv_core.scene.importers.report import report_of
 from lightinv_core.scene.loading import load_scene
-from lightinv_core.scene.mesh_import import load_mesh, srgb_to_linear
-from lightinv_core.scene.obj_import import load_obj
 from lightinv_core.scene.patches import mesh_patches
 from lightinv_core.transport.formfactors import form_factor_matrix, lost_fraction
 from tests.core.test_obj_import import BOX
@@ -176,7 +178,7 @@ def group_area(scene, group):
 
 @pytest.mark.parametrize("name", ["room.glb", "room.gltf"])
 def test_a_gltf_room_imports_as_the_same_scene_as_its_obj(tmp_path, name):
-    scene = load_mesh(box_gltf(tmp_path / name), resolution=0.5)
+    scene = load_gltf(box_gltf(tmp_path / name), resolution=0.5)
     (tmp_path / "room.obj").write_text(BOX)
     ref = load_obj(tmp_path / "room.obj", resolution=0.5)
     assert scene.groups == ref.groups == ("floor", "ceiling", "walls")
@@ -201,20 +203,20 @@ def test_a_gltf_room_imports_as_the_same_scene_as_its_obj(tmp_path, name):
 
 
 def test_a_closed_gltf_room_keeps_its_light(tmp_path):
-    p = mesh_patches(load_mesh(box_gltf(tmp_path / "room.glb"), resolution=0.5))
+    p = mesh_patches(load_gltf(box_gltf(tmp_path / "room.glb"), resolution=0.5))
     assert lost_fraction(form_factor_matrix(p, 256, seed=1), p) < 1e-3
 
 
 def test_gltf_with_an_external_buffer_file(tmp_path):
-    scene = load_mesh(box_gltf(tmp_path / "room.gltf", external_bin=True), resolution=0.5)
+    scene = load_gltf(box_gltf(tmp_path / "room.gltf", external_bin=True), resolution=0.5)
     assert scene.area == pytest.approx(59.0)
 
 
 def test_gltf_is_y_up_by_default_and_up_z_keeps_the_file_axes(tmp_path):
     path = box_gltf(tmp_path / "room.glb")
-    lo, hi = _bounds(load_mesh(path, resolution=0.5))
+    lo, hi = _bounds(load_gltf(path, resolution=0.5))
     assert np.allclose(lo, 0) and np.allclose(hi, [4, 3, 2.5])
-    lo, hi = _bounds(load_mesh(path, resolution=0.5, up="z"))  # read as the file says
+    lo, hi = _bounds(load_gltf(path, resolution=0.5, up="z"))  # read as the file says
     assert np.allclose(lo, [0, 0, -3]) and np.allclose(hi, [4, 2.5, 0])
     # PLY has no convention: z up, as OBJ.
     assert load_scene(str(path)).area == pytest.approx(59.0)
@@ -236,7 +238,7 @@ def test_scale_turns_model_units_into_metres(tmp_path):
     g = Gltf()
     for name, polys in box_polygons().items():
         g.part(name, [1000 * p for p in polys])
-    scene = load_mesh(g.save(tmp_path / "mm.glb"), resolution=0.5, scale=0.001)
+    scene = load_gltf(g.save(tmp_path / "mm.glb"), resolution=0.5, scale=0.001)
     assert scene.area == pytest.approx(59.0)
 
 
@@ -259,7 +261,7 @@ def test_node_transforms_are_applied_down_the_tree(tmp_path):
     child = g.node("Tile", mesh, root=False, translation=[1, 0, 0], scale=[2, 2, 2])
     s = np.sqrt(0.5)
     g.node("Group", children=[child], translation=[10, 0, 0], rotation=[0, s, 0, s])
-    scene = load_mesh(g.save(tmp_path / "t.glb"), resolution=0.5)
+    scene = load_gltf(g.save(tmp_path / "t.glb"), resolution=0.5)
     assert scene.groups == ("Tile",)
     (surface,) = scene.surfaces
     assert surface.area == pytest.approx(4.0)
@@ -279,7 +281,7 @@ def test_a_mirroring_node_keeps_faces_facing_the_right_way(tmp_path):
     mesh = g.mesh([(fan(to_y_up(SQUARE)), None)])
     g.node("plain", mesh)
     g.node("mirrored", mesh, scale=[-1, 1, 1])  # mirrored in x: still faces up
-    scene = load_mesh(g.save(tmp_path / "m.glb"), resolution=0.5)
+    scene = load_gltf(g.save(tmp_path / "m.glb"), resolution=0.5)
     for s in scene.surfaces:
         assert np.allclose(s.rect.normal, [0, 0, 1]), s.name
 
@@ -295,16 +297,16 @@ def test_group_names_nodes_meshes_and_materials(tmp_path):
     g.node(None, g.mesh([(fan(to_y_up(moved(6))), None)]))  # nothing named
     g.node("Desk", g.mesh([(fan(to_y_up(moved(8))), paint)]))  # same name
     path = g.save(tmp_path / "names.glb")
-    scene = load_mesh(path, resolution=0.5)
+    scene = load_gltf(path, resolution=0.5)
     assert scene.groups == ("Desk", "Shelf", "node 2")
     assert group_area(scene, "Desk") == pytest.approx(3.0)
     desk = sorted({round(s.reflectance, 9) for s in scene.surfaces if s.group == "Desk"})
     assert desk == [0.1, 0.5]
-    by_mat = load_mesh(path, resolution=0.5, group_by="material")
+    by_mat = load_gltf(path, resolution=0.5, group_by="material")
     assert by_mat.groups == ("Paint", "material 1", "default")
     assert group_area(by_mat, "Paint") == pytest.approx(3.0)
     # The materials mapping names glTF groups and materials as for OBJ.
-    mapped = load_mesh(path, resolution=0.5, materials={"materials": {"material 1": 0.3}})
+    mapped = load_gltf(path, resolution=0.5, materials={"materials": {"material 1": 0.3}})
     desk = sorted({round(s.reflectance, 9) for s in mapped.surfaces if s.group == "Desk"})
     assert desk == [0.3, 0.5]
     assert "no reflectance for material" not in " ".join(mapped.info["warnings"])
@@ -316,7 +318,7 @@ def test_zone_nodes_become_emitter_zones(tmp_path):
         g.part(name, polys)
     sky = np.array([[1, 1, 2.4], [1, 2, 2.4], [3, 2, 2.4], [3, 1, 2.4]], float)  # faces down
     g.part("zone:sky:skylight", [sky])
-    scene = load_mesh(g.save(tmp_path / "z.glb"), resolution=0.5)
+    scene = load_gltf(g.save(tmp_path / "z.glb"), resolution=0.5)
     (zone,) = scene.zones
     assert (zone.name, zone.kind) == ("sky", "skylight")
     rect = scene.zone_rect("sky")
@@ -345,7 +347,7 @@ def test_base_colour_texture_and_white_cap(tmp_path):
     glass = g.material("Glass", [0.9, 0.9, 0.9, 0.2], alphaMode="BLEND")
     for k, mat in enumerate((tex, white, glass)):
         g.part(f"p{k}", [moved(2 * k)], mat)
-    scene = load_mesh(g.save(tmp_path / "c.glb"), resolution=0.5)
+    scene = load_gltf(g.save(tmp_path / "c.glb"), resolution=0.5)
     rho = {s.group: s.reflectance for s in scene.surfaces}
     assert rho["p0"] == pytest.approx(0.5, abs=1e-6)
     # Averaging the stored (sRGB) values instead would give 0.21.
@@ -395,7 +397,7 @@ def test_an_l_shaped_floor_of_triangles_is_one_polygon(tmp_path):
     tris = np.array([[0, 1, 2], [0, 2, 3], [0, 3, 4], [0, 4, 5]])
     g = Gltf()
     g.node("L", g.mesh([(to_y_up(np.array(l_shape, float))[tris], None)]))
-    scene = load_mesh(g.save(tmp_path / "l.glb"), resolution=0.5)
+    scene = load_gltf(g.save(tmp_path / "l.glb"), resolution=0.5)
     assert scene.area == pytest.approx(12.0)
     # Cut by the grid (polygon_mesh) as an OBJ polygon is: 48 cells of 0.5 m.
     assert mesh_patches(scene).n == 48
@@ -420,7 +422,7 @@ def box_ply(path: Path, colours: bool, binary: bool = False) -> Path:
 
 @pytest.mark.parametrize("binary", [False, True])
 def test_ply_faces_are_grouped_by_colour(tmp_path, binary):
-    scene = load_mesh(box_ply(tmp_path / "room.ply", True, binary), resolution=0.5)
+    scene = load_ply(box_ply(tmp_path / "room.ply", True, binary), resolution=0.5)
     assert scene.groups == ("colour #333333", "colour #808080", "colour #E6E6E6")
     assert group_area(scene, "colour #808080") == pytest.approx(35.0)
     rho = {s.group: s.reflectance for s in scene.surfaces}
@@ -431,7 +433,7 @@ def test_ply_faces_are_grouped_by_colour(tmp_path, binary):
 
 
 def test_a_ply_without_colours_is_one_group(tmp_path):
-    scene = load_mesh(box_ply(tmp_path / "room.ply", False), resolution=0.5)
+    scene = load_ply(box_ply(tmp_path / "room.ply", False), resolution=0.5)
     assert scene.groups == ("room",)
     assert {s.reflectance for s in scene.surfaces} == {0.5}
 
@@ -487,18 +489,18 @@ def test_bad_gltf_files_are_one_line_errors(tmp_path):
     for name, (data, pattern) in cases.items():
         (tmp_path / name).write_bytes(data)
         with pytest.raises(ObjImportError, match=pattern) as info:
-            load_mesh(tmp_path / name)
+            load_gltf(tmp_path / name)
         assert "\n" not in str(info.value)
     g = Gltf()
     g.doc["accessors"].append({"componentType": 5126, "count": 3, "type": "VEC3"})
     g.node("points", g.mesh([]))
     g.doc["meshes"][-1]["primitives"] = [{"attributes": {"POSITION": 0}, "mode": 0}]
     with pytest.raises(ObjImportError, match=r"p\.glb: no triangles found"):
-        load_mesh(g.save(tmp_path / "p.glb"))
+        load_gltf(g.save(tmp_path / "p.glb"))
     with pytest.raises(ObjImportError, match=r"glTF file '.*gone\.glb' does not exist"):
-        load_mesh(tmp_path / "gone.glb")
+        load_gltf(tmp_path / "gone.glb")
     with pytest.raises(ObjImportError, match=r"group_by='layer' is not supported"):
-        load_mesh(box_gltf(tmp_path / "room.glb"), group_by="layer")
+        load_gltf(box_gltf(tmp_path / "room.glb"), group_by="layer")
 
 
 def test_degenerate_and_huge_triangles(tmp_path):
@@ -511,25 +513,25 @@ def test_degenerate_and_huge_triangles(tmp_path):
     with pytest.raises(
         ObjImportError, match=r"1 degenerate face\(s\) .* at triangle 1 of node 'Junk'"
     ):
-        load_mesh(path, resolution=0.5)
-    scene = load_mesh(path, resolution=0.5, skip_degenerate=True)
+        load_gltf(path, resolution=0.5)
+    scene = load_gltf(path, resolution=0.5, skip_degenerate=True)
     assert "Junk" not in scene.groups
     assert any("dropped 1 degenerate face(s)" in w for w in scene.info["warnings"])
     g = Gltf()
     g.part("Far", [SQUARE * 1e9])
     with pytest.raises(ObjImportError, match=r"node 'Far' has a coordinate that is larger"):
-        load_mesh(g.save(tmp_path / "far.glb"))
+        load_gltf(g.save(tmp_path / "far.glb"))
 
 
 def test_bad_ply_files(tmp_path):
     (tmp_path / "a.ply").write_text("solid cube\n")
     with pytest.raises(ObjImportError, match=r"a\.ply: not a PLY file"):
-        load_mesh(tmp_path / "a.ply")
+        load_ply(tmp_path / "a.ply")
     cloud = "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
     cloud += "property float z\nend_header\n0 0 0\n1 0 0\n0 1 0\n"
     (tmp_path / "b.ply").write_text(cloud)
     with pytest.raises(ObjImportError, match=r"b\.ply: no faces found \(3 vertices\)"):
-        load_mesh(tmp_path / "b.ply")
+        load_ply(tmp_path / "b.ply")
 
 
 PLY_HEAD = (
@@ -553,7 +555,7 @@ def test_a_ply_face_naming_a_missing_vertex_is_a_one_line_error(tmp_path, faces,
     path = tmp_path / "bad.ply"
     path.write_text(PLY_HEAD.format(n=len(faces)) + "\n".join(faces) + "\n")
     with pytest.raises(ObjImportError) as info:
-        load_mesh(path)
+        load_ply(path)
     assert str(info.value) == (
         f"bad.ply: {where} names vertex {number}, but the file has 3 vertices (numbered 0 "
         "to 2); the file is damaged, export it again"
@@ -579,7 +581,7 @@ def test_a_gltf_primitive_of_lines_is_in_the_import_report(tmp_path):
     g.node("guide lines", g.mesh([]))
     lines = len(g.doc["accessors"]) - 1
     g.doc["meshes"][-1]["primitives"] = [{"attributes": {"POSITION": lines}, "mode": 1}]
-    scene = load_mesh(g.save(tmp_path / "room.glb"), up="z")
+    scene = load_gltf(g.save(tmp_path / "room.glb"), up="z")
     report = report_of(scene)
     assert [(it.kind, it.name, it.outcome) for it in report.items] == [
         ("glTF node", "floor", "group"),

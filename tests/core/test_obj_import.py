@@ -13,9 +13,9 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 from lightinv_core.errors import ObjImportError
-from lightinv_core.scene.import_report import report_of
-from lightinv_core.scene.obj_import import load_obj
-from lightinv_core.scene.obj_parse import KD_CAP
+from lightinv_core.scene.importers.materials import KD_CAP
+from lightinv_core.scene.importers.obj import load_obj
+from lightinv_core.scene.importers.report import report_of
 from lightinv_core.scene.patches import count_patches, mesh_patches
 
 BOX_VERTICES = """\

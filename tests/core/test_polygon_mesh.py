@@ -11,15 +11,15 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from lightinv_core.scene import polygon_mesh
-from lightinv_core.scene.obj_import import load_obj
-from lightinv_core.scene.patches import mesh_patches
-from lightinv_core.scene.polygon_mesh import (
+from lightinv_core.scene.importers import polygon_mesh
+from lightinv_core.scene.importers.obj import load_obj
+from lightinv_core.scene.importers.polygon_mesh import (
     clip_half_plane,
     mesh_polygon,
     shoelace,
     simplify_outline,
 )
+from lightinv_core.scene.patches import mesh_patches
 
 UP = np.array([0.0, 0.0, 1.0])
 

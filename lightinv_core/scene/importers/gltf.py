@@ -1,15 +1,14 @@
-"""Import glTF 2.0 (.gltf, .glb) and PLY room models as LightInv scenes, through trimesh.
+"""Import a glTF 2.0 (.gltf, .glb) room model as a LightInv scene, through trimesh.
 
-trimesh decodes the files (buffers, accessors, node transforms); this module names the
-lighting groups, guesses reflectances from the materials' colours, joins coplanar
-triangles back into polygons (``facets``) and hands everything to the OBJ importer's
-``assemble_scene``, so meshing, size checks, duplicate checks and ``zone:NAME:KIND``
-emitter zones work as for OBJ files. The user guide is docs/obj-import.md.
+trimesh decodes the file (buffers, accessors, node transforms); this module names the
+lighting groups (node or material names) and guesses reflectances from the materials'
+colours; ``meshes.import_mesh`` does the rest, as for PLY files. The user guide is
+docs/obj-import.md.
 
-Units: metres (glTF is in metres by its specification; PLY has no unit) times ``scale``.
-Up axis: glTF is y-up by its specification, so ``up`` defaults to "y" for glTF and to
-"z" for PLY. Faces keep their winding (counter-clockwise seen from the front; a node
-whose transform mirrors the model has its faces turned back, as glTF specifies).
+Units: metres (by glTF's specification) times ``scale``. Up axis: glTF is y-up by its
+specification, so ``up`` defaults to "y". Faces keep their winding (counter-clockwise
+seen from the front; a node whose transform mirrors the model has its faces turned
+back, as glTF specifies).
 """
 
 from __future__ import annotations
@@ -17,33 +16,19 @@ from __future__ import annotations
 import io
 import json
 import os
-import stat
 import struct
-from bisect import bisect_right
-from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
 
 from lightinv_core.errors import ObjImportError
-from lightinv_core.scene.facets import join_coplanar
-from lightinv_core.scene.import_report import ImportItem
-from lightinv_core.scene.loading import default_up
+from lightinv_core.scene.importers.faces import LISTED, clip
+from lightinv_core.scene.importers.meshes import Model, Part, import_mesh, short, srgb_to_linear
+from lightinv_core.scene.importers.report import ImportItem
+from lightinv_core.scene.importers.size import ModelCounts, check_counts
 from lightinv_core.scene.model import Scene
-from lightinv_core.scene.obj_geometry import z_up
-from lightinv_core.scene.obj_import import Places, assemble_scene, check_options
-from lightinv_core.scene.obj_parse import (
-    LISTED,
-    MAX_COORD,
-    ObjData,
-    ObjFace,
-    clip,
-    load_materials,
-)
-from lightinv_core.scene.obj_size import ObjCounts, check_counts
 
-GLTF_SUFFIXES = (".gltf", ".glb")
-MESH_SUFFIXES = (*GLTF_SUFFIXES, ".ply")
+SUFFIXES = (".gltf", ".glb")
 GROUP_BY = ("node", "material")
 GLB_MAGIC = b"glTF"
 GLB_JSON = 0x4E4F534A  # chunk type "JSON"
@@ -51,99 +36,56 @@ TEXTURE_SAMPLES = 256  # a texture's mean colour is taken over 256 x 256 samples
 OPAQUE = 0.5  # a base colour alpha below this (alphaMode BLEND) is called transparent
 
 
-@dataclass
-class Part:
-    """Triangles of one glTF node primitive (or a PLY colour): world coordinates in model
-    units, the lighting group, the material name (None: no material) and where it came from."""
-
-    vertices: np.ndarray
-    triangles: np.ndarray
-    group: str
-    material: str | None
-    label: str  # "node 'Wall'" in messages
-
-
-@dataclass
-class Model:
-    """What a reader found: parts, material colours as reflectance guesses, warnings."""
-
-    parts: list[Part]
-    colours: dict[str, float] = field(default_factory=dict)
-    warnings: list[str] = field(default_factory=list)
-    colour_source: str = "glTF baseColor"
-    left: list[ImportItem] = field(default_factory=list)  # what the reader left out
-
-
-def load_mesh(
+def load_gltf(
     path: str | os.PathLike,
     materials: dict | str | os.PathLike | None = None,
     resolution: float = 0.25,
     scale: float = 1.0,
-    up: str | None = None,
+    up: str = "y",
     skip_degenerate: bool = False,
     name: str | None = None,
     group_by: str = "node",
 ) -> Scene:
-    """Import the glTF (.gltf, .glb) or PLY file ``path`` as a Scene (metres, z up).
+    """Import the glTF file ``path`` (.gltf or .glb) as a Scene (metres, z up).
 
     Parameters
     ----------
     materials : reflectances by group and material name, as for ``load_obj``.
     resolution : target patch edge length in metres.
-    scale : metres per model unit (glTF: 1, its unit is the metre).
-    up : "z" or "y", the model's up axis; None: the format's ("y" for glTF, "z" for PLY).
+    scale : metres per model unit (1: glTF's unit is the metre).
+    up : "y" (glTF's specification) or "z", the model's up axis.
     skip_degenerate : drop zero-area triangles (with a warning) instead of raising.
     name : scene name; default the file name without extension.
     group_by : "node" (glTF node names become lighting groups) or "material"
-        (material names do). PLY files have neither: faces are grouped by colour.
+        (material names do).
 
     Returns a Scene whose ``info`` holds ``"source"`` and ``"warnings"``. Raises
     ObjImportError for anything wrong with the file, the materials or the options.
     """
-    suffix = Path(os.fspath(path)).suffix.lower() if isinstance(path, str | os.PathLike) else ""
-    fmt = "PLY" if suffix == ".ply" else "glTF"
-    up = default_up(path) if up is None and suffix else up
-    path, res, scale = check_options(path, resolution, scale, up, fmt)
-    if suffix not in MESH_SUFFIXES:
-        raise ObjImportError(
-            f"{path.name}: not a glTF or PLY file (the name must end in .gltf, .glb or .ply)"
-        )
     if group_by not in GROUP_BY:
         raise ObjImportError(
             f"group_by={group_by!r} is not supported; use 'node' (node names become "
             "lighting groups) or 'material' (material names do)"
         )
-    mats = load_materials(materials)
-    _check_file(path, f"{fmt} file")
-    fname = path.name
-    if fmt == "PLY":
-        check_counts(ply_counts(path), fname)
-        model = read_ply(path)
-    else:
+
+    def read(path: Path) -> Model:
         header, binary = read_gltf_header(path)
-        check_counts(gltf_counts(header, path), fname)
-        model = read_gltf(path, header, binary, group_by)
-    data, places = _faces(model, path, scale, up)
-    places.item_kind = "PLY colour" if fmt == "PLY" else f"glTF {group_by}"
-    return assemble_scene(
-        data, places, mats, model.colours, res, scale, skip_degenerate, name, tuple(model.left)
+        check_counts(gltf_counts(header, path), path.name)
+        return read_gltf(path, header, binary, group_by)
+
+    return import_mesh(
+        path,
+        "glTF",
+        SUFFIXES,
+        read,
+        f"glTF {group_by}",
+        materials,
+        resolution,
+        scale,
+        up,
+        skip_degenerate,
+        name,
     )
-
-
-def _check_file(path: Path, what: str) -> None:
-    try:
-        mode = os.stat(path).st_mode
-    except FileNotFoundError:
-        raise ObjImportError(f"{what} '{path}' does not exist; check the path") from None
-    except (OSError, ValueError) as exc:
-        raise ObjImportError(f"cannot read {what} '{path}': {exc}") from None
-    if not stat.S_ISREG(mode):
-        raise ObjImportError(
-            f"{what} '{path}' is not a file (a folder or device); give the path of the file"
-        )
-
-
-# --- glTF ----------------------------------------------------------------------------------
 
 
 def read_gltf_header(path: Path) -> tuple[dict, bytes | None]:
@@ -214,7 +156,7 @@ def _items(header: dict, key: str) -> list:
     return value if isinstance(value, list) else []
 
 
-def gltf_counts(header: dict, path: Path) -> ObjCounts:
+def gltf_counts(header: dict, path: Path) -> ModelCounts:
     """Vertices and triangles the file's scene holds (from its accessors, per use of
     each mesh by a node), for the size check before decoding."""
     accessors, uses = _items(header, "accessors"), {}
@@ -233,7 +175,7 @@ def gltf_counts(header: dict, path: Path) -> ObjCounts:
             idx = _count(accessors, prim.get("indices"))
             vertices += n * pos
             triangles += n * ((idx if "indices" in prim else pos) // 3)
-    return ObjCounts(vertices, triangles, path.stat().st_size)
+    return ModelCounts(vertices, triangles, path.stat().st_size)
 
 
 def _count(accessors: list, k) -> int:
@@ -281,7 +223,7 @@ def read_gltf(path: Path, header: dict, binary: bytes | None, group_by: str) -> 
         )
     except Exception as exc:  # trimesh raises many kinds on a damaged file
         raise ObjImportError(
-            f"{fname}: cannot decode the glTF file ({type(exc).__name__}: {_short(exc)}); "
+            f"{fname}: cannot decode the glTF file ({type(exc).__name__}: {short(exc)}); "
             "export it again as glTF 2.0"
         ) from None
     nodes, meshes = _items(header, "nodes"), _items(header, "meshes")
@@ -434,176 +376,3 @@ def _textures(scene) -> dict[int, np.ndarray]:
             continue
         out[k] = srgb_to_linear(np.asarray(small, float) / 255.0).reshape(-1, 3).mean(axis=0)
     return out
-
-
-def srgb_to_linear(c: np.ndarray) -> np.ndarray:
-    """sRGB-encoded values in [0, 1] to linear light (IEC 61966-2-1)."""
-    return np.where(c <= 0.04045, c / 12.92, ((c + 0.055) / 1.055) ** 2.4)
-
-
-def _short(exc: Exception, n: int = 80) -> str:
-    text = " ".join(str(exc).split()) or "no details"
-    return text if len(text) <= n else text[:n] + "..."
-
-
-# --- PLY -----------------------------------------------------------------------------------
-
-
-def ply_counts(path: Path) -> ObjCounts:
-    """Vertices and faces a PLY file declares in its header (``element vertex N``,
-    ``element face M``); ObjImportError if it has no PLY header."""
-    fname = path.name
-    with open(path, "rb") as fh:
-        head = fh.read(1 << 16)
-    if not head.startswith(b"ply"):
-        raise ObjImportError(
-            f"{fname}: not a PLY file (it does not start with 'ply'); export the model as "
-            "Stanford PLY"
-        )
-    end = head.find(b"end_header")
-    if end < 0:
-        raise ObjImportError(f"{fname}: the PLY header has no end_header line; export it again")
-    counts = {}
-    for line in head[:end].decode("latin-1").splitlines():
-        words = line.split()
-        if len(words) == 3 and words[0] == "element" and words[2].isdigit():
-            counts[words[1]] = int(words[2])
-    return ObjCounts(counts.get("vertex", 0), counts.get("face", 0), path.stat().st_size)
-
-
-def read_ply(path: Path) -> Model:
-    """Decode a PLY file with trimesh: one Part per face colour (group ``colour #RRGGBB``,
-    reflectance guess the colour's linear luminance), or one Part named after the file."""
-    import trimesh
-
-    fname = path.name
-    try:
-        scene = trimesh.load_scene(str(path), file_type="ply", process=False)
-    except Exception as exc:  # trimesh raises many kinds on a damaged file
-        raise ObjImportError(
-            f"{fname}: cannot decode the PLY file ({type(exc).__name__}: {_short(exc)}); "
-            "export it again"
-        ) from None
-    geometry = list(scene.geometry.values())
-    mesh = geometry[0] if len(geometry) == 1 else None
-    faces = getattr(mesh, "faces", None)
-    if faces is None or len(faces) == 0:
-        raise ObjImportError(
-            f"{fname}: no faces found ({len(getattr(mesh, 'vertices', []))} vertices); "
-            "export the model as a polygon mesh, not a point cloud"
-        )
-    v = np.asarray(mesh.vertices, float)
-    tri = np.asarray(faces, np.int64)
-    _check_vertex_numbers(tri, len(v), path)
-    if getattr(mesh.visual, "kind", None) != "face":
-        return Model([Part(v, tri, path.stem, None, f"{clip(path.stem)}")], {}, [], "PLY colour")
-    rgb = np.asarray(mesh.visual.face_colors)[:, :3]
-    colours, which = np.unique(rgb, axis=0, return_inverse=True)
-    model = Model([], {}, [], "PLY colour")
-    for c, colour in enumerate(colours):
-        group = "colour #{:02X}{:02X}{:02X}".format(*colour.tolist())
-        model.parts.append(Part(v, tri[which.ravel() == c], group, group, clip(group)))
-        lin = srgb_to_linear(colour / 255.0)
-        model.colours[group] = float(0.2126 * lin[0] + 0.7152 * lin[1] + 0.0722 * lin[2])
-    return model
-
-
-def _check_vertex_numbers(tri: np.ndarray, nv: int, path: Path) -> None:
-    """ObjImportError naming the first face whose vertex numbers are not those of a
-    vertex of the file (0 to nv - 1; trimesh passes them through unchecked)."""
-    bad = np.flatnonzero(((tri < 0) | (tri >= nv)).any(axis=1))
-    if len(bad) == 0:
-        return
-    k = int(bad[0])
-    number = int(tri[k][(tri[k] < 0) | (tri[k] >= nv)][0])
-    # trimesh splits polygons into triangles: the triangle is the face when the file
-    # declares as many faces as there are triangles.
-    declared = ply_counts(path).faces
-    where = f"face {k + 1:,}"
-    if declared != len(tri):
-        where = f"triangle {k + 1:,} (of its faces split)"
-    has = f"{nv:,} vertices (numbered 0 to {nv - 1:,})" if nv else "no vertices"
-    raise ObjImportError(
-        f"{path.name}: {where} names vertex {number:,}, but the file has {has}; the file "
-        "is damaged, export it again"
-    )
-
-
-# --- to the OBJ importer's faces -------------------------------------------------------------
-
-
-class FacePlaces(Places):
-    """Messages about triangles of a mesh file: numbered within their node (or colour)."""
-
-    what = "model"
-
-    def __init__(
-        self, path: Path, starts: list[int], labels: list[str], colour: str, noun="triangle"
-    ):
-        super().__init__(path)
-        self.starts, self.labels, self.colour, self.noun = starts, labels, colour, noun
-
-    def at(self, line: int) -> str:
-        return ""
-
-    def within(self, line: int) -> str:
-        return ""
-
-    def many(self, lines: list[int]) -> str:
-        by_part: dict[int, list[int]] = {}
-        for n in lines:
-            k = bisect_right(self.starts, n) - 1
-            by_part.setdefault(k, []).append(n - self.starts[k] + 1)
-        out = []
-        for k, nums in list(by_part.items())[:LISTED]:
-            shown = ", ".join(str(n) for n in nums[:LISTED])
-            more = f" and {len(nums) - LISTED} more" if len(nums) > LISTED else ""
-            noun = self.noun if len(nums) == 1 else self.noun + "s"
-            out.append(f"{noun} {shown}{more} of {self.labels[k]}")
-        if len(by_part) > LISTED:
-            out.append(f"{len(by_part) - LISTED} more parts")
-        return "; ".join(out)
-
-
-def _faces(model: Model, path: Path, scale: float, up: str) -> tuple[ObjData, FacePlaces]:
-    """The parts as the OBJ importer's faces: coordinates in metres, z up; coplanar
-    triangles of one group and material joined into polygons."""
-    fname = path.name
-    verts, tris, keys, starts, labels = [], [], [], [], []
-    offset = count = 0
-    kinds: dict[tuple[str, str | None], int] = {}
-    for part in model.parts:
-        v = z_up(part.vertices * scale, up)
-        big = ~(np.abs(v) <= MAX_COORD).all(axis=1)
-        if big.any():
-            what = "not finite" if not np.all(np.isfinite(v)) else f"larger than {MAX_COORD:g} m"
-            raise ObjImportError(
-                f"{fname}: {part.label} has a coordinate that is {what} after scaling by "
-                f"{scale:g}; check the model's units and the scale"
-            )
-        verts.append(v)
-        tris.append(part.triangles + offset)
-        keys.append(
-            np.full(len(part.triangles), kinds.setdefault((part.group, part.material), len(kinds)))
-        )
-        starts.append(count + 1)
-        labels.append(part.label)
-        offset += len(v)
-        count += len(part.triangles)
-    tri = np.concatenate(tris)
-    key = np.concatenate(keys)
-    facets = join_coplanar(np.concatenate(verts), tri, key)
-    part_of = np.repeat(np.arange(len(model.parts)), [len(p.triangles) for p in model.parts])
-    faces = []
-    joined = sorted(
-        [
-            (int(f), tuple(int(i) for i in poly))
-            for f, poly in zip(facets.first, facets.polygons, strict=True)
-        ]
-        + [(int(f), tuple(int(i) for i in facets.triangles[f])) for f in facets.left]
-    )
-    for first, index in joined:
-        part = model.parts[part_of[first]]
-        faces.append(ObjFace(index, first + 1, part.group, part.material))
-    data = ObjData(facets.vertices, faces, [], list(model.warnings))
-    return data, FacePlaces(path, starts, labels, model.colour_source)

@@ -7,8 +7,8 @@ where two elements touch (a wall standing on a slab, a window in its opening) or
 into each other are cut away, and faces that look out of the building (most rays from
 their front escape the model or start inside another element) are left out
 (``ifc_geometry``). Windows become glazing zones
-(skylight kind), ceiling coverings luminaire zones; what remains goes through the OBJ
-importer's ``assemble_scene``. The user guide is docs/obj-import.md.
+(skylight kind), ceiling coverings luminaire zones; what remains goes through the
+neutral ``assembly.assemble_scene``. The user guide is docs/obj-import.md.
 
 ifcopenshell and shapely (which it installs) are imported only here and only when an
 IFC file is read: the core works without them.
@@ -26,7 +26,10 @@ import numpy as np
 
 from lightinv_core.errors import ObjImportError
 from lightinv_core.scene.facets import row_ids
-from lightinv_core.scene.ifc_geometry import (
+from lightinv_core.scene.importers.assembly import assemble_scene, check_options
+from lightinv_core.scene.importers.faces import LISTED, MAX_COORD, Face, FacePlaces, Polygons, clip
+from lightinv_core.scene.importers.geometry import z_up
+from lightinv_core.scene.importers.ifc_geometry import (
     GRID,
     Element,
     Part,
@@ -38,18 +41,15 @@ from lightinv_core.scene.ifc_geometry import (
     planes_of,
     rectangles,
 )
-from lightinv_core.scene.ifc_report import SKIPPED_REASONS, Stages, ifc_report
-from lightinv_core.scene.import_report import KEY as REPORT_KEY
-from lightinv_core.scene.import_report import report_of
-from lightinv_core.scene.mesh_import import FacePlaces
+from lightinv_core.scene.importers.ifc_report import SKIPPED_REASONS, Stages, ifc_report
+from lightinv_core.scene.importers.materials import load_materials
+from lightinv_core.scene.importers.report import KEY as REPORT_KEY
+from lightinv_core.scene.importers.report import report_of
+from lightinv_core.scene.importers.size import check_ifc_size
 from lightinv_core.scene.model import Scene
-from lightinv_core.scene.obj_geometry import z_up
-from lightinv_core.scene.obj_import import assemble_scene, check_options
-from lightinv_core.scene.obj_parse import LISTED, MAX_COORD, ObjData, ObjFace, clip, load_materials
-from lightinv_core.scene.obj_size import check_ifc_size
 
 MISSING = "IFC import needs the optional extra: pip install 'lightinv[ifc]'"
-IFC_SUFFIXES = (".ifc",)
+SUFFIXES = (".ifc",)
 SKIPPED = tuple(SKIPPED_REASONS)
 """Classes not meshed (spaces, openings, the site, ...; why: ``SKIPPED_REASONS``)."""
 ROLE_REFLECTANCE = {"floor": 0.2, "wall": 0.5, "ceiling": 0.7, "furniture": 0.2, "glazing": 0.1}
@@ -428,7 +428,7 @@ def _group_names(elements: list[Element]) -> list[str]:
 
 
 def _faces(planes, elements, zones, scale, up, path: Path):
-    """The kept pieces as the OBJ importer's polygon faces (holes cut into strips)."""
+    """The kept pieces as polygon faces (holes cut into strips)."""
     import shapely
 
     fname = path.name
@@ -455,7 +455,7 @@ def _faces(planes, elements, zones, scale, up, path: Path):
                 count += 1
                 starts.append(count)
                 labels.append(f"{e.ifc_class} {clip(e.name)}")
-                faces.append(ObjFace(tuple(range(nv, nv + len(xyz))), count, label, p.role))
+                faces.append(Face(tuple(range(nv, nv + len(xyz))), count, label, p.role))
                 nv += len(xyz)
     if not faces:
         raise ObjImportError(
@@ -469,7 +469,7 @@ def _faces(planes, elements, zones, scale, up, path: Path):
             f"{scale:g}; check the scale"
         )
     places = FacePlaces(path, starts, labels, "IFC role", noun="face")
-    return ObjData(v, faces, []), places, count
+    return Polygons(v, faces), places, count
 
 
 def _role(e: Element, n: np.ndarray) -> str:

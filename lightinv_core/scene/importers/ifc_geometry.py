@@ -17,7 +17,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from lightinv_core.scene.obj_geometry import perpendicular
+from lightinv_core.scene.importers.geometry import perpendicular
 
 PLANE_TOL = 1e-3  # m (and unit-normal components): faces this close share a plane
 MIN_PIECE = 1e-4  # m²: pieces smaller than a square centimetre are dropped

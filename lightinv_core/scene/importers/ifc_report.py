@@ -12,9 +12,9 @@ from __future__ import annotations
 
 import numpy as np
 
-from lightinv_core.scene.ifc_geometry import MIN_PIECE, Element, Failure, Part
-from lightinv_core.scene.import_report import EXPECTED, ImportItem, ImportReport
-from lightinv_core.scene.obj_parse import LISTED, clip
+from lightinv_core.scene.importers.faces import LISTED, clip
+from lightinv_core.scene.importers.ifc_geometry import MIN_PIECE, Element, Failure, Part
+from lightinv_core.scene.importers.report import EXPECTED, ImportItem, ImportReport
 
 SKIPPED_REASONS = {
     "IfcSpace": "not a surface: a space is the room's air",

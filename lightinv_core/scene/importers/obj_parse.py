@@ -1,117 +1,36 @@
-"""Wavefront OBJ and MTL text, and LightInv materials mappings, parsed into plain data.
+"""Wavefront OBJ and MTL text parsed into plain data (``faces.Polygons``).
 
 OBJ coordinates times ``scale`` give metres; a y-up model is turned z-up. Faces keep
 their vertex order (counter-clockwise seen from the front). Every problem with the
-OBJ file or the materials mapping is an ``ObjImportError`` naming the file and line;
-problems with MTL files are only warnings (their materials get the default reflectance).
-Finding the MTL files and choosing each face's reflectance is ``obj_import``'s job.
+OBJ file is an ``ObjImportError`` naming the file and line; problems with MTL files
+are only warnings (their materials get the default reflectance). Finding the MTL files
+is ``obj``'s job, choosing each face's reflectance ``materials``'.
 """
 
 from __future__ import annotations
 
-import json
 import math
-import numbers
-import os
-import stat
 from collections import Counter
-from collections.abc import Callable
 from dataclasses import dataclass, field
 from itertools import takewhile
-from pathlib import Path
 
 import numpy as np
 
-from lightinv_core.errors import ObjImportError, SceneError
-from lightinv_core.scene.model import ZONE_KINDS, check_reflectance
-from lightinv_core.scene.obj_geometry import z_up
-from lightinv_core.textcodec import decode_text
-
-UP_AXES = ("z", "y")
-# Statements LightInv does not need and skips silently (texture coordinates, normals,
-# smoothing groups, lines, points).
-IGNORED = frozenset({"vt", "vn", "s", "l", "p"})
-# Largest coordinate accepted, in metres after scaling: beyond it areas overflow, and no
-# building is that large (a bigger number means the scale is wrong).
-MAX_COORD = 1e8
-DEFAULT_REFLECTANCE = 0.5
-KD_CAP = 0.95  # exporters write Kd 1 1 1 for white; a reflectance of 1 makes radiosity diverge
-LISTED = 5  # names or line numbers listed in a message
-MATERIALS_KEYS = ("default", "groups", "materials")
-
-
-@dataclass(frozen=True)
-class ObjFace:
-    """One ``f`` statement: 0-based vertex indices, its line, lighting group and material."""
-
-    index: tuple[int, ...]
-    line: int
-    group: str
-    material: str | None
+from lightinv_core.errors import ObjImportError
+from lightinv_core.scene.importers.faces import MAX_COORD, Face, Polygons, clip
+from lightinv_core.scene.importers.geometry import z_up
 
 
 @dataclass
-class ObjData:
-    """A parsed OBJ file: vertices (n, 3) in metres, z up; faces; ``mtllib`` references."""
+class ObjData(Polygons):
+    """A parsed OBJ file: its polygons and its ``mtllib`` references (name, line)."""
 
-    vertices: np.ndarray
-    faces: list[ObjFace]
-    mtllibs: list[tuple[str, int]]
-    warnings: list[str] = field(default_factory=list)
+    mtllibs: list[tuple[str, int]] = field(default_factory=list)
 
 
-@dataclass(frozen=True)
-class MaterialMap:
-    """Explicit reflectances by lighting group and by material name, and the default."""
-
-    default: float = DEFAULT_REFLECTANCE
-    groups: dict[str, float] = field(default_factory=dict)
-    materials: dict[str, float] = field(default_factory=dict)
-    source: str = "materials mapping"
-
-
-def clip(text: str, n: int = 40) -> str:
-    """``repr`` of ``text`` cut to about ``n`` characters, for error messages."""
-    return repr(text if len(text) <= n else text[:n] + "...")
-
-
-def describe_lines(lines: list[int]) -> str:
-    """'line 7' or 'lines 7, 9, 11, 13, 15 and 3 more'."""
-    if len(lines) == 1:
-        return f"line {lines[0]}"
-    shown = ", ".join(str(n) for n in lines[:LISTED])
-    return f"lines {shown}" + (f" and {len(lines) - LISTED} more" if len(lines) > LISTED else "")
-
-
-def read_text(path: Path, what: str, guard: Callable[[Path, str], object] | None = None) -> str:
-    """Read a regular file as text (``decode_text``); ObjImportError if impossible.
-
-    ``guard(path, name)`` runs once the path is known to be a regular file and before
-    it is read, to refuse files too big to import.
-    """
-    try:
-        mode = os.stat(path).st_mode
-    except FileNotFoundError:
-        raise ObjImportError(f"{what} '{path}' does not exist; check the path") from None
-    except (OSError, ValueError) as exc:
-        raise ObjImportError(f"cannot read {what} '{path}': {_reason(exc)}") from None
-    if not stat.S_ISREG(mode):
-        raise ObjImportError(
-            f"{what} '{path}' is not a file (a folder or device); give the path of the file"
-        )
-    if guard is not None:
-        guard(Path(path), Path(path).name)
-    try:
-        data = Path(path).read_bytes()
-    except OSError as exc:
-        raise ObjImportError(
-            f"cannot read {what} '{path}': {_reason(exc)}; check that it is readable"
-        ) from None
-    return decode_text(data)[0]
-
-
-def _reason(exc: Exception) -> str:
-    return getattr(exc, "strerror", None) or str(exc) or type(exc).__name__
+# Statements LightInv does not need and skips silently (texture coordinates, normals,
+# smoothing groups, lines, points).
+IGNORED = frozenset({"vt", "vn", "s", "l", "p"})
 
 
 def _statements(text: str):
@@ -138,7 +57,7 @@ def parse_obj(text: str, fname: str, scale: float, up: str) -> ObjData:
     """Parse OBJ ``text`` (from file ``fname``) into vertices in metres (z up) and faces."""
     coords: list[tuple[float, float, float]] = []
     vlines: list[int] = []
-    faces: list[ObjFace] = []
+    faces: list[Face] = []
     mtllibs: list[tuple[str, int]] = []
     unknown: Counter[str] = Counter()
     g = o = mtl = None
@@ -149,7 +68,7 @@ def parse_obj(text: str, fname: str, scale: float, up: str) -> ObjData:
             vlines.append(no)
         elif kw == "f":
             index = _face(tokens, len(coords), where)
-            faces.append(ObjFace(index, no, g or o or mtl or "default", mtl))
+            faces.append(Face(index, no, g or o or mtl or "default", mtl))
         elif kw == "g":
             g = next(iter(_data(tokens)), None)
         elif kw == "o":
@@ -170,7 +89,8 @@ def parse_obj(text: str, fname: str, scale: float, up: str) -> ObjData:
                 f"defines only {len(coords)} vertices; the file may be truncated, re-export it"
             )
     vertices = _to_metres(coords, vlines, scale, up, fname)
-    return ObjData(vertices, faces, mtllibs, [_unknown_warning(unknown, fname)] if unknown else [])
+    warnings = [_unknown_warning(unknown, fname)] if unknown else []
+    return ObjData(vertices, faces, warnings, mtllibs)
 
 
 def _number(tok: str, where: str, what: str) -> float:
@@ -272,93 +192,3 @@ def parse_mtl(text: str, fname: str, warnings: list[str]) -> dict[str, float]:
                 continue
             lum[current] = 0.2126 * rgb[0] + 0.7152 * rgb[1] + 0.0722 * rgb[2]
     return lum
-
-
-def load_materials(materials) -> MaterialMap:
-    """The materials mapping: None, a dict, or the path of a JSON file of the same form.
-
-    The form is ``{"default": 0.5, "groups": {"floor": 0.2}, "materials": {"paint": 0.8}}``;
-    every key is optional and every value is a reflectance in [0, 1).
-    """
-    if materials is None:
-        return MaterialMap()
-    if isinstance(materials, dict):
-        return _material_map(materials, "materials mapping")
-    if not isinstance(materials, str | os.PathLike):
-        raise ObjImportError(
-            f"materials must be a dict or the path of a JSON file, got {type(materials).__name__}"
-        )
-    path = Path(materials)
-    text = read_text(path, "materials file")
-    src = f"materials file '{path.name}'"
-    try:
-        obj = json.loads(text)
-    except json.JSONDecodeError as exc:
-        raise ObjImportError(
-            f"{src} is not valid JSON: {exc.msg} at line {exc.lineno}, column {exc.colno}; "
-            "fix the syntax"
-        ) from None
-    except (ValueError, RecursionError) as exc:
-        raise ObjImportError(f"{src} is not valid JSON: {_reason(exc)}; fix the file") from None
-    return _material_map(obj, src)
-
-
-def _kind(obj) -> str:
-    return {dict: "an object", list: "a list", str: "a string"}.get(type(obj), "a value")
-
-
-def _material_map(obj, src: str) -> MaterialMap:
-    if not isinstance(obj, dict):
-        raise ObjImportError(
-            f'{src}: expected an object like {{"default": 0.5, "groups": {{"floor": 0.2}}, '
-            f'"materials": {{"white_paint": 0.8}}}}, got {_kind(obj)}'
-        )
-    extra = [k for k in obj if k not in MATERIALS_KEYS]
-    if extra:
-        raise ObjImportError(
-            f'{src}: unknown key {clip(str(extra[0]))}; the keys are "default", "groups" '
-            'and "materials"'
-        )
-    default = _rho(obj.get("default", DEFAULT_REFLECTANCE), f'{src}: key "default"')
-    tables = []
-    for key in ("groups", "materials"):
-        table = obj.get(key, {})
-        if not isinstance(table, dict):
-            raise ObjImportError(
-                f'{src}: "{key}" must be an object mapping names to reflectances, '
-                f'e.g. {{"floor": 0.2}}, got {_kind(table)}'
-            )
-        tables.append({str(k): _rho(v, f'{src}: key "{key}"."{k}"') for k, v in table.items()})
-    return MaterialMap(default, tables[0], tables[1], src)
-
-
-def _rho(value, where: str) -> float:
-    shown = repr(value) if len(repr(value)) <= 40 else repr(value)[:40] + "..."
-    hint = "use a value such as 0.2 (dark floor) to 0.85 (white ceiling)"
-    if isinstance(value, bool) or not isinstance(value, numbers.Real):
-        raise ObjImportError(f"{where}: reflectance {shown} is not a number; {hint}")
-    try:
-        return check_reflectance(value, where)
-    except SceneError as exc:
-        raise ObjImportError(str(exc)) from None
-    except OverflowError:
-        raise ObjImportError(f"{where}: reflectance {shown} is outside [0, 1); {hint}") from None
-
-
-def zone_spec(group: str, where: str) -> tuple[str, str] | None:
-    """(NAME, KIND) of a ``zone:NAME:KIND`` group, None for other groups; errors start
-    with ``where`` (the file and line, ``"room.obj line 12"``)."""
-    if not group.lower().startswith("zone:"):
-        return None
-    name, sep, kind = group[5:].rpartition(":")
-    if not sep or not name:
-        raise ObjImportError(
-            f"{where}: group {clip(group)} is not a valid zone group; "
-            "name it zone:NAME:skylight or zone:NAME:luminaire"
-        )
-    if kind.lower() not in ZONE_KINDS:
-        raise ObjImportError(
-            f"{where}: group {clip(group)}: zone kind {clip(kind)} is not one of "
-            f"skylight, luminaire; name the group zone:{name}:skylight or zone:{name}:luminaire"
-        )
-    return name, kind.lower()

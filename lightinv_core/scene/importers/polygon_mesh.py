@@ -25,8 +25,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from lightinv_core.scene.importers.geometry import candidate_axes, ear_clip, min_area_rect
 from lightinv_core.scene.model import Rect
-from lightinv_core.scene.obj_geometry import candidate_axes, ear_clip, min_area_rect
 
 AREA_TOL = 1e-9
 """Relative; a cell covered to within this is whole, a piece below it is empty."""
