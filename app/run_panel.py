@@ -16,14 +16,14 @@ from app.document import Document
 from app.plots import ConvergencePlot
 from lightinv_core.errors import LightInvError
 from lightinv_core.kinds import GoalKind
-from lightinv_core.optimize.method import OptimizationMethod
-from lightinv_core.optimize.registry import METHODS, get_method
+from lightinv_core.optimize.method import MethodSpec
+from lightinv_core.optimize.registry import get_method, methods
 
 GOAL_LABELS = {k: (goals.short_name(k), goals.axis_label(k)) for k in GoalKind}
 """Per goal kind: (its name in the goal list, the plotted objective with its units)."""
 
 
-def sweep_count(method: OptimizationMethod, design) -> tuple[str, str] | None:
+def sweep_count(method: MethodSpec, design) -> tuple[str, str] | None:
     """(label, settings field) of a front method's run or point count; None for one
     best layout (the panel's seeds) or a front method without one."""
     return method.count_setting if method.finds_front(design) else None
@@ -44,7 +44,7 @@ class RunPanel(QtWidgets.QWidget):
         form = QtWidgets.QFormLayout(left)
         form.setContentsMargins(0, 0, 0, 0)
         self.method = QtWidgets.QComboBox()
-        for m in METHODS:
+        for m in methods():
             self.method.addItem(m.label, m.name)
         form.addRow("Method", self.method)
         self.goal = QtWidgets.QComboBox()

@@ -19,6 +19,7 @@ def _optimizers(light, lamp) -> dict:
     from dataclasses import replace
 
     from lightinv_core.design.model import CORNERS, Design, Goal
+    from lightinv_core.optimize.method import RunContext
     from lightinv_core.optimize.problem import DesignProblem
     from lightinv_core.optimize.registry import get_method
     from lightinv_core.optimize.settings import OptimizerSettings
@@ -28,9 +29,8 @@ def _optimizers(light, lamp) -> dict:
     design = Design((free,), (Goal("min_electric_power"), Goal("max_light_power")))
     out = {}
     for name in ("cmaes", "nsga2"):
-        res = get_method(name).run(
-            DesignProblem(design, light), OptimizerSettings(population=8), StopRule(200), 0
-        )
+        context = RunContext(OptimizerSettings(population=8), StopRule(200), seed=0)
+        res = get_method(name).run(DesignProblem(design, light), context)
         if res.status != "feasible":
             raise RuntimeError(f"{name}: a short run ended {res.status}")
         out[name] = res.evaluations

@@ -41,6 +41,7 @@ from lightinv_core.light.grids import design_grids
 from lightinv_core.light.model import LightModel
 from lightinv_core.operator.cache import get_operator
 from lightinv_core.operator.settings import OperatorSettings
+from lightinv_core.optimize.method import RunContext
 from lightinv_core.optimize.problem import DesignProblem
 from lightinv_core.optimize.registry import get_method
 from lightinv_core.optimize.settings import OptimizerSettings
@@ -175,9 +176,8 @@ def main() -> None:
     runs = []
     for seed in range(args.seeds):
         t = time.perf_counter()
-        res = get_method("auto").run(
-            problem, OptimizerSettings(seed=seed), StopRule(max_evals=args.max_evals), seed
-        )
+        context = RunContext(OptimizerSettings(seed=seed), StopRule(args.max_evals), seed=seed)
+        res = get_method("auto").run(problem, context)
         seconds = time.perf_counter() - t
         best = (
             res.best

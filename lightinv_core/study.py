@@ -16,7 +16,7 @@ from lightinv_core.errors import DesignError
 from lightinv_core.light.model import LightModel
 from lightinv_core.operator.cache import get_operator
 from lightinv_core.operator.radiosity import RadiosityOperator
-from lightinv_core.optimize.method import SolutionFn
+from lightinv_core.optimize.method import RunContext, SolutionFn
 from lightinv_core.optimize.problem import DesignProblem
 from lightinv_core.optimize.progress import CancelFn, ProgressFn
 from lightinv_core.optimize.registry import finds_front, get_method
@@ -116,8 +116,15 @@ def solve(
     seed = o.seed if seed is None else seed
     method = get_method(o.method)
     problem = DesignProblem(project.design, prepared.light, progress=precompute, cancel=cancel)
-    stop = stop_rule(project, max_evals, time_limit)
-    r = method.run(problem, o, stop, seed, progress, cancel, on_solution)
+    context = RunContext(
+        settings=method.settings_from(o),
+        stop=stop_rule(project, max_evals, time_limit),
+        seed=seed,
+        progress=progress,
+        cancel=cancel,
+        on_solution=on_solution,
+    )
+    r = method.run(problem, context)
     return RunResult(
         r.status, r.best, r.front, r.evaluations, r.seconds, prepared.seconds, list(r.history)
     )

@@ -15,7 +15,7 @@ from dataclasses import dataclass, replace
 
 from lightinv_core.design.solution import ParetoFront, Solution
 from lightinv_core.errors import DesignError
-from lightinv_core.optimize.registry import METHODS
+from lightinv_core.optimize.registry import get_method, method_names
 from lightinv_core.project import Project
 from lightinv_core.project.results import RunRecord
 
@@ -56,8 +56,9 @@ def result_label(s: Solution) -> str:
 def method_label(name: str) -> str:
     """A method's short name for people ("CMA-ES" for "cmaes"); the name itself when the
     registry does not know it (a file from another version)."""
-    m = next((m for m in METHODS if m.name == name), None)
-    return name if m is None else m.label.split(" (")[0]
+    if name not in method_names():
+        return name
+    return get_method(name).label.split(" (")[0]
 
 
 def run_label(run: RunRecord) -> str:

@@ -21,29 +21,22 @@ same result even with other runs in other threads.
 from __future__ import annotations
 
 import math
-from typing import TYPE_CHECKING
 
 import numpy as np
 
-from lightinv_core.errors import DesignError
-from lightinv_core.optimize.method import SolutionFn
+from lightinv_core.optimize.method import MethodSpec, RunContext
 from lightinv_core.optimize.problem import DesignProblem, Evaluation, Level
 from lightinv_core.optimize.progress import CancelFn, ProgressFn
 from lightinv_core.optimize.result import OptimizationResult
 from lightinv_core.optimize.search import (
-    Budget,
-    OneLayoutMethod,
     SearchResult,
     best_of,
     better,
-    goal_of,
+    first_point,
     judged,
     random_start,
 )
 from lightinv_core.optimize.termination import StopRule
-
-if TYPE_CHECKING:
-    from lightinv_core.optimize.settings import OptimizerSettings
 
 SIGMA0 = 0.3
 """Initial step size in the unit cube (a third of each range: wide enough to leave a
@@ -91,22 +84,11 @@ def cmaes(
     stop = stop or StopRule()
     rng = np.random.default_rng(seed)
     level = level or problem.level(1)
-    n = problem.vars.n
-    if n == 0:
-        raise DesignError("nothing to optimise: no source has a free variable")
+    x, budget = first_point(problem, x0, rng, level, stop, cancel)
     lo, hi = problem.vars.lo, problem.vars.hi
     span = np.where(hi > lo, hi - lo, 1.0)
-    lam0 = popsize or 4 + int(3 * math.log(n))
-    x = np.clip(np.asarray(x0, float), lo, hi) if x0 is not None else random_start(problem, rng)
-    budget = Budget(problem, stop, cancel)
-    ev = problem.evaluate(x[None], level)
-    if not ev.ok[0]:
-        x = random_start(problem, rng)
-        ev = problem.evaluate(x[None], level)
-    budget.best = (float(ev.value[0]), float(ev.penalty[0]), goal_of(problem, ev, 0))
-    budget.evals = budget.last_gain = ev.evaluated
+    lam0 = popsize or 4 + int(3 * math.log(problem.vars.n))
     best_x = x.copy()
-    history = [(budget.evals, *budget.best)]
     iters, restarts, lam = 0, 0, lam0
     why = budget.why()
     while why is None:
@@ -137,32 +119,20 @@ def cmaes(
             j = best_of(ev)
             if ev.ok[j] and better(ev.value[j], ev.penalty[j], *budget.best[:2]):
                 best_x = X[j].copy()
-                budget.best = (float(ev.value[j]), float(ev.penalty[j]), goal_of(problem, ev, j))
-                history.append((budget.evals, *budget.best))
-                budget.gain()
+                budget.improve(ev, j)
             if progress is not None:
                 progress(budget.snapshot(iters, level.divisor, best_x))
         restarts += 1
         lam = min(2 * lam, MAX_POPSIZE_FACTOR * lam0)
-    return SearchResult(best_x, *budget.best, budget.evals, iters, budget.elapsed(), why, history)
+    return budget.result(best_x, iters, why)
 
 
-class CMAESMethod(OneLayoutMethod):
-    """CMA-ES with IPOP restarts on every patch."""
+def run_cmaes(problem: DesignProblem, context: RunContext) -> OptimizationResult:
+    """One CMA-ES run (restarts included) within ``context.stop``."""
+    c = context
+    res = cmaes(problem, c.x0, c.seed, c.stop, None, None, c.progress, c.cancel)
+    return judged(problem, res, CMAES.name, c.seed)
 
-    name = "cmaes"
-    label = "CMA-ES (IPOP restarts)"
 
-    def run(
-        self,
-        problem: DesignProblem,
-        settings: OptimizerSettings,
-        stop: StopRule,
-        seed: int,
-        progress: ProgressFn | None = None,
-        cancel: CancelFn | None = None,
-        on_solution: SolutionFn | None = None,
-    ) -> OptimizationResult:
-        """One CMA-ES run (restarts included) within ``stop``."""
-        res = cmaes(problem, seed=seed, stop=stop, progress=progress, cancel=cancel)
-        return judged(problem, res, self.name, seed)
+CMAES = MethodSpec("cmaes", "CMA-ES (IPOP restarts)", run_cmaes)
+"""CMA-ES with IPOP restarts on every patch."""

@@ -7,8 +7,7 @@ from __future__ import annotations
 
 import time
 from collections.abc import Callable
-from dataclasses import replace
-from typing import TYPE_CHECKING
+from dataclasses import dataclass, replace
 
 import numpy as np
 
@@ -16,8 +15,8 @@ from lightinv_core.design.model import Design, Goal
 from lightinv_core.design.solution import ParetoFront, Solution
 from lightinv_core.kinds import MAXIMISED_GOALS, GoalKind, SourceKind
 from lightinv_core.light.model import LightModel
-from lightinv_core.optimize.method import SolutionFn
-from lightinv_core.optimize.multilevel import multilevel
+from lightinv_core.optimize.method import MethodSpec, RunContext, always_front
+from lightinv_core.optimize.multilevel import DEFAULT_DIVISORS, multilevel
 from lightinv_core.optimize.pareto import non_dominated
 from lightinv_core.optimize.problem import DesignProblem
 from lightinv_core.optimize.progress import CancelFn, ProgressFn
@@ -25,20 +24,13 @@ from lightinv_core.optimize.result import OptimizationResult
 from lightinv_core.optimize.search import judged
 from lightinv_core.optimize.termination import StopRule
 
-if TYPE_CHECKING:
-    from lightinv_core.optimize.settings import OptimizerSettings
-
 POWER, LIGHT = GoalKind.MIN_ELECTRIC_POWER, GoalKind.MAX_LIGHT_POWER
 OBJECTIVES = (POWER, LIGHT)
 CLIMATE = (GoalKind.MIN_ANNUAL_ENERGY, GoalKind.MIN_GLAZING_AREA)
 """The climate front: least annual energy for each bound on the glazing area."""
 
 
-def _light_goal(design: Design) -> Goal:
-    return _goal(design, LIGHT)
-
-
-def _goal(design: Design, kind: str) -> Goal:
+def design_goal(design: Design, kind: str) -> Goal:
     """The design's goal of ``kind`` (with its settings), or a plain one."""
     return next((g for g in design.goals if g.kind == kind), Goal(kind))
 
@@ -122,7 +114,7 @@ def bounded_range(
     best feasible layout of ``pair[0]`` and its own best feasible value; and the layout
     at the low end. Two VNS runs, reported as runs 0 and 1 of ``runs``."""
     stop = stop or StopRule(max_evals=5000)
-    first, second = _goal(design, pair[0]), _goal(design, pair[1])
+    first, second = design_goal(design, pair[0]), design_goal(design, pair[1])
     common = (light, seed, stop, divisors)
     hooks = {"cancel": cancel, "vns_progress": vns_progress, "method": "epsilon"}
     _, r_own, own = _solve(replace(design, goals=(second, first)), *common, run=(0, runs), **hooks)
@@ -174,7 +166,7 @@ def epsilon_constraint(
             # The least value of a minimised bound leaves a band only the tolerance
             # wide (glazing area at its rule's minimum): start where it was reached.
             x = x_lo
-    mop = replace(design, goals=(_goal(design, pair[0]), _goal(design, pair[1])))
+    mop = replace(design, goals=(design_goal(design, pair[0]), design_goal(design, pair[1])))
     solutions = []
     for q, eps in enumerate(epsilons):
         if cancel is not None and cancel():
@@ -262,67 +254,72 @@ def _front_result(front: ParetoFront, cancelled: bool, seconds: float) -> Optimi
     return OptimizationResult(status, best, front, evals, seconds)
 
 
-class _Sweep:
-    """Shared run() of the multi-objective drivers: progress, cancel and ``on_solution``."""
-
-    progress_label = "objective of each sub-run"
-
-    @staticmethod
-    def finds_front(design) -> bool:
-        """Always a front."""
-        return True
-
-    def run(
-        self,
-        problem: DesignProblem,
-        settings: OptimizerSettings,
-        stop: StopRule,
-        seed: int,
-        progress: ProgressFn | None = None,
-        cancel: CancelFn | None = None,
-        on_solution: SolutionFn | None = None,
-    ) -> OptimizationResult:
-        """Sweep over ``settings`` (see the subclass); each point as it is found goes to
-        ``on_solution``."""
-        t0 = time.perf_counter()
-        found = None if on_solution is None else (lambda _q, _n, sol: on_solution(sol))
-        front = self.sweep(
-            problem.design,
-            problem.light,
-            settings,
-            seed=seed,
-            stop=stop,
-            divisors=tuple(settings.divisors),
-            progress=found,
-            cancel=cancel,
-            vns_progress=progress,
-        )
-        cancelled = cancel is not None and cancel()
-        return _front_result(front, cancelled, time.perf_counter() - t0)
+def _swept(context: RunContext, sweep: Callable[..., ParetoFront]) -> OptimizationResult:
+    """A sweep run with the context's seed, stop rule and hooks: each point as it is
+    found goes to ``on_solution``, every VNS snapshot to ``progress``."""
+    t0 = time.perf_counter()
+    c = context
+    found = None if c.on_solution is None else (lambda _q, _n, sol: c.on_solution(sol))
+    front = sweep(
+        seed=c.seed, stop=c.stop, progress=found, cancel=c.cancel, vns_progress=c.progress
+    )
+    cancelled = c.cancel is not None and c.cancel()
+    return _front_result(front, cancelled, time.perf_counter() - t0)
 
 
-class EpsilonMethod(_Sweep):
-    """Epsilon-constraint sweep (paper eq. 10): least power for each light-power bound."""
+@dataclass(frozen=True)
+class EpsilonSettings:
+    """``epsilons``: the bounds to sweep (None: ``epsilon_count`` automatic ones);
+    ``divisors``: each run's multilevel levels."""
 
-    name = "epsilon"
-    label = "Epsilon-constraint front"
-    count_setting = ("Front points", "epsilon_count")
-
-    @staticmethod
-    def sweep(design, light, settings, **kw) -> ParetoFront:
-        """``settings.epsilons`` (lm) or ``settings.epsilon_count`` bounds."""
-        eps = list(settings.epsilons) if settings.epsilons else None
-        return epsilon_constraint(design, light, epsilons=eps, count=settings.epsilon_count, **kw)
+    epsilons: tuple[float, ...] | None = None
+    epsilon_count: int = 12
+    divisors: tuple[int, ...] = DEFAULT_DIVISORS
 
 
-class TwoStepMethod(_Sweep):
-    """Two-step process (paper 5.5): skylights first, then luminaires, ``runs`` seeds."""
+def run_epsilon(problem: DesignProblem, context: RunContext) -> OptimizationResult:
+    """The epsilon-constraint sweep over ``epsilons`` or ``epsilon_count`` bounds."""
+    s = context.options(EpsilonSettings)
+    eps = list(s.epsilons) if s.epsilons else None
+    d, light, levels = problem.design, problem.light, tuple(s.divisors)
+    return _swept(
+        context,
+        lambda **kw: epsilon_constraint(d, light, eps, s.epsilon_count, divisors=levels, **kw),
+    )
 
-    name = "two_step"
-    label = "Two-step front"
-    count_setting = ("Two-step runs", "runs")
 
-    @staticmethod
-    def sweep(design, light, settings, **kw) -> ParetoFront:
-        """``settings.runs`` runs of the two steps."""
-        return two_step(design, light, runs=settings.runs, **kw)
+@dataclass(frozen=True)
+class TwoStepSettings:
+    """``runs``: repetitions of the two steps with seeds seed, seed + 1, ...;
+    ``divisors``: each run's multilevel levels."""
+
+    runs: int = 10
+    divisors: tuple[int, ...] = DEFAULT_DIVISORS
+
+
+def run_two_step(problem: DesignProblem, context: RunContext) -> OptimizationResult:
+    """``runs`` runs of the two steps."""
+    s = context.options(TwoStepSettings)
+    d, light, levels = problem.design, problem.light, tuple(s.divisors)
+    return _swept(context, lambda **kw: two_step(d, light, s.runs, divisors=levels, **kw))
+
+
+_SWEEP = {"finds_front": always_front, "progress_label": "objective of each sub-run"}
+EPSILON = MethodSpec(
+    "epsilon",
+    "Epsilon-constraint front",
+    run_epsilon,
+    EpsilonSettings,
+    count_setting=("Front points", "epsilon_count"),
+    **_SWEEP,
+)
+"""Epsilon-constraint sweep (paper eq. 10): least power for each light-power bound."""
+TWO_STEP = MethodSpec(
+    "two_step",
+    "Two-step front",
+    run_two_step,
+    TwoStepSettings,
+    count_setting=("Two-step runs", "runs"),
+    **_SWEEP,
+)
+"""Two-step process (paper 5.5): skylights first, then luminaires, ``runs`` seeds."""

@@ -10,21 +10,17 @@ infeasible when that runs out.
 
 from __future__ import annotations
 
-from dataclasses import replace
-from typing import TYPE_CHECKING
+from dataclasses import dataclass, replace
 
 import numpy as np
 
-from lightinv_core.optimize.method import SolutionFn
+from lightinv_core.optimize.method import MethodSpec, RunContext
 from lightinv_core.optimize.problem import DesignProblem
 from lightinv_core.optimize.progress import CancelFn, ProgressFn
 from lightinv_core.optimize.result import OptimizationResult
-from lightinv_core.optimize.search import OneLayoutMethod, SearchResult, judged
+from lightinv_core.optimize.search import SearchResult, judged
 from lightinv_core.optimize.termination import StopRule
 from lightinv_core.optimize.vns import vns
-
-if TYPE_CHECKING:
-    from lightinv_core.optimize.settings import OptimizerSettings
 
 DEFAULT_DIVISORS = (64, 16, 1)
 FULL_LEVEL_SHARE = 0.25
@@ -103,36 +99,29 @@ def multilevel(
     return total, results
 
 
-class MultilevelMethod(OneLayoutMethod):
-    """VNS on coarse representative patches first, then on every patch (paper 5.2)."""
+@dataclass(frozen=True)
+class MultilevelSettings:
+    """``divisors``: the levels (about n/d representative patches each); the coarse
+    levels stop at ``level_max_evals``, ``level_target`` or the run's ``stall``;
+    ``trials`` as VNS's."""
 
-    name = "multilevel"
-    label = "Multilevel VNS"
+    divisors: tuple[int, ...] = DEFAULT_DIVISORS
+    level_max_evals: int | None = None
+    level_target: float | None = None
+    trials: int = 32
 
-    def run(
-        self,
-        problem: DesignProblem,
-        settings: OptimizerSettings,
-        stop: StopRule,
-        seed: int,
-        progress: ProgressFn | None = None,
-        cancel: CancelFn | None = None,
-        on_solution: SolutionFn | None = None,
-    ) -> OptimizationResult:
-        """Levels ``settings.divisors``; coarse levels bounded by ``level_max_evals``,
-        ``level_target`` and ``stall``."""
-        level_stop = StopRule(
-            max_evals=settings.level_max_evals, target=settings.level_target, stall=settings.stall
-        )
-        res, levels = multilevel(
-            problem,
-            tuple(settings.divisors),
-            seed=seed,
-            stop=stop,
-            level_stop=level_stop,
-            trials=settings.trials,
-            progress=progress,
-            cancel=cancel,
-        )
-        per_level = tuple(r.evaluations for r in levels)
-        return judged(problem, res, self.name, seed, level_evaluations=per_level)
+
+def run_multilevel(problem: DesignProblem, context: RunContext) -> OptimizationResult:
+    """Levels ``divisors``, each warm-started from the previous (the first from
+    ``context.x0``)."""
+    s, c = context.options(MultilevelSettings), context
+    level_stop = StopRule(max_evals=s.level_max_evals, target=s.level_target, stall=c.stop.stall)
+    res, levels = multilevel(
+        problem, tuple(s.divisors), c.seed, c.stop, level_stop, c.x0, s.trials, c.progress, c.cancel
+    )
+    per_level = tuple(r.evaluations for r in levels)
+    return judged(problem, res, MULTILEVEL.name, c.seed, level_evaluations=per_level)
+
+
+MULTILEVEL = MethodSpec("multilevel", "Multilevel VNS", run_multilevel, MultilevelSettings)
+"""VNS on coarse representative patches first, then on every patch (paper 5.2)."""

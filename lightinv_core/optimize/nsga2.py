@@ -18,15 +18,14 @@ from __future__ import annotations
 
 import time
 from dataclasses import dataclass, replace
-from typing import TYPE_CHECKING
 
 import numpy as np
 
 from lightinv_core.design.model import Goal
 from lightinv_core.design.solution import SolutionInfo
 from lightinv_core.errors import DesignError
-from lightinv_core.optimize.method import SolutionFn
-from lightinv_core.optimize.mop import POWER, _light_goal, front_of
+from lightinv_core.optimize.method import MethodSpec, RunContext, SolutionFn, always_front
+from lightinv_core.optimize.mop import LIGHT, POWER, design_goal, front_of
 from lightinv_core.optimize.pareto import hypervolume_2d, non_dominated
 from lightinv_core.optimize.problem import DesignProblem
 from lightinv_core.optimize.progress import CancelFn, Progress, ProgressFn
@@ -34,9 +33,6 @@ from lightinv_core.optimize.quality import REFERENCE, front_scales
 from lightinv_core.optimize.result import OptimizationResult
 from lightinv_core.optimize.search import random_layouts
 from lightinv_core.optimize.termination import StopRule
-
-if TYPE_CHECKING:
-    from lightinv_core.optimize.settings import OptimizerSettings
 
 _BIG = 1e12  # stands for +inf (not lit) in F and G: pymoo needs finite numbers
 
@@ -94,7 +90,7 @@ def nsga2(
     cancel: CancelFn | None = None,
 ) -> NSGA2Run:
     """Run NSGA-II on ``problem`` (objectives electric power, light power)."""
-    from pymoo.algorithms.moo.nsga2 import NSGA2  # lazily: only front runs need pymoo
+    from pymoo.algorithms.moo.nsga2 import NSGA2 as PymooNSGA2  # lazily: only front runs need pymoo
     from pymoo.core.problem import Problem
 
     stop = stop or StopRule()
@@ -127,7 +123,7 @@ def nsga2(
 
     rng = np.random.default_rng(seed)
     start = (random_layouts(problem, rng, population) - lo) / span
-    algo = NSGA2(pop_size=population, sampling=start, eliminate_duplicates=True)
+    algo = PymooNSGA2(pop_size=population, sampling=start, eliminate_duplicates=True)
     lit = _Lit()
     algo.setup(lit, termination=("n_gen", 10**9), seed=int(seed) % 2**32, verbose=False)
     t0 = time.perf_counter()
@@ -164,41 +160,41 @@ def nsga2(
     return NSGA2Run(X, archive.F, count["evals"], why, time.perf_counter() - t0, closest)
 
 
-class NSGA2Method:
-    """NSGA-II front of electric power against light power (pymoo)."""
+@dataclass(frozen=True)
+class NSGA2Settings:
+    """``population``: the population size (and the most points of the front)."""
 
-    name = "nsga2"
-    label = "NSGA-II front"
-    count_setting = ("Population", "population")
-    progress_label = "front hypervolume"
+    population: int = 100
 
-    @staticmethod
-    def finds_front(design) -> bool:
-        """Always a front."""
-        return True
 
-    def run(
-        self,
-        problem: DesignProblem,
-        settings: OptimizerSettings,
-        stop: StopRule,
-        seed: int,
-        progress: ProgressFn | None = None,
-        cancel: CancelFn | None = None,
-        on_solution: SolutionFn | None = None,
-    ) -> OptimizationResult:
-        """One NSGA-II run of ``settings.population`` within ``stop``; the front's points
-        go to ``on_solution`` once judged."""
-        mop = front_problem(problem)
-        scales = front_scales(mop.design, mop.light)
-        run = nsga2(mop, scales, settings.population, seed, stop, progress, cancel)
-        return judged_front(mop, run, settings.population, self.name, seed, on_solution)
+def run_nsga2(problem: DesignProblem, context: RunContext) -> OptimizationResult:
+    """One NSGA-II run within ``context.stop``; the front's points go to
+    ``context.on_solution`` once judged."""
+    pop, c = context.options(NSGA2Settings).population, context
+    mop = front_problem(problem)
+    scales = front_scales(mop.design, mop.light)
+    run = nsga2(mop, scales, pop, c.seed, c.stop, c.progress, c.cancel)
+    return judged_front(mop, run, pop, NSGA2.name, c.seed, c.on_solution)
+
+
+NSGA2 = MethodSpec(
+    "nsga2",
+    "NSGA-II front",
+    run_nsga2,
+    NSGA2Settings,
+    always_front,
+    count_setting=("Population", "population"),
+    progress_label="front hypervolume",
+)
+"""NSGA-II front of electric power against light power (pymoo)."""
 
 
 def front_problem(problem: DesignProblem) -> DesignProblem:
     """``problem``'s design with the front's two goals: electric power, light power."""
     design = problem.design
-    return DesignProblem(replace(design, goals=(Goal(POWER), _light_goal(design))), problem.light)
+    return DesignProblem(
+        replace(design, goals=(Goal(POWER), design_goal(design, LIGHT))), problem.light
+    )
 
 
 def judged_front(

@@ -18,23 +18,19 @@ By the problem's shape (decided from bench/optimizers.py, table in docs/design.m
 
 from __future__ import annotations
 
-from dataclasses import replace
-from typing import TYPE_CHECKING
+from dataclasses import dataclass, replace
 
 from lightinv_core.design.model import Design
 from lightinv_core.kinds import GoalKind
 from lightinv_core.optimize.cmaes import cmaes
-from lightinv_core.optimize.method import SolutionFn
-from lightinv_core.optimize.nsga2 import NSGA2Method
+from lightinv_core.optimize.method import MethodSpec, RunContext
+from lightinv_core.optimize.nsga2 import NSGA2
 from lightinv_core.optimize.problem import DesignProblem
 from lightinv_core.optimize.progress import CancelFn, Progress, ProgressFn
 from lightinv_core.optimize.result import OptimizationResult
 from lightinv_core.optimize.search import SearchResult, better, judged
 from lightinv_core.optimize.termination import StopRule
 from lightinv_core.optimize.vns import vns
-
-if TYPE_CHECKING:
-    from lightinv_core.optimize.settings import OptimizerSettings
 
 CMA_SHARE = 0.5
 """Part of the evaluation and time budgets CMA-ES may use before VNS takes over."""
@@ -115,31 +111,32 @@ def cma_then_vns(
     return total, a.evaluations
 
 
-class AutoMethod:
-    """The default: NSGA-II for a power/light front, else CMA-ES then VNS."""
+@dataclass(frozen=True)
+class AutoSettings:
+    """``trials``: VNS's, in the single-layout search; ``population``: NSGA-II's, for a
+    front."""
 
-    name = "auto"
-    label = "Auto (CMA-ES + VNS, or NSGA-II for a front)"
-    count_setting = ("Population", "population")  # of its front (NSGA-II)
-    progress_label = "front hypervolume"  # shown only when it finds a front
+    trials: int = 32
+    population: int = 100
 
-    @staticmethod
-    def finds_front(design: Design) -> bool:
-        """A front when the design has both power goals."""
-        return wants_front(design)
 
-    def run(
-        self,
-        problem: DesignProblem,
-        settings: OptimizerSettings,
-        stop: StopRule,
-        seed: int,
-        progress: ProgressFn | None = None,
-        cancel: CancelFn | None = None,
-        on_solution: SolutionFn | None = None,
-    ) -> OptimizationResult:
-        """NSGA-II or CMA-ES then VNS, by the design's goals (module docstring)."""
-        if wants_front(problem.design):
-            return NSGA2Method().run(problem, settings, stop, seed, progress, cancel, on_solution)
-        res, cma_evals = cma_then_vns(problem, seed, stop, settings.trials, progress, cancel)
-        return judged(problem, res, self.name, seed, extra={"cmaes_evaluations": cma_evals})
+def run_auto(problem: DesignProblem, context: RunContext) -> OptimizationResult:
+    """NSGA-II or CMA-ES then VNS, by the design's goals (module docstring)."""
+    s = context.options(AutoSettings)
+    if wants_front(problem.design):
+        return NSGA2.run(problem, context.but(settings=s))
+    c = context
+    res, cma_evals = cma_then_vns(problem, c.seed, c.stop, s.trials, c.progress, c.cancel)
+    return judged(problem, res, AUTO.name, c.seed, extra={"cmaes_evaluations": cma_evals})
+
+
+AUTO = MethodSpec(
+    "auto",
+    "Auto (CMA-ES + VNS, or NSGA-II for a front)",
+    run_auto,
+    AutoSettings,
+    wants_front,
+    count_setting=("Population", "population"),  # of its front (NSGA-II)
+    progress_label="front hypervolume",  # shown only when it finds a front
+)
+"""The default: NSGA-II for a power/light front, else CMA-ES then VNS."""

@@ -1,48 +1,76 @@
-"""Every optimisation method, found by name: project files, the CLI and the GUI read
-their choices from here.
+"""Every optimisation method, found by name: project files, the CLI, study.py and the GUI
+read their choices from here.
 
-Registering a method is one line in ``METHODS`` (its module implements the
-``OptimizationMethod`` protocol of method.py).
+The built-in methods are listed by name and module, and a module is imported only when
+its method is first asked for (``method_names`` imports none: checking a project file's
+``method`` does not load pymoo). Each is a ``MethodSpec`` (method.py) in its module.
+``register`` adds a method from anywhere (a plug-in, a test), ``unregister`` removes it.
 """
 
 from __future__ import annotations
 
+from importlib import import_module
+
 from lightinv_core.design.model import Design
 from lightinv_core.errors import DesignError
-from lightinv_core.optimize.cmaes import CMAESMethod
-from lightinv_core.optimize.method import OptimizationMethod
-from lightinv_core.optimize.mop import EpsilonMethod, TwoStepMethod
-from lightinv_core.optimize.multilevel import MultilevelMethod
-from lightinv_core.optimize.nsga2 import NSGA2Method
-from lightinv_core.optimize.portfolio import AutoMethod
-from lightinv_core.optimize.vns import VNSMethod
+from lightinv_core.optimize.method import MethodSpec
 
-METHODS: tuple[OptimizationMethod, ...] = (
-    AutoMethod(),
-    VNSMethod(),
-    MultilevelMethod(),
-    CMAESMethod(),
-    EpsilonMethod(),
-    TwoStepMethod(),
-    NSGA2Method(),
-)
+_BUILT_IN: dict[str, str] = {
+    "auto": "portfolio:AUTO",
+    "vns": "vns:VNS",
+    "multilevel": "multilevel:MULTILEVEL",
+    "cmaes": "cmaes:CMAES",
+    "epsilon": "mop:EPSILON",
+    "two_step": "mop:TWO_STEP",
+    "nsga2": "nsga2:NSGA2",
+}
+"""Name -> "module:spec" (in this package) of each built-in method, in the order the GUI
+lists them."""
+_REGISTERED: dict[str, MethodSpec] = {}
+
+
+def _built_in(name: str) -> MethodSpec:
+    module, attr = _BUILT_IN[name].split(":")
+    spec = getattr(import_module(f"{__package__}.{module}"), attr)
+    if spec.name != name:
+        raise RuntimeError(f"{_BUILT_IN[name]} is named {spec.name!r}, not {name!r}")
+    return spec
+
+
+def register(spec: MethodSpec) -> None:
+    """Add ``spec`` under its name (DesignError if the name is taken)."""
+    if spec.name in _BUILT_IN or spec.name in _REGISTERED:
+        raise DesignError(f"an optimisation method named {spec.name!r} exists already")
+    _REGISTERED[spec.name] = spec
+
+
+def unregister(name: str) -> None:
+    """Remove the method ``register`` added as ``name`` (built-in ones stay)."""
+    if _REGISTERED.pop(name, None) is None:
+        raise DesignError(f"no registered optimisation method {name!r} to remove")
 
 
 def method_names() -> tuple[str, ...]:
     """The registry names of every method, in the order the GUI lists them."""
-    return tuple(m.name for m in METHODS)
+    return (*_BUILT_IN, *_REGISTERED)
+
+
+def methods() -> tuple[MethodSpec, ...]:
+    """Every method, in the order of ``method_names``."""
+    return tuple(get_method(n) for n in method_names())
+
+
+def get_method(name: str) -> MethodSpec:
+    """The method registered as ``name`` (DesignError listing the known ones)."""
+    if name in _REGISTERED:
+        return _REGISTERED[name]
+    if name in _BUILT_IN:
+        return _built_in(name)
+    raise DesignError(
+        f"unknown optimisation method {name!r} (methods: {', '.join(method_names())})"
+    )
 
 
 def finds_front(name: str, design: Design) -> bool:
     """Whether method ``name`` run on ``design`` returns a Pareto front."""
     return get_method(name).finds_front(design)
-
-
-def get_method(name: str) -> OptimizationMethod:
-    """The method registered as ``name`` (DesignError listing the known ones)."""
-    for m in METHODS:
-        if m.name == name:
-            return m
-    raise DesignError(
-        f"unknown optimisation method {name!r} (methods: {', '.join(method_names())})"
-    )

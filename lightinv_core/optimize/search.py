@@ -18,7 +18,7 @@ from lightinv_core.design.geometry import MIN_SIDE, rule_names
 from lightinv_core.design.solution import SolutionInfo
 from lightinv_core.errors import DesignError
 from lightinv_core.kinds import MAXIMISED_GOALS
-from lightinv_core.optimize.problem import DesignProblem, Evaluation
+from lightinv_core.optimize.problem import DesignProblem, Evaluation, Level
 from lightinv_core.optimize.progress import CancelFn, Progress
 from lightinv_core.optimize.result import HistoryRow, OptimizationResult, status_of
 from lightinv_core.optimize.termination import StopRule
@@ -152,7 +152,8 @@ class Budget:
     """The stop test of one search: ``why()`` names the reason to stop, or None.
 
     ``evals`` and ``best`` (value, penalty, goal) are updated by the search; ``gain()``
-    marks an improvement (for the stall rule).
+    marks an improvement (for the stall rule), ``improve`` records a better candidate
+    in ``best`` and ``history``.
     """
 
     def __init__(self, problem: DesignProblem, stop: StopRule, cancel: CancelFn | None):
@@ -161,6 +162,19 @@ class Budget:
         self.evals = 0
         self.last_gain = 0
         self.best = (np.inf, np.inf, np.nan)
+        self.history: list[tuple[int, float, float, float]] = []
+
+    def improve(self, ev: Evaluation, j: int) -> None:
+        """Candidate j of ``ev`` is the new best (the evaluations already counted)."""
+        self.best = (float(ev.value[j]), float(ev.penalty[j]), goal_of(self.problem, ev, j))
+        self.history.append((self.evals, *self.best))
+        self.gain()
+
+    def result(self, x: np.ndarray, iterations: int, status: str) -> SearchResult:
+        """The search's outcome, ``x`` its best layout."""
+        return SearchResult(
+            x, *self.best, self.evals, iterations, self.elapsed(), status, self.history
+        )
 
     def elapsed(self) -> float:
         """Seconds since the search began."""
@@ -202,17 +216,29 @@ class Budget:
         return None
 
 
-class OneLayoutMethod:
-    """What every method returning one best layout (not a front) says about itself to
-    the GUI (see ``OptimizationMethod``)."""
-
-    count_setting = None
-    progress_label = None
-
-    @staticmethod
-    def finds_front(design) -> bool:
-        """One best layout, never a front."""
-        return False
+def first_point(
+    problem: DesignProblem,
+    x0: np.ndarray | None,
+    rng: np.random.Generator,
+    level: Level,
+    stop: StopRule,
+    cancel: CancelFn | None,
+) -> tuple[np.ndarray, Budget]:
+    """A search's start and its budget: ``x0`` clipped to the bounds, or a random layout
+    meeting the geometric rules when ``x0`` is None or breaks one; evaluated once, which
+    is the first best, the first history row and the first evaluations counted."""
+    if problem.vars.n == 0:
+        raise DesignError("nothing to optimise: no source has a free variable")
+    lo, hi = problem.vars.lo, problem.vars.hi
+    x = np.clip(np.asarray(x0, float), lo, hi) if x0 is not None else random_start(problem, rng)
+    budget = Budget(problem, stop, cancel)
+    ev = problem.evaluate(x[None], level)
+    if not ev.ok[0]:
+        x = random_start(problem, rng)
+        ev = problem.evaluate(x[None], level)
+    budget.evals = ev.evaluated
+    budget.improve(ev, 0)
+    return x, budget
 
 
 def history_rows(history) -> tuple[HistoryRow, ...]:

@@ -1,4 +1,6 @@
-"""How an optimisation runs: the method, its stopping rule and its own settings."""
+"""How a project's optimisation runs: the method, its stopping rule and the settings of
+every built-in method, as one flat object the project file declares. A method reads
+its own settings dataclass from it (``MethodSpec.settings_from``)."""
 
 from __future__ import annotations
 
@@ -14,10 +16,14 @@ from lightinv_core.fields import (
     _number,
     _optional,
 )
-from lightinv_core.optimize.registry import method_names
 
-METHODS = method_names()
-"""The method names a project may choose: the registry's (registry.py)."""
+
+def _method(v, path: str) -> str:
+    """A method name the registry knows, looked up when a file is read (importing the
+    registry here would tie the settings to every algorithm; it imports none itself)."""
+    from lightinv_core.optimize.registry import method_names
+
+    return _choice(v, path, method_names())
 
 
 _opt_count = _optional(_count)
@@ -28,7 +34,7 @@ OPTIMIZER = ObjectSpec(
     (
         Field(
             "method",
-            lambda v, p: _choice(v, p, METHODS),
+            _method,
             "auto",
             "string",
             "`auto` (default): NSGA-II when the design has both power goals, else CMA-ES "

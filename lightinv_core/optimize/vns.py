@@ -22,29 +22,16 @@ cancelled run returns its best solution. Everything random comes from
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING
+from dataclasses import dataclass
 
 import numpy as np
 
-from lightinv_core.errors import DesignError
-from lightinv_core.optimize.method import SolutionFn
+from lightinv_core.optimize.method import MethodSpec, RunContext
 from lightinv_core.optimize.problem import DesignProblem, Level
 from lightinv_core.optimize.progress import CancelFn, ProgressFn
 from lightinv_core.optimize.result import OptimizationResult
-from lightinv_core.optimize.search import (
-    Budget,
-    OneLayoutMethod,
-    SearchResult,
-    best_of,
-    better,
-    goal_of,
-    judged,
-    random_start,
-)
+from lightinv_core.optimize.search import SearchResult, best_of, better, first_point, judged
 from lightinv_core.optimize.termination import StopRule
-
-if TYPE_CHECKING:
-    from lightinv_core.optimize.settings import OptimizerSettings
 
 R_VALUES = (0.1, 0.2, 0.3, 0.4, 0.5, 0.6, 0.7, 0.8, 0.9, 1.0)
 MAX_V = 4
@@ -75,25 +62,11 @@ def vns(
     stop = stop or StopRule()
     rng = np.random.default_rng(seed)
     level = level or problem.level(1)
+    x, budget = first_point(problem, x0, rng, level, stop, cancel)
     nvar = problem.vars.n
-    if nvar == 0:
-        raise DesignError("nothing to optimise: no source has a free variable")
     lo, hi = problem.vars.lo, problem.vars.hi
     span = hi - lo
-    x = (
-        np.clip(np.asarray(x0, dtype=float), lo, hi)
-        if x0 is not None
-        else random_start(problem, rng)
-    )
-    budget = Budget(problem, stop, cancel)
-    ev = problem.evaluate(x[None], level)
-    if not ev.ok[0]:
-        x = random_start(problem, rng)
-        ev = problem.evaluate(x[None], level)
-    budget.best = (float(ev.value[0]), float(ev.penalty[0]), goal_of(problem, ev, 0))
-    budget.evals = budget.last_gain = ev.evaluated
     iters = 0
-    history = [(budget.evals, *budget.best)]
     hoods = neighbourhoods(nvar)
     k = 0
     while (why := budget.why()) is None:
@@ -110,35 +83,29 @@ def vns(
         j = best_of(ev)
         if better(ev.value[j], ev.penalty[j], *budget.best[:2]):
             x = X[j]
-            budget.best = (float(ev.value[j]), float(ev.penalty[j]), goal_of(problem, ev, j))
-            history.append((budget.evals, *budget.best))
-            budget.gain()
+            budget.improve(ev, j)
             k = 0
         else:
             k = (k + 1) % len(hoods)
         if progress is not None:
             progress(budget.snapshot(iters, level.divisor, x))
-    return SearchResult(x, *budget.best, budget.evals, iters, budget.elapsed(), why, history)
+    return budget.result(x, iters, why)
 
 
-class VNSMethod(OneLayoutMethod):
-    """Variable Neighbourhood Search on every patch (paper Algorithm 1)."""
+@dataclass(frozen=True)
+class VNSSettings:
+    """``trials``: neighbours drawn (and evaluated as one batch) per local search."""
 
-    name = "vns"
-    label = "VNS"
+    trials: int = 32
 
-    def run(
-        self,
-        problem: DesignProblem,
-        settings: OptimizerSettings,
-        stop: StopRule,
-        seed: int,
-        progress: ProgressFn | None = None,
-        cancel: CancelFn | None = None,
-        on_solution: SolutionFn | None = None,
-    ) -> OptimizationResult:
-        """One VNS run of ``settings.trials`` neighbours per local search."""
-        res = vns(
-            problem, seed=seed, stop=stop, trials=settings.trials, progress=progress, cancel=cancel
-        )
-        return judged(problem, res, self.name, seed)
+
+def run_vns(problem: DesignProblem, context: RunContext) -> OptimizationResult:
+    """One VNS run on every patch, from ``context.x0`` or a random layout."""
+    trials = context.options(VNSSettings).trials
+    c = context
+    res = vns(problem, c.x0, c.seed, c.stop, None, trials, c.progress, c.cancel)
+    return judged(problem, res, VNS.name, c.seed)
+
+
+VNS = MethodSpec("vns", "VNS", run_vns, VNSSettings)
+"""Variable Neighbourhood Search on every patch (paper Algorithm 1)."""

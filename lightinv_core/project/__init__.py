@@ -31,14 +31,13 @@ from pathlib import Path
 
 from lightinv_core.fields import ProjectError
 from lightinv_core.operator.settings import OperatorSettings
-from lightinv_core.optimize.settings import METHODS, OptimizerSettings
+from lightinv_core.optimize.settings import OptimizerSettings
 from lightinv_core.project.model import SCHEMA, Project
 from lightinv_core.project.read import object_pairs_hook, read_project
 from lightinv_core.project.scene import SceneSpec
 from lightinv_core.project.write import project_dict, solution_to_dict, write_json
 
 __all__ = [
-    "METHODS",
     "SCHEMA",
     "OperatorSettings",
     "OptimizerSettings",

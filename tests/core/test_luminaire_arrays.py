@@ -32,6 +32,7 @@ from lightinv_core.light.arrays import (
 from lightinv_core.light.model import LightModel
 from lightinv_core.operator.build import build_operator
 from lightinv_core.operator.settings import OperatorSettings
+from lightinv_core.optimize.method import RunContext
 from lightinv_core.optimize.problem import DesignProblem
 from lightinv_core.optimize.registry import get_method
 from lightinv_core.optimize.settings import OptimizerSettings
@@ -249,7 +250,7 @@ def test_an_array_optimisation_meets_en12464_on_the_grid(office):
     goals = ("min_electric_power", "min_luminaire_count")
     d = _design(arrays, intentions=target, rules=rules, goals=goals)
     pb = DesignProblem(d, office)
-    res = get_method("vns").run(pb, OptimizerSettings(seed=1), StopRule(max_evals=3000), 1)
+    res = get_method("vns").run(pb, RunContext(OptimizerSettings(seed=1), StopRule(3000), seed=1))
     sol = res.best
     assert sol.feasible, sol.violations
     # Judged again with the luminaires placed exactly (no lattice).

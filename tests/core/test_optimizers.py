@@ -13,9 +13,10 @@ from lightinv_core.light.model import LightModel
 from lightinv_core.operator.build import build_operator
 from lightinv_core.operator.settings import OperatorSettings
 from lightinv_core.optimize.cmaes import cmaes, ranking_fitness
+from lightinv_core.optimize.method import RunContext
 from lightinv_core.optimize.nsga2 import thin
 from lightinv_core.optimize.pareto import non_dominated
-from lightinv_core.optimize.portfolio import AutoMethod, cma_then_vns
+from lightinv_core.optimize.portfolio import AUTO, cma_then_vns
 from lightinv_core.optimize.problem import DesignProblem, Evaluation
 from lightinv_core.optimize.quality import front_quality, front_scales, hypervolume, spacing
 from lightinv_core.optimize.registry import get_method
@@ -113,7 +114,7 @@ def test_cmaes_same_seed_same_answer_other_seed_other(light):
 def test_nsga2_front_is_feasible_non_dominated_and_sorted(light):
     p = DesignProblem(desk_design(60.0, both_goals=True), light)
     res = get_method("nsga2").run(
-        p, OptimizerSettings(population=24), StopRule(max_evals=2400), seed=0
+        p, RunContext(OptimizerSettings(population=24), StopRule(max_evals=2400), seed=0)
     )
     sols = res.front.solutions
     assert res.status == "feasible" and 2 <= len(sols) <= 24
@@ -128,7 +129,7 @@ def test_nsga2_front_is_feasible_non_dominated_and_sorted(light):
 def test_nsga2_explains_an_impossible_design(light):
     p = DesignProblem(desk_design(1e6, both_goals=True), light)
     res = get_method("nsga2").run(
-        p, OptimizerSettings(population=12), StopRule(max_evals=300), seed=0
+        p, RunContext(OptimizerSettings(population=12), StopRule(max_evals=300), seed=0)
     )
     assert res.status == "infeasible" and res.best is None
     assert res.front.solutions == () and len(res.front.candidates) == 1
@@ -136,18 +137,17 @@ def test_nsga2_explains_an_impossible_design(light):
 
 
 def test_auto_finds_a_front_only_with_both_power_goals(light):
-    auto = AutoMethod()
+    auto = AUTO
     assert auto.finds_front(desk_design(both_goals=True))
     assert not auto.finds_front(desk_design())
     single = auto.run(
-        DesignProblem(desk_design(), light), OptimizerSettings(), StopRule(max_evals=800), 0
+        DesignProblem(desk_design(), light),
+        RunContext(OptimizerSettings(), StopRule(max_evals=800), seed=0),
     )
     assert single.front is None and single.best.info.method == "auto"
     front = auto.run(
         DesignProblem(desk_design(60.0, both_goals=True), light),
-        OptimizerSettings(population=12),
-        StopRule(max_evals=600),
-        0,
+        RunContext(OptimizerSettings(population=12), StopRule(max_evals=600), seed=0),
     )
     assert front.front is not None and front.front.method == "nsga2"
 
@@ -224,7 +224,7 @@ def test_hypervolume_and_spacing_in_normalised_objectives():
 def test_front_quality_of_a_run(light):
     d = desk_design(60.0, both_goals=True)
     p = DesignProblem(d, light)
-    res = get_method("nsga2").run(p, OptimizerSettings(population=16), StopRule(1600), 0)
+    res = get_method("nsga2").run(p, RunContext(OptimizerSettings(population=16), StopRule(1600)))
     q = front_quality(res.front.solutions, front_scales(d, light))
     assert 0.0 < q.hypervolume < 1.0 and q.points == len(res.front.solutions)
     assert q.to_dict()["reference"] == [1.0, 0.0]
