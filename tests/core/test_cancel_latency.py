@@ -1,11 +1,18 @@
 """Cancelling long core work: each task runs in a background thread, is cancelled once
-well under way, and must end with CancelledError within LATENCY seconds, leave no
-partial output and no thread behind.
+well under way, and must end with CancelledError having done at most LATENCY seconds
+of work after the cancel, leave no partial output and no thread behind.
 
-Measured on the 2-core machine (largest interval between cancel polls over a whole
-run): form factors of office 0.1 s; operator build of office 0.14 s, of patio 0.75 s
-(6.3 s before the bounces, the Jacobi reference and the final CSR assembly polled or
-shortened); PDF report 0.25 s per page.
+The work after the cancel is the CPU time the process spends from the cancel to the
+task's end (all its threads: the ray-casting and product pools too), which does not
+grow when other programs share the cores; the wall time gets a margin that holds with
+the two cores shared 3 to 1 (``stress-ng --cpu 4`` beside the tests), and still fails
+a task that waits on something instead of stopping. A cancel not heard, or heard
+only after a slow step, still fails: the report has about 1.5 s of CPU left after its
+title page. Measured on the 2-core machine (largest interval between cancel polls
+over a whole run): form factors of office 0.1 s; operator build of office 0.14 s, of
+patio 0.75 s (6.3 s before the bounces, the Jacobi reference and the final CSR
+assembly polled or shortened); PDF report 0.1 to 0.35 s of CPU per page (0.6 to
+0.8 s of wall time on a quiet machine, 1.85 s and more loaded).
 """
 
 from __future__ import annotations
@@ -29,15 +36,24 @@ from lightinv_core.transport.formfactors import form_factor_matrix
 
 pytestmark = pytest.mark.slow  # operator builds and runs cancelled at points
 
-LATENCY = 1.0  # s, from setting the cancel flag to the task's end
+LATENCY = 1.0  # s of CPU time (the process's) from setting the cancel flag to the task's end
+WALL_MARGIN = 10.0  # s of wall time for the same, on a loaded machine
 
 Task = Callable[[Callable[[float], None], Callable[[], bool]], object]
 
 
-def cancel_when(task: Task, started_at: float) -> float:
+def assert_prompt(latency: tuple[float, float]) -> None:
+    """The (wall, CPU) seconds from a cancel to the task's end are within bounds."""
+    wall, cpu = latency
+    assert cpu < LATENCY, f"{cpu:.2f} s of CPU after the cancel ({wall:.2f} s wall)"
+    assert wall < WALL_MARGIN, f"{wall:.2f} s after the cancel ({cpu:.2f} s of CPU)"
+
+
+def cancel_when(task: Task, started_at: float) -> tuple[float, float]:
     """Run ``task(progress, cancel)`` in a thread, set the cancel flag once its progress
-    reaches ``started_at``, and return the seconds from the flag to the task's end.
-    Asserts the task ended with CancelledError and left no thread running."""
+    reaches ``started_at``, and return the (wall, process CPU) seconds from the flag to
+    the task's end. Asserts the task ended with CancelledError and left no thread
+    running."""
     before = set(threading.enumerate())
     flag, started = threading.Event(), threading.Event()
     outcome: dict = {}
@@ -52,19 +68,19 @@ def cancel_when(task: Task, started_at: float) -> float:
             outcome["error"] = None
         except BaseException as exc:
             outcome["error"] = exc
-        outcome["end"] = time.perf_counter()
+        outcome["end"] = time.perf_counter(), time.process_time()
 
     thread = threading.Thread(target=run, name="cancel-latency-task")
     thread.start()
     assert started.wait(timeout=60), "the task never reported progress"
-    t_cancel = time.perf_counter()
+    t_cancel = time.perf_counter(), time.process_time()
     flag.set()
     thread.join(timeout=30)
     assert not thread.is_alive()
     assert isinstance(outcome["error"], CancelledError), outcome["error"]
     # Worker pools (ray casting, sparse products) are shut down, not left running.
     assert set(threading.enumerate()) == before
-    return outcome["end"] - t_cancel
+    return outcome["end"][0] - t_cancel[0], outcome["end"][1] - t_cancel[1]
 
 
 @pytest.fixture(scope="module")
@@ -77,7 +93,7 @@ def test_form_factors(office):
         lambda progress, cancel: form_factor_matrix(office, 1024, progress=progress, cancel=cancel),
         started_at=0.3,
     )
-    assert latency < LATENCY
+    assert_prompt(latency)
 
 
 # Progress of a build: 0-0.7 form factors, 0.7-0.75 reference solutions, 0.75-0.85
@@ -90,7 +106,7 @@ def test_operator_build(office, tmp_path, monkeypatch, started_at):
         lambda progress, cancel: get_operator(office, progress=progress, cancel=cancel),
         started_at=started_at,
     )
-    assert latency < LATENCY
+    assert_prompt(latency)
     assert not cache.exists() or not any(cache.iterdir())
 
 
@@ -137,7 +153,7 @@ def test_report(solved_office, tmp_path):
         ),
         started_at=0.1,  # the title page is done
     )
-    assert latency < LATENCY
+    assert_prompt(latency)
     assert not out.exists() or not [p for p in out.rglob("*") if p.is_file()]
 
 
@@ -162,18 +178,18 @@ def test_optimisation_ends_within_a_second_and_keeps_its_best(solved_office, met
 
     def run() -> None:
         out["result"] = solve(endless, prepared, progress=snaps.append, cancel=flag.is_set)
-        out["end"] = time.perf_counter()
+        out["end"] = time.perf_counter(), time.process_time()
 
     thread = threading.Thread(target=run)
     thread.start()
     deadline = time.perf_counter() + 30
     while len(snaps) < 20 and time.perf_counter() < deadline:
         time.sleep(0.01)
-    t_cancel = time.perf_counter()
+    t_cancel = time.perf_counter(), time.process_time()
     flag.set()
     thread.join(timeout=30)
     assert not thread.is_alive()
-    assert out["end"] - t_cancel < LATENCY
+    assert_prompt((out["end"][0] - t_cancel[0], out["end"][1] - t_cancel[1]))
     result = out["result"]
     assert result.status == "cancelled"
     if method in ("vns", "multilevel", "cmaes"):
