@@ -819,6 +819,41 @@ def _(d):
     return raised(lambda: read_weather("builtin").occupied(18, 8))
 
 
+def photometry_warning(d: Path, name: str, text: str) -> Warned | None:
+    from lightinv_core.luminaires import read_photometry
+
+    (d / name).write_text(text, encoding="latin-1")
+    warnings = read_photometry(d / name).warnings
+    return Warned(warnings[0]) if warnings else None
+
+
+@case(
+    "ies-tilt-include",
+    "photometric file",
+    "an IES file with `TILT=INCLUDE` (a lamp-tilt table)",
+    WARNING,
+    "TILT=INCLUDE: the lamp-tilt factors (3 angles, 0.9 to 1) are not applied",
+)
+def _(d):
+    from tests.core.test_photometry import IES_OK, _sub
+
+    text = _sub(IES_OK, "TILT=NONE\n", "TILT=INCLUDE\n1\n3\n0 45\n90\n1.0 0.95 0.9\n")
+    return photometry_warning(d, "tilt.ies", text)
+
+
+@case(
+    "ies-lor-above-100",
+    "photometric file",
+    "a relative IES table that integrates to more than its lamps (a real file given 5,000 lm)",
+    WARNING,
+    "light output ratio 116.4%: the table integrates to 5,820 lm, more than the 5,000 lm",
+)
+def _(d):
+    from tests.core.test_photometry import _relative
+
+    return photometry_warning(d, "rel.ies", _relative(5000.0))
+
+
 # --- glTF, PLY and IFC files ------------------------------------------------------------
 
 
