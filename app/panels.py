@@ -13,7 +13,8 @@ from app.document import Document
 from lightinv_core.design.model import CORNERS, DesignError, Intention, Rule
 from lightinv_core.editing.rules import rule_text
 from lightinv_core.errors import LightInvError, SceneError
-from lightinv_core.kinds import DAYLIGHT_QUANTITIES, Bound, Quantity, Scenario, SourceKind
+from lightinv_core.kinds import Bound, Scenario, SourceKind
+from lightinv_core.quantities import quantity_spec, quantity_specs
 
 
 class DesignTree(QtWidgets.QTreeWidget):
@@ -411,15 +412,6 @@ def optional_number(
     return check, box
 
 
-QUANTITIES = {
-    Quantity.LUX: "illuminance (lux)",
-    Quantity.C: "reflected exitance C (lm/m²)",
-    Quantity.DF: "daylight factor DF (%)",
-    Quantity.DA: "daylight autonomy DA300 (share of occupied hours, 0-1)",
-    Quantity.UDI: "useful daylight UDI 100-3000 lux (share of hours, 0-1)",
-    Quantity.SDA: "sDA300/50%: the average is the share of the area",
-}
-"""The quantities an intention bounds, as the dialog lists them."""
 SCENARIOS = {
     Scenario.DESIGN: "design: luminaires + skylights at the design exterior lux",
     Scenario.NIGHT: "night: luminaires only",
@@ -427,16 +419,6 @@ SCENARIOS = {
     Scenario.ANNUAL: "annual: every occupied hour of the weather year",
 }
 """The scenarios an intention is judged in (annual: the daylight metrics only)."""
-METRIC_BOUNDS = {
-    # quantity: (decimals, largest value, defaults min, max, average, U0)
-    Quantity.LUX: (1, 1e6, (300.0, 1000.0, 500.0, 0.6)),
-    Quantity.C: (1, 1e6, (300.0, 1000.0, 500.0, 0.6)),
-    Quantity.DF: (2, 100.0, (1.0, 10.0, 2.0, 0.3)),
-    Quantity.DA: (3, 1.0, (0.3, 1.0, 0.5, 0.3)),
-    Quantity.UDI: (3, 1.0, (0.3, 1.0, 0.5, 0.3)),
-    Quantity.SDA: (3, 1.0, (0.0, 1.0, 0.55, 0.3)),
-}
-"""Per quantity: the bounds' decimals, their largest value and the values offered."""
 
 
 class IntentionDialog(QtWidgets.QDialog):
@@ -450,8 +432,8 @@ class IntentionDialog(QtWidgets.QDialog):
         self.name = QtWidgets.QLineEdit(target)
         form.addRow("Name", self.name)
         self.quantity = QtWidgets.QComboBox()
-        for q, text in QUANTITIES.items():
-            self.quantity.addItem(text, str(q))
+        for q in quantity_specs():
+            self.quantity.addItem(q.label, str(q.name))
         form.addRow("Quantity", self.quantity)
         self.scenario = QtWidgets.QComboBox()
         for sc, text in SCENARIOS.items():
@@ -475,8 +457,8 @@ class IntentionDialog(QtWidgets.QDialog):
 
     def _quantity_changed(self) -> None:
         """A daylight metric fixes the scenario and takes bounds in its own units."""
-        q = Quantity(self.quantity.currentData())
-        forced = DAYLIGHT_QUANTITIES.get(q)
+        q = quantity_spec(self.quantity.currentData())
+        forced = q.scenario
         annual = self.scenario.model().item(self.scenario.findData(str(Scenario.ANNUAL)))
         annual.setEnabled(forced == Scenario.ANNUAL)
         if forced is not None:
@@ -487,14 +469,14 @@ class IntentionDialog(QtWidgets.QDialog):
             self.scenario.setCurrentIndex(self.scenario.findData(str(Scenario.DESIGN)))
         self.scenario.setEnabled(forced is None)
         self._metric = forced is not None
-        decimals, top, defaults = METRIC_BOUNDS[q]
+        decimals, top, defaults = q.decimals, q.high, q.defaults
         for key, value in zip(("min", "max", "average"), defaults, strict=False):
             box = self.fields[key][1]
             box.setDecimals(decimals)
             box.setMaximum(top)
             box.setValue(value)
         self.fields["uniformity"][1].setValue(defaults[3])
-        if q == Quantity.SDA:  # sDA is the average of a 0/1 mark: only that bound tells
+        if q.average_only:  # sDA is the average of a 0/1 mark: only that bound tells
             self.set_values(min=None, max=None, uniformity=None, average=defaults[2])
 
     def _last_metric(self) -> bool:

@@ -952,14 +952,9 @@ def _solve_text(out: dict) -> str:
 
 def _goal_text(kind: str, value: float) -> str:
     """A goal's value with its unit, as the front's lines show it."""
-    from lightinv_core.optimize.problem import GOAL_UNITS
+    from lightinv_core.goals import goal_spec
 
-    unit = GOAL_UNITS.get(kind, "")
-    if kind == "max_sda":
-        return f"sDA {100 * value:5.1f}%"
-    width = {"W": 9, "lm": 12, "kWh": 8, "m²": 6}.get(unit, 9)
-    digits = 0 if unit == "lm" else (2 if unit == "m²" else 1)
-    return f"{value:{width}.{digits}f} {unit}".rstrip()
+    return goal_spec(kind).value_text(value)
 
 
 def _vns_printer():

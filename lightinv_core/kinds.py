@@ -9,7 +9,16 @@ from __future__ import annotations
 from enum import StrEnum
 
 
-class SourceKind(StrEnum):
+class Kind(StrEnum):
+    """A ``StrEnum`` whose repr is its string's, so messages that quote a value
+    (``f"{kind!r}"``) read the same whether a model field holds the member or the
+    string of a file."""
+
+    def __repr__(self) -> str:
+        return repr(self.value)
+
+
+class SourceKind(Kind):
     """What emits: an electric luminaire or daylight through glazing (emitter zones take
     the same kinds)."""
 
@@ -17,7 +26,7 @@ class SourceKind(StrEnum):
     SKYLIGHT = "skylight"  # glazing: exitance = filter x transmittance x exterior lux
 
 
-class RuleKind(StrEnum):
+class RuleKind(Kind):
     """Geometric rules on source rectangles (checked before any light is computed)."""
 
     AREA = "area"  # each source's area within min..max, m²
@@ -30,9 +39,10 @@ class RuleKind(StrEnum):
     CLEARANCE = "clearance"  # luminaire arrays: every opening at least min from the zone edge, m
 
 
-class Quantity(StrEnum):
+class Quantity(Kind):
     """What an intention bounds: illuminance (lux) or reflected exitance C (lm/m²) in
-    its scenario, or a daylight metric (docs/daylight.md), each per patch or grid point."""
+    its scenario, or a daylight metric (docs/daylight.md), each per patch or grid point.
+    Each one's unit, range, labels and scenario: its ``QuantitySpec`` (quantities.py)."""
 
     LUX = "lux"  # illuminance H = (B - E) / rho, lux
     C = "C"  # reflected exitance C = B - E, lm/m²
@@ -42,30 +52,11 @@ class Quantity(StrEnum):
     SDA = "sda"  # 1 where DA300 >= 50%, else 0: its average is sDA300/50%
 
 
-DAYLIGHT_QUANTITIES = {
-    Quantity.DF: "overcast",
-    Quantity.DA: "annual",
-    Quantity.UDI: "annual",
-    Quantity.SDA: "annual",
-}
-"""The daylight metrics and the scenario each is measured in."""
-
 MAX_LUX = 1e6
 """Lux (and lm/m²): ten times full sunlight, the largest illuminance a design may name."""
 
-QUANTITY_RANGES: dict[Quantity, tuple[float, float, str]] = {
-    Quantity.LUX: (0.0, MAX_LUX, "illuminance, lux"),
-    Quantity.C: (0.0, MAX_LUX, "reflected exitance, lm/m²"),
-    Quantity.DF: (0.0, 100.0, "daylight factor, %"),
-    Quantity.DA: (0.0, 1.0, "DA300, a fraction of the occupied hours"),
-    Quantity.UDI: (0.0, 1.0, "UDI 100-3000, a fraction of the occupied hours"),
-    Quantity.SDA: (0.0, 1.0, "1 or 0 per point, its average a fraction"),
-}
-"""The values each quantity can take (low, high, unit): an intention bound outside them
-can never be met."""
 
-
-class Scenario(StrEnum):
+class Scenario(Kind):
     """The light an intention is judged in (docs/daylight.md, scenarios)."""
 
     DESIGN = "design"  # luminaires plus skylights at the design exterior lux (the paper's)
@@ -74,7 +65,7 @@ class Scenario(StrEnum):
     ANNUAL = "annual"  # daylight through every occupied hour of the weather file
 
 
-class Bound(StrEnum):
+class Bound(Kind):
     """The bounds of an intention: per patch (min, max), area-weighted mean, U0."""
 
     MIN = "min"  # lower bound on every patch
@@ -83,10 +74,11 @@ class Bound(StrEnum):
     UNIFORMITY = "uniformity"  # lower bound on U0 = min / mean, in [0, 1]
 
 
-class GoalKind(StrEnum):
+class GoalKind(Kind):
     """What to optimise: electric power (W, minimised), reflected light power (lm,
     maximised), the match error e (paper eq. 11, minimised), installed power, luminaire
-    count, and the climate goals: annual energy (kWh), sDA (maximised), glazing area (m²)."""
+    count, and the climate goals: annual energy (kWh), sDA (maximised), glazing area (m²).
+    Each one's names, unit and direction: its ``GoalSpec`` (goals.py)."""
 
     MIN_ELECTRIC_POWER = "min_electric_power"  # sum of flux / efficacy, W
     MAX_LIGHT_POWER = "max_light_power"  # sum_i C_i A_i, lm
@@ -99,12 +91,11 @@ class GoalKind(StrEnum):
 
 
 MAXIMISED_GOALS = frozenset({GoalKind.MAX_LIGHT_POWER, GoalKind.MAX_SDA})
-"""Goals whose value is maximised (the others are minimised)."""
-ANNUAL_GOALS = frozenset({GoalKind.MIN_ANNUAL_ENERGY, GoalKind.MAX_SDA})
-"""Goals that need the weather year."""
+"""The built-in goals whose value is maximised, for the optimizer modules that do not yet
+read ``goals.goal_spec(kind).maximise`` (test_extension_points checks they agree)."""
 
 
-class VariableName(StrEnum):
+class VariableName(Kind):
     """A source's optimisation variables: rectangle corners (m), flux (lm), filter."""
 
     U0 = "u0"  # first corner along the zone's u axis, m
@@ -115,7 +106,7 @@ class VariableName(StrEnum):
     FILTER = "filter"  # a skylight's filter, fraction in [0, 1]
 
 
-class ArrayVariable(StrEnum):
+class ArrayVariable(Kind):
     """A luminaire array's optimisation variables: the corners of the rectangle it fills
     (m), its rows and columns (whole numbers), rotation (0 or 90 degrees), dimming."""
 

@@ -16,10 +16,8 @@ import numbers
 from dataclasses import dataclass, field
 
 from lightinv_core.errors import DesignError
+from lightinv_core.goals import goal_kind, goal_names, goal_spec, is_goal
 from lightinv_core.kinds import (
-    ANNUAL_GOALS,
-    DAYLIGHT_QUANTITIES,
-    QUANTITY_RANGES,
     ArrayVariable,
     Bound,
     GoalKind,
@@ -29,6 +27,7 @@ from lightinv_core.kinds import (
     SourceKind,
     VariableName,
 )
+from lightinv_core.quantities import is_quantity, quantity_kind, quantity_names, quantity_spec
 
 SOURCE_KINDS = tuple(str(k) for k in SourceKind)
 """The source kinds as plain strings (the values stored in the model)."""
@@ -114,7 +113,7 @@ class Source:
 
     name: str
     zone: str
-    kind: str
+    kind: SourceKind
     rect: tuple[float, float, float, float]
     free: tuple[str, ...] = ()
     flux: float | None = None
@@ -129,6 +128,7 @@ class Source:
         _name(self.zone, f"{where}: zone")
         if self.kind not in SOURCE_KINDS:
             raise DesignError(f"{where}: kind must be {_either(SOURCE_KINDS)}")
+        object.__setattr__(self, "kind", SourceKind(self.kind))
         _rect_and_free(self, where, VARIABLES)
         if len(_items(self.flux_range, where, "flux_range")) != 2:
             raise DesignError(f"{where}: flux_range needs two numbers (min, max) in lm")
@@ -276,28 +276,29 @@ class Intention:
     name: str
     group: str | None = None
     patches: tuple[int, ...] | None = None
-    quantity: str = Quantity.LUX.value
+    quantity: Quantity = Quantity.LUX
     min: float | None = None
     max: float | None = None
     average: float | None = None
     uniformity: float | None = None
     weight: float = 100.0
     grid: str | None = None
-    scenario: str = Scenario.DESIGN.value
+    scenario: Scenario = Scenario.DESIGN
 
     def __post_init__(self) -> None:
         _name(self.name, "an intention's name")
         where = f"intention {self.name!r}"
         if self.scenario not in tuple(Scenario):
             raise DesignError(f"{where}: scenario must be {_either(tuple(Scenario))}")
-        metric_scenario = DAYLIGHT_QUANTITIES.get(self.quantity)
-        if metric_scenario is not None:
+        object.__setattr__(self, "scenario", Scenario(self.scenario))
+        spec = quantity_spec(self.quantity) if is_quantity(self.quantity) else None
+        if spec is not None and spec.scenario is not None:
             # A daylight metric is measured in its own scenario, whatever was written.
-            object.__setattr__(self, "scenario", metric_scenario)
+            object.__setattr__(self, "scenario", spec.scenario)
         elif self.scenario == Scenario.ANNUAL:
+            annual = tuple(q for q in quantity_names() if quantity_spec(q).scenario == "annual")
             raise DesignError(
-                f"{where}: the annual scenario bounds a daylight metric: quantity "
-                f"{_either(tuple(q for q, sc in DAYLIGHT_QUANTITIES.items() if sc == 'annual'))}"
+                f"{where}: the annual scenario bounds a daylight metric: quantity {_either(annual)}"
             )
         targets = sum(x is not None for x in (self.group, self.patches, self.grid))
         if targets != 1:
@@ -308,10 +309,10 @@ class Intention:
             _name(self.group, f"{where}: group")
         if self.grid is not None:
             _name(self.grid, f"{where}: grid")
-            if self.quantity == Quantity.C:
+            if spec is not None and spec.needs_reflectance:
                 raise DesignError(
                     f"{where}: a work-plane grid takes illuminance (lux) or a daylight metric, "
-                    "not reflected exitance"
+                    f"not {spec.noun}"
                 )
         if self.patches is not None:
             if not isinstance(self.patches, tuple | list | range) or len(self.patches) == 0:
@@ -325,9 +326,10 @@ class Intention:
                     raise DesignError(f"{where}: patch id {i!r} is negative or too large")
                 ids.append(int(i))
             object.__setattr__(self, "patches", tuple(ids))
-        if self.quantity not in tuple(Quantity):
-            raise DesignError(f"{where}: quantity must be {_either(tuple(Quantity))}")
-        lo, hi, unit = QUANTITY_RANGES[Quantity(self.quantity)]
+        if spec is None:
+            raise DesignError(f"{where}: quantity must be {_either(quantity_names())}")
+        object.__setattr__(self, "quantity", quantity_kind(self.quantity))
+        lo, hi, unit = spec.low, spec.high, spec.range_text
         for key in (Bound.MIN, Bound.MAX, Bound.AVERAGE):
             v = getattr(self, key)
             if v is not None:
@@ -483,6 +485,7 @@ class Workplane:
 
 
 GOALS = tuple(str(g) for g in GoalKind)
+"""The built-in goal kinds (``goals.goal_names()`` adds the registered ones)."""
 
 
 @dataclass(frozen=True)
@@ -499,12 +502,13 @@ class Goal:
     - ``min_luminaire_count``: luminaires in the arrays plus luminaire sources.
     """
 
-    kind: str
+    kind: GoalKind
     kinds: tuple[str, ...] = ()
 
     def __post_init__(self) -> None:
-        if self.kind not in GOALS:
-            raise DesignError(f"goal {self.kind!r} is not one of {GOALS}")
+        if not is_goal(self.kind):
+            raise DesignError(f"goal {self.kind!r} is not one of {goal_names()}")
+        object.__setattr__(self, "kind", goal_kind(self.kind))
         object.__setattr__(self, "kinds", _items(self.kinds, f"goal {self.kind!r}", "kinds"))
         bad = [k for k in self.kinds if k not in SOURCE_KINDS]
         if bad:
@@ -655,7 +659,7 @@ class Design:
                 f"daylight workplane {self.daylight.workplane!r} is not a work plane "
                 f"(work planes: {sorted(planes) or 'none'})"
             )
-        annual = [str(g.kind) for g in self.goals if g.kind in ANNUAL_GOALS]
+        annual = [str(g.kind) for g in self.goals if goal_spec(g.kind).annual]
         if annual and not self.workplanes:
             raise DesignError(
                 f"goals {annual} are measured on a work plane (dimming and sDA): add one"

@@ -15,6 +15,8 @@ from dataclasses import dataclass, replace
 
 from lightinv_core.design.solution import ParetoFront, Solution
 from lightinv_core.errors import DesignError
+from lightinv_core.goals import bounded_goal, goal_spec, is_goal
+from lightinv_core.kinds import GoalKind
 from lightinv_core.optimize.registry import get_method, method_names
 from lightinv_core.project import Project
 from lightinv_core.project.results import RunRecord
@@ -23,6 +25,10 @@ ALL = None
 """Browse every run's results and the saved ones."""
 SAVED = 0
 """Browse the results outside the run history."""
+FRONT_MEMBER_METHODS = {"nsga2": "NSGA-II"}
+"""Methods whose results are members of one front, and their names in its labels: a
+result is labelled by the value of its first goal whose spec has a ``result_format``
+("NSGA-II 123.4 W"). (Belongs in the method registry, optimize/, once it says so.)"""
 
 
 @dataclass(frozen=True)
@@ -39,13 +45,14 @@ def result_label(s: Solution) -> str:
     """A short name for a result: which run found it."""
     info = s.info
     if info.epsilon is not None:
-        # A climate sweep bounds the glazing area (m²), the power sweep the light (lm).
-        climate = {"min_annual_energy", "min_glazing_area"} <= set(s.objectives)
-        if climate and not {"min_electric_power", "max_light_power"} <= set(s.objectives):
-            return f"epsilon {info.epsilon:,.2f} m²"
-        return f"epsilon {info.epsilon:,.0f} lm"
-    if info.method == "nsga2" and "min_electric_power" in s.objectives:
-        return f"NSGA-II {s.objectives['min_electric_power']:,.1f} W"
+        # The sweep's bounded goal (light power, glazing area) says how to write its bound.
+        bounded = bounded_goal(s.objectives) or goal_spec(GoalKind.MAX_LIGHT_POWER)
+        return f"epsilon {bounded.bound_format.format(info.epsilon)}"
+    if info.method in FRONT_MEMBER_METHODS:
+        by = next((k for k in s.objectives if is_goal(k) and goal_spec(k).result_format), None)
+        if by is not None:
+            value = goal_spec(by).result_format.format(s.objectives[by])
+            return f"{FRONT_MEMBER_METHODS[info.method]} {value}"
     if info.step1_light_power is not None:
         return f"two-step seed {'?' if info.seed is None else info.seed}"
     if info.seed is not None:

@@ -22,7 +22,7 @@ import numpy as np
 
 from lightinv_core.climate.metrics import DA_THRESHOLD, UDI_BANDS, lighting_kwh
 from lightinv_core.design.model import Daylight, Design, DesignError, Intention
-from lightinv_core.kinds import Quantity, Scenario, SourceKind
+from lightinv_core.kinds import Scenario, SourceKind
 from lightinv_core.light.daylight_year import (
     DaylightYear,
     SkyGroups,
@@ -38,6 +38,7 @@ from lightinv_core.light.intentions import (
     intention_patches,
     intention_stats,
 )
+from lightinv_core.quantities import quantity_spec
 from lightinv_core.sources.emission import source_electric_power
 
 SDA_SHARE = 0.5
@@ -105,19 +106,10 @@ class ScenarioLight:
     def quantity(self, intention: Intention, idx=slice(None), rho=None) -> np.ndarray:
         """The intention's quantity at receivers idx (R', m): lux or C in its scenario
         (``rho`` the receivers' reflectances for C), DF (%), DA, UDI or the sDA mark."""
-        q = intention.quantity
-        if q == Quantity.DF:
-            return 100.0 * self.overcast_daylight(idx)
-        if q == Quantity.DA:
-            return self.da(idx)
-        if q == Quantity.UDI:
-            return self.udi(idx)
-        if q == Quantity.SDA:
-            return self.sda_mark(idx).astype(float)
-        lux = self.lux(intention.scenario, idx)
-        if q == Quantity.C:
-            return lux * (rho[:, None] if lux.ndim == 2 else rho)
-        return lux
+        spec = quantity_spec(intention.quantity)
+        if spec.from_scenarios is not None:
+            return spec.from_scenarios(self, idx)
+        return spec.from_lux(self.lux(intention.scenario, idx), rho)
 
 
 @dataclass(frozen=True)

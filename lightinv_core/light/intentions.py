@@ -24,7 +24,8 @@ import numpy as np
 
 from lightinv_core.design.model import Intention
 from lightinv_core.errors import DesignError
-from lightinv_core.kinds import Bound, Quantity
+from lightinv_core.kinds import Bound
+from lightinv_core.quantities import quantity_spec
 from lightinv_core.scene.patches import Patches
 
 FEASIBILITY_TOL = 1e-3
@@ -98,10 +99,7 @@ def intention_patches(intention: Intention, patches: Patches) -> np.ndarray:
 def quantity_values(intention: Intention, H: np.ndarray, rho: np.ndarray) -> np.ndarray:
     """The intention's quantity (float64) from illuminance H (p,) or (p, m) in lux at
     patches of reflectance ``rho`` (p,): H itself, or C = rho * H."""
-    q = np.asarray(H).astype(np.float64)
-    if intention.quantity == Quantity.C:
-        q = q * (rho[:, None] if q.ndim == 2 else rho)
-    return q
+    return quantity_spec(intention.quantity).from_lux(np.asarray(H).astype(np.float64), rho)
 
 
 def intention_stats(q: np.ndarray, weights: np.ndarray) -> IntentionStats:
@@ -128,20 +126,9 @@ def bounds_set(intention: Intention) -> tuple[Bound, ...]:
     )
 
 
-QUANTITY_UNITS = {
-    Quantity.LUX: "lux",
-    Quantity.C: "lm/m²",
-    Quantity.DF: "%",
-    Quantity.DA: "",
-    Quantity.UDI: "",
-    Quantity.SDA: "",
-}
-"""Units of each quantity as messages show them (DA, UDI and sDA are fractions)."""
-
-
 def bound_checks(intention: Intention, stats: IntentionStats) -> list[BoundCheck]:
     """The checks of the bounds the intention sets (``bounds_set`` order)."""
-    it, units = intention, QUANTITY_UNITS[Quantity(intention.quantity)]
+    it, units = intention, quantity_spec(intention.quantity).unit
     out = []
     for b in bounds_set(it):
         if b == Bound.MIN:

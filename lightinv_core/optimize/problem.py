@@ -34,14 +34,8 @@ from lightinv_core.design.geometry import rule_names, rule_violations
 from lightinv_core.design.model import Design, DesignError
 from lightinv_core.design.solution import Solution, SolutionInfo, Violation
 from lightinv_core.design.variables import ArrayLayout, Variables
-from lightinv_core.kinds import (
-    ANNUAL_GOALS,
-    MAXIMISED_GOALS,
-    Bound,
-    GoalKind,
-    Scenario,
-    SourceKind,
-)
+from lightinv_core.goals import goal_names, goal_spec, goal_specs
+from lightinv_core.kinds import Bound, GoalKind, Scenario, SourceKind
 from lightinv_core.light.arrays import (
     ArrayLight,
     array_light,
@@ -72,19 +66,15 @@ ARRAY_MARGIN = 0.005
 lit from their lattice: the blend's error on the office benchmark's work plane is at most
 0.07% on Em and 0.15% on U0 over 60 random layouts off the nodes
 (bench/luminaire_arrays.py), well within it."""
-GOAL_NAMES = tuple(str(g) for g in GoalKind)
-GOAL_UNITS = {
-    GoalKind.MIN_ELECTRIC_POWER: "W",
-    GoalKind.MAX_LIGHT_POWER: "lm",
-    GoalKind.MATCH: "",
-    GoalKind.MIN_INSTALLED_POWER: "W",
-    GoalKind.MIN_LUMINAIRE_COUNT: "",
-    GoalKind.MIN_ANNUAL_ENERGY: "kWh",
-    GoalKind.MAX_SDA: "",
-    GoalKind.MIN_GLAZING_AREA: "m²",
-}
 
-__all__ = ["EPSILON_WEIGHT", "FEASIBILITY_TOL", "Constraint", "DesignProblem", "Evaluation"]
+__all__ = [
+    "EPSILON_WEIGHT",
+    "FEASIBILITY_TOL",
+    "Constraint",
+    "DesignProblem",
+    "Evaluation",
+    "GoalBatch",
+]
 
 
 @dataclass(frozen=True)
@@ -136,6 +126,23 @@ class Lit:
     cols: np.ndarray
     H: np.ndarray | None
     parts: ScenarioLight | None = None
+
+
+@dataclass(frozen=True)
+class GoalBatch:
+    """What a registered goal's ``GoalSpec.value`` reads for m lit candidates: the
+    problem, the decoded variables (``rect`` (m, S, 4) m, ``flux`` (m, S) lm, ``filt``
+    (m, S)), the arrays' ``layout`` (None without arrays), their light ``lit`` at the
+    receivers of ``level``, and the built-in goals' values ``goals`` {kind: (m,)}."""
+
+    problem: DesignProblem
+    rect: np.ndarray
+    flux: np.ndarray
+    filt: np.ndarray
+    layout: ArrayLayout | None
+    lit: Lit
+    level: Level
+    goals: dict[str, np.ndarray]
 
 
 @dataclass(frozen=True)
@@ -248,7 +255,7 @@ class DesignProblem:
         self.products = [resolve_product(a.product, a.watts) for a in design.arrays]
         self.epsilon = tuple((str(k), float(b)) for k, b in epsilon)
         wanted = {str(g.kind) for g in design.goals} | {k for k, _ in self.epsilon}
-        self.annual_goals = bool(wanted & ANNUAL_GOALS)
+        self.annual_goals = any(goal_spec(k).annual for k in wanted)
         # Scenarios other than the paper's design daylight need the light split into
         # the luminaires' and each sky group's (same GEMM columns, so the same cost).
         self.split = self.annual_goals or any(
@@ -263,7 +270,7 @@ class DesignProblem:
                 "the annual energy and sDA goals are measured on a work plane: add one"
             )
         self.primary = str(design.goals[0].kind)
-        self.objectives = tuple(GoalKind(g.kind) for g in design.goals)
+        self.objectives = tuple(g.kind for g in design.goals)
         self.scales = {
             GoalKind.MAX_LIGHT_POWER: light.power_scale(sources, design.daylight),
             GoalKind.MIN_ELECTRIC_POWER: electric_scale(design, light, self.products),
@@ -274,12 +281,18 @@ class DesignProblem:
             GoalKind.MAX_SDA: 1.0,
             GoalKind.MIN_GLAZING_AREA: glazing_scale(design, light),
         }
+        # Registered goals compute their own value and scale (``GoalSpec``).
+        self._registered = tuple(
+            spec for spec in goal_specs() if spec.value is not None and spec.kind in wanted
+        )
+        for spec in self._registered:
+            self.scales[spec.kind] = spec.scale(self) if spec.scale is not None else 1.0
         self.constraints = self._constraint_columns()
         self._weights = [c.weight for c in self.constraints if c.kind != "geometry"]
         self._senses = tuple(
-            (str(k), -1.0 if k in MAXIMISED_GOALS else 1.0) for k in self.objectives
+            (str(k), -1.0 if goal_spec(k).maximise else 1.0) for k in self.objectives
         )
-        self._sign = -1.0 if self.primary in MAXIMISED_GOALS else 1.0
+        self._sign = -1.0 if goal_spec(self.primary).maximise else 1.0
         light_goal = next((g for g in design.goals if g.kind == GoalKind.MAX_LIGHT_POWER), None)
         # The light-power goal counts its kinds' sources (all kinds when it names none).
         kinds = (light_goal.kinds if light_goal else ()) or tuple(SourceKind)
@@ -392,7 +405,7 @@ class DesignProblem:
             value, penalty, goals, lighting = self._score(rect, flux, filt, level, lay)
         else:
             value, penalty = np.full(m, np.inf), np.full(m, np.inf)
-            goals = {k: np.full(m, np.nan) for k in GOAL_NAMES}
+            goals = {k: np.full(m, np.nan) for k in goal_names()}
             lighting = ()
             if len(good):
                 sub = None if lay is None else lay.take(good)
@@ -521,6 +534,7 @@ class DesignProblem:
         if self.annual_goals:
             energy, sda = self._annual_goals(lit, level, electric)
             goals["min_annual_energy"], goals["max_sda"] = energy, sda
+        goals.update(self._registered_goals(rect, flux, filt, lay, lit, level, goals))
         checks = self._checks(lit, level) if self.design.intentions else []
         # With arrays the search reads the lattice blend: it keeps a margin for the
         # blend's error, so the layout also holds judged with the luminaires placed exactly.
@@ -530,6 +544,17 @@ class DesignProblem:
         penalty = self._penalty(lighting, len(checks), m)
         value = self._sign * goals[self.primary] / self.scales[self.primary] + penalty
         return value, penalty, goals, tuple(lighting)
+
+    def _registered_goals(self, rect, flux, filt, lay, lit, level, goals) -> dict:
+        """The values of the registered goals: the wanted ones from their spec, NaN for
+        the others (every goal kind is a key of an evaluation's goals)."""
+        m = rect.shape[0]
+        out = {k: np.full(m, np.nan) for k in goal_names() if k not in goals}
+        if self._registered:
+            batch = GoalBatch(self, rect, flux, filt, lay, lit, level, goals)
+            for spec in self._registered:
+                out[spec.kind] = np.asarray(spec.value(batch), dtype=float)
+        return out
 
     def _glazing_area(self, rect: np.ndarray) -> np.ndarray:
         """Total area (m²) of the skylight sources of m candidates (rect (m, S, 4))."""
@@ -590,7 +615,7 @@ class DesignProblem:
 
     def _epsilon_terms(self, goals):
         for kind, bound in self.epsilon:
-            if kind in MAXIMISED_GOALS:
+            if goal_spec(kind).maximise:
                 c = (bound - goals[kind]) / max(abs(bound), 1e-12)
             else:
                 c = (goals[kind] - bound) / max(abs(bound), 1e-12)
@@ -678,13 +703,13 @@ class DesignProblem:
                 excess.append(c - JUDGED_TOL)
                 if c[0] > JUDGED_TOL:
                     value = float(goals[kind][0])
-                    units = GOAL_UNITS[GoalKind(kind)]
+                    units = goal_spec(kind).unit
                     viol.append(
                         Violation(f"epsilon {kind}", "epsilon", float(c[0]), value, bound, units)
                     )
             penalty = float(self._penalty(excess, n_intent, 1)[0])
         wanted = {g.kind for g in self.design.goals} | {k for k, _ in self.epsilon}
-        objectives = {str(k): float(goals[k][0]) for k in GoalKind if k in wanted}
+        objectives = {s.kind: float(goals[s.kind][0]) for s in goal_specs() if s.kind in wanted}
         return Solution(
             self.sources_at(x),
             objectives,

@@ -18,7 +18,6 @@ from dataclasses import dataclass, field
 from functools import partial
 from typing import Any
 
-from lightinv_core.design.model import GOALS
 from lightinv_core.design.solution import ParetoFront, Solution, SolutionInfo, Violation
 from lightinv_core.errors import DesignError
 from lightinv_core.fields import (
@@ -37,6 +36,7 @@ from lightinv_core.fields import (
     _string,
     _unique,
 )
+from lightinv_core.goals import goal_names
 from lightinv_core.optimize.settings import OPTIMIZER, OptimizerSettings
 from lightinv_core.project.specs import ARRAY, SOURCE, read_arrays, read_sources
 
@@ -84,6 +84,10 @@ def _info(v: Any, path: str) -> SolutionInfo:
         _fail(path, str(err))
 
 
+def _goal_kind(v: Any, path: str) -> str:
+    return _choice(v, path, goal_names())
+
+
 def _objectives(v: Any, path: str) -> dict[str, float]:
     if not isinstance(v, dict):
         _fail(path, f"expected an object, got {_describe(v)}")
@@ -91,8 +95,8 @@ def _objectives(v: Any, path: str) -> dict[str, float]:
         _fail(path, f"objective {key!r} is given twice")
     out = {}
     for key, value in v.items():
-        if key not in GOALS:
-            _fail(path, f"unknown goal {key!r} (goals: {', '.join(GOALS)})")
+        if key not in goal_names():
+            _fail(path, f"unknown goal {key!r} (goals: {', '.join(goal_names())})")
         out[key] = _result_number(value, _join(path, key))
     return out
 
@@ -196,7 +200,9 @@ PARETO = ObjectSpec(
     (
         Field(
             "objectives",
-            lambda v, p: _unique(_list(v, p, lambda x, q: _choice(x, q, GOALS), "goal kinds"), p),
+            lambda v, p: _unique(
+                _list(v, p, lambda x, q: _choice(x, q, goal_names()), "goal kinds"), p
+            ),
             type="list of goal kinds",
             meaning="the goal kinds compared, in order",
         ),
@@ -288,7 +294,7 @@ RUN = ObjectSpec(
         ),
         Field(
             "goals",
-            lambda v, p: _list(v, p, lambda x, q: _choice(x, q, GOALS), "goal kinds"),
+            lambda v, p: _list(v, p, _goal_kind, "goal kinds"),
             (),
             "list of goal kinds",
             "the design's goals when it ran, primary first",

@@ -43,7 +43,9 @@ from lightinv_core.fields import (
     _unique,
     _within,
 )
+from lightinv_core.goals import goal_names
 from lightinv_core.kinds import MAX_LUX, GoalKind, Quantity, RuleKind, Scenario, SourceKind
+from lightinv_core.quantities import quantity_names
 
 LUMINAIRE = (str(SourceKind.LUMINAIRE),)
 SKYLIGHT = (str(SourceKind.SKYLIGHT),)
@@ -245,7 +247,7 @@ INTENTION = ObjectSpec(
         ),
         Field(
             "quantity",
-            lambda v, p: _choice(v, p, tuple(str(q) for q in Quantity)),
+            lambda v, p: _choice(v, p, quantity_names()),
             _I["quantity"].default,
             _either(tuple(Quantity)),
             "illuminance (lux) or reflected exitance C (lm/m²) in the scenario; or a "
@@ -297,7 +299,7 @@ GOAL = ObjectSpec(
     (
         Field(
             "kind",
-            lambda v, p: _choice(v, p, tuple(str(g) for g in GoalKind)),
+            lambda v, p: _choice(v, p, goal_names()),
             type="goal kind",
             meaning="see the table of goal kinds",
         ),

@@ -17,14 +17,14 @@ import numpy as np
 
 from lightinv_core.design.model import Design, LuminaireArray
 from lightinv_core.errors import LightInvError
-from lightinv_core.kinds import Bound, Quantity, Scenario
+from lightinv_core.kinds import Bound, Scenario
 from lightinv_core.light.arrays import Product, resolve_product
 from lightinv_core.light.daylight import LayoutDaylight
 from lightinv_core.light.grids import DesignGrids
-from lightinv_core.light.intentions import QUANTITY_UNITS
 from lightinv_core.luminaires.photometry import light_warnings
+from lightinv_core.quantities import quantity_spec
 from lightinv_core.report.figures import new_figure
-from lightinv_core.report.tables import FAIL, METRIC_NAMES, PASS, Table, fmt
+from lightinv_core.report.tables import FAIL, PASS, Table, fmt
 from lightinv_core.transport.workplane import grid_statistics
 
 ISO_LEVELS = 8  # iso-lux lines per plan
@@ -142,7 +142,7 @@ def grid_table(
         required = []
         ok, unknown = True, False
         for it in asks:
-            q = Quantity(it.quantity)
+            q = quantity_spec(it.quantity)
             checks, broken = None, False
             if daylight is not None:
                 try:
@@ -154,15 +154,15 @@ def grid_table(
                 if limit is None:
                     continue
                 sign = "≤" if bound == Bound.MAX else "≥"
-                if q == Quantity.LUX:
+                if q.metric is None:  # light on the grid: EN 12464-1's Em, Emin, U0
                     text = f"{EN_LABELS[bound]} {sign} {fmt(limit)}"
                     if it.scenario != Scenario.DESIGN:
                         text += f" ({it.scenario})"
                         other = True
                 else:
-                    units = QUANTITY_UNITS[q] if bound != Bound.UNIFORMITY else ""
+                    units = q.unit if bound != Bound.UNIFORMITY else ""
                     label = "U0" if bound == Bound.UNIFORMITY else str(bound)
-                    text = f"{METRIC_NAMES[q]} {label} {sign} {fmt(limit)}"
+                    text = f"{q.metric} {label} {sign} {fmt(limit)}"
                     text += f" {units}" if units else ""
                     other = True
                 required.append(text)

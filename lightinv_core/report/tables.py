@@ -17,43 +17,31 @@ from lightinv_core.design.model import Design, Source
 from lightinv_core.design.solution import Solution
 from lightinv_core.design.variables import array_layout
 from lightinv_core.errors import LightInvError
-from lightinv_core.kinds import MAXIMISED_GOALS, Bound, GoalKind, Quantity, Scenario, SourceKind
+from lightinv_core.goals import bounded_goal, goal_spec, is_goal
+from lightinv_core.kinds import Bound, Scenario, SourceKind
 from lightinv_core.light.arrays import array_shapes
 from lightinv_core.light.daylight import LayoutDaylight
 from lightinv_core.light.field import LightField
 from lightinv_core.light.intentions import (
-    QUANTITY_UNITS,
     BoundCheck,
     bounds_set,
     intention_stats,
 )
-from lightinv_core.optimize.problem import GOAL_UNITS
+from lightinv_core.quantities import quantity_spec
 from lightinv_core.scene.patches import Patches
 from lightinv_core.scene.zone_grid import zone_grid
 from lightinv_core.sources.emission import source_electric_power, source_flux
 
 PASS, FAIL = "pass", "FAIL"
 
-GOAL_NAMES = {
-    GoalKind.MIN_ELECTRIC_POWER: "Electric power",
-    GoalKind.MAX_LIGHT_POWER: "Reflected light power",
-    GoalKind.MATCH: "Match error e",
-    GoalKind.MIN_INSTALLED_POWER: "Installed power",
-    GoalKind.MIN_LUMINAIRE_COUNT: "Luminaire count",
-    GoalKind.MIN_ANNUAL_ENERGY: "Annual lighting energy",
-    GoalKind.MAX_SDA: "sDA300/50%",
-    GoalKind.MIN_GLAZING_AREA: "Glazing area",
-}
-"""How the report names each goal (its units are the optimiser's ``GOAL_UNITS``)."""
-OBJECTIVES = {str(k): (GOAL_NAMES.get(k, str(k)), GOAL_UNITS.get(k, "")) for k in GoalKind}
-"""Goal kind -> (name, units) as the report shows it."""
-METRIC_NAMES = {
-    Quantity.DF: "DF",
-    Quantity.DA: "DA300",
-    Quantity.UDI: "UDI 100-3000",
-    Quantity.SDA: "sDA300/50%",
-}
-"""Daylight-metric quantities as the intention table names them."""
+
+def _goal_name(kind: str) -> tuple[str, str]:
+    """(name, units) of a goal as the report shows it (the kind itself when unknown: a
+    file from another version)."""
+    if not is_goal(kind):
+        return str(kind), ""
+    spec = goal_spec(kind)
+    return spec.label, spec.unit
 
 
 @dataclass(frozen=True)
@@ -92,13 +80,13 @@ def fmt_corners(s: Source) -> str:
 
 def objective_text(kind: str, value: float) -> str:
     """ "Electric power: 123.4 W" and the like."""
-    name, units = OBJECTIVES.get(kind, (kind, ""))
+    name, units = _goal_name(kind)
     return f"{name}: {fmt(value)}{' ' + units if units else ''}"
 
 
 def goal_label(kind: str) -> str:
     """A goal as an axis label: "electric power (W)", "glazing area (m²)", "sDA300/50%"."""
-    name, units = OBJECTIVES.get(kind, (kind, ""))
+    name, units = _goal_name(kind)
     name = name[:1].lower() + name[1:] if name[1:2].islower() else name
     return f"{name} ({units})" if units else name
 
@@ -186,7 +174,8 @@ def rules_table(solution: Solution, design: Design, patches: Patches) -> Table |
                 flags.append("fail")
     for v in solution.violations:
         if v.constraint == "epsilon":
-            sign = "≥" if v.name.removeprefix("epsilon ") in MAXIMISED_GOALS else "≤"
+            kind = v.name.removeprefix("epsilon ")
+            sign = "≥" if is_goal(kind) and goal_spec(kind).maximise else "≤"
             rows.append(
                 (
                     f"{v.name} {sign} {fmt(v.bound)} {v.units}",
@@ -196,8 +185,11 @@ def rules_table(solution: Solution, design: Design, patches: Patches) -> Table |
             )
             flags.append("fail")
     eps = solution.info.epsilon
+    bounded = bounded_goal(solution.objectives)
     if eps is not None and not any(v.constraint == "epsilon" for v in solution.violations):
-        rows.append((f"light power ≥ {fmt(eps)} lm", "epsilon", PASS))
+        bounded = bounded or goal_spec("max_light_power")
+        sign = "≥" if bounded.maximise else "≤"
+        rows.append((f"{bounded.axis} {sign} {fmt(eps)} {bounded.unit}", "epsilon", PASS))
         flags.append("pass")
     if not rows:
         return None
@@ -230,16 +222,12 @@ def intention_table(
     rows, flags = [], []
     problems: dict[str, list[str]] = {}
     for it in listed:
-        q = Quantity(it.quantity)
-        units = QUANTITY_UNITS[q]
+        q = quantity_spec(it.quantity)
+        units = q.unit
         where, stats, checks = _measured(it, field, daylight, problems)
-        scenario = str(it.scenario) + (f", {METRIC_NAMES[q]}" if q in METRIC_NAMES else "")
+        scenario = str(it.scenario) + (f", {q.metric}" if q.metric else "")
         u0 = float("nan")
-        if (
-            stats is not None
-            and stats.average[0] > 0
-            and q in (Quantity.LUX, Quantity.C, Quantity.DF)
-        ):
+        if stats is not None and stats.average[0] > 0 and q.uniformity:
             u0 = float(stats.uniformity[0])
         summary = "—"
         if stats is not None:

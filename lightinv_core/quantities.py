@@ -1,0 +1,195 @@
+"""The quantities a lighting intention bounds: one ``QuantitySpec`` each, in one registry.
+
+A spec says what the views and the light model ask of a quantity: its names and unit,
+the values it can take and the bounds the window offers, whether it is a daylight metric
+(then the scenario it is measured in and how it is read from the light of the
+scenarios) or derived from illuminance (then how, and whether it needs the receivers'
+reflectance). The light model, the report, the design checks and the window look
+quantities up here (``quantity_spec``); a new quantity is one ``register_quantity``.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Iterator
+from dataclasses import dataclass
+from typing import Any
+
+from lightinv_core.kinds import MAX_LUX, Quantity, Scenario
+
+
+def _reflected(lux, rho):
+    """C = rho x H at receivers of reflectance rho (p,), lux (p,) or (p, m)."""
+    return lux * (rho[:, None] if lux.ndim == 2 else rho)
+
+
+@dataclass(frozen=True)
+class QuantitySpec:
+    """One intention quantity.
+
+    ``name``: its name in project files; ``noun`` ("reflected exitance") and ``label``
+    (the window's list entry, with its unit); ``unit`` as messages and tables show it
+    ("" for fractions); ``range_text``: its unit as the range error says it.
+    ``low``..``high``: the values it can take (a bound outside can never be met);
+    ``decimals`` and ``defaults`` (min, max, average, U0): the bounds the window offers;
+    ``average_only``: only the average bound tells (sDA's 0/1 mark).
+    ``metric``: the report's name of a daylight metric ("DA300"), None for a light
+    quantity; ``scenario``: the scenario a daylight metric is always measured in (None:
+    the intention's own, default ``design``); ``from_scenarios(light, idx)``: a daylight
+    metric's values from a ``light.daylight.ScenarioLight`` at receivers idx.
+    ``from_lux(lux, rho)``: a light quantity from illuminance (and the receivers'
+    reflectance when ``needs_reflectance``: not on work-plane grid points).
+    ``uniformity``: U0 = min / mean means something (the report shows it).
+    """
+
+    name: str
+    noun: str
+    label: str
+    unit: str
+    range_text: str
+    low: float = 0.0
+    high: float = MAX_LUX
+    decimals: int = 1
+    defaults: tuple[float, float, float, float] = (300.0, 1000.0, 500.0, 0.6)
+    average_only: bool = False
+    metric: str | None = None
+    scenario: Scenario | None = None
+    from_scenarios: Callable[[Any, Any], Any] | None = None
+    from_lux: Callable[[Any, Any], Any] | None = None
+    needs_reflectance: bool = False
+    uniformity: bool = True
+
+    @property
+    def daylight(self) -> bool:
+        """A daylight metric (measured in its own scenario), not a light quantity."""
+        return self.scenario is not None
+
+    @property
+    def default_scenario(self) -> Scenario:
+        """The scenario an intention on it is judged in unless it names one."""
+        return self.scenario or Scenario.DESIGN
+
+
+_QUANTITIES: dict[str, QuantitySpec] = {}
+
+
+def register_quantity(spec: QuantitySpec) -> QuantitySpec:
+    """Add a quantity (ValueError when its name is taken); returns the spec."""
+    if spec.name in _QUANTITIES:
+        raise ValueError(f"quantity {spec.name!r} is already registered")
+    _QUANTITIES[spec.name] = spec
+    return spec
+
+
+def unregister_quantity(name: str) -> None:
+    """Remove a quantity added by ``register_quantity`` (the built-in ones stay)."""
+    if name in tuple(Quantity):
+        raise ValueError(f"quantity {name!r} is built in")
+    _QUANTITIES.pop(name, None)
+
+
+def quantity_spec(name: str) -> QuantitySpec:
+    """The spec of a quantity (KeyError naming the known ones when unknown)."""
+    try:
+        return _QUANTITIES[str(name)]
+    except KeyError:
+        raise KeyError(f"quantity {name!r} is not one of {quantity_names()}") from None
+
+
+def quantity_specs() -> Iterator[QuantitySpec]:
+    """Every quantity, the built-in ones first in ``Quantity`` order."""
+    return iter(tuple(_QUANTITIES.values()))
+
+
+def quantity_names() -> tuple[str, ...]:
+    """Every quantity's name, in registry order."""
+    return tuple(str(q) for q in _QUANTITIES)
+
+
+def is_quantity(name: object) -> bool:
+    """Whether ``name`` names a registered quantity."""
+    return isinstance(name, str) and name in _QUANTITIES
+
+
+def quantity_kind(name: str) -> Quantity | str:
+    """The ``Quantity`` member of a built-in name, the name itself for a registered one."""
+    return Quantity(name) if name in tuple(Quantity) else str(name)
+
+
+_FRACTION = (0.0, 1.0)
+for _spec in (
+    QuantitySpec(
+        Quantity.LUX,
+        "illuminance",
+        "illuminance (lux)",
+        "lux",
+        "illuminance, lux",
+        from_lux=lambda lux, rho: lux,
+    ),
+    QuantitySpec(
+        Quantity.C,
+        "reflected exitance",
+        "reflected exitance C (lm/m²)",
+        "lm/m²",
+        "reflected exitance, lm/m²",
+        from_lux=_reflected,
+        needs_reflectance=True,
+    ),
+    QuantitySpec(
+        Quantity.DF,
+        "daylight factor",
+        "daylight factor DF (%)",
+        "%",
+        "daylight factor, %",
+        0.0,
+        100.0,
+        2,
+        (1.0, 10.0, 2.0, 0.3),
+        metric="DF",
+        scenario=Scenario.OVERCAST,
+        from_scenarios=lambda light, idx: 100.0 * light.overcast_daylight(idx),
+    ),
+    QuantitySpec(
+        Quantity.DA,
+        "daylight autonomy",
+        "daylight autonomy DA300 (share of occupied hours, 0-1)",
+        "",
+        "DA300, a fraction of the occupied hours",
+        *_FRACTION,
+        3,
+        (0.3, 1.0, 0.5, 0.3),
+        metric="DA300",
+        scenario=Scenario.ANNUAL,
+        from_scenarios=lambda light, idx: light.da(idx),
+        uniformity=False,
+    ),
+    QuantitySpec(
+        Quantity.UDI,
+        "useful daylight",
+        "useful daylight UDI 100-3000 lux (share of hours, 0-1)",
+        "",
+        "UDI 100-3000, a fraction of the occupied hours",
+        *_FRACTION,
+        3,
+        (0.3, 1.0, 0.5, 0.3),
+        metric="UDI 100-3000",
+        scenario=Scenario.ANNUAL,
+        from_scenarios=lambda light, idx: light.udi(idx),
+        uniformity=False,
+    ),
+    QuantitySpec(
+        Quantity.SDA,
+        "spatial daylight autonomy",
+        "sDA300/50%: the average is the share of the area",
+        "",
+        "1 or 0 per point, its average a fraction",
+        *_FRACTION,
+        3,
+        (0.0, 1.0, 0.55, 0.3),
+        average_only=True,
+        metric="sDA300/50%",
+        scenario=Scenario.ANNUAL,
+        from_scenarios=lambda light, idx: light.sda_mark(idx).astype(float),
+        uniformity=False,
+    ),
+):
+    register_quantity(_spec)
