@@ -128,6 +128,8 @@ def check_site(rec: Records, source: str) -> list[str]:
         raise WeatherError(
             f"{source}: longitude {rec.longitude:g} is not within -180 to 180 degrees"
         )
+    if not -500 <= rec.altitude <= 9000:
+        raise WeatherError(f"{source}: elevation {rec.altitude:g} m is not within -500 to 9,000 m")
     if not -12 <= rec.utc_offset_h <= 14:
         raise WeatherError(
             f"{source}: time zone UTC{rec.utc_offset_h:+g} h is not within -12 to +14 h"
