@@ -58,7 +58,9 @@ def test_no_cgroup_files_means_no_limit_and_the_machine_decides(tmp_path):
 
 def test_this_machine_reports_something_sensible():
     have = memory.available_memory_bytes()
-    assert 0 < have <= memory.machine_available_bytes()
+    # Read a moment apart: on a busy machine the free memory moves in between (a loaded
+    # run saw 135 kB), so the two agree only within a margin.
+    assert 0 < have <= memory.machine_available_bytes() + 256 * 2**20
 
 
 def test_format_bytes_never_says_zero_gib():
