@@ -23,7 +23,7 @@ import warnings
 import numpy as np
 
 from lightinv_core.climate.efficacy import perez_efficacy, precipitable_water
-from lightinv_core.climate.weather_formats import Records, WeatherError
+from lightinv_core.climate.weather_formats import Records, WeatherError, is_date
 
 LIMITS = {"ghi": 1500.0, "dni": 1400.0, "dhi": 1000.0}
 """W/m²: irradiance above these is no measurement (the extraterrestrial normal
@@ -75,7 +75,7 @@ def calendar(rec: Records, source: str):
     try:
         pd.to_datetime({"year": y, "month": m, "day": d}, errors="raise")
     except (ValueError, OverflowError):
-        ok = [_valid(*s) for s in rec.stamps[:, :3]]
+        ok = [is_date(*(int(x) for x in s)) for s in rec.stamps[:, :3]]
         i = ok.index(False)
         raise WeatherError(
             f"{source}: line {rec.lines[i]}: {y[i]}-{m[i]:02d}-{d[i]:02d} is not a date"
@@ -109,14 +109,6 @@ def calendar(rec: Records, source: str):
     stamps = pd.to_datetime({"year": y, "month": m, "day": d}) + pd.to_timedelta(h, unit="h")
     offset = dt.timezone(dt.timedelta(hours=rec.utc_offset_h))
     return pd.DatetimeIndex(stamps).tz_localize(offset), notes
-
-
-def _valid(y, m, d) -> bool:
-    try:
-        dt.date(int(y), int(m), int(d))
-    except ValueError:
-        return False
-    return True
 
 
 def check_site(rec: Records, source: str) -> list[str]:

@@ -216,7 +216,7 @@ def read_tmy3(text: str, source: str) -> Records:
         if hour == 0:  # "00:00" of a day, as some writers give it, is hour 24 of the day before
             prev = (
                 dt.date(year, month, day) - dt.timedelta(days=1)
-                if _is_date(year, month, day)
+                if is_date(year, month, day)
                 else None
             )
             if prev is not None:
@@ -232,7 +232,8 @@ def read_tmy3(text: str, source: str) -> Records:
     return _records("TMY3", site, lat, lon, tz, alt, stamps, numbers, lines, source)
 
 
-def _is_date(year: int, month: int, day: int) -> bool:
+def is_date(year: int, month: int, day: int) -> bool:
+    """Whether year-month-day is a day of the calendar."""
     try:
         dt.date(year, month, day)
     except ValueError:
