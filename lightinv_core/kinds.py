@@ -26,6 +26,31 @@ class SourceKind(Kind):
     SKYLIGHT = "skylight"  # glazing: exitance = filter x transmittance x exterior lux
 
 
+_SOURCE_KINDS: list[str] = [str(k) for k in SourceKind]
+
+
+def source_kind_names() -> tuple[str, ...]:
+    """Every source kind a project may name: the built-in ones, then those a
+    ``sources.types.register_source_type`` added (the model's validation reads this,
+    being below the source types' behaviour in the layers)."""
+    return tuple(_SOURCE_KINDS)
+
+
+def add_source_kind(name: str) -> None:
+    """Make ``name`` a valid source kind (ValueError when it is taken)."""
+    if name in _SOURCE_KINDS:
+        raise ValueError(f"source kind {name!r} is already registered")
+    _SOURCE_KINDS.append(name)
+
+
+def remove_source_kind(name: str) -> None:
+    """Forget a source kind added by ``add_source_kind`` (the built-in ones stay)."""
+    if name in tuple(SourceKind):
+        raise ValueError(f"source kind {name!r} is built in")
+    if name in _SOURCE_KINDS:
+        _SOURCE_KINDS.remove(name)
+
+
 class RuleKind(Kind):
     """Geometric rules on source rectangles (checked before any light is computed)."""
 

@@ -22,7 +22,7 @@ import numpy as np
 
 from lightinv_core.climate.metrics import DA_THRESHOLD, UDI_BANDS, lighting_kwh
 from lightinv_core.design.model import Daylight, Design, DesignError, Intention
-from lightinv_core.kinds import Scenario, SourceKind
+from lightinv_core.kinds import Scenario
 from lightinv_core.light.daylight_year import (
     DaylightYear,
     SkyGroups,
@@ -40,6 +40,7 @@ from lightinv_core.light.intentions import (
 )
 from lightinv_core.quantities import quantity_spec
 from lightinv_core.sources.emission import source_electric_power
+from lightinv_core.sources.types import daylit, source_type
 
 SDA_SHARE = 0.5
 """A point counts towards sDA300/50% when its DA300 is at least this share."""
@@ -244,7 +245,7 @@ def layout_daylight(light, design: Design, sources=None, arrays=None) -> LayoutD
     sources = light.layout(design) if sources is None else tuple(sources)
     arrays = design.arrays if arrays is None else tuple(arrays)
     groups = sky_groups(light, design)
-    lum = tuple(s for s in sources if s.kind == SourceKind.LUMINAIRE)
+    lum = tuple(s for s in sources if not source_type(s.kind).daylit)
     unit = replace(design.daylight, exterior_lux=1.0)
     electric = light.field(lum, design.daylight).illuminance.copy()
     grids = design_grids(light, design.workplanes) if design.workplanes else None
@@ -254,7 +255,7 @@ def layout_daylight(light, design: Design, sources=None, arrays=None) -> LayoutD
     sky = np.zeros((groups.count, light.n))
     per_group = []
     for g, zones in enumerate(groups.zones):
-        group = tuple(s for s in sources if s.kind == SourceKind.SKYLIGHT and s.zone in zones)
+        group = tuple(s for s in daylit(sources) if s.zone in zones)
         per_group.append(group)
         sky[g] = light.field(group, unit).illuminance
     at_patches = ScenarioLight(design.daylight, groups, electric[:, None], sky[:, :, None])

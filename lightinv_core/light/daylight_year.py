@@ -28,7 +28,7 @@ import numpy as np
 from lightinv_core.climate.metrics import dimming_level
 from lightinv_core.climate.sky import overcast_plane_illuminance
 from lightinv_core.design.model import Daylight, Design
-from lightinv_core.kinds import SourceKind
+from lightinv_core.sources.types import daylit
 
 MAX_CACHED_YEARS = 4
 
@@ -54,7 +54,7 @@ class SkyGroups:
 def sky_groups(light, design: Design) -> SkyGroups:
     """The sky groups of ``design``'s skylight sources on ``light``'s scene (a
     ``LightModel``)."""
-    zones = sorted({s.zone for s in design.sources if s.kind == SourceKind.SKYLIGHT})
+    zones = sorted({s.zone for s in daylit(design.sources)})
     keys: dict[tuple, list[str]] = {}
     normals: dict[tuple, np.ndarray] = {}
     for z in zones:

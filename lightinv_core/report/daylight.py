@@ -28,13 +28,13 @@ from matplotlib.figure import Figure
 from lightinv_core.climate.metrics import DA_THRESHOLD, UDI_BANDS
 from lightinv_core.design.model import Daylight, Design, Source
 from lightinv_core.errors import LightInvError
-from lightinv_core.kinds import SourceKind
 from lightinv_core.light.daylight import SDA_SHARE, AnnualEnergy, LayoutDaylight
 from lightinv_core.light.daylight_year import hours_from, hours_within
 from lightinv_core.report.figures import draw_table, new_figure
 from lightinv_core.report.luminaires import plan_figure
 from lightinv_core.report.tables import Table, fmt
 from lightinv_core.report.views import Outline
+from lightinv_core.sources.types import daylit
 
 UDI_NAMES = (
     f"UDI <{UDI_BANDS[0]:.0f}",
@@ -128,7 +128,7 @@ class DaylightSection:
 
 def has_daylight(design: Design, sources) -> bool:
     """Whether a layout gets the section: skylight sources and work planes."""
-    return bool(design.workplanes) and any(s.kind == SourceKind.SKYLIGHT for s in sources)
+    return bool(design.workplanes) and bool(daylit(sources))
 
 
 def _weather_name(daylight: Daylight) -> str:

@@ -28,7 +28,6 @@ from matplotlib.figure import Figure
 
 from lightinv_core.atomic import atomic_writer
 from lightinv_core.errors import CancelledError
-from lightinv_core.kinds import SourceKind
 from lightinv_core.light.arrays import array_escape_warnings, resolve_product
 from lightinv_core.light.daylight import layout_daylight
 from lightinv_core.light.grids import design_grids, grid_light
@@ -72,6 +71,7 @@ from lightinv_core.report.views import (
     render_view,
     source_outlines,
 )
+from lightinv_core.sources.types import daylit
 
 PDF_DPI = 150  # resolution of the rasterised views inside the PDF
 PNG_DPI = 100
@@ -237,7 +237,7 @@ def write_report(
         plan.append(("workplanes", lambda: table_pages([grid_table(design, grids, grid_lux, lay)])))
         plan.append(("isolux", lambda: isolux_figures(grids, grid_lux)))
     if has_daylight(design, sol.sources) and lay.points is not None:
-        skylights = [s for s in sol.sources if s.kind == SourceKind.SKYLIGHT]
+        skylights = list(daylit(sol.sources))
         section = daylight_section(lay, skylights)
 
         daylight_tables = [climate_table(section), daylight_table(section)]

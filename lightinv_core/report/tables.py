@@ -18,7 +18,7 @@ from lightinv_core.design.solution import Solution
 from lightinv_core.design.variables import array_layout
 from lightinv_core.errors import LightInvError
 from lightinv_core.goals import bounded_goal, goal_spec, is_goal
-from lightinv_core.kinds import Bound, Scenario, SourceKind
+from lightinv_core.kinds import Bound, Scenario
 from lightinv_core.light.arrays import array_shapes
 from lightinv_core.light.daylight import LayoutDaylight
 from lightinv_core.light.field import LightField
@@ -31,6 +31,7 @@ from lightinv_core.quantities import quantity_spec
 from lightinv_core.scene.patches import Patches
 from lightinv_core.scene.zone_grid import zone_grid
 from lightinv_core.sources.emission import source_electric_power, source_flux
+from lightinv_core.sources.types import electric, source_type
 
 PASS, FAIL = "pass", "FAIL"
 
@@ -97,8 +98,9 @@ def source_table(solution: Solution, design: Design) -> Table:
     total_w = 0.0
     for s in solution.sources:
         w, h = s.size
-        if s.kind == SourceKind.SKYLIGHT:
-            setting = f"filter {s.filter:.3f}"
+        kind = source_type(s.kind)
+        if not kind.electric:
+            setting = f"{kind.strength} {getattr(s, kind.strength):.3f}"
             power = "—"
         else:
             setting = f"{fmt(s.flux)} lm" if s.flux is not None else f"{fmt(s.exitance)} lm/m²"
@@ -118,11 +120,7 @@ def source_table(solution: Solution, design: Design) -> Table:
                 power,
             )
         )
-    note = (
-        f"Total electric power {fmt(total_w)} W."
-        if any(s.kind == SourceKind.LUMINAIRE for s in solution.sources)
-        else ""
-    )
+    note = f"Total electric power {fmt(total_w)} W." if electric(solution.sources) else ""
     return Table(
         "Sources",
         (

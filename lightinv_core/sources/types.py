@@ -19,7 +19,7 @@ import numpy as np
 
 from lightinv_core.design.model import Daylight, Source
 from lightinv_core.errors import DesignError
-from lightinv_core.kinds import SourceKind
+from lightinv_core.kinds import SourceKind, add_source_kind, remove_source_kind
 
 
 def rect_areas(rect: np.ndarray) -> np.ndarray:
@@ -28,10 +28,25 @@ def rect_areas(rect: np.ndarray) -> np.ndarray:
 
 
 class SourceType(Protocol):
-    """What a kind of source emits (lm/m², lm) and draws (W)."""
+    """What a kind of source emits (lm/m², lm) and draws (W), and how views name it.
 
-    kind: SourceKind
+    ``label``: its name for people ("Luminaire"); ``stem``: the prefix of the names the
+    editor gives new sources ("L1", "L2"); ``electric``: it draws electric power (power
+    and energy goals, dimming); ``daylit``: it lets daylight in, so its light follows
+    the sky and the weather year (daylight scenarios, sDA, glazing area); ``strength``:
+    the ``Source`` field that sets how much it emits (``"flux"``, lm, or ``"filter"``, a
+    fraction), with ``strength_label`` its name for people; ``fields``: the ``Source``
+    fields that belong to this kind alone (the project reader refuses them on another).
+    """
+
+    kind: str
+    label: str
+    stem: str
     electric: bool
+    daylit: bool
+    strength: str
+    strength_label: str
+    fields: tuple[str, ...]
 
     def exitance(
         self, s: Source, rect: np.ndarray, flux: np.ndarray, filt: np.ndarray, daylight: Daylight
@@ -62,7 +77,13 @@ class ZoneLuminaire:
     fixed exitance (lm/m²); efficacy in lm/W."""
 
     kind = SourceKind.LUMINAIRE
+    label = "Luminaire"
+    stem = "L"
     electric = True
+    daylit = False
+    strength = "flux"
+    strength_label = "Flux (lm)"
+    fields = ("flux", "flux_range", "exitance", "efficacy")
 
     def exitance(self, s, rect, flux, filt, daylight):
         if s.exitance is not None:
@@ -92,7 +113,13 @@ class DiffusingGlazing:
     diffuse illuminance (lux) as a Lambertian exitance."""
 
     kind = SourceKind.SKYLIGHT
+    label = "Skylight"
+    stem = "S"
     electric = False
+    daylit = True
+    strength = "filter"
+    strength_label = "Filter"
+    fields = ("filter",)
 
     def exitance(self, s, rect, flux, filt, daylight):
         return filt * daylight.transmittance * daylight.exterior_lux
@@ -113,6 +140,25 @@ class DiffusingGlazing:
 SOURCE_TYPES: dict[str, SourceType] = {
     str(t.kind): t for t in (ZoneLuminaire(), DiffusingGlazing())
 }
+_BUILT_IN = tuple(SOURCE_TYPES)
+
+
+def register_source_type(t: SourceType) -> SourceType:
+    """Add a kind of source (ValueError when its kind is taken): projects may then name
+    it and every view lists it. Returns ``t``."""
+    if t.kind in SOURCE_TYPES:
+        raise ValueError(f"source kind {t.kind!r} is already registered")
+    add_source_kind(t.kind)
+    SOURCE_TYPES[t.kind] = t
+    return t
+
+
+def unregister_source_type(kind: str) -> None:
+    """Remove a kind added by ``register_source_type`` (the built-in ones stay)."""
+    if kind in _BUILT_IN:
+        raise ValueError(f"source kind {kind!r} is built in")
+    remove_source_kind(kind)
+    SOURCE_TYPES.pop(kind, None)
 
 
 def source_type(kind: str) -> SourceType:
@@ -122,3 +168,18 @@ def source_type(kind: str) -> SourceType:
     except KeyError:
         known = ", ".join(SOURCE_TYPES)
         raise DesignError(f"unknown source kind {kind!r} (kinds: {known})") from None
+
+
+def source_types() -> tuple[SourceType, ...]:
+    """Every kind of source, the built-in ones first."""
+    return tuple(SOURCE_TYPES.values())
+
+
+def daylit(sources) -> tuple:
+    """The sources that let daylight in (skylights and other glazing), in order."""
+    return tuple(s for s in sources if source_type(s.kind).daylit)
+
+
+def electric(sources) -> tuple:
+    """The sources that draw electric power (luminaires), in order."""
+    return tuple(s for s in sources if source_type(s.kind).electric)
