@@ -10,9 +10,12 @@ quantities up here (``quantity_spec``); a new quantity is one ``register_quantit
 
 from __future__ import annotations
 
+import math
 from collections.abc import Callable, Iterator
 from dataclasses import dataclass
 from typing import Any
+
+import numpy as np
 
 from lightinv_core.kinds import MAX_LUX, Quantity, Scenario
 
@@ -20,6 +23,34 @@ from lightinv_core.kinds import MAX_LUX, Quantity, Scenario
 def _reflected(lux, rho):
     """C = rho x H at receivers of reflectance rho (p,), lux (p,) or (p, m)."""
     return lux * (rho[:, None] if lux.ndim == 2 else rho)
+
+
+@dataclass(frozen=True)
+class HourBand:
+    """The rule of an annual daylight metric, over the occupied hours of the weather
+    year: an hour counts at a point when ``lo`` <= its daylight <= ``hi`` (lux); the
+    point's value is the share of hours that count (0-1), or, with ``point_share``, 1
+    when at least that share counts and 0 otherwise (so the metric's average over a
+    grid is the share of its area: sDA300/50%).
+
+    The light model evaluates a band from its sky-group coefficients without the
+    hour-by-hour illuminance (``light.daylight.ScenarioLight.band``); ``of_hours`` is
+    the hour-by-hour definition the tests compare it with.
+    """
+
+    lo: float
+    hi: float = math.inf
+    point_share: float | None = None
+
+    def of_hours(self, lux: np.ndarray) -> np.ndarray:
+        """The metric per point from hourly daylight ``lux`` (q, h) lux: (q,)."""
+        lux = np.asarray(lux, dtype=float)
+        share = ((lux >= self.lo) & (lux <= self.hi)).mean(axis=1)
+        if self.point_share is None:
+            return share
+        hours = lux.shape[1]
+        need = math.ceil(self.point_share * hours - 1e-9)
+        return (np.rint(share * hours) >= need).astype(float)
 
 
 @dataclass(frozen=True)
@@ -34,7 +65,10 @@ class QuantitySpec:
     ``average_only``: only the average bound tells (sDA's 0/1 mark).
     ``metric``: the report's name of a daylight metric ("DA300"), None for a light
     quantity; ``scenario``: the scenario a daylight metric is always measured in (None:
-    the intention's own, default ``design``); ``from_scenarios(light, idx)``: a daylight
+    the intention's own, default ``design``); ``hours``: an annual daylight metric's
+    rule over the weather year's hours (``HourBand``): the CLI's annual output, the
+    report's daylight table and the window's daylight maps list every quantity that
+    has one (``annual_metrics``); ``from_scenarios(light, idx)``: another daylight
     metric's values from a ``light.daylight.ScenarioLight`` at receivers idx.
     ``from_lux(lux, rho)``: a light quantity from illuminance (and the receivers'
     reflectance when ``needs_reflectance``: not on work-plane grid points).
@@ -53,6 +87,7 @@ class QuantitySpec:
     average_only: bool = False
     metric: str | None = None
     scenario: Scenario | None = None
+    hours: HourBand | None = None
     from_scenarios: Callable[[Any, Any], Any] | None = None
     from_lux: Callable[[Any, Any], Any] | None = None
     needs_reflectance: bool = False
@@ -110,6 +145,11 @@ def is_quantity(name: object) -> bool:
     return isinstance(name, str) and name in _QUANTITIES
 
 
+def annual_metrics() -> tuple[QuantitySpec, ...]:
+    """The annual daylight metrics (quantities with an ``HourBand``), in registry order."""
+    return tuple(q for q in _QUANTITIES.values() if q.hours is not None)
+
+
 def quantity_kind(name: str) -> Quantity | str:
     """The ``Quantity`` member of a built-in name, the name itself for a registered one."""
     return Quantity(name) if name in tuple(Quantity) else str(name)
@@ -159,7 +199,7 @@ for _spec in (
         (0.3, 1.0, 0.5, 0.3),
         metric="DA300",
         scenario=Scenario.ANNUAL,
-        from_scenarios=lambda light, idx: light.da(idx),
+        hours=HourBand(300.0),
         uniformity=False,
     ),
     QuantitySpec(
@@ -173,7 +213,7 @@ for _spec in (
         (0.3, 1.0, 0.5, 0.3),
         metric="UDI 100-3000",
         scenario=Scenario.ANNUAL,
-        from_scenarios=lambda light, idx: light.udi(idx),
+        hours=HourBand(100.0, 3000.0),
         uniformity=False,
     ),
     QuantitySpec(
@@ -188,7 +228,7 @@ for _spec in (
         average_only=True,
         metric="sDA300/50%",
         scenario=Scenario.ANNUAL,
-        from_scenarios=lambda light, idx: light.sda_mark(idx).astype(float),
+        hours=HourBand(300.0, point_share=0.5),
         uniformity=False,
     ),
 ):

@@ -20,9 +20,9 @@ from dataclasses import dataclass, field, replace
 
 import numpy as np
 
-from lightinv_core.climate.metrics import DA_THRESHOLD, UDI_BANDS, lighting_kwh
+from lightinv_core.climate.metrics import lighting_kwh
 from lightinv_core.design.model import Daylight, Design, DesignError, Intention
-from lightinv_core.kinds import Scenario
+from lightinv_core.kinds import Quantity, Scenario
 from lightinv_core.light.daylight_year import (
     DaylightYear,
     SkyGroups,
@@ -38,7 +38,7 @@ from lightinv_core.light.intentions import (
     intention_patches,
     intention_stats,
 )
-from lightinv_core.quantities import quantity_spec
+from lightinv_core.quantities import HourBand, quantity_spec
 from lightinv_core.sources.emission import source_electric_power
 from lightinv_core.sources.types import daylit, source_type
 
@@ -84,30 +84,41 @@ class ScenarioLight:
         """(R', m, G): daylight per exterior lux on each group, at receivers idx."""
         return np.moveaxis(self.sky[:, idx], 0, -1)
 
-    def da(self, idx=slice(None)) -> np.ndarray:
-        """DA300 (share of occupied hours, 0-1) at receivers idx, (R', m)."""
+    def band(self, band: HourBand, idx=slice(None)) -> np.ndarray:
+        """An annual daylight metric's values (``quantities.HourBand``) at receivers idx,
+        (R', m): the share of occupied hours in the band, or its 0/1 point mark."""
         if not self.groups.count:
             return np.zeros_like(self.electric[idx])
         y = self.year()
-        return hours_from(y, self.coefficients(idx), DA_THRESHOLD) / y.hours
+        a = self.coefficients(idx)
+        if band.point_share is not None and band.hi == np.inf:
+            return reaches_share(y, a, band.lo, band.point_share).astype(float)
+        if band.hi == np.inf:
+            hours = hours_from(y, a, band.lo)
+        else:
+            hours = hours_within(y, a, band.lo, band.hi)
+        if band.point_share is not None:
+            return (hours >= np.ceil(band.point_share * y.hours - 1e-9)).astype(float)
+        return hours / y.hours
+
+    def da(self, idx=slice(None)) -> np.ndarray:
+        """DA300 (share of occupied hours, 0-1) at receivers idx, (R', m)."""
+        return self.band(quantity_spec(Quantity.DA).hours, idx)
 
     def sda_mark(self, idx=slice(None)) -> np.ndarray:
         """Whether DA300 >= 50% (the points sDA300/50% counts) at receivers idx, (R', m)."""
-        if not self.groups.count:
-            return np.zeros(self.electric[idx].shape, bool)
-        return reaches_share(self.year(), self.coefficients(idx), DA_THRESHOLD, SDA_SHARE)
+        return self.band(quantity_spec(Quantity.SDA).hours, idx).astype(bool)
 
     def udi(self, idx=slice(None)) -> np.ndarray:
         """UDI 100-3000 (share of occupied hours, 0-1) at receivers idx, (R', m)."""
-        if not self.groups.count:
-            return np.zeros_like(self.electric[idx])
-        y = self.year()
-        return hours_within(y, self.coefficients(idx), UDI_BANDS[0], UDI_BANDS[2]) / y.hours
+        return self.band(quantity_spec(Quantity.UDI).hours, idx)
 
     def quantity(self, intention: Intention, idx=slice(None), rho=None) -> np.ndarray:
         """The intention's quantity at receivers idx (R', m): lux or C in its scenario
         (``rho`` the receivers' reflectances for C), DF (%), DA, UDI or the sDA mark."""
         spec = quantity_spec(intention.quantity)
+        if spec.hours is not None:
+            return self.band(spec.hours, idx)
         if spec.from_scenarios is not None:
             return spec.from_scenarios(self, idx)
         return spec.from_lux(self.lux(intention.scenario, idx), rho)
