@@ -22,7 +22,7 @@ import numpy as np
 
 from lightinv_core.climate.metrics import lighting_kwh
 from lightinv_core.design.model import Daylight, Design, DesignError, Intention
-from lightinv_core.kinds import Quantity, Scenario
+from lightinv_core.kinds import Quantity
 from lightinv_core.light.daylight_year import (
     DaylightYear,
     SkyGroups,
@@ -39,6 +39,7 @@ from lightinv_core.light.intentions import (
     intention_stats,
 )
 from lightinv_core.quantities import HourBand, quantity_spec
+from lightinv_core.scenarios import scenario_spec
 from lightinv_core.sources.emission import source_electric_power
 from lightinv_core.sources.types import daylit, source_type
 
@@ -64,15 +65,13 @@ class ScenarioLight:
         return self._year[0]
 
     def lux(self, scenario: str, idx=slice(None)) -> np.ndarray:
-        """Illuminance (lux) in a scenario (design, night or overcast) at receivers idx."""
-        e = self.electric[idx]
-        if scenario == Scenario.NIGHT or not self.groups.count:
-            return e
-        if scenario == Scenario.DESIGN:
-            return e + self.daylight.exterior_lux * self.sky[:, idx].sum(axis=0)
-        if scenario == Scenario.OVERCAST:
-            return e + self.daylight.overcast_lux * self.overcast_daylight(idx)
-        raise ValueError(f"no illuminance in scenario {scenario!r}")
+        """Illuminance (lux) in a scenario (``scenarios.ScenarioSpec.lux``) at receivers idx."""
+        spec = scenario_spec(scenario)
+        if spec.lux is None:
+            raise ValueError(f"no illuminance in scenario {scenario!r}")
+        if not self.groups.count:  # no glazing: every scenario is the luminaires' light
+            return self.electric[idx]
+        return spec.lux(self, idx)
 
     def overcast_daylight(self, idx=slice(None)) -> np.ndarray:
         """Daylight per horizontal exterior lux under the CIE overcast sky (DF / 100)."""
