@@ -27,8 +27,9 @@ from dataclasses import dataclass
 import numpy as np
 
 from lightinv_core.errors import SceneError
+from lightinv_core.kinds import source_kind_names
 from lightinv_core.scene.builders import Insert, split_rect
-from lightinv_core.scene.model import ZONE_KINDS, EmitterZone, Rect, Scene, Surface
+from lightinv_core.scene.model import EmitterZone, Rect, Scene, Surface
 from lightinv_core.scene.zone_outline import bounds as outline_bounds
 from lightinv_core.scene.zone_outline import check_outline
 
@@ -65,8 +66,8 @@ class ZoneEdit:
             if not isinstance(value, str) or not value.strip():
                 raise SceneError(f"new emitter zone: {key} must be a non-empty string")
         where = f"new emitter zone {self.name!r} on surface {self.surface!r}"
-        if self.kind not in ZONE_KINDS:
-            raise SceneError(f"{where}: kind {self.kind!r} is not one of {ZONE_KINDS}")
+        if self.kind not in source_kind_names():
+            raise SceneError(f"{where}: kind {self.kind!r} is not one of {source_kind_names()}")
         given = self.rect
         if self.outline is not None:
             outline = check_outline(self.outline, where)

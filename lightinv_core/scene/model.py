@@ -15,11 +15,13 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from lightinv_core.errors import SceneError
-from lightinv_core.kinds import SourceKind
+from lightinv_core.kinds import SourceKind, source_kind_names
 from lightinv_core.scene.zone_outline import check_outline
 
 ZONE_KINDS = tuple(str(k) for k in SourceKind)
-"""Emitter zones take the kinds of source placed in them."""
+"""Emitter zones take the kinds of source placed in them: these are the built-in ones (the
+docs' field table); checks read ``kinds.source_kind_names()``, which also holds the kinds
+a ``sources.types.register_source_type`` added."""
 
 
 def check_reflectance(value: float, where: str) -> float:
@@ -178,9 +180,10 @@ class EmitterZone:
     outline: np.ndarray | None = None
 
     def __post_init__(self) -> None:
-        if self.kind not in ZONE_KINDS:
+        if self.kind not in source_kind_names():
             raise SceneError(
-                f"emitter zone {self.name!r}: kind {self.kind!r} is not one of {ZONE_KINDS}"
+                f"emitter zone {self.name!r}: kind {self.kind!r} is not one of "
+                f"{source_kind_names()}"
             )
         if self.outline is not None:
             outline = check_outline(self.outline, f"emitter zone {self.name!r}")

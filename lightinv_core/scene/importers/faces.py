@@ -17,7 +17,7 @@ from pathlib import Path
 import numpy as np
 
 from lightinv_core.errors import ObjImportError
-from lightinv_core.scene.model import ZONE_KINDS
+from lightinv_core.kinds import source_kind_names
 
 UP_AXES = ("z", "y")
 # Largest coordinate accepted, in metres after scaling: beyond it areas overflow, and no
@@ -71,7 +71,7 @@ def zone_spec(group: str, where: str) -> tuple[str, str] | None:
             f"{where}: group {clip(group)} is not a valid zone group; "
             "name it zone:NAME:skylight or zone:NAME:luminaire"
         )
-    if kind.lower() not in ZONE_KINDS:
+    if kind.lower() not in source_kind_names():
         raise ObjImportError(
             f"{where}: group {clip(group)}: zone kind {clip(kind)} is not one of "
             f"skylight, luminaire; name the group zone:{name}:skylight or zone:{name}:luminaire"
