@@ -19,7 +19,7 @@ from lightinv_core.design.solution import ParetoFront, Solution
 from lightinv_core.light.field import LightField
 from lightinv_core.light.model import LightModel
 from lightinv_core.operator.radiosity import RadiosityOperator
-from lightinv_core.optimize.settings import OptimizerSettings
+from lightinv_core.project import OptimizerSettings
 from lightinv_core.project.results import RunRecord
 from lightinv_core.scene.model import Scene
 from lightinv_core.scene.patches import Patches
