@@ -2,10 +2,11 @@
 
 ``lightinv_core.editing.DocumentModel`` holds the state and every editing rule, Qt-free;
 this ``QObject`` owns one, turns its named events into Qt signals (same names as the
-model's events, ``sceneChanged`` for "scene" and so on), and forwards attribute reads
-and the model's methods, so widgets call ``doc.add_source(...)`` and connect
-``doc.designChanged``. Widgets keep no state of their own: they read the document and
-call its setters; the model emits, and every view refreshes (napari's model/view split).
+model's events, ``sceneChanged`` for "scene" and so on, each carrying the event's
+payload), and forwards attribute reads and the model's methods, so widgets call
+``doc.add_source(...)`` and connect ``doc.designChanged``. Widgets keep no state of
+their own: they read the document and call its setters; the model emits, and every
+view refreshes (napari's model/view split).
 """
 
 from __future__ import annotations
@@ -23,13 +24,17 @@ _STATE = frozenset({"project", "current_source", "dirty", "path", "shown", "sele
 class Document(QtCore.QObject):
     """Qt signals for a ``DocumentModel``; every other attribute is the model's."""
 
-    sceneChanged = QtCore.Signal()
-    operatorChanged = QtCore.Signal()
-    designChanged = QtCore.Signal()
-    selectionChanged = QtCore.Signal()
-    lightingChanged = QtCore.Signal()
-    pathChanged = QtCore.Signal()
-    resultsChanged = QtCore.Signal()
+    # Each signal carries its event's frozen payload (``lightinv_core.editing.changes``:
+    # ``SceneChanged``, ``DesignChanged``, ...). A slot may take it or not: PySide6 calls
+    # a Python slot with no parameters without it. A slot whose parameters all have
+    # defaults would receive it in the first one: wrap such a slot in a lambda.
+    sceneChanged = QtCore.Signal(object)
+    operatorChanged = QtCore.Signal(object)
+    designChanged = QtCore.Signal(object)
+    selectionChanged = QtCore.Signal(object)
+    lightingChanged = QtCore.Signal(object)
+    pathChanged = QtCore.Signal(object)
+    resultsChanged = QtCore.Signal(object)
 
     def __init__(self, parent: QtCore.QObject | None = None, model: DocumentModel | None = None):
         super().__init__(parent)

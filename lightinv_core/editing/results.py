@@ -25,6 +25,9 @@ ALL = None
 """Browse every run's results and the saved ones."""
 SAVED = 0
 """Browse the results outside the run history."""
+UNSTATED_BOUND = GoalKind.MAX_LIGHT_POWER
+"""The goal an epsilon result was bounded on when its objectives do not say (files
+from before they were stored, whose sweeps all bounded light power)."""
 FRONT_MEMBER_METHODS = {"nsga2": "NSGA-II"}
 """Methods whose results are members of one front, and their names in its labels: a
 result is labelled by the value of its first goal whose spec has a ``result_format``
@@ -46,7 +49,7 @@ def result_label(s: Solution) -> str:
     info = s.info
     if info.epsilon is not None:
         # The sweep's bounded goal (light power, glazing area) says how to write its bound.
-        bounded = bounded_goal(s.objectives) or goal_spec(GoalKind.MAX_LIGHT_POWER)
+        bounded = bounded_goal(s.objectives) or goal_spec(UNSTATED_BOUND)
         return f"epsilon {bounded.bound_format.format(info.epsilon)}"
     if info.method in FRONT_MEMBER_METHODS:
         by = next((k for k in s.objectives if is_goal(k) and goal_spec(k).result_format), None)
@@ -68,10 +71,27 @@ def method_label(name: str) -> str:
     return get_method(name).label.split(" (")[0]
 
 
+def browsed(project: Project | None, run: int | None) -> int | None:
+    """The run whose results are listed when ``run`` was chosen: ``run`` itself while
+    the project has it (a number, or ``SAVED`` while there are saved results), else
+    ``ALL`` (an undo, a redo of its deletion took it away)."""
+    if run is ALL or project is None:
+        return ALL
+    if run == SAVED:
+        return run if project.solutions or project.pareto is not None else ALL
+    return run if any(r.number == run for r in project.runs) else ALL
+
+
 def run_label(run: RunRecord) -> str:
     """ "run 3: CMA-ES, 14:03" — its number, method and the time it ended."""
     when = run.time[11:16] if len(run.time) >= 16 else run.time
     return f"run {run.number}: {method_label(run.method)}" + (f", {when}" if when else "")
+
+
+def goal_text(kind: str) -> str:
+    """A goal's short name for people ("least electric power"), from its spec; the
+    kind's words for a goal the registry does not know (a file from another version)."""
+    return goal_spec(kind).short if is_goal(kind) else kind.replace("_", " ")
 
 
 def run_summary(run: RunRecord) -> str:
@@ -88,7 +108,7 @@ def run_summary(run: RunRecord) -> str:
     if o.time_limit is not None:
         parts.append(f"at most {o.time_limit:g} s")
     if run.goals:
-        parts.append("goal " + " and ".join(g.replace("_", " ") for g in run.goals))
+        parts.append("goal " + " and ".join(map(goal_text, run.goals)))
     found = f"{len(run.pareto.solutions)} on its front" if run.pareto is not None else ""
     outcome = ", ".join(
         x

@@ -14,13 +14,18 @@ import numpy as np
 
 from lightinv_core.design.model import CORNERS, Design, Goal, Rule, Source
 from lightinv_core.errors import DesignError
-from lightinv_core.kinds import RuleKind, SourceKind
+from lightinv_core.kinds import RuleKind
 from lightinv_core.scene.zone_outline import inner_square, kept_inside
+from lightinv_core.sources.types import source_type
 
 NEW_SOURCE_SIZE = 1.0
 """m: a new source is a square this wide (or the zone's width or height if smaller)."""
 NEW_LUMINAIRE_FLUX = 3000.0
 """lm: a typical luminaire's flux; a new skylight starts with filter 1."""
+NEW_STRENGTH = {"flux": NEW_LUMINAIRE_FLUX}
+"""The setting a new source starts with, by the ``Source`` field that sets how much it
+emits (its type's ``strength``); a field not listed starts at the model's default
+(filter 1)."""
 
 
 def free_name(stem: str, taken: set[str]) -> str:
@@ -41,19 +46,17 @@ def new_source(
     (or filter) the optimiser may change: a fixed flux would leave a least-power run
     unable to reach its targets. In a zone with a polygon ``outline``, the square
     (smaller if need be) lies inside it, near its centroid. Unnamed, it takes the first
-    free name L1, L2, ... (luminaires) or S1, ... (skylights)."""
+    free name of its type's stem: L1, L2, ... (luminaires), S1, ... (skylights)."""
     w, h = size
     sw, sh = min(NEW_SOURCE_SIZE, w), min(NEW_SOURCE_SIZE, h)
     rect = ((w - sw) / 2, (h - sh) / 2, (w + sw) / 2, (h + sh) / 2)
     if outline is not None:
         rect = inner_square(outline, NEW_SOURCE_SIZE)
+    t = source_type(kind)  # DesignError for an unknown kind
     if name is None:
-        stem = "L" if kind == SourceKind.LUMINAIRE else "S"
-        name = free_name(stem, {s.name for s in design.sources})
-    if kind == SourceKind.LUMINAIRE:
-        free = (*CORNERS, "flux")
-        return Source(name, zone, kind, rect, free=free, flux=NEW_LUMINAIRE_FLUX)
-    return Source(name, zone, kind, rect, free=(*CORNERS, "filter"))
+        name = free_name(t.stem, {s.name for s in design.sources})
+    start = {t.strength: NEW_STRENGTH[t.strength]} if t.strength in NEW_STRENGTH else {}
+    return Source(name, zone, kind, rect, free=(*CORNERS, t.strength), **start)
 
 
 def with_source(design: Design, source: Source) -> Design:
@@ -156,20 +159,37 @@ def with_goal(design: Design, kind: str, on: bool) -> Design:
     return replace(design, goals=goals)
 
 
+def _bounds(unit: str):
+    """The bounds of a rule on a size: "at least 0.5 m² and at most 4 m²"."""
+
+    def text(rule) -> str:
+        lo = f"at least {rule.min:g}{unit}" if rule.min is not None else ""
+        hi = f"at most {rule.max:g}{unit}" if rule.max is not None else ""
+        return " and ".join(x for x in (lo, hi) if x)
+
+    return text
+
+
+RULE_TEXT = {
+    RuleKind.AREA: (lambda r, names: f"area {names}", _bounds(" m²")),
+    RuleKind.ASPECT: (lambda r, names: f"aspect {names}", _bounds("")),
+    RuleKind.SPACING: (lambda r, names: f"spacing {names}", _bounds(" m")),
+    RuleKind.MIRROR: (
+        lambda r, names: f"mirror {r.sources[0]}",
+        lambda r: f"of {r.sources[1]} along {r.axis}",
+    ),
+    RuleKind.ALIGN: (lambda r, names: f"align {names}", lambda r: f"along {r.axis}"),
+    RuleKind.CENTRED: (lambda r, names: f"centred {names}", lambda r: "in their zones"),
+    RuleKind.SHR: (lambda r, names: f"spacing/height {names}", lambda r: f"at most {r.max:g}"),
+    RuleKind.CLEARANCE: (
+        lambda r, names: f"clearance {names}",
+        lambda r: f"at least {r.min:g} m from the zone's edges",
+    ),
+}
+"""Per rule kind: (what it ties, given the rule and its sources' names; its bounds)."""
+
+
 def rule_text(rule) -> tuple[str, str]:
     """(what, bounds) of a rule for a list: ("area L1, L2", "0.5 to 4 m²") and so on."""
-    names = ", ".join(rule.sources)
-    if rule.kind == "mirror":
-        return f"mirror {rule.sources[0]}", f"of {rule.sources[1]} along {rule.axis}"
-    if rule.kind == "align":
-        return f"align {names}", f"along {rule.axis}"
-    if rule.kind == "centred":
-        return f"centred {names}", "in their zones"
-    if rule.kind == "shr":
-        return f"spacing/height {names}", f"at most {rule.max:g}"
-    if rule.kind == "clearance":
-        return f"clearance {names}", f"at least {rule.min:g} m from the zone's edges"
-    units = {"area": " m²", "spacing": " m", "aspect": ""}[rule.kind]
-    lo = f"at least {rule.min:g}{units}" if rule.min is not None else ""
-    hi = f"at most {rule.max:g}{units}" if rule.max is not None else ""
-    return f"{rule.kind} {names}", " and ".join(x for x in (lo, hi) if x)
+    what, bounds = RULE_TEXT[rule.kind]
+    return what(rule, ", ".join(rule.sources)), bounds(rule)

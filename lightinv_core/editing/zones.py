@@ -10,8 +10,9 @@ culls back faces, so from above (Top view) the ceiling is invisible and the floo
 wall near the edge, is what is seen; a luminaire zone drawn there used to land on the
 floor. Zones go on the kind-appropriate surface: the first surface facing down (a ceiling
 or roof, seen from below or looked through from above) that the view ray crosses before
-it reaches what is seen; failing that, a luminaire zone may go on the wall seen (it does
-not face up), a skylight zone nowhere. z is up.
+it reaches what is seen; failing that, a zone of a kind that is not daylit (a luminaire)
+may go on the wall seen (it does not face up), a daylit one (a skylight) nowhere. z is
+up.
 """
 
 from __future__ import annotations
@@ -25,6 +26,7 @@ from lightinv_core.errors import DesignError
 from lightinv_core.scene.edits import ZoneEdit, rect_surfaces
 from lightinv_core.scene.model import Rect, Scene
 from lightinv_core.scene.patches import Patches
+from lightinv_core.sources.types import source_type
 
 DOWN = -0.1
 """A surface faces down (a ceiling, or a roof pitched up to 84°) when the z component of
@@ -32,10 +34,17 @@ its unit front normal is below this."""
 UP = 0.5
 """A luminaire zone may go on a surface seen whose front normal's z is below this (a wall,
 not a floor)."""
-WHERE = {
-    "luminaire": "ceilings and roofs (facing down), or walls seen from the room",
-    "skylight": "ceilings and roofs (surfaces facing down into the room)",
-}
+WHERE_DOWN = "ceilings and roofs (surfaces facing down into the room)"
+WHERE_SEEN = "ceilings and roofs (facing down), or walls seen from the room"
+"""Where zones of a kind go, for the error when there is no such surface: a daylit kind
+(its light follows the sky, as a skylight's glazing does) only on surfaces facing down,
+any other kind (a luminaire) also on a wall."""
+
+
+def on_walls(kind: str) -> bool:
+    """Whether a zone of source kind ``kind`` may go on a wall seen (its type is not
+    daylit: a luminaire may hang on a wall, glazing lit by the sky may not)."""
+    return not source_type(kind).daylit
 
 
 def drawable_surface(scene: Scene, patches: Patches, patch: int) -> tuple[str, Rect] | None:
@@ -97,8 +106,9 @@ def zone_surface(
     """(surface name, its Rect) on which a zone of ``kind`` drawn along the view ray
     (``origin``, ``direction``) goes, ``seen`` being the patch under the cursor (None:
     nothing): the first drawable surface facing down that the ray crosses up to the one
-    seen (a ceiling seen from below, or looked through from above); else, for a
-    luminaire zone, the drawable surface seen if it does not face up (a wall). A
+    seen (a ceiling seen from below, or looked through from above); else, for a kind
+    that may go on walls (``on_walls``: a luminaire), the drawable surface seen if it
+    does not face up (a wall). A
     DesignError says where such zones go when there is none."""
     p0, d = np.asarray(origin, float), np.asarray(direction, float)
     limit = np.inf
@@ -110,11 +120,12 @@ def zone_surface(
         rect = drawable.get(name)
         if t <= limit and rect is not None and rect.normal[2] < DOWN:
             return name, rect
-    if kind == "luminaire" and seen is not None:
+    walls = on_walls(kind)  # DesignError for an unknown kind
+    if walls and seen is not None:
         found = drawable_surface(scene, patches, seen)
         if found is not None and found[1].normal[2] < UP:
             return found
-    where = WHERE.get(kind, WHERE["luminaire"])
+    where = WHERE_SEEN if walls else WHERE_DOWN
     raise DesignError(
         f"{kind} zones are drawn on {where}, on a planar rectangle that is not a zone "
         "yet; there is none under the cursor"

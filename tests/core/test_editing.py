@@ -3,6 +3,7 @@ light it shows, checked against an independent ``LightModel`` of the same scene.
 
 from __future__ import annotations
 
+import functools
 import itertools
 from dataclasses import replace
 
@@ -11,7 +12,14 @@ import pytest
 
 from lightinv_core.design.model import Design, Goal, Intention, Rule, Source
 from lightinv_core.design.solution import ParetoFront, Solution, SolutionInfo
-from lightinv_core.editing import EVENTS, DocumentModel, Events, blank_project, result_label
+from lightinv_core.editing import (
+    EVENTS,
+    DesignChanged,
+    DocumentModel,
+    Events,
+    blank_project,
+    result_label,
+)
 from lightinv_core.editing import rules as edit_rules
 from lightinv_core.editing.results import ALL, run_label
 from lightinv_core.errors import DesignError, LightInvError
@@ -39,16 +47,25 @@ def office_operator():
 
 
 class Recorder:
-    """Every event a model emits, in order."""
+    """Every event a model emits, in order, and the payloads they carried."""
 
     def __init__(self, model: DocumentModel):
         self.seen: list[str] = []
+        self.payloads: list[object] = []
         for name in EVENTS:
-            model.events.connect(name, lambda n=name: self.seen.append(n))
+            model.events.connect(name, functools.partial(self._record, name))
+
+    def _record(self, name: str, payload: object) -> None:
+        self.seen.append(name)
+        self.payloads.append(payload)
 
     def take(self) -> list[str]:
-        seen, self.seen = self.seen, []
+        seen, self.seen, self.payloads = self.seen, [], []
         return seen
+
+    def last(self, name: str):
+        """The payload event ``name`` last carried since the last ``take``."""
+        return [p for n, p in zip(self.seen, self.payloads, strict=True) if n == name][-1]
 
 
 @pytest.fixture
@@ -74,17 +91,22 @@ def reference(model: DocumentModel) -> LightModel:
 # -- events ---------------------------------------------------------------------------------
 def test_events_call_back_in_order_and_refuse_unknown_names():
     events, calls = Events(), []
-    first, second = (lambda: calls.append(1)), (lambda: calls.append(2))
+    first, second = (lambda p: calls.append((1, p))), (lambda p: calls.append((2, p)))
     events.connect("design", first)
     events.connect("design", second)
-    events.emit("design")
+    change = DesignChanged(Design((), (Goal("min_electric_power"),)), None, frozenset())
+    events.emit("design", change)
     events.disconnect("design", first)
-    events.emit("design")
-    assert calls == [1, 2, 2] and events.counts["design"] == 2
+    events.emit("design", change)
+    assert calls == [(1, change), (2, change), (2, change)] and events.counts["design"] == 2
     with pytest.raises(KeyError, match="unknown event 'desing'"):
         events.connect("desing", first)
     with pytest.raises(KeyError):
-        events.emit("nothing")
+        events.emit("nothing", change)
+    # Each event carries its own payload type: a view relies on it.
+    with pytest.raises(TypeError, match="'selection' carries a SelectionChanged"):
+        events.emit("selection", change)
+    assert events.counts["selection"] == 0 and events.payload_type("design") is DesignChanged
 
 
 def test_opening_a_project_resets_everything_and_says_so(doc):
@@ -381,7 +403,7 @@ def test_each_run_is_kept_in_the_history_with_its_settings(lit):
     assert lit.browsed_run == 1 and [e.label for e in lit.results()] == ["seed 0", "seed 1"]
     assert run_label(first) == "run 1: VNS, 14:03"
     assert lit.run_summary(1) == (
-        "VNS, 2 seeds (0, 1), at most 5,000 evaluations, at most 20 s, goal min electric "
+        "VNS, 2 seeds (0, 1), at most 5,000 evaluations, at most 20 s, goal least electric "
         "power: feasible, 10,000 evaluations in 3.2 s; ended 2026-11-25 14:03:12"
     )
     front = ParetoFront(("min_electric_power", "max_light_power"), (eps,), "epsilon", (eps, two))
@@ -541,7 +563,7 @@ def test_every_edit_is_reported_with_its_before_and_after(lit):
     assert edits[0][1] is start and edits[-1][2] is lit.project
     assert all(b is a for (_, _, a), (_, b, _) in itertools.pairwise(edits))
     events = []
-    lit.events.connect("design", lambda: events.append("design"))
+    lit.events.connect("design", lambda change: events.append("design"))
     lit.restore(edits[1][1])  # back to just after adding the source
     assert lit.design.source(src.name).flux != 4321.0 and not lit.design.intentions
     assert lit.project.optimizer.seed != 3 and lit.dirty and events == ["design"]

@@ -1,0 +1,90 @@
+"""What the design asks for, as the user edits it: lighting intentions, work planes,
+goals, and the daylight and climate they are judged in.
+
+``IntentEdits`` is the document's concern for the design's brief (a mixin over
+``state.DocumentState``); the sources that meet it are source_edits.py's.
+"""
+
+from __future__ import annotations
+
+from dataclasses import replace
+
+from lightinv_core.climate.weather import Weather
+from lightinv_core.design.model import Intention
+from lightinv_core.editing import rules
+from lightinv_core.editing.climate import weather_of
+from lightinv_core.editing.state import DocumentState
+from lightinv_core.errors import DesignError
+
+
+class IntentEdits(DocumentState):
+    """Add, replace and remove intentions; choose goals; edit work planes and climate."""
+
+    # -- lighting intentions --------------------------------------------------------------------
+    def add_intention(self, intention: Intention) -> None:
+        """Append a lighting intention (DesignError if its name is taken)."""
+        self._set_design(
+            replace(self.design, intentions=(*self.design.intentions, intention)),
+            f"add intention {intention.name}",
+        )
+
+    def replace_intention(self, name: str, intention: Intention) -> None:
+        """Put ``intention`` in place of the one called ``name`` (same position);
+        DesignError if there is none or the new name is another intention's."""
+        names = [i.name for i in self.design.intentions]
+        if name not in names:
+            raise DesignError(f"no lighting intention {name!r}")
+        if intention.name != name and intention.name in names:
+            raise DesignError(f"another lighting intention is already called {intention.name!r}")
+        its = tuple(intention if i.name == name else i for i in self.design.intentions)
+        self._set_design(replace(self.design, intentions=its), f"edit intention {name}")
+
+    def remove_intention(self, name: str) -> None:
+        """Delete a lighting intention."""
+        its = tuple(i for i in self.design.intentions if i.name != name)
+        self._set_design(replace(self.design, intentions=its), f"remove intention {name}")
+
+    # -- goals ----------------------------------------------------------------------------------
+    def set_goal(self, kind: str, on: bool) -> None:
+        """Add goal ``kind`` (both power goals give a Pareto front) or remove it;
+        DesignError when no goal would be left."""
+        design = rules.with_goal(self.design, kind, on)
+        if design != self.design:
+            self._set_design(design, f"{'add' if on else 'remove'} goal {kind}")
+
+    def set_primary_goal(self, kind: str) -> None:
+        """Make ``kind`` the goal a single-objective run optimises (the others stay)."""
+        design = rules.with_primary_goal(self.design, kind)
+        if design is not self.design:
+            self._set_design(design, f"goal {kind}")
+
+    # -- work planes ----------------------------------------------------------------------------
+    def set_workplanes(self, workplanes, label: str = "edit work planes") -> None:
+        """Replace the design's work planes; intentions on a removed one go with it."""
+        workplanes = tuple(workplanes)
+        names = {w.name for w in workplanes}
+        its = tuple(i for i in self.design.intentions if i.grid is None or i.grid in names)
+        daylight = self.design.daylight
+        if daylight.workplane is not None and daylight.workplane not in names:
+            daylight = replace(daylight, workplane=None)  # dimming reads the first again
+        self._set_design(
+            replace(self.design, workplanes=workplanes, intentions=its, daylight=daylight), label
+        )
+
+    # -- daylight and climate -------------------------------------------------------------------
+    def set_daylight(self, **fields) -> None:
+        """Change the design's daylight and climate (weather, north_deg, occupancy,
+        weekdays, ground_reflectance, overcast_lux, target_lux, min_level, standby_w,
+        workplane, exterior_lux, transmittance: ``design.model.Daylight``); DesignError on
+        a bad value, leaving the design unchanged. The weather file is not read here
+        (``weather``)."""
+        daylight = replace(self.design.daylight, **fields)
+        if daylight != self.design.daylight:
+            self._set_design(
+                replace(self.design, daylight=daylight), f"climate: {', '.join(sorted(fields))}"
+            )
+
+    def weather(self) -> Weather:
+        """The design's weather file, read (``climate.weather.Weather``: site, hours);
+        WeatherError when it cannot be read."""
+        return weather_of(self.design.daylight)
