@@ -7,7 +7,7 @@ every scenario is built once per design change (``DocumentModel.layout_daylight`
 slider only sums it for one hour (``LayoutDaylight.hour_lux``: a few microseconds).
 What cannot be shown (an unreadable weather file, no skylights, no work plane to dim
 on) is said in the panel, never raised. The daylight maps of the view (DF, DA300, UDI,
-one hour) are computed by ``map_values`` here for the window's "Colour by".
+one hour) are in app/view/daylight_maps.py.
 """
 
 from __future__ import annotations
@@ -15,12 +15,11 @@ from __future__ import annotations
 from dataclasses import replace
 from pathlib import Path
 
-import numpy as np
-import pyqtgraph as pg
 from PySide6 import QtCore, QtWidgets
 
-from app import dialogs
+from app.dialogs import ask
 from app.document import Document
+from app.view.energy_chart import EnergyChart
 from lightinv_core.climate.weather import BUILTIN
 from lightinv_core.editing.climate import (
     HOURS_PER_YEAR,
@@ -34,99 +33,11 @@ from lightinv_core.editing.climate import (
     weather_of,
 )
 from lightinv_core.errors import LightInvError
-from lightinv_core.kinds import Scenario
 
 WEATHER_FILTER = (
     "Weather files (*.epw *.csv *.tm2);;EnergyPlus weather (*.epw);;TMY3 (*.csv);;TMY2 (*.tm2)"
 )
 DEFAULT_HOUR = hour_index(6, 21, 12)  # midsummer noon
-MAPS = {
-    # key: (Colour by text, colour bar title, its label format)
-    "night": ("illuminance at night: luminaires only (lux)", "lux, night", "%.0f"),
-    "overcast": ("illuminance under the overcast sky (lux)", "lux, overcast", "%.0f"),
-    "df": ("daylight factor DF (%)", "DF %", "%.1f"),
-    "da": ("daylight autonomy DA300 (% of occupied hours)", "DA300 %", "%.0f"),
-    "udi": ("useful daylight UDI 100-3000 lux (% of hours)", "UDI %", "%.0f"),
-    "hour": ("illuminance at the hour of the year (lux)", "lux", "%.0f"),
-}
-"""The view's daylight maps, each from the layout shown's ``LayoutDaylight``."""
-PERCENT_MAPS = ("da", "udi")  # drawn 0-100 % whatever the range set
-
-
-class MapResult:
-    """A daylight map for the view: ``values`` per patch (None: nothing to show), the
-    colour bar's ``units`` and label ``fmt``, a ``caption``, a fixed ``clim`` (None:
-    the view's range) and the work planes' ``grids`` with the same quantity at their
-    points (``grid_values``; None without work planes)."""
-
-    def __init__(self, values, units: str, fmt: str, caption: str | None, clim=None):
-        self.values, self.units, self.fmt = values, units, fmt
-        self.caption, self.clim = caption, clim
-        self.grids, self.grid_values = None, None
-
-    @property
-    def label_format(self) -> str:
-        """The iso-lines' label format (str.format) matching the colour bar's."""
-        return "{:" + self.fmt.lstrip("%") + "}"
-
-
-def map_values(doc: Document, key: str, hour: int) -> MapResult:
-    """The map ``key`` (a key of ``MAPS``) of the layout shown, on the patches and the
-    work planes' points; its values None and the caption saying why when it cannot be
-    computed (no light model, an unreadable weather file)."""
-    _, units, fmt = MAPS[key]
-    try:
-        ld = doc.layout_daylight(shown=True)
-        if ld is None:
-            return MapResult(None, units, fmt, None)
-        shown = _map(ld, doc, key, hour, units, fmt)
-        if ld.points is not None:
-            shown.grids = ld.grids
-            shown.grid_values = _on(ld.points, ld, key, hour)
-        return shown
-    except LightInvError as exc:
-        return MapResult(None, units, fmt, f"{MAPS[key][0]}: {exc}")
-
-
-def _map(ld, doc: Document, key: str, hour: int, units: str, fmt: str) -> MapResult:
-    p = ld.patches
-    values = _on(p, ld, key, hour)
-    hint = "\nThe design has no skylights: no daylight." if not p.groups.count else ""
-    if key in (Scenario.NIGHT, Scenario.OVERCAST):
-        cap = "Luminaires only" if key == Scenario.NIGHT else "Luminaires + the CIE overcast sky"
-        return MapResult(values, units, fmt, cap + hint)
-    if key == "df":
-        return MapResult(values, units, fmt, "Daylight factor, CIE overcast sky" + hint)
-    if key in PERCENT_MAPS:
-        over = f" of {p.year().hours:,} occupied hours" if p.groups.count else ""
-        what = "with 300 lux of daylight" if key == "da" else "with 100-3000 lux of daylight"
-        head = "DA300" if key == "da" else "UDI 100-3000"
-        return MapResult(values, units, fmt, f"{head}: share{over}\n{what}" + hint, (0.0, 100.0))
-    state = hour_state(ld, _weather_or_none(doc), hour)
-    return MapResult(values, units, fmt, state.text())
-
-
-def _on(light, ld, key: str, hour: int) -> np.ndarray:
-    """The map ``key`` at the receivers of ``light`` (the layout's patches or points)."""
-    if key in (Scenario.NIGHT, Scenario.OVERCAST):
-        return light.lux(key)[:, 0]
-    if key == "df":
-        return 100.0 * light.overcast_daylight()[:, 0]
-    if key in PERCENT_MAPS:
-        return 100.0 * (light.da() if key == "da" else light.udi())[:, 0]
-    if light is ld.patches:
-        return ld.hour_lux(hour)
-    # The same sum as ``LayoutDaylight.hour_lux``, at the work planes' points.
-    year = light.year()
-    day = np.tensordot(year.every[:, hour], light.sky[:, :, 0], axes=1) if light.groups.count else 0
-    return light.electric[:, 0] * ld.level_at(hour) + day
-
-
-def _weather_or_none(doc: Document):
-    try:
-        return doc.weather()
-    except LightInvError:
-        return None
 
 
 def _form(group: QtWidgets.QGroupBox) -> QtWidgets.QFormLayout:
@@ -141,35 +52,6 @@ def _spin(lo: float, hi: float, step: float, decimals: int, suffix: str = ""):
     box.setRange(lo, hi)
     box.setKeyboardTracking(False)  # one edit when typing is done, not one per digit
     return box
-
-
-class EnergyChart(pg.PlotWidget):
-    """Lighting energy per month (kWh) as bars."""
-
-    def __init__(self, parent: QtWidgets.QWidget | None = None):
-        super().__init__(parent)
-        self.setMinimumHeight(150)
-        self.setMouseEnabled(x=False, y=False)
-        self.hideButtons()
-        self.setMenuEnabled(False)
-        self.showGrid(y=True, alpha=0.3)
-        self.setLabel("left", "kWh")
-        self.getAxis("bottom").setTicks([[(i + 1, m) for i, m in enumerate(MONTHS)]])
-        self.bars = pg.BarGraphItem(
-            x=np.arange(1, 13), height=np.zeros(12), width=0.7, brush="#3b7dd8"
-        )
-        self.addItem(self.bars)
-        self.setXRange(0.4, 12.6, padding=0)
-        self.monthly = np.zeros(12)
-
-    def sizeHint(self) -> QtCore.QSize:
-        return QtCore.QSize(380, 200)  # not a plot widget's 640 x 480: the tab is short
-
-    def set_months(self, kwh) -> None:
-        """Draw 12 monthly values (kWh); None empties the chart."""
-        self.monthly = np.zeros(12) if kwh is None else np.asarray(kwh, float)
-        self.bars.setOpts(height=self.monthly)
-        self.setYRange(0.0, max(float(self.monthly.max()) * 1.1, 1e-3), padding=0)
 
 
 class ClimatePanel(QtWidgets.QWidget):
@@ -553,5 +435,5 @@ class ClimatePanel(QtWidgets.QWidget):
 
     def browse(self) -> bool:
         """Choose a weather file (EPW or TMY3)."""
-        path = dialogs.open_file(self, "Weather file", WEATHER_FILTER)
+        path = ask.open_file(self, "Weather file", WEATHER_FILTER)
         return bool(path) and self.set_weather(path)
