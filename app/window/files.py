@@ -170,7 +170,7 @@ class ProjectFiles(QtCore.QObject):
         """Say what the import made of the file: its summary in the status bar, and the
         import report (not blocking the window) when something was dropped, skipped or
         is no zone."""
-        from app.ask.import_report_dialog import ImportReportDialog, import_summary
+        from app.dialogs.import_report_dialog import ImportReportDialog, import_summary
 
         report = report_of(self.doc.scene) if self.doc.scene is not None else None
         if report is None:
@@ -194,7 +194,7 @@ class ProjectFiles(QtCore.QObject):
         """Choose a model file (OBJ, glTF, GLB, PLY, IFC), then its import options (units,
         up axis, group names, materials)."""
         if dialog is None:
-            from app.ask.import_dialog import ImportDialog, model_filter
+            from app.dialogs.import_dialog import ImportDialog, model_filter
 
             path = ask.open_file(self.win, "Import model", model_filter())
             if not path:
