@@ -523,7 +523,7 @@ def test_a_luminaire_zone_drawn_in_top_view_goes_on_the_ceiling(qtbot, window):
     assert window.edits.draw_kind() == "luminaire"
     # The strip between the skylight zone and the north wall, x 5.5-6.5 m, y 7.3-7.7 m.
     a, b = (5.5, 7.7, 3.0), (6.5, 7.3, 3.0)
-    seen = vp.pick_at(*vp._display(to_qt(vp, a).toPoint()))
+    seen = vp.pick_at(*vp.display(to_qt(vp, a).toPoint()))
     # What is seen there is not the ceiling (culled from above) but a wall in perspective
     # (the floor further in): the old code drew on what it saw.
     assert d.patches.group_names[d.patches.group_id[seen[0]]] in ("walls", "floor")
