@@ -65,3 +65,20 @@ def source_kind_box() -> QtWidgets.QComboBox:
     for t in source_types():
         box.addItem(t.label, str(t.kind))
     return box
+
+
+def compact_form(group: QtWidgets.QGroupBox) -> QtWidgets.QFormLayout:
+    """A form whose fields keep their natural width (the tab is wide and short)."""
+    form = QtWidgets.QFormLayout(group)
+    form.setFieldGrowthPolicy(QtWidgets.QFormLayout.FieldsStayAtSizeHint)
+    return form
+
+
+def typed_number(
+    lo: float, hi: float, step: float, decimals: int, suffix: str = ""
+) -> QtWidgets.QDoubleSpinBox:
+    """A number field from ``lo`` to ``hi`` that reports one edit when typing is done."""
+    box = QtWidgets.QDoubleSpinBox(decimals=decimals, singleStep=step, suffix=suffix)
+    box.setRange(lo, hi)
+    box.setKeyboardTracking(False)  # one edit when typing is done, not one per digit
+    return box

@@ -20,10 +20,10 @@ import textwrap
 
 import numpy as np
 import pyvista as pv
-import vtk
 from PySide6 import QtCore, QtWidgets
 from pyvistaqt import QtInteractor
 
+from app.view.picking import camera_ray, scene_cells_in
 from app.view.vtk_shapes import carried_values, draw_zone_axes, polylines, remove_zone_axes, veil
 from app.view.zone_drawing import ZoneDrawing
 from app.view.zone_frame import ZoneFrame
@@ -341,28 +341,7 @@ class Viewport(QtWidgets.QWidget):
         """Patch ids visible in a display rectangle (hardware selection: hidden ones excluded)."""
         if self.mesh is None:
             return np.zeros(0, np.int64)
-        # A drag may end outside the view (negative or beyond its size): the selector
-        # takes unsigned pixel coordinates inside the window, so clip to it.
-        w, h = self.plotter.render_window.GetSize()
-        xs = sorted(min(max(int(x), 0), max(w - 1, 0)) for x in (x0, x1))
-        ys = sorted(min(max(int(y), 0), max(h - 1, 0)) for y in (y0, y1))
-        sel = vtk.vtkHardwareSelector()
-        sel.SetRenderer(self.plotter.renderer)
-        sel.SetFieldAssociation(vtk.vtkDataObject.FIELD_ASSOCIATION_CELLS)
-        sel.SetArea(xs[0], ys[0], xs[1], ys[1])
-        result = sel.Select()
-        scene_actor = self.plotter.actors.get("scene")
-        ids = []
-        for i in range(result.GetNumberOfNodes()):
-            node = result.GetNode(i)
-            prop = node.GetProperties().Get(vtk.vtkSelectionNode.PROP())
-            if prop is scene_actor and node.GetSelectionList() is not None:
-                arr = node.GetSelectionList()
-                ids.append(np.array([arr.GetValue(j) for j in range(arr.GetNumberOfTuples())]))
-        if not ids:
-            return np.zeros(0, np.int64)
-        cells = np.concatenate(ids).astype(np.int64)
-        return np.unique(self.tri_patch[cells])
+        return np.unique(self.tri_patch[scene_cells_in(self.plotter, x0, y0, x1, y1)])
 
     def pick_at(self, x: int, y: int) -> np.ndarray:
         """The patch under a display point (empty if none)."""
@@ -370,14 +349,7 @@ class Viewport(QtWidgets.QWidget):
 
     def ray(self, x: int, y: int) -> tuple[np.ndarray, np.ndarray]:
         """World points on the camera ray through a display point (near, far)."""
-        ren = self.plotter.renderer
-        out = []
-        for z in (0.0, 1.0):
-            ren.SetDisplayPoint(x, y, z)
-            ren.DisplayToWorld()
-            w = np.array(ren.GetWorldPoint())
-            out.append(w[:3] / w[3])
-        return out[0], out[1]
+        return camera_ray(self.plotter.renderer, x, y)
 
     def zone_point(self, zone: str, x: int, y: int) -> tuple[float, float] | None:
         """Zone coordinates under a display point."""

@@ -18,8 +18,9 @@ from pathlib import Path
 from PySide6 import QtCore, QtWidgets
 
 from app.dialogs import ask
+from app.dialogs.fields import compact_form, typed_number
 from app.document import Document
-from app.view.energy_chart import EnergyChart
+from app.widgets.energy_box import EnergyBox
 from lightinv_core.climate.weather import BUILTIN
 from lightinv_core.editing.climate import (
     HOURS_PER_YEAR,
@@ -38,20 +39,6 @@ WEATHER_FILTER = (
     "Weather files (*.epw *.csv *.tm2);;EnergyPlus weather (*.epw);;TMY3 (*.csv);;TMY2 (*.tm2)"
 )
 DEFAULT_HOUR = hour_index(6, 21, 12)  # midsummer noon
-
-
-def _form(group: QtWidgets.QGroupBox) -> QtWidgets.QFormLayout:
-    """A form whose fields keep their natural width (the tab is wide and short)."""
-    form = QtWidgets.QFormLayout(group)
-    form.setFieldGrowthPolicy(QtWidgets.QFormLayout.FieldsStayAtSizeHint)
-    return form
-
-
-def _spin(lo: float, hi: float, step: float, decimals: int, suffix: str = ""):
-    box = QtWidgets.QDoubleSpinBox(decimals=decimals, singleStep=step, suffix=suffix)
-    box.setRange(lo, hi)
-    box.setKeyboardTracking(False)  # one edit when typing is done, not one per digit
-    return box
 
 
 class ClimatePanel(QtWidgets.QWidget):
@@ -78,7 +65,8 @@ class ClimatePanel(QtWidgets.QWidget):
         row.addWidget(self._site_group())
         row.addWidget(self._control_group())
         row.addWidget(self._hour_group())
-        row.addWidget(self._energy_group(), 1)
+        self.energy = EnergyBox()
+        row.addWidget(self.energy, 1)
         self._fields = (
             self.north,
             self.ground,
@@ -103,7 +91,7 @@ class ClimatePanel(QtWidgets.QWidget):
     # -- layout ---------------------------------------------------------------------------
     def _site_group(self) -> QtWidgets.QGroupBox:
         group = QtWidgets.QGroupBox("Weather and site")
-        form = _form(group)
+        form = compact_form(group)
         self.weather_path = QtWidgets.QLineEdit()
         self.weather_path.setReadOnly(True)
         self.weather_path.setMinimumWidth(200)
@@ -121,20 +109,20 @@ class ClimatePanel(QtWidgets.QWidget):
         form.addRow("", wrow)
         self.site = QtWidgets.QLabel("-")
         form.addRow("Site", self.site)
-        self.north = _spin(-360.0, 360.0, 5.0, 1, "°")
+        self.north = typed_number(-360.0, 360.0, 5.0, 1, "°")
         self.north.setToolTip("Compass bearing of the scene's +y axis (0: +y points north)")
         form.addRow("North", self.north)
-        self.ground = _spin(0.0, 0.99, 0.05, 2)
+        self.ground = typed_number(0.0, 0.99, 0.05, 2)
         form.addRow("Ground reflectance", self.ground)
-        self.overcast = _spin(0.0, 2e5, 1000.0, 0, " lux")
+        self.overcast = typed_number(0.0, 2e5, 1000.0, 0, " lux")
         self.overcast.setToolTip("Horizontal exterior illuminance of the design overcast sky")
         form.addRow("Overcast sky", self.overcast)
-        self.exterior_lux = _spin(0.0, 2e5, 1000.0, 0, " lux")
+        self.exterior_lux = typed_number(0.0, 2e5, 1000.0, 0, " lux")
         self.exterior_lux.setToolTip(
             "The design scenario's exterior lux on every skylight (the paper's model)"
         )
         form.addRow("Design sky", self.exterior_lux)
-        self.transmittance = _spin(0.0, 1.0, 0.05, 2)
+        self.transmittance = typed_number(0.0, 1.0, 0.05, 2)
         self.transmittance.setToolTip("Of the glazing, in every scenario")
         form.addRow("Transmittance", self.transmittance)
         self.browse_button.clicked.connect(lambda: self.browse())
@@ -148,9 +136,9 @@ class ClimatePanel(QtWidgets.QWidget):
 
     def _control_group(self) -> QtWidgets.QGroupBox:
         group = QtWidgets.QGroupBox("Occupancy and dimming")
-        form = _form(group)
-        self.start = _spin(0.0, 24.0, 0.5, 1, " h")
-        self.end = _spin(0.0, 24.0, 0.5, 1, " h")
+        form = compact_form(group)
+        self.start = typed_number(0.0, 24.0, 0.5, 1, " h")
+        self.end = typed_number(0.0, 24.0, 0.5, 1, " h")
         orow = QtWidgets.QHBoxLayout()
         orow.addWidget(self.start)
         orow.addWidget(QtWidgets.QLabel("to"))
@@ -159,13 +147,13 @@ class ClimatePanel(QtWidgets.QWidget):
         self.weekdays = QtWidgets.QCheckBox("weekdays only")
         self.weekdays.setToolTip("Monday to Friday; unticked: every day of the week")
         form.addRow("", self.weekdays)
-        self.target = _spin(0.0, 1e5, 50.0, 0, " lux")
+        self.target = typed_number(0.0, 1e5, 50.0, 0, " lux")
         self.target.setToolTip("Daylight-linked dimming keeps the work plane's mean at this")
         form.addRow("Dimming target", self.target)
-        self.min_level = _spin(0.0, 1.0, 0.05, 2)
+        self.min_level = typed_number(0.0, 1.0, 0.05, 2)
         self.min_level.setToolTip("The lowest output the luminaires dim to while occupied (0-1)")
         form.addRow("Minimum level", self.min_level)
-        self.standby = _spin(0.0, 1e6, 1.0, 1, " W")
+        self.standby = typed_number(0.0, 1e6, 1.0, 1, " W")
         self.standby.setToolTip("Drawn by the controls all year, on or off")
         form.addRow("Standby", self.standby)
         self.plane = QtWidgets.QComboBox()
@@ -219,15 +207,6 @@ class ClimatePanel(QtWidgets.QWidget):
         self.day.valueChanged.connect(self._date_edited)
         self.hour.valueChanged.connect(self._date_edited)
         self.show_hour.toggled.connect(self.showHourToggled)
-        return group
-
-    def _energy_group(self) -> QtWidgets.QGroupBox:
-        group = QtWidgets.QGroupBox("Annual lighting energy (daylight-linked dimming)")
-        lay = QtWidgets.QVBoxLayout(group)
-        self.chart = EnergyChart()
-        lay.addWidget(self.chart, 1)
-        self.energy_text = QtWidgets.QLabel("-")
-        lay.addWidget(self.energy_text)
         return group
 
     # -- document -> widgets ----------------------------------------------------------------
@@ -301,8 +280,7 @@ class ClimatePanel(QtWidgets.QWidget):
             self.exterior.setText("once the light model is ready.")
             self.glazing.setText("")
             self.level.setText("")
-            self.chart.set_months(None)
-            self.energy_text.setText("-")
+            self.energy.clear()
             self._say(problems)
             return
         if ld is not None and not ld.patches.groups.count:
@@ -311,7 +289,7 @@ class ClimatePanel(QtWidgets.QWidget):
                 "are 0; the luminaires dim only to the target)."
             )
         self._show_hour(ld, problems)
-        self._show_energy(ld, problems)
+        self.energy.show_energy(ld, problems)
         self._say(problems)
 
     def _say(self, problems: list[str]) -> None:
@@ -339,28 +317,6 @@ class ClimatePanel(QtWidgets.QWidget):
         self.glazing.setText(f"On the glazing {glazing} lux" if glazing else "No glazing")
         self.level.setText(
             f"Luminaires dimmed to {100 * s.level:.0f}%" if s.occupied else "Luminaires off"
-        )
-
-    def _show_energy(self, ld, problems: list[str]) -> None:
-        if ld is None:
-            return
-        try:
-            e = ld.energy()
-        except LightInvError as exc:
-            problems.append(f"Annual energy: {exc}")
-            self.chart.set_months(None)
-            self.energy_text.setText(f"Not measured:\n{exc}")
-            return
-        self.chart.set_months(e.monthly_kwh)
-        if ld.installed_w <= 0:
-            self.energy_text.setText("No luminaires: no electric lighting energy.")
-            return
-        saved = 1.0 - e.energy_kwh / e.full_kwh if e.full_kwh > 0 else 0.0
-        self.energy_text.setText(
-            f"Annual {e.energy_kwh:,.1f} kWh, LENI {e.leni:.2f} kWh/m²·a ({e.floor_m2:,.0f} m²)\n"
-            f"{100 * saved:.0f}% less than at full output ({e.full_kwh:,.1f} kWh); "
-            f"mean level {100 * e.mean_level:.0f}%\n"
-            f"{ld.installed_w:,.0f} W installed, dimmed on work plane {ld.control}"
         )
 
     def showEvent(self, event) -> None:

@@ -224,9 +224,9 @@ def test_daylight_maps_colour_the_patches(qtbot, window):
 def test_monthly_energy_is_charted_with_annual_kwh_and_leni(qtbot, window):
     d, panel = _office(qtbot, window)
     e = d.layout_daylight().energy()
-    assert np.allclose(panel.chart.monthly, e.monthly_kwh)
+    assert np.allclose(panel.energy.chart.monthly, e.monthly_kwh)
     assert sum(e.monthly_kwh) == pytest.approx(e.energy_kwh, rel=1e-9)
-    text = panel.energy_text.text()
+    text = panel.energy.text.text()
     assert f"Annual {e.energy_kwh:,.1f} kWh" in text and f"LENI {e.leni:.2f}" in text
     assert panel.message.isHidden()
     _grab(window, "/tmp/climate_energy_window.png")
@@ -234,14 +234,14 @@ def test_monthly_energy_is_charted_with_annual_kwh_and_leni(qtbot, window):
     # A later target needs more light: more energy, the chart follows.
     panel.target.setValue(800.0)
     assert d.layout_daylight().energy().energy_kwh > e.energy_kwh
-    assert panel.chart.monthly.sum() > sum(e.monthly_kwh)
+    assert panel.energy.chart.monthly.sum() > sum(e.monthly_kwh)
 
 
 def test_no_skylights_or_work_plane_are_messages(qtbot, window):
     _d, panel = _office(qtbot, window, skylight=False, plane=False)
     text = panel.message.text()
     assert "no skylights" in text and "work plane" in text
-    assert "Not measured" in panel.energy_text.text() and panel.chart.monthly.sum() == 0
+    assert "Not measured" in panel.energy.text.text() and panel.energy.chart.monthly.sum() == 0
     window.view_options.colour_by.setCurrentIndex(window.view_options.colour_by.findData("df"))
     assert np.allclose(_shown(window), 0.0) and "no skylights" in window.viewport.caption
     _grab(panel, "/tmp/climate_panel_no_daylight.png")
@@ -414,7 +414,7 @@ def test_the_integrated_demo_from_run_to_report(qtbot, window, tmp_path):
         QtWidgets.QApplication.processEvents()
         e = window.doc.layout_daylight().energy().energy_kwh
         assert e == pytest.approx(sol.objectives["min_annual_energy"], rel=1e-6)
-        assert f"Annual {e:,.1f} kWh" in window.climate_panel.energy_text.text()
+        assert f"Annual {e:,.1f} kWh" in window.climate_panel.energy.text.text()
         energies.append(e)
         window.tabs.setCurrentWidget(panel)
     assert energies[0] > energies[1]
