@@ -6,7 +6,7 @@ lightinv --scene patio        a new project on a built-in scene
 lightinv PROJECT.json --run   open and start its optimisation
 
 Work left by a session that did not close normally (a crash, a kill) is offered for
-recovery at start-up (see app/autosave.py).
+recovery at start-up (see app/window/recovery.py).
 """
 
 from __future__ import annotations
@@ -60,7 +60,7 @@ def main(argv: list[str] | None = None) -> int:
         return run()
     from PySide6 import QtCore, QtWidgets
 
-    from app.main_window import MainWindow
+    from app.window.main_window import MainWindow
 
     app = QtWidgets.QApplication.instance() or QtWidgets.QApplication(sys.argv[:1])
     app.setApplicationName("LightInv")

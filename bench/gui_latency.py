@@ -17,7 +17,7 @@ from pathlib import Path
 
 from PySide6 import QtCore, QtWidgets
 
-from app.main_window import MainWindow
+from app.window.main_window import MainWindow
 
 DEMO = Path(__file__).resolve().parent.parent / "resources" / "projects" / "office-demo.json"
 
@@ -50,7 +50,7 @@ def main() -> None:
         win.doc.move_source(name, step, 0.0)  # relight + recolour + render, synchronously
         times.append(1e3 * (time.perf_counter() - t))
         evals.append(win.doc.last_eval_ms)
-        renders.append(win.last_render_ms)
+        renders.append(win.colouring.last_render_ms)
     times.sort()
     print(
         json.dumps(

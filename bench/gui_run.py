@@ -21,7 +21,7 @@ from pathlib import Path
 
 from PySide6 import QtCore, QtWidgets
 
-from app.main_window import MainWindow
+from app.window.main_window import MainWindow
 from lightinv_core.study import solve
 
 DEMO = Path(__file__).resolve().parent.parent / "resources" / "projects" / "office-demo.json"

@@ -22,7 +22,7 @@ from PySide6 import QtCore, QtWidgets
 ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT))
 
-from app.main_window import MainWindow  # noqa: E402
+from app.window.main_window import MainWindow  # noqa: E402
 from lightinv_core.design.model import Intention  # noqa: E402
 
 PROJECTS = ROOT / "resources" / "projects"

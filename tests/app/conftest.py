@@ -6,8 +6,8 @@ from __future__ import annotations
 import pytest
 from PySide6 import QtCore
 
-from app.main_window import MainWindow
-from app.workers import Worker
+from app.window.main_window import MainWindow
+from app.window.workers import Worker
 
 
 def pytest_collection_modifyitems(items):

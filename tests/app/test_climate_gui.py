@@ -16,7 +16,7 @@ import numpy as np
 import pytest
 from PySide6 import QtCore, QtWidgets
 
-from app.panels import IntentionDialog
+from app.dialogs.intention_dialog import IntentionDialog
 from lightinv_core.climate.weather import BUILTIN
 from lightinv_core.design.model import DesignError, Intention, Workplane
 from lightinv_core.design.solution import ParetoFront, Solution, SolutionInfo
@@ -106,7 +106,7 @@ def test_an_unreadable_weather_file_is_a_message(qtbot, window, tmp_path, monkey
     d, panel = _office(qtbot, window)
     bad = tmp_path / "broken.epw"
     bad.write_text("LOCATION,nowhere\nthis is not weather\n")
-    monkeypatch.setattr("app.dialogs.open_file", lambda *a, **k: str(bad))
+    monkeypatch.setattr("app.dialogs.ask.open_file", lambda *a, **k: str(bad))
     assert not panel.browse()
     assert d.design.daylight.weather == "builtin"  # kept
     assert not panel.message.isHidden() and "broken.epw" in panel.message.text()
@@ -128,7 +128,7 @@ def test_an_unreadable_weather_file_is_a_message(qtbot, window, tmp_path, monkey
     assert daylit[0].met is None and "copy.csv" in daylit[0].achieved
     assert any(r.intention == "desks" and r.met is not None for r in rows)
     assert "cannot be judged" in window.achieved_panel.summary.text()
-    window.colour_by.setCurrentIndex(window.colour_by.findData("da"))
+    window.view_options.colour_by.setCurrentIndex(window.view_options.colour_by.findData("da"))
     assert "copy.csv" in window.viewport.caption and not window.viewport.has_values
     window.tabs.setCurrentWidget(window.achieved_panel)
     _grab(window, "/tmp/climate_weather_missing.png")
@@ -146,7 +146,7 @@ def test_the_hour_slider_relights_the_view(qtbot, window):
     panel.hour.setValue(14)  # the date controls move the slider and light the view
     spring = hour_index(3, 20, 14)
     assert panel.slider.value() == spring == (31 + 28 + 19) * 24 + 14
-    assert panel.show_hour.isChecked() and window.colour_by.currentData() == "hour"
+    assert panel.show_hour.isChecked() and window.view_options.colour_by.currentData() == "hour"
     assert np.allclose(_shown(window), ld.hour_lux(spring), rtol=1e-5)
     assert "20 Mar 14:00-15:00" in panel.when.text()
     noon = hour_index(6, 21, 12)
@@ -182,7 +182,7 @@ def test_the_hour_slider_relights_the_view(qtbot, window):
     assert time.perf_counter() - t0 < 24 * 2.0
     # Unticking returns the view to the design's illuminance.
     panel.show_hour.setChecked(False)
-    assert window.colour_by.currentData() == "lux" and window.viewport.caption is None
+    assert window.view_options.colour_by.currentData() == "lux" and window.viewport.caption is None
     assert np.allclose(_shown(window), d.lighting(), rtol=1e-5)
     # A design edit builds the light once more.
     d.update_source("L1", flux=6000.0)
@@ -194,37 +194,39 @@ def test_daylight_maps_colour_the_patches(qtbot, window):
     ld = d.layout_daylight(shown=True)
     vp = window.viewport
     bar = next(iter(vp.plotter.scalar_bars.values()))
-    window.colour_by.setCurrentIndex(window.colour_by.findData("df"))
+    window.view_options.colour_by.setCurrentIndex(window.view_options.colour_by.findData("df"))
     df = 100.0 * ld.patches.overcast_daylight()[:, 0]
     assert np.allclose(_shown(window), df, rtol=1e-5) and df.max() > 1.0
     assert bar.GetTitle() == "DF %" and bar.GetLabelFormat() == "%.1f"
     assert "overcast" in vp.caption
     vp.screenshot("/tmp/climate_map_df.png")
-    window.colour_by.setCurrentIndex(window.colour_by.findData("da"))
+    window.view_options.colour_by.setCurrentIndex(window.view_options.colour_by.findData("da"))
     da = 100.0 * ld.patches.da()[:, 0]
     assert np.allclose(_shown(window), da, rtol=1e-5) and 0 < da.max() <= 100.0
     assert bar.GetTitle() == "DA300 %"
     assert tuple(vp.plotter.actors["scene"].mapper.scalar_range) == (0.0, 100.0)
     assert "occupied hours" in vp.caption
     vp.screenshot("/tmp/climate_map_da.png")
-    window.colour_by.setCurrentIndex(window.colour_by.findData("udi"))
+    window.view_options.colour_by.setCurrentIndex(window.view_options.colour_by.findData("udi"))
     assert np.allclose(_shown(window), 100.0 * ld.patches.udi()[:, 0], rtol=1e-5)
     assert bar.GetTitle() == "UDI %"
     vp.screenshot("/tmp/climate_map_udi.png")
-    window.colour_by.setCurrentIndex(window.colour_by.findData("night"))
+    window.view_options.colour_by.setCurrentIndex(window.view_options.colour_by.findData("night"))
     assert np.allclose(_shown(window), ld.patches.lux("night")[:, 0], rtol=1e-5)
-    window.colour_by.setCurrentIndex(window.colour_by.findData("overcast"))
+    window.view_options.colour_by.setCurrentIndex(
+        window.view_options.colour_by.findData("overcast")
+    )
     assert np.allclose(_shown(window), ld.patches.lux("overcast")[:, 0], rtol=1e-5)
-    window.colour_by.setCurrentIndex(window.colour_by.findData("lux"))
+    window.view_options.colour_by.setCurrentIndex(window.view_options.colour_by.findData("lux"))
     assert bar.GetTitle() == "lux" and bar.GetLabelFormat() == "%.0f" and vp.caption is None
 
 
 def test_monthly_energy_is_charted_with_annual_kwh_and_leni(qtbot, window):
     d, panel = _office(qtbot, window)
     e = d.layout_daylight().energy()
-    assert np.allclose(panel.chart.monthly, e.monthly_kwh)
+    assert np.allclose(panel.energy.chart.monthly, e.monthly_kwh)
     assert sum(e.monthly_kwh) == pytest.approx(e.energy_kwh, rel=1e-9)
-    text = panel.energy_text.text()
+    text = panel.energy.text.text()
     assert f"Annual {e.energy_kwh:,.1f} kWh" in text and f"LENI {e.leni:.2f}" in text
     assert panel.message.isHidden()
     _grab(window, "/tmp/climate_energy_window.png")
@@ -232,15 +234,15 @@ def test_monthly_energy_is_charted_with_annual_kwh_and_leni(qtbot, window):
     # A later target needs more light: more energy, the chart follows.
     panel.target.setValue(800.0)
     assert d.layout_daylight().energy().energy_kwh > e.energy_kwh
-    assert panel.chart.monthly.sum() > sum(e.monthly_kwh)
+    assert panel.energy.chart.monthly.sum() > sum(e.monthly_kwh)
 
 
 def test_no_skylights_or_work_plane_are_messages(qtbot, window):
     _d, panel = _office(qtbot, window, skylight=False, plane=False)
     text = panel.message.text()
     assert "no skylights" in text and "work plane" in text
-    assert "Not measured" in panel.energy_text.text() and panel.chart.monthly.sum() == 0
-    window.colour_by.setCurrentIndex(window.colour_by.findData("df"))
+    assert "Not measured" in panel.energy.text.text() and panel.energy.chart.monthly.sum() == 0
+    window.view_options.colour_by.setCurrentIndex(window.view_options.colour_by.findData("df"))
     assert np.allclose(_shown(window), 0.0) and "no skylights" in window.viewport.caption
     _grab(panel, "/tmp/climate_panel_no_daylight.png")
 
@@ -261,7 +263,7 @@ def test_intentions_take_scenarios_and_daylight_metrics(qtbot, window):
     assert dialog.scenario.isEnabled() and dialog.scenario.currentData() == "night"
     dialog.set_values(average=200.0, uniformity=None, min=None)
     dialog.setResult(QtWidgets.QDialog.Accepted)
-    assert window.add_intention_on_group("desks", dialog)
+    assert window.edits.add_intention_on_group("desks", dialog)
     it = d.design.intentions[-1]
     assert (it.quantity, it.scenario, it.average) == ("lux", "night", 200.0)
     # A daylight factor on the work plane, and the plane's sDA.
@@ -286,7 +288,7 @@ def test_intentions_take_scenarios_and_daylight_metrics(qtbot, window):
     assert edit.scenario.currentData() == "night"
     edit.set_values(average=250.0)
     edit.setResult(QtWidgets.QDialog.Accepted)
-    assert window.edit_intention(d.design.intentions[0].name, edit)
+    assert window.edits.edit_intention(d.design.intentions[0].name, edit)
     assert d.design.intentions[0].scenario == "night"
     tree_text = [
         window.tree.topLevelItem(3).child(i).text(1)
@@ -331,7 +333,10 @@ def test_goals_and_a_climate_front(qtbot, window):
     front = ParetoFront(("min_annual_energy", "min_glazing_area"), sols, "epsilon", sols)
     d.add_run((), front, settings=OptimizerSettings(method="epsilon"))
     sp = window.solutions_panel
-    assert (sp.x_axis.currentData(), sp.y_axis.currentData()) == ("glazing", "energy")
+    assert (sp.x_axis.currentData(), sp.y_axis.currentData()) == (
+        "min_glazing_area",
+        "min_annual_energy",
+    )
     plot = sp.scatter.getPlotItem()
     assert plot.getAxis("bottom").labelText == "glazing area (m²)"
     assert plot.getAxis("left").labelText == "annual energy (kWh)"
@@ -351,7 +356,10 @@ def test_goals_and_a_climate_front(qtbot, window):
     )
     power_light = ParetoFront(("min_electric_power", "max_light_power"), pl, "epsilon", pl)
     d.add_run((), power_light, settings=OptimizerSettings(method="epsilon"))
-    assert (sp.x_axis.currentData(), sp.y_axis.currentData()) == ("power", "light")
+    assert (sp.x_axis.currentData(), sp.y_axis.currentData()) == (
+        "min_electric_power",
+        "max_light_power",
+    )
     assert plot.getAxis("bottom").labelText == "electric power (W)"
     assert np.allclose(sp.scatter.xy, [[100, 5000], [200, 10000]])
     assert d.front_quality() is None  # the design's goals make a climate front now
@@ -406,7 +414,7 @@ def test_the_integrated_demo_from_run_to_report(qtbot, window, tmp_path):
         QtWidgets.QApplication.processEvents()
         e = window.doc.layout_daylight().energy().energy_kwh
         assert e == pytest.approx(sol.objectives["min_annual_energy"], rel=1e-6)
-        assert f"Annual {e:,.1f} kWh" in window.climate_panel.energy_text.text()
+        assert f"Annual {e:,.1f} kWh" in window.climate_panel.energy.text.text()
         energies.append(e)
         window.tabs.setCurrentWidget(panel)
     assert energies[0] > energies[1]
@@ -434,7 +442,7 @@ def test_a_weather_files_doubts_are_shown(qtbot, window, tmp_path, monkeypatch):
     epw = tmp_path / "mannheim.epw"
     epw.write_bytes(gzip.decompress(data.read_bytes()))
     d, panel = _office(qtbot, window)
-    monkeypatch.setattr("app.dialogs.open_file", lambda *a, **k: str(epw))
+    monkeypatch.setattr("app.dialogs.ask.open_file", lambda *a, **k: str(epw))
     button = next(b for b in panel.findChildren(QtWidgets.QPushButton) if b.text() == "Browse...")
     qtbot.mouseClick(button, QtCore.Qt.MouseButton.LeftButton)
     qtbot.waitUntil(lambda: "Mannheim" in panel.site.text(), timeout=10_000)

@@ -6,8 +6,8 @@ import numpy as np
 import pytest
 from PySide6 import QtWidgets
 
-from app import dialogs
-from app.import_dialog import ImportDialog, model_filter
+from app.dialogs import ask
+from app.dialogs.import_dialog import ImportDialog, model_filter
 from tests.app.conftest import wait_for_operator
 from tests.core.test_mesh_import import Gltf, box_polygons
 
@@ -34,7 +34,7 @@ def sky_room_glb(path):
 def test_the_file_menu_imports_every_model_format(qtbot, window, monkeypatch):
     assert window.act_import.text() == "&Import model..."
     asked = []
-    monkeypatch.setattr(dialogs, "open_file", lambda parent, title, filt: asked.append(filt) or "")
+    monkeypatch.setattr(ask, "open_file", lambda parent, title, filt: asked.append(filt) or "")
     window.act_import.trigger()
     assert asked == [model_filter()]
     for pattern in ("*.obj", "*.gltf", "*.glb", "*.ply", "*.ifc"):
@@ -53,7 +53,7 @@ def test_importing_a_glb_through_the_window(qtbot, window, tmp_path):
     dialog.resolution.setValue(0.5)
     dialog.grab().save("/tmp/import-glb-dialog.png")
     dialog.setResult(QtWidgets.QDialog.Accepted)
-    assert window.import_obj_dialog(dialog)
+    assert window.files.import_obj_dialog(dialog)
     wait_for_operator(qtbot, window)
     spec = window.doc.project.scene
     assert (spec.up, spec.group_by, spec.resolution) == ("y", "node", 0.5)
@@ -81,7 +81,7 @@ def test_importing_an_ifc_through_the_window(qtbot, window, tmp_path):
     dialog.resolution.setValue(0.5)
     dialog.grab().save("/tmp/import-ifc-dialog.png")
     dialog.setResult(QtWidgets.QDialog.Accepted)
-    assert window.import_obj_dialog(dialog)
+    assert window.files.import_obj_dialog(dialog)
     wait_for_operator(qtbot, window)
     scene = window.doc.scene
     assert {z.name: z.kind for z in scene.zones} == {

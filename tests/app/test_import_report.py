@@ -6,8 +6,8 @@ from __future__ import annotations
 import pytest
 from PySide6 import QtCore, QtTest, QtWidgets
 
-from app.import_dialog import ImportDialog
-from app.import_report_dialog import ImportReportDialog
+from app.dialogs.import_dialog import ImportDialog
+from app.dialogs.import_report_dialog import ImportReportDialog
 from tests.app.conftest import wait_for_operator
 
 pytest.importorskip("ifcopenshell")
@@ -27,7 +27,7 @@ def import_through_the_dialog(window, path) -> None:
     dialog = ImportDialog(path, window)
     dialog.resolution.setValue(0.5)
     dialog.setResult(QtWidgets.QDialog.Accepted)
-    assert window.import_obj_dialog(dialog)
+    assert window.files.import_obj_dialog(dialog)
 
 
 def shown_reports(window) -> list[ImportReportDialog]:

@@ -7,7 +7,8 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from app.array_dialog import ArrayDialog, WorkplaneDialog
+from app.dialogs.array_dialog import ArrayDialog
+from app.dialogs.workplane_dialog import WorkplaneDialog
 from tests.app.conftest import wait_for_operator
 
 
@@ -84,7 +85,7 @@ def test_arrays_and_work_planes_are_edited_and_shown_live(qtbot, window, tmp_pat
 def test_a_bad_array_is_refused_with_a_message(qtbot, window, monkeypatch):
     d, panel = _arrays_window(qtbot, window)
     said = []
-    monkeypatch.setattr("app.dialogs.warn", lambda parent, msg: said.append(msg))
+    monkeypatch.setattr("app.dialogs.ask.warn", lambda parent, msg: said.append(msg))
     dialog = ArrayDialog({"lum_west": d.zone_size("lum_west")}, name="A1")
     dialog.product.setCurrentText("no such product")
     assert "neither a catalogue luminaire" in dialog.summary.text()
@@ -129,7 +130,7 @@ def test_a_run_lays_the_arrays_out_and_loads_them(qtbot, window):
 def test_rules_on_arrays_are_added_in_the_rule_dialog_and_listed(qtbot, window):
     from PySide6 import QtWidgets
 
-    from app.panels import RuleDialog
+    from app.dialogs.rule_dialog import RuleDialog
 
     d, panel = _arrays_window(qtbot, window)
     zones = {z: d.zone_size(z) for z in ("lum_west", "lum_east")}
@@ -139,11 +140,11 @@ def test_rules_on_arrays_are_added_in_the_rule_dialog_and_listed(qtbot, window):
     assert [dialog.kind.itemData(i) for i in range(dialog.kind.count())] == ["shr", "clearance"]
     dialog.set_rule("shr", ["A1"], max=1.2)
     dialog.setResult(QtWidgets.QDialog.Accepted)
-    assert window.add_rule(dialog)
+    assert window.edits.add_rule(dialog)
     clear = RuleDialog([], window, ["A1"])
     clear.set_rule("clearance", ["A1"], min=0.2)
     clear.setResult(QtWidgets.QDialog.Accepted)
-    assert window.add_rule(clear)
+    assert window.edits.add_rule(clear)
     kinds = [(r.kind, r.sources, r.min, r.max) for r in d.design.rules]
     assert kinds == [("shr", ("A1",), None, 1.2), ("clearance", ("A1",), 0.2, None)]
     texts = []
@@ -193,9 +194,9 @@ def test_a_product_file_with_warnings_shows_them_in_the_dialog_panel_and_status_
 
     d, panel = _arrays_window(qtbot, window)
     path = tilted_file(tmp_path)
-    monkeypatch.setattr("app.dialogs.open_file", lambda *a, **k: str(path))
+    monkeypatch.setattr("app.dialogs.ask.open_file", lambda *a, **k: str(path))
     shown: list[str] = []
-    monkeypatch.setattr("app.dialogs.inform", lambda parent, text: shown.append(text))
+    monkeypatch.setattr("app.dialogs.ask.inform", lambda parent, text: shown.append(text))
     before = list(window.warnings())
     seen: dict[str, str] = {}
 

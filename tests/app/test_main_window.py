@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 from PySide6 import QtCore, QtGui, QtWidgets
 
-from app.panels import IntentionDialog
+from app.dialogs.intention_dialog import IntentionDialog
 from lightinv_core.project import load_project
 from tests.app.conftest import wait_for_operator
 
@@ -79,7 +79,7 @@ def test_pick_patches_by_clicking_and_add_an_intention(qtbot, cornell):
     dialog = IntentionDialog("picked", win)
     dialog.set_values(min=100.0, average=None, uniformity=None)
     dialog.setResult(QtWidgets.QDialog.Accepted)
-    assert win.add_intention_on_selection(dialog)
+    assert win.edits.add_intention_on_selection(dialog)
     (it,) = win.doc.design.intentions
     assert it.min == 100.0 and set(it.patches) == set(win.doc.selection)
     assert win.tree.findItems(it.name, QtCore.Qt.MatchRecursive)
@@ -117,7 +117,7 @@ def test_save_and_reopen_gives_the_same_project(qtbot, cornell, tmp_path):
     win.doc.set_selection([1, 2, 3])
     dialog = IntentionDialog("three", win)
     dialog.setResult(QtWidgets.QDialog.Accepted)
-    assert win.add_intention_on_selection(dialog)
+    assert win.edits.add_intention_on_selection(dialog)
     path = tmp_path / "p.json"
     assert win.save_to(path)
     saved = win.doc.project
@@ -155,7 +155,7 @@ def test_bad_project_file_shows_an_error_and_keeps_the_open_one(
 
 
 def test_draw_a_zone_on_the_ceiling_and_place_a_source_in_it(qtbot, window):
-    from app.panels import ZoneDialog
+    from app.dialogs.zone_dialog import ZoneDialog
 
     assert window.new_project("office", 0.5)
     wait_for_operator(qtbot, window)
@@ -167,10 +167,10 @@ def test_draw_a_zone_on_the_ceiling_and_place_a_source_in_it(qtbot, window):
     win.viewport.plotter.camera_position = [(6.0, 7.5, 0.3), (6.0, 7.5, 3.0), (0, 1, 0)]
     win.viewport.render_now()
     dialog = ZoneDialog("ceiling", "Z1", win)
-    dialog.kind.setCurrentText("luminaire")
+    dialog.kind.setCurrentIndex(dialog.kind.findData("luminaire"))
     dialog.setResult(QtWidgets.QDialog.Accepted)
     drawn = []
-    win.viewport.zoneDrawn.disconnect(win._zone_drawn)
+    win.viewport.zoneDrawn.disconnect(win.edits.zone_drawn)
     win.viewport.zoneDrawn.connect(lambda *a: drawn.append(a))
     start = to_qt(win.viewport, (5.5, 7.7, 3.0))
     end = to_qt(win.viewport, (6.5, 7.3, 3.0))
@@ -186,7 +186,7 @@ def test_draw_a_zone_on_the_ceiling_and_place_a_source_in_it(qtbot, window):
     ]
     np.testing.assert_allclose(sorted(c[0] for c in corners), [5.5, 6.5], atol=0.03)
     np.testing.assert_allclose(sorted(c[1] for c in corners), [7.3, 7.7], atol=0.03)
-    assert win._zone_drawn(surface, u0, v0, u1, v1, dialog)
+    assert win.edits.zone_drawn(surface, u0, v0, u1, v1, dialog)
     assert "Z1" in {z.name for z in win.doc.scene.zones}
     assert win.doc.project.scene.zones[0].name == "Z1" and win.doc.dirty
     wait_for_operator(qtbot, win)

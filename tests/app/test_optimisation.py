@@ -11,7 +11,7 @@ import numpy as np
 import pytest
 from PySide6 import QtWidgets
 
-from app.workers import RunWorker
+from app.window.workers import RunWorker
 from lightinv_core.design.model import CORNERS, Intention
 from lightinv_core.project import OperatorSettings, load_project
 from tests.app.conftest import wait_for_operator
@@ -103,8 +103,8 @@ def test_several_seeds_show_each_run(qtbot, cornell_design):
     panel = win.solutions_panel
     assert panel.table.rowCount() == 3 and win.tabs.currentWidget() is panel
     # The paper's experiment 4 view: area against strength of each run's layout.
-    panel.x_axis.setCurrentIndex(panel.x_axis.findData("lum_area"))
-    panel.y_axis.setCurrentIndex(panel.y_axis.findData("lum_flux"))
+    panel.x_axis.setCurrentIndex(panel.x_axis.findData("area:luminaire"))
+    panel.y_axis.setCurrentIndex(panel.y_axis.findData("strength:luminaire"))
     assert np.isfinite(panel.scatter.xy).all() and len(panel.scatter.xy) == 3
 
 
@@ -172,7 +172,7 @@ def test_pareto_browser_loads_pins_and_compares_solutions(qtbot, experiment5, tm
     assert lo == pytest.approx(-hi) and hi > 0
     assert win.viewport.cmap == "coolwarm"
     panel.difference.setChecked(False)
-    assert win.viewport.cmap == win.cmap.currentText()
+    assert win.viewport.cmap == win.view_options.cmap.currentText()
     # Pinned results and the front are saved with the project.
     path = tmp_path / "exp5.json"
     assert win.save_to(path)

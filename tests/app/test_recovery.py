@@ -15,7 +15,7 @@ import pytest
 from PySide6 import QtCore
 
 from app.autosave import orphaned_autosaves, read_autosave
-from app.main_window import MainWindow
+from app.window.main_window import MainWindow
 from lightinv_core.design.model import CORNERS, Design, Goal, Intention, Source
 from lightinv_core.project import OptimizerSettings, Project, SceneSpec, save_project
 from tests.app.conftest import wait_for_operator

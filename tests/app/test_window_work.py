@@ -13,8 +13,8 @@ import numpy as np
 import pytest
 from PySide6 import QtCore, QtGui, QtTest, QtWidgets
 
-from app import dialogs
 from app.__main__ import DEMO
+from app.dialogs import ask
 from tests.app.conftest import wait_for_operator
 
 PAPER_DEMO = DEMO.parent / "office-demo.json"  # power goals: the goal-editing test's start
@@ -36,7 +36,7 @@ def saved(qtbot, window, tmp_path):
 
 
 def test_the_unsaved_question_defaults_to_save(window, tmp_path):
-    box, buttons = dialogs.unsaved_box(window)
+    box, buttons = ask.unsaved_box(window)
     assert box.defaultButton() is buttons["save"] and box.escapeButton() is buttons["cancel"]
     box.show()
     QtWidgets.QApplication.processEvents()
@@ -57,7 +57,7 @@ def test_replacing_an_edited_project_asks_save_discard_cancel(
 ):
     window, path = saved
     before = path.read_bytes()
-    monkeypatch.setattr(dialogs, "ask_unsaved", lambda parent: answer)
+    monkeypatch.setattr(ask, "ask_unsaved", lambda parent: answer)
     assert window.files.may_discard() is replaced
     assert (path.read_bytes() != before) is written
     assert window.doc.dirty is not written
@@ -67,8 +67,8 @@ def test_saving_an_untitled_project_can_be_cancelled(qtbot, window, monkeypatch)
     assert window.new_project("cornell", 0.5)
     window.doc.add_source("light")
     window.ask_before_discard = True
-    monkeypatch.setattr(dialogs, "ask_unsaved", lambda parent: "save")
-    monkeypatch.setattr(dialogs, "save_file", lambda *a, **k: "")  # Save As cancelled
+    monkeypatch.setattr(ask, "ask_unsaved", lambda parent: "save")
+    monkeypatch.setattr(ask, "save_file", lambda *a, **k: "")  # Save As cancelled
     assert not window.files.may_discard() and window.doc.dirty
     window.ask_before_discard = False
 
@@ -129,9 +129,9 @@ def test_the_report_documents_the_design_on_screen(qtbot, window, tmp_path):
 
 
 def test_file_names_get_their_suffix():
-    assert dialogs.with_suffix("/x/report", ".pdf") == "/x/report.pdf"
-    assert dialogs.with_suffix("/x/report.PDF", ".pdf") == "/x/report.PDF"
-    assert dialogs.with_suffix("", ".pdf") == ""
+    assert ask.with_suffix("/x/report", ".pdf") == "/x/report.pdf"
+    assert ask.with_suffix("/x/report.PDF", ".pdf") == "/x/report.PDF"
+    assert ask.with_suffix("", ".pdf") == ""
 
 
 def test_the_window_fits_a_laptop_screen(qtbot, window, tmp_path):
@@ -179,7 +179,7 @@ def test_a_drag_ending_outside_the_view_selects_without_error(qtbot, window):
 
 
 def test_violations_tell_value_and_bound_apart():
-    from app.results_panel import distinct
+    from app.widgets.numbers import distinct
 
     assert distinct(0.593, 0.6) == ("0.593", "0.600")
     assert distinct(498.7, 500.0) == ("498.7", "500.0")
@@ -227,7 +227,7 @@ def test_warnings_stay_in_the_status_bar(qtbot, window, tmp_path, monkeypatch):
     assert window.warnings_button.isVisible()
     assert f"{len(every)} warnings" in window.warnings_button.text()
     shown = []
-    monkeypatch.setattr(dialogs, "inform", lambda parent, text: shown.append(text))
+    monkeypatch.setattr(ask, "inform", lambda parent, text: shown.append(text))
     window.warnings_button.click()
     assert shown and all(w in shown[0] for w in every)
     window.statusBar().grab().save("/tmp/warnings-status.png")
@@ -310,7 +310,7 @@ def test_what_the_optimiser_may_change_is_edited_in_properties(qtbot, window):
 
 
 def test_intentions_are_edited_and_deleted_from_the_tree(qtbot, window):
-    from app.panels import IntentionDialog
+    from app.dialogs.intention_dialog import IntentionDialog
     from lightinv_core.design.model import Intention
 
     assert window.new_project("office", 0.5)
@@ -328,7 +328,7 @@ def test_intentions_are_edited_and_deleted_from_the_tree(qtbot, window):
     dialog.name.setText("task area")
     dialog.set_values(average=300.0, uniformity=0.7)
     dialog.setResult(QtWidgets.QDialog.Accepted)
-    assert window.edit_intention("desks", dialog)
+    assert window.edits.edit_intention("desks", dialog)
     first = d.design.intentions[0]
     assert (first.name, first.group, first.average, first.uniformity) == (
         "task area",
@@ -379,7 +379,7 @@ def test_achieved_values_follow_the_design_on_screen(qtbot, window):
 def test_rules_and_goals_are_seen_and_edited(qtbot, window):
     """Rules could not be created or even seen (the demo's aspect rule was invisible);
     a second goal needed editing the file."""
-    from app.panels import RuleDialog
+    from app.dialogs.rule_dialog import RuleDialog
 
     assert window.open_path(PAPER_DEMO)
     wait_for_operator(qtbot, window)
@@ -396,7 +396,7 @@ def test_rules_and_goals_are_seen_and_edited(qtbot, window):
     dialog.grab().save("/tmp/rule-dialog.png")
     dialog.setResult(QtWidgets.QDialog.Accepted)
     n = len(d.design.rules)
-    assert window.add_rule(dialog)
+    assert window.edits.add_rule(dialog)
     rule = d.design.rules[-1]
     assert (rule.kind, rule.sources, rule.min, rule.max) == ("area", ("L1",), 1.0, 3.0)
     (item,) = [
@@ -412,12 +412,12 @@ def test_rules_and_goals_are_seen_and_edited(qtbot, window):
     bad.set_rule("spacing", ["L1"], min=1.0)  # spacing binds two sources
     bad.setResult(QtWidgets.QDialog.Accepted)
     warned = []
-    import app.dialogs as dialogs_module
+    import app.dialogs.ask as dialogs_module
 
     original = dialogs_module.warn
     dialogs_module.warn = lambda parent, text: warned.append(text)
     try:
-        assert not window.add_rule(bad) and warned
+        assert not window.edits.add_rule(bad) and warned
     finally:
         dialogs_module.warn = original
     # Goals: both power goals make a Pareto front; the last one cannot go.
@@ -436,7 +436,7 @@ def test_rules_and_goals_are_seen_and_edited(qtbot, window):
 
 def test_importing_an_obj_asks_units_and_up_axis(qtbot, window, tmp_path):
     """A millimetre model imported asking nothing was meshed as a 4 km room."""
-    from app.import_dialog import ImportDialog
+    from app.dialogs.import_dialog import ImportDialog
     from tests.core.test_obj_import import BOX
 
     mm = "".join(
@@ -456,7 +456,7 @@ def test_importing_an_obj_asks_units_and_up_axis(qtbot, window, tmp_path):
     dialog.resolution.setValue(0.5)
     dialog.grab().save("/tmp/import-dialog.png")
     dialog.setResult(QtWidgets.QDialog.Accepted)
-    assert window.import_obj_dialog(dialog)
+    assert window.files.import_obj_dialog(dialog)
     scene = window.doc.project.scene
     assert (scene.scale, scene.up, scene.resolution) == (0.001, "z", 0.5)
     assert window.doc.scene.area == pytest.approx(2 * (12 + 10 + 7.5))
@@ -512,7 +512,7 @@ def drag(window, a, b, shot: str | None = None) -> None:
 def test_a_luminaire_zone_drawn_in_top_view_goes_on_the_ceiling(qtbot, window):
     """From above, the ceiling is culled and the floor is what is seen: a luminaire zone
     drawn in Top view landed on the floor."""
-    from app.panels import ZoneDialog
+    from app.dialogs.zone_dialog import ZoneDialog
     from tests.app.test_main_window import to_qt
 
     assert window.new_project("office", 0.5)
@@ -520,15 +520,15 @@ def test_a_luminaire_zone_drawn_in_top_view_goes_on_the_ceiling(qtbot, window):
     d, vp = window.doc, window.viewport
     vp.camera("top")
     window.set_mode("zone")
-    assert window.draw_kind() == "luminaire"
+    assert window.edits.draw_kind() == "luminaire"
     # The strip between the skylight zone and the north wall, x 5.5-6.5 m, y 7.3-7.7 m.
     a, b = (5.5, 7.7, 3.0), (6.5, 7.3, 3.0)
-    seen = vp.pick_at(*vp._display(to_qt(vp, a).toPoint()))
+    seen = vp.pick_at(*vp.display(to_qt(vp, a).toPoint()))
     # What is seen there is not the ceiling (culled from above) but a wall in perspective
     # (the floor further in): the old code drew on what it saw.
     assert d.patches.group_names[d.patches.group_id[seen[0]]] in ("walls", "floor")
     drawn = []
-    vp.zoneDrawn.disconnect(window._zone_drawn)
+    vp.zoneDrawn.disconnect(window.edits.zone_drawn)
     vp.zoneDrawn.connect(lambda *args: drawn.append(args))
     drag(window, a, b, "/tmp/h3-top-view-draft.png")
     ((surface, u0, v0, u1, v1),) = drawn
@@ -545,7 +545,7 @@ def test_a_luminaire_zone_drawn_in_top_view_goes_on_the_ceiling(qtbot, window):
     assert f"luminaire zone on {surface}" in window.statusBar().currentMessage()
     dialog = ZoneDialog(surface, "Z1", window)
     dialog.setResult(QtWidgets.QDialog.Accepted)
-    assert window._zone_drawn(surface, u0, v0, u1, v1, dialog)
+    assert window.edits.zone_drawn(surface, u0, v0, u1, v1, dialog)
     zone = d.scene.zone("Z1")
     assert zone.kind == "luminaire" and d.scene.surface(zone.surface).group == "ceiling"
     vp.screenshot("/tmp/h3-top-view-zone.png")
@@ -616,9 +616,9 @@ def test_zone_axes_show_where_the_corners_are_measured_from(qtbot, window):
     assert vp.axes_title == "ceiling (0, 0)"
     vp.camera("iso")
     window.grab().save("/tmp/h3-axes-drawn-zone.png")
-    window.zone_axes.setChecked(False)
+    window.view_options.zone_axes.setChecked(False)
     assert not vp.axes_shown()
-    window.zone_axes.setChecked(True)
+    window.view_options.zone_axes.setChecked(True)
     assert vp.axes_shown()
 
 
@@ -671,7 +671,7 @@ def test_a_polygon_zone_clicked_corner_by_corner(qtbot, window):
     """Zones were rectangles only: an L-shaped zone is clicked corner by corner in Top
     view, sources added to it start inside it and drags stop at its edge, and its
     corners can be typed in the Drawn zones panel."""
-    from app.panels import ZoneDialog
+    from app.dialogs.zone_dialog import ZoneDialog
     from lightinv_core.scene.zone_outline import is_inside
     from tests.app.test_main_window import send_mouse, to_qt
 
@@ -685,7 +685,7 @@ def test_a_polygon_zone_clicked_corner_by_corner(qtbot, window):
     corners = [(4.0, 7.4), (8.0, 7.4), (8.0, 6.6), (5.2, 6.6), (5.2, 5.8), (4.0, 5.8)]
     iw = vp.plotter.interactor
     drawn = []
-    vp.polygonDrawn.disconnect(window._polygon_drawn)
+    vp.polygonDrawn.disconnect(window.edits.polygon_drawn)
     vp.polygonDrawn.connect(lambda *args: drawn.append(args))
     for x, y in corners:
         p = to_qt(vp, (x, y, 3.0))
@@ -707,7 +707,7 @@ def test_a_polygon_zone_clicked_corner_by_corner(qtbot, window):
     assert len(uv) == 6 and vp.polygon_corners() == []
     dialog = ZoneDialog(surface, "Z1", window)
     dialog.setResult(QtWidgets.QDialog.Accepted)
-    assert window._polygon_drawn(surface, uv, dialog)
+    assert window.edits.polygon_drawn(surface, uv, dialog)
     wait_for_operator(qtbot, window)
     zone = d.scene.zone("Z1")
     assert zone.kind == "luminaire" and zone.outline is not None and len(zone.outline) == 6
@@ -771,17 +771,17 @@ def test_a_slow_model_loads_with_progress_and_a_cancel_keeps_the_open_project(
     leaves the open project as it was."""
     import time
 
-    import app.files
-    import app.workers
+    import app.window.files
+    import app.window.workers
 
-    real = app.workers.load_scene_of
+    real = app.window.workers.load_scene_of
 
     def slow(project, path):
         time.sleep(1.2)
         return real(project, path)
 
-    monkeypatch.setattr(app.workers, "load_scene_of", slow)
-    monkeypatch.setattr(app.files, "LOAD_DIALOG_MS", 100)
+    monkeypatch.setattr(app.window.workers, "load_scene_of", slow)
+    monkeypatch.setattr(app.window.files, "LOAD_DIALOG_MS", 100)
     ticks = []
     timer = QtCore.QTimer()
     timer.timeout.connect(lambda: ticks.append(1))

@@ -7,7 +7,7 @@ every scenario is built once per design change (``DocumentModel.layout_daylight`
 slider only sums it for one hour (``LayoutDaylight.hour_lux``: a few microseconds).
 What cannot be shown (an unreadable weather file, no skylights, no work plane to dim
 on) is said in the panel, never raised. The daylight maps of the view (DF, DA300, UDI,
-one hour) are computed by ``map_values`` here for the window's "Colour by".
+one hour) are in app/view/daylight_maps.py.
 """
 
 from __future__ import annotations
@@ -15,12 +15,12 @@ from __future__ import annotations
 from dataclasses import replace
 from pathlib import Path
 
-import numpy as np
-import pyqtgraph as pg
 from PySide6 import QtCore, QtWidgets
 
-from app import dialogs
+from app.dialogs import ask
+from app.dialogs.fields import compact_form, typed_number
 from app.document import Document
+from app.widgets.energy_box import EnergyBox
 from lightinv_core.climate.weather import BUILTIN
 from lightinv_core.editing.climate import (
     HOURS_PER_YEAR,
@@ -34,142 +34,11 @@ from lightinv_core.editing.climate import (
     weather_of,
 )
 from lightinv_core.errors import LightInvError
-from lightinv_core.kinds import Scenario
 
 WEATHER_FILTER = (
     "Weather files (*.epw *.csv *.tm2);;EnergyPlus weather (*.epw);;TMY3 (*.csv);;TMY2 (*.tm2)"
 )
 DEFAULT_HOUR = hour_index(6, 21, 12)  # midsummer noon
-MAPS = {
-    # key: (Colour by text, colour bar title, its label format)
-    "night": ("illuminance at night: luminaires only (lux)", "lux, night", "%.0f"),
-    "overcast": ("illuminance under the overcast sky (lux)", "lux, overcast", "%.0f"),
-    "df": ("daylight factor DF (%)", "DF %", "%.1f"),
-    "da": ("daylight autonomy DA300 (% of occupied hours)", "DA300 %", "%.0f"),
-    "udi": ("useful daylight UDI 100-3000 lux (% of hours)", "UDI %", "%.0f"),
-    "hour": ("illuminance at the hour of the year (lux)", "lux", "%.0f"),
-}
-"""The view's daylight maps, each from the layout shown's ``LayoutDaylight``."""
-PERCENT_MAPS = ("da", "udi")  # drawn 0-100 % whatever the range set
-
-
-class MapResult:
-    """A daylight map for the view: ``values`` per patch (None: nothing to show), the
-    colour bar's ``units`` and label ``fmt``, a ``caption``, a fixed ``clim`` (None:
-    the view's range) and the work planes' ``grids`` with the same quantity at their
-    points (``grid_values``; None without work planes)."""
-
-    def __init__(self, values, units: str, fmt: str, caption: str | None, clim=None):
-        self.values, self.units, self.fmt = values, units, fmt
-        self.caption, self.clim = caption, clim
-        self.grids, self.grid_values = None, None
-
-    @property
-    def label_format(self) -> str:
-        """The iso-lines' label format (str.format) matching the colour bar's."""
-        return "{:" + self.fmt.lstrip("%") + "}"
-
-
-def map_values(doc: Document, key: str, hour: int) -> MapResult:
-    """The map ``key`` (a key of ``MAPS``) of the layout shown, on the patches and the
-    work planes' points; its values None and the caption saying why when it cannot be
-    computed (no light model, an unreadable weather file)."""
-    _, units, fmt = MAPS[key]
-    try:
-        ld = doc.layout_daylight(shown=True)
-        if ld is None:
-            return MapResult(None, units, fmt, None)
-        shown = _map(ld, doc, key, hour, units, fmt)
-        if ld.points is not None:
-            shown.grids = ld.grids
-            shown.grid_values = _on(ld.points, ld, key, hour)
-        return shown
-    except LightInvError as exc:
-        return MapResult(None, units, fmt, f"{MAPS[key][0]}: {exc}")
-
-
-def _map(ld, doc: Document, key: str, hour: int, units: str, fmt: str) -> MapResult:
-    p = ld.patches
-    values = _on(p, ld, key, hour)
-    hint = "\nThe design has no skylights: no daylight." if not p.groups.count else ""
-    if key in (Scenario.NIGHT, Scenario.OVERCAST):
-        cap = "Luminaires only" if key == Scenario.NIGHT else "Luminaires + the CIE overcast sky"
-        return MapResult(values, units, fmt, cap + hint)
-    if key == "df":
-        return MapResult(values, units, fmt, "Daylight factor, CIE overcast sky" + hint)
-    if key in PERCENT_MAPS:
-        over = f" of {p.year().hours:,} occupied hours" if p.groups.count else ""
-        what = "with 300 lux of daylight" if key == "da" else "with 100-3000 lux of daylight"
-        head = "DA300" if key == "da" else "UDI 100-3000"
-        return MapResult(values, units, fmt, f"{head}: share{over}\n{what}" + hint, (0.0, 100.0))
-    state = hour_state(ld, _weather_or_none(doc), hour)
-    return MapResult(values, units, fmt, state.text())
-
-
-def _on(light, ld, key: str, hour: int) -> np.ndarray:
-    """The map ``key`` at the receivers of ``light`` (the layout's patches or points)."""
-    if key in (Scenario.NIGHT, Scenario.OVERCAST):
-        return light.lux(key)[:, 0]
-    if key == "df":
-        return 100.0 * light.overcast_daylight()[:, 0]
-    if key in PERCENT_MAPS:
-        return 100.0 * (light.da() if key == "da" else light.udi())[:, 0]
-    if light is ld.patches:
-        return ld.hour_lux(hour)
-    # The same sum as ``LayoutDaylight.hour_lux``, at the work planes' points.
-    year = light.year()
-    day = np.tensordot(year.every[:, hour], light.sky[:, :, 0], axes=1) if light.groups.count else 0
-    return light.electric[:, 0] * ld.level_at(hour) + day
-
-
-def _weather_or_none(doc: Document):
-    try:
-        return doc.weather()
-    except LightInvError:
-        return None
-
-
-def _form(group: QtWidgets.QGroupBox) -> QtWidgets.QFormLayout:
-    """A form whose fields keep their natural width (the tab is wide and short)."""
-    form = QtWidgets.QFormLayout(group)
-    form.setFieldGrowthPolicy(QtWidgets.QFormLayout.FieldsStayAtSizeHint)
-    return form
-
-
-def _spin(lo: float, hi: float, step: float, decimals: int, suffix: str = ""):
-    box = QtWidgets.QDoubleSpinBox(decimals=decimals, singleStep=step, suffix=suffix)
-    box.setRange(lo, hi)
-    box.setKeyboardTracking(False)  # one edit when typing is done, not one per digit
-    return box
-
-
-class EnergyChart(pg.PlotWidget):
-    """Lighting energy per month (kWh) as bars."""
-
-    def __init__(self, parent: QtWidgets.QWidget | None = None):
-        super().__init__(parent)
-        self.setMinimumHeight(150)
-        self.setMouseEnabled(x=False, y=False)
-        self.hideButtons()
-        self.setMenuEnabled(False)
-        self.showGrid(y=True, alpha=0.3)
-        self.setLabel("left", "kWh")
-        self.getAxis("bottom").setTicks([[(i + 1, m) for i, m in enumerate(MONTHS)]])
-        self.bars = pg.BarGraphItem(
-            x=np.arange(1, 13), height=np.zeros(12), width=0.7, brush="#3b7dd8"
-        )
-        self.addItem(self.bars)
-        self.setXRange(0.4, 12.6, padding=0)
-        self.monthly = np.zeros(12)
-
-    def sizeHint(self) -> QtCore.QSize:
-        return QtCore.QSize(380, 200)  # not a plot widget's 640 x 480: the tab is short
-
-    def set_months(self, kwh) -> None:
-        """Draw 12 monthly values (kWh); None empties the chart."""
-        self.monthly = np.zeros(12) if kwh is None else np.asarray(kwh, float)
-        self.bars.setOpts(height=self.monthly)
-        self.setYRange(0.0, max(float(self.monthly.max()) * 1.1, 1e-3), padding=0)
 
 
 class ClimatePanel(QtWidgets.QWidget):
@@ -196,7 +65,8 @@ class ClimatePanel(QtWidgets.QWidget):
         row.addWidget(self._site_group())
         row.addWidget(self._control_group())
         row.addWidget(self._hour_group())
-        row.addWidget(self._energy_group(), 1)
+        self.energy = EnergyBox()
+        row.addWidget(self.energy, 1)
         self._fields = (
             self.north,
             self.ground,
@@ -221,7 +91,7 @@ class ClimatePanel(QtWidgets.QWidget):
     # -- layout ---------------------------------------------------------------------------
     def _site_group(self) -> QtWidgets.QGroupBox:
         group = QtWidgets.QGroupBox("Weather and site")
-        form = _form(group)
+        form = compact_form(group)
         self.weather_path = QtWidgets.QLineEdit()
         self.weather_path.setReadOnly(True)
         self.weather_path.setMinimumWidth(200)
@@ -239,20 +109,20 @@ class ClimatePanel(QtWidgets.QWidget):
         form.addRow("", wrow)
         self.site = QtWidgets.QLabel("-")
         form.addRow("Site", self.site)
-        self.north = _spin(-360.0, 360.0, 5.0, 1, "°")
+        self.north = typed_number(-360.0, 360.0, 5.0, 1, "°")
         self.north.setToolTip("Compass bearing of the scene's +y axis (0: +y points north)")
         form.addRow("North", self.north)
-        self.ground = _spin(0.0, 0.99, 0.05, 2)
+        self.ground = typed_number(0.0, 0.99, 0.05, 2)
         form.addRow("Ground reflectance", self.ground)
-        self.overcast = _spin(0.0, 2e5, 1000.0, 0, " lux")
+        self.overcast = typed_number(0.0, 2e5, 1000.0, 0, " lux")
         self.overcast.setToolTip("Horizontal exterior illuminance of the design overcast sky")
         form.addRow("Overcast sky", self.overcast)
-        self.exterior_lux = _spin(0.0, 2e5, 1000.0, 0, " lux")
+        self.exterior_lux = typed_number(0.0, 2e5, 1000.0, 0, " lux")
         self.exterior_lux.setToolTip(
             "The design scenario's exterior lux on every skylight (the paper's model)"
         )
         form.addRow("Design sky", self.exterior_lux)
-        self.transmittance = _spin(0.0, 1.0, 0.05, 2)
+        self.transmittance = typed_number(0.0, 1.0, 0.05, 2)
         self.transmittance.setToolTip("Of the glazing, in every scenario")
         form.addRow("Transmittance", self.transmittance)
         self.browse_button.clicked.connect(lambda: self.browse())
@@ -266,9 +136,9 @@ class ClimatePanel(QtWidgets.QWidget):
 
     def _control_group(self) -> QtWidgets.QGroupBox:
         group = QtWidgets.QGroupBox("Occupancy and dimming")
-        form = _form(group)
-        self.start = _spin(0.0, 24.0, 0.5, 1, " h")
-        self.end = _spin(0.0, 24.0, 0.5, 1, " h")
+        form = compact_form(group)
+        self.start = typed_number(0.0, 24.0, 0.5, 1, " h")
+        self.end = typed_number(0.0, 24.0, 0.5, 1, " h")
         orow = QtWidgets.QHBoxLayout()
         orow.addWidget(self.start)
         orow.addWidget(QtWidgets.QLabel("to"))
@@ -277,13 +147,13 @@ class ClimatePanel(QtWidgets.QWidget):
         self.weekdays = QtWidgets.QCheckBox("weekdays only")
         self.weekdays.setToolTip("Monday to Friday; unticked: every day of the week")
         form.addRow("", self.weekdays)
-        self.target = _spin(0.0, 1e5, 50.0, 0, " lux")
+        self.target = typed_number(0.0, 1e5, 50.0, 0, " lux")
         self.target.setToolTip("Daylight-linked dimming keeps the work plane's mean at this")
         form.addRow("Dimming target", self.target)
-        self.min_level = _spin(0.0, 1.0, 0.05, 2)
+        self.min_level = typed_number(0.0, 1.0, 0.05, 2)
         self.min_level.setToolTip("The lowest output the luminaires dim to while occupied (0-1)")
         form.addRow("Minimum level", self.min_level)
-        self.standby = _spin(0.0, 1e6, 1.0, 1, " W")
+        self.standby = typed_number(0.0, 1e6, 1.0, 1, " W")
         self.standby.setToolTip("Drawn by the controls all year, on or off")
         form.addRow("Standby", self.standby)
         self.plane = QtWidgets.QComboBox()
@@ -337,15 +207,6 @@ class ClimatePanel(QtWidgets.QWidget):
         self.day.valueChanged.connect(self._date_edited)
         self.hour.valueChanged.connect(self._date_edited)
         self.show_hour.toggled.connect(self.showHourToggled)
-        return group
-
-    def _energy_group(self) -> QtWidgets.QGroupBox:
-        group = QtWidgets.QGroupBox("Annual lighting energy (daylight-linked dimming)")
-        lay = QtWidgets.QVBoxLayout(group)
-        self.chart = EnergyChart()
-        lay.addWidget(self.chart, 1)
-        self.energy_text = QtWidgets.QLabel("-")
-        lay.addWidget(self.energy_text)
         return group
 
     # -- document -> widgets ----------------------------------------------------------------
@@ -419,8 +280,7 @@ class ClimatePanel(QtWidgets.QWidget):
             self.exterior.setText("once the light model is ready.")
             self.glazing.setText("")
             self.level.setText("")
-            self.chart.set_months(None)
-            self.energy_text.setText("-")
+            self.energy.clear()
             self._say(problems)
             return
         if ld is not None and not ld.patches.groups.count:
@@ -429,7 +289,7 @@ class ClimatePanel(QtWidgets.QWidget):
                 "are 0; the luminaires dim only to the target)."
             )
         self._show_hour(ld, problems)
-        self._show_energy(ld, problems)
+        self.energy.show_energy(ld, problems)
         self._say(problems)
 
     def _say(self, problems: list[str]) -> None:
@@ -457,28 +317,6 @@ class ClimatePanel(QtWidgets.QWidget):
         self.glazing.setText(f"On the glazing {glazing} lux" if glazing else "No glazing")
         self.level.setText(
             f"Luminaires dimmed to {100 * s.level:.0f}%" if s.occupied else "Luminaires off"
-        )
-
-    def _show_energy(self, ld, problems: list[str]) -> None:
-        if ld is None:
-            return
-        try:
-            e = ld.energy()
-        except LightInvError as exc:
-            problems.append(f"Annual energy: {exc}")
-            self.chart.set_months(None)
-            self.energy_text.setText(f"Not measured:\n{exc}")
-            return
-        self.chart.set_months(e.monthly_kwh)
-        if ld.installed_w <= 0:
-            self.energy_text.setText("No luminaires: no electric lighting energy.")
-            return
-        saved = 1.0 - e.energy_kwh / e.full_kwh if e.full_kwh > 0 else 0.0
-        self.energy_text.setText(
-            f"Annual {e.energy_kwh:,.1f} kWh, LENI {e.leni:.2f} kWh/m²·a ({e.floor_m2:,.0f} m²)\n"
-            f"{100 * saved:.0f}% less than at full output ({e.full_kwh:,.1f} kWh); "
-            f"mean level {100 * e.mean_level:.0f}%\n"
-            f"{ld.installed_w:,.0f} W installed, dimmed on work plane {ld.control}"
         )
 
     def showEvent(self, event) -> None:
@@ -553,5 +391,5 @@ class ClimatePanel(QtWidgets.QWidget):
 
     def browse(self) -> bool:
         """Choose a weather file (EPW or TMY3)."""
-        path = dialogs.open_file(self, "Weather file", WEATHER_FILTER)
+        path = ask.open_file(self, "Weather file", WEATHER_FILTER)
         return bool(path) and self.set_weather(path)

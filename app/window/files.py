@@ -11,8 +11,9 @@ from pathlib import Path
 
 from PySide6 import QtCore, QtWidgets
 
-from app import actions, dialogs
-from app.workers import LoadWorker
+from app.dialogs import ask
+from app.window import actions
+from app.window.workers import LoadWorker
 from lightinv_core.editing import blank_project, obj_project
 from lightinv_core.errors import LightInvError
 from lightinv_core.project import Project, load_project
@@ -20,7 +21,7 @@ from lightinv_core.scene.importers.report import report_of
 
 MAX_RECENT = 8
 LOAD_DIALOG_MS = 500  # a load shorter than this shows no progress dialog
-SHIPPED = Path(__file__).resolve().parent.parent / "resources"
+SHIPPED = Path(__file__).resolve().parents[2] / "resources"
 """The installation's own files (demo projects): opened as untitled copies."""
 
 
@@ -47,7 +48,7 @@ class ProjectFiles(QtCore.QObject):
         d = self.doc
         if d.project is None or not d.dirty or not self.win.ask_before_discard:
             return True
-        answer = dialogs.ask_unsaved(self.win)
+        answer = ask.ask_unsaved(self.win)
         if answer == "save":
             return self.save()  # Save As when untitled; cancelling it keeps the project
         return answer == "discard"
@@ -66,7 +67,7 @@ class ProjectFiles(QtCore.QObject):
             self.win.stop_worker()
             self.doc.set_project(project, path, loaded=loaded)
         except LightInvError as exc:
-            dialogs.error(self.win, "cannot open", str(exc))
+            ask.error(self.win, "cannot open", str(exc))
             return False
         self.win.undo_stack.clear()  # another project: earlier edits are not undoable
         return True
@@ -135,7 +136,7 @@ class ProjectFiles(QtCore.QObject):
         try:
             project = load_project(path)
         except LightInvError as exc:
-            dialogs.error(self.win, "cannot open", str(exc))
+            ask.error(self.win, "cannot open", str(exc))
             return False
         if is_shipped(Path(path)):
             # A demo in the installation: open an untitled copy, so Save asks where to
@@ -158,7 +159,7 @@ class ProjectFiles(QtCore.QObject):
         try:
             project = obj_project(path, **options)
         except LightInvError as exc:
-            dialogs.error(self.win, "cannot import", str(exc))
+            ask.error(self.win, "cannot import", str(exc))
             return False
         if not self.load_project(project):
             return False
@@ -169,7 +170,7 @@ class ProjectFiles(QtCore.QObject):
         """Say what the import made of the file: its summary in the status bar, and the
         import report (not blocking the window) when something was dropped, skipped or
         is no zone."""
-        from app.import_report_dialog import ImportReportDialog, import_summary
+        from app.dialogs.import_report_dialog import ImportReportDialog, import_summary
 
         report = report_of(self.doc.scene) if self.doc.scene is not None else None
         if report is None:
@@ -185,7 +186,7 @@ class ProjectFiles(QtCore.QObject):
             self.win.import_report.show()
 
     def open_dialog(self) -> None:
-        path = dialogs.open_file(self.win, "Open project")
+        path = ask.open_file(self.win, "Open project")
         if path:
             self.open_path(path)
 
@@ -193,14 +194,14 @@ class ProjectFiles(QtCore.QObject):
         """Choose a model file (OBJ, glTF, GLB, PLY, IFC), then its import options (units,
         up axis, group names, materials)."""
         if dialog is None:
-            from app.import_dialog import ImportDialog, model_filter
+            from app.dialogs.import_dialog import ImportDialog, model_filter
 
-            path = dialogs.open_file(self.win, "Import model", model_filter())
+            path = ask.open_file(self.win, "Import model", model_filter())
             if not path:
                 return False
 
             dialog = ImportDialog(Path(path), self.win)
-        if not dialogs.accepted(dialog):
+        if not ask.accepted(dialog):
             return False
         return self.import_obj(dialog.path, **dialog.options())
 
@@ -216,7 +217,7 @@ class ProjectFiles(QtCore.QObject):
         try:
             saved = self.doc.save(path)
         except (LightInvError, OSError) as exc:
-            dialogs.error(self.win, "cannot save", str(exc))
+            ask.error(self.win, "cannot save", str(exc))
             return False
         self.remember(saved)
         self.win.autosaver.save_now()  # nothing unsaved: removes the autosave (unless running)
@@ -224,16 +225,16 @@ class ProjectFiles(QtCore.QObject):
         return True
 
     def save_as_dialog(self) -> bool:
-        path = dialogs.save_file(self.win, "Save project", suffix=".json")
+        path = ask.save_file(self.win, "Save project", suffix=".json")
         return bool(path) and self.save_to(path)
 
     def export_png_dialog(self) -> None:
-        path = dialogs.save_file(self.win, "Export viewport", "PNG image (*.png)", suffix=".png")
+        path = ask.save_file(self.win, "Export viewport", "PNG image (*.png)", suffix=".png")
         if path:
             self.win.viewport.screenshot(path)
 
     def export_report_dialog(self) -> None:
-        path = dialogs.save_file(self.win, "Export report", "PDF (*.pdf)", suffix=".pdf")
+        path = ask.save_file(self.win, "Export report", "PDF (*.pdf)", suffix=".pdf")
         if path:
             self.win.export_report(path)
 

@@ -16,11 +16,11 @@ import time
 import numpy as np
 from PySide6 import QtCore
 
-from app import dialogs
-from app.workers import RunWorker, stop_and_wait
+from app.dialogs import ask
+from app.window.workers import RunWorker, stop_and_wait
 from lightinv_core.design.solution import ParetoFront, Solution, SolutionInfo
 from lightinv_core.errors import LightInvError
-from lightinv_core.kinds import MAXIMISED_GOALS
+from lightinv_core.goals import goal_spec
 from lightinv_core.optimize.problem import DesignProblem
 from lightinv_core.optimize.registry import get_method
 
@@ -199,7 +199,7 @@ class RunController(QtCore.QObject):
         self.status = "failed"
         self.doc.set_preview(None)
         self.panel.state.setText("The run failed; nothing was changed.")
-        dialogs.error(self.win, "optimisation failed", message)
+        ask.error(self.win, "optimisation failed", message)
 
     def _ended(self) -> None:
         self.timer.stop()
@@ -211,7 +211,7 @@ class RunController(QtCore.QObject):
         self.finished.emit(self.status)
 
     def _say(self, message: str) -> None:
-        dialogs.inform(self.win, message)
+        ask.inform(self.win, message)
 
 
 def _status(results) -> str:
@@ -225,7 +225,7 @@ def _best_of(solutions: tuple[Solution, ...], problem: DesignProblem) -> Solutio
     """The best of several runs' results: feasible first, then by the primary goal."""
     if not solutions:
         return None
-    sign = -1.0 if problem.primary in MAXIMISED_GOALS else 1.0
+    sign = -1.0 if goal_spec(problem.primary).maximise else 1.0
 
     def key(s: Solution):
         return (not s.feasible, s.penalty, sign * s.objectives.get(problem.primary, np.inf))

@@ -1,48 +1,28 @@
-"""Browsing results: the run history, the solutions (Pareto front, seeds, pinned) and the
-violations of the loaded one.
+"""Browsing results: the run history and the solutions (Pareto front, seeds, pinned).
 
-``SolutionsPanel``: which run's results to browse (one run, the saved results or all of
-them; each run's method, settings and outcome in one line; a run can be deleted, and
-Edit > Undo brings it back), a scatter on two chosen axes and a table of those results;
-clicking a point or a row loads that result into the design (viewport and source list);
-results can be pinned (offered for comparison, kept when their run is deleted, saved with
-the project) and the view can show the difference between the loaded result and a pinned
-one.
-
-``ViolationsPanel``: the loaded result's violated rules and intentions with their
-amounts; the patches that break an intention are highlighted in the viewport.
+Which run's results to browse (one run, the saved results or all of them; each run's
+method, settings and outcome in one line; a run can be deleted, and Edit > Undo brings it
+back), a scatter on two chosen axes (every registered goal, each source type's area and
+strength: ``view.scatter_axes``) and a table of those results; clicking a point or a row
+loads that result into the design (viewport and source list); results can be pinned
+(offered for comparison, kept when their run is deleted, saved with the project) and the
+view can show the difference between the loaded result and a pinned one.
 """
 
 from __future__ import annotations
 
-import math
-
-import numpy as np
 from PySide6 import QtCore, QtWidgets
 
 from app.document import Document
-from app.plots import AXES, SolutionScatter, axis_value, front_axes
+from app.view.scatter_axes import axes, axis_label, axis_value, front_axes
+from app.view.solution_scatter import SolutionScatter
+from app.widgets.numbers import fmt
 from lightinv_core.editing.results import ALL, SAVED, browse, run_label
 from lightinv_core.errors import LightInvError
+from lightinv_core.kinds import GoalKind
 
-COLUMNS = ("result", "feasible", "power (W)", "light (lm)", "penalty", "pinned")
+COLUMNS = ("result", "feasible", "x", "y", "penalty", "pinned")
 """The table's columns; the two values are those of the scatter's x and y axes."""
-
-
-def _fmt(v: float) -> str:
-    return "-" if v is None or not math.isfinite(v) else f"{v:,.1f}"
-
-
-def distinct(value: float, bound: float) -> tuple[str, str]:
-    """A value and its bound with as many decimals as it takes to tell them apart (a U0
-    of 0.593 against 0.6 read "0.6 vs 0.6, off by 1.3%"), at most 6."""
-    if value is None or bound is None or not (math.isfinite(value) and math.isfinite(bound)):
-        return _fmt(value), _fmt(bound)
-    size = max(abs(value), abs(bound))
-    d = 1 if size >= 10 else (2 if size >= 1 else 3)
-    while d < 6 and value != bound and f"{value:,.{d}f}" == f"{bound:,.{d}f}":
-        d += 1
-    return f"{value:,.{d}f}", f"{bound:,.{d}f}"
 
 
 class SolutionsPanel(QtWidgets.QWidget):
@@ -74,18 +54,19 @@ class SolutionsPanel(QtWidgets.QWidget):
         lay = QtWidgets.QHBoxLayout()
         outer.addLayout(lay, 1)
         left = QtWidgets.QVBoxLayout()
-        axes = QtWidgets.QHBoxLayout()
+        row_axes = QtWidgets.QHBoxLayout()
         self.x_axis, self.y_axis = QtWidgets.QComboBox(), QtWidgets.QComboBox()
-        for box, default in ((self.x_axis, "power"), (self.y_axis, "light")):
-            for key, (label, _) in AXES.items():
+        defaults = (GoalKind.MIN_ELECTRIC_POWER, GoalKind.MAX_LIGHT_POWER)
+        for box, default in zip((self.x_axis, self.y_axis), defaults, strict=True):
+            for key, (label, _) in axes().items():
                 box.addItem(label, key)
-            box.setCurrentIndex(box.findData(default))
+            box.setCurrentIndex(box.findData(str(default)))
             box.currentIndexChanged.connect(self.refresh)
-        axes.addWidget(QtWidgets.QLabel("x"))
-        axes.addWidget(self.x_axis)
-        axes.addWidget(QtWidgets.QLabel("y"))
-        axes.addWidget(self.y_axis)
-        left.addLayout(axes)
+        row_axes.addWidget(QtWidgets.QLabel("x"))
+        row_axes.addWidget(self.x_axis)
+        row_axes.addWidget(QtWidgets.QLabel("y"))
+        row_axes.addWidget(self.y_axis)
+        left.addLayout(row_axes)
         self.scatter = SolutionScatter()
         left.addWidget(self.scatter, 1)
         lay.addLayout(left, 1)
@@ -135,15 +116,17 @@ class SolutionsPanel(QtWidgets.QWidget):
         self.table.blockSignals(True)
         self.table.setRowCount(len(sols))
         ax, ay = self.x_axis.currentData(), self.y_axis.currentData()
-        self.table.setHorizontalHeaderLabels((*COLUMNS[:2], AXES[ax][0], AXES[ay][0], *COLUMNS[4:]))
+        self.table.setHorizontalHeaderLabels(
+            (*COLUMNS[:2], axis_label(ax), axis_label(ay), *COLUMNS[4:])
+        )
         rows = zip(self.entries, on_front, pinned, strict=True)
         for r, (entry, front, pin) in enumerate(rows):
             s = entry.solution
             cells = (
                 entry.label + (" (front)" if front else ""),
                 "yes" if s.feasible else "no",
-                _fmt(axis_value(s, ax)),
-                _fmt(axis_value(s, ay)),
+                fmt(axis_value(s, ax)),
+                fmt(axis_value(s, ay)),
                 f"{s.penalty:.3g}",
                 "pinned" if pin else "",
             )
@@ -253,7 +236,7 @@ class SolutionsPanel(QtWidgets.QWidget):
         self.pinned_list = self.doc.pinned()
         ax = self.x_axis.currentData()
         for i, s in enumerate(self.pinned_list):
-            value = f"{AXES[ax][0]} {_fmt(axis_value(s, ax))}"
+            value = f"{axis_label(ax)} {fmt(axis_value(s, ax))}"
             self.compare.addItem(f"pinned: {_pinned_label(self.doc, s)}, {value}", i)
         if current is not None and self.compare.findData(current) >= 0:
             self.compare.setCurrentIndex(self.compare.findData(current))
@@ -306,73 +289,3 @@ def _pinned_label(doc: Document, solution) -> str:
     """A pinned result's name: its run and label ("run 2: seed 3")."""
     entry = next((e for e in browse(doc.project, ALL) if e.solution.x == solution.x), None)
     return entry.label if entry is not None else "result"
-
-
-class ViolationsPanel(QtWidgets.QWidget):
-    """The loaded result's violated rules and intentions; highlights offending patches."""
-
-    highlightChanged = QtCore.Signal()
-
-    def __init__(self, doc: Document, parent: QtWidgets.QWidget | None = None):
-        super().__init__(parent)
-        self.doc = doc
-        self.offending: list = []  # (intention, bound, patch ids)
-        lay = QtWidgets.QVBoxLayout(self)
-        self.summary = QtWidgets.QLabel("Load a result to see whether it meets the design.")
-        self.summary.setWordWrap(True)
-        lay.addWidget(self.summary)
-        self.table = QtWidgets.QTableWidget(0, 6)
-        self.table.setHorizontalHeaderLabels(
-            ("rule or intention", "bound", "value", "limit", "units", "off by")
-        )
-        self.table.setEditTriggers(QtWidgets.QAbstractItemView.NoEditTriggers)
-        self.table.setSelectionBehavior(QtWidgets.QAbstractItemView.SelectRows)
-        self.table.verticalHeader().setVisible(False)
-        self.table.horizontalHeader().setStretchLastSection(True)
-        lay.addWidget(self.table, 1)
-        self.highlight = QtWidgets.QCheckBox(
-            "highlight the patches that break the selected (or every) intention"
-        )
-        self.highlight.setChecked(True)
-        lay.addWidget(self.highlight)
-        self.highlight.toggled.connect(self.highlightChanged)
-        self.table.itemSelectionChanged.connect(self.highlightChanged)
-        doc.resultsChanged.connect(self.refresh)
-        doc.designChanged.connect(self.refresh)
-
-    def refresh(self) -> None:
-        """List the shown result's violations and find their patches."""
-        sol = self.doc.shown
-        self.offending = []
-        self.table.blockSignals(True)
-        self.table.setRowCount(0)
-        if sol is None:
-            self.summary.setText("Load a result to see whether it meets the design.")
-        elif sol.feasible:
-            self.summary.setText("Feasible: every rule and lighting intention is met.")
-        else:
-            self.offending = self.doc.offending_patches()
-            n = sum(len(ids) for _, _, ids in self.offending)
-            self.summary.setText(
-                f"Not feasible: {len(sol.violations)} violated"
-                + (f"; {n:,} patches out of bounds (red in the view)" if n else "")
-            )
-            self.table.setRowCount(len(sol.violations))
-            for r, v in enumerate(sol.violations):
-                value, bound = distinct(v.value, v.bound)
-                cells = (v.name, v.constraint, value, bound, v.units, f"{100 * v.amount:.1f}%")
-                for c, text in enumerate(cells):
-                    self.table.setItem(r, c, QtWidgets.QTableWidgetItem(text))
-            self.table.resizeColumnsToContents()
-        self.table.blockSignals(False)
-        self.highlightChanged.emit()
-
-    def highlighted(self) -> np.ndarray:
-        """Patch ids to highlight: the selected violation's, else every one's."""
-        if not self.highlight.isChecked() or not self.offending:
-            return np.zeros(0, np.int64)
-        rows = {i.row() for i in self.table.selectionModel().selectedRows()}
-        sol = self.doc.shown
-        names = {(sol.violations[r].name, sol.violations[r].constraint) for r in rows}
-        picked = [ids for name, bound, ids in self.offending if not names or (name, bound) in names]
-        return np.unique(np.concatenate(picked)) if picked else np.zeros(0, np.int64)

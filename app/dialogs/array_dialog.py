@@ -1,4 +1,4 @@
-"""The dialogs that add or edit a luminaire array and a work plane.
+"""The dialog that adds or edits a luminaire array.
 
 An array is one product (from the catalogue, or an IES/EULUMDAT file) laid out evenly in
 a luminaire zone: rows and columns at the centres of equal cells of a rectangle, a
@@ -13,8 +13,9 @@ import html
 
 from PySide6 import QtWidgets
 
-from app import dialogs
-from lightinv_core.design.model import ARRAY_VARIABLES, LuminaireArray, Workplane
+from app.dialogs import ask
+from app.dialogs.fields import integer_box, number_box, ok_cancel
+from lightinv_core.design.model import ARRAY_VARIABLES, LuminaireArray
 from lightinv_core.errors import LightInvError
 from lightinv_core.light.arrays import resolve_product
 from lightinv_core.luminaires import builtin_catalogue
@@ -30,20 +31,6 @@ FREE_LABELS = {
     "rotation": "rotation",
     "dimming": "dimming",
 }
-
-
-def _spin(lo: float, hi: float, value: float, decimals: int = 2, step: float = 0.1):
-    box = QtWidgets.QDoubleSpinBox(decimals=decimals, singleStep=step)
-    box.setRange(lo, hi)
-    box.setValue(value)
-    return box
-
-
-def _int(lo: int, hi: int, value: int) -> QtWidgets.QSpinBox:
-    box = QtWidgets.QSpinBox()
-    box.setRange(lo, hi)
-    box.setValue(value)
-    return box
 
 
 class ArrayDialog(QtWidgets.QDialog):
@@ -86,13 +73,13 @@ class ArrayDialog(QtWidgets.QDialog):
         row.addWidget(self.product, 1)
         row.addWidget(browse)
         form.addRow("Product", row)
-        self.corners = [_spin(-1e3, 1e3, x) for x in base.rect]
+        self.corners = [number_box(-1e3, 1e3, x) for x in base.rect]
         rect = QtWidgets.QHBoxLayout()
         for box in self.corners:
             rect.addWidget(box)
         form.addRow("Rectangle u0 v0 u1 v1 (m)", rect)
-        self.rows = _int(1, 100, base.rows)
-        self.columns = _int(1, 100, base.columns)
+        self.rows = integer_box(1, 100, base.rows)
+        self.columns = integer_box(1, 100, base.columns)
         counts = QtWidgets.QHBoxLayout()
         counts.addWidget(self.rows)
         counts.addWidget(QtWidgets.QLabel("rows (along v) x"))
@@ -103,9 +90,9 @@ class ArrayDialog(QtWidgets.QDialog):
         self.rotation.addItems(["0° (C0 along u)", "90° (C0 along v)"])
         self.rotation.setCurrentIndex(0 if base.rotation == 0 else 1)
         form.addRow("Rotation", self.rotation)
-        self.dimming = _spin(0.01, 1.0, base.dimming, 2, 0.05)
+        self.dimming = number_box(0.01, 1.0, base.dimming, 2, 0.05)
         form.addRow("Dimming", self.dimming)
-        self.mf = _spin(0.01, 1.0, base.maintenance_factor, 2, 0.05)
+        self.mf = number_box(0.01, 1.0, base.maintenance_factor, 2, 0.05)
         form.addRow("Maintenance factor", self.mf)
         self.free = {}
         free = QtWidgets.QHBoxLayout()
@@ -115,14 +102,17 @@ class ArrayDialog(QtWidgets.QDialog):
             self.free[var] = box
             free.addWidget(box)
         form.addRow("Free for the optimiser", free)
-        self.rows_range = (_int(1, 100, base.rows_range[0]), _int(1, 100, base.rows_range[1]))
+        self.rows_range = (
+            integer_box(1, 100, base.rows_range[0]),
+            integer_box(1, 100, base.rows_range[1]),
+        )
         self.cols_range = (
-            _int(1, 100, base.columns_range[0]),
-            _int(1, 100, base.columns_range[1]),
+            integer_box(1, 100, base.columns_range[0]),
+            integer_box(1, 100, base.columns_range[1]),
         )
         self.dim_range = (
-            _spin(0.01, 1.0, base.dimming_range[0], 2, 0.05),
-            _spin(0.01, 1.0, base.dimming_range[1], 2, 0.05),
+            number_box(0.01, 1.0, base.dimming_range[0], 2, 0.05),
+            number_box(0.01, 1.0, base.dimming_range[1], 2, 0.05),
         )
         for label, pair in (
             ("Rows range", self.rows_range),
@@ -143,11 +133,11 @@ class ArrayDialog(QtWidgets.QDialog):
             box.valueChanged.connect(self._update)
         self.product.currentTextChanged.connect(self._update)
         self.zone.currentTextChanged.connect(self._zone_changed)
-        form.addRow(dialogs.ok_cancel(self))
+        form.addRow(ok_cancel(self))
         self._update()
 
     def _browse(self) -> None:
-        path = dialogs.open_file(self, "Photometric file", "IES or EULUMDAT (*.ies *.ldt)")
+        path = ask.open_file(self, "Photometric file", "IES or EULUMDAT (*.ies *.ldt)")
         if path:
             self.product.setCurrentText(path)
 
@@ -192,40 +182,4 @@ class ArrayDialog(QtWidgets.QDialog):
             columns_range=(self.cols_range[0].value(), self.cols_range[1].value()),
             dimming_range=(self.dim_range[0].value(), self.dim_range[1].value()),
             maintenance_factor=self.mf.value(),
-        )
-
-
-class WorkplaneDialog(QtWidgets.QDialog):
-    """Fields of one ``Workplane``: name, height, border, floor group."""
-
-    def __init__(
-        self,
-        groups: list[str],
-        base: Workplane | None = None,
-        name: str = "wp",
-        parent: QtWidgets.QWidget | None = None,
-    ):
-        super().__init__(parent)
-        self.setWindowTitle("Work plane")
-        base = base or Workplane(name, group="floor" if "floor" in groups else groups[0])
-        form = QtWidgets.QFormLayout(self)
-        self.name = QtWidgets.QLineEdit(base.name)
-        form.addRow("Name", self.name)
-        self.height = _spin(0.0, 100.0, base.height)
-        form.addRow("Height above the floor (m)", self.height)
-        self.border = _spin(0.0, 100.0, base.border)
-        form.addRow("Border left out (m)", self.border)
-        self.group = QtWidgets.QComboBox()
-        self.group.addItems(groups)
-        self.group.setCurrentText(base.group)
-        form.addRow("Floor group", self.group)
-        form.addRow(dialogs.ok_cancel(self))
-
-    def workplane(self) -> Workplane:
-        """The work plane as entered (DesignError naming the bad field)."""
-        return Workplane(
-            self.name.text().strip(),
-            self.height.value(),
-            self.border.value(),
-            self.group.currentText(),
         )

@@ -9,7 +9,7 @@ from __future__ import annotations
 
 from PySide6 import QtWidgets
 
-from app import dialogs
+from app.dialogs import ask
 from app.document import Document
 from lightinv_core.errors import LightInvError
 
@@ -87,5 +87,5 @@ class MaterialsPanel(QtWidgets.QGroupBox):
         try:
             self.doc.set_reflectance(group, value)
         except LightInvError as exc:
-            dialogs.warn(self, str(exc))
+            ask.warn(self, str(exc))
         self.refresh()

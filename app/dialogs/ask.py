@@ -1,8 +1,8 @@
-"""The window's small dialogs: file choosers, messages, confirmations, the recovery prompt.
+"""The window's questions: file choosers, messages, confirmations, the recovery prompt.
 
 Each is one function returning the user's answer, so the window's logic reads as
-"ask, then act" and a test can replace the question (the editing dialogs with fields,
-``IntentionDialog`` and ``ZoneDialog``, are in panels.py).
+"ask, then act" and a test can replace the question (``monkeypatch`` on this module);
+the dialogs with fields are one module each beside this one.
 """
 
 from __future__ import annotations
@@ -13,16 +13,6 @@ from app.autosave import Recoverable
 
 PROJECT_FILTER = "LightInv project (*.json)"
 TITLE = "LightInv"
-
-
-def ok_cancel(dialog: QtWidgets.QDialog) -> QtWidgets.QDialogButtonBox:
-    """OK and Cancel buttons that accept and reject ``dialog`` (to add to its layout)."""
-    buttons = QtWidgets.QDialogButtonBox(
-        QtWidgets.QDialogButtonBox.Ok | QtWidgets.QDialogButtonBox.Cancel
-    )
-    buttons.accepted.connect(dialog.accept)
-    buttons.rejected.connect(dialog.reject)
-    return buttons
 
 
 def accepted(dialog: QtWidgets.QDialog) -> bool:

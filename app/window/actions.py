@@ -12,8 +12,10 @@ from collections.abc import Callable
 
 from PySide6 import QtGui, QtWidgets
 
-from app import goals
+from app.window import help_pages
+from lightinv_core.goals import goal_spec, goal_specs
 from lightinv_core.scene.builtin import BUILTIN_SCENES
+from lightinv_core.sources.types import source_types
 
 MODES = (
     ("navigate", "Navigate"),
@@ -40,12 +42,13 @@ def action(
 def create_actions(win) -> None:
     """Every action of the main window ``win``, as its attributes."""
     ks = QtGui.QKeySequence
-    win.act_open = action(win, "&Open project...", win.open_dialog, ks.Open)
+    files, edits = win.files, win.edits
+    win.act_open = action(win, "&Open project...", files.open_dialog, ks.Open)
     win.act_save = action(win, "&Save", win.save, ks.Save)
-    win.act_save_as = action(win, "Save &As...", win.save_as_dialog, ks.SaveAs)
-    win.act_import = action(win, "&Import model...", lambda _=False: win.import_obj_dialog())
-    win.act_png = action(win, "Export viewport &PNG...", win.export_png_dialog)
-    win.act_report = action(win, "Export &report (PDF)...", win.export_report_dialog)
+    win.act_save_as = action(win, "Save &As...", files.save_as_dialog, ks.SaveAs)
+    win.act_import = action(win, "&Import model...", lambda _=False: files.import_obj_dialog())
+    win.act_png = action(win, "Export viewport &PNG...", files.export_png_dialog)
+    win.act_report = action(win, "Export &report (PDF)...", files.export_report_dialog)
     win.act_quit = action(win, "&Quit", win.close, ks.Quit)
     win.act_precompute = action(win, "Precompute", win.start_precompute)
     win.act_cancel = action(win, "Cancel", win.cancel_precompute)
@@ -54,7 +57,9 @@ def create_actions(win) -> None:
     win.act_run = action(win, "&Run optimisation", lambda: win.runs.start(), "F5")
     win.act_cancel_run = action(win, "Cancel optimisation", lambda: win.runs.cancel())
     win.act_cancel_run.setEnabled(False)
-    win.act_intention = action(win, "Add intention on selection...", win.add_intention_on_selection)
+    win.act_intention = action(
+        win, "Add intention on selection...", lambda _=False: edits.add_intention_on_selection()
+    )
     win.act_clear = action(win, "Clear selection", lambda: win.doc.set_selection([]))
     win.mode_group = QtGui.QActionGroup(win)
     win.mode_actions = {}
@@ -66,8 +71,8 @@ def create_actions(win) -> None:
     # What Draw zone makes: it decides the surface too (a luminaire zone drawn in Top
     # view goes on the ceiling the view looks through, not on the floor it sees).
     win.zone_kind_box = QtWidgets.QComboBox()
-    for kind in ("luminaire", "skylight"):
-        win.zone_kind_box.addItem(f"{kind} zone", kind)
+    for t in source_types():
+        win.zone_kind_box.addItem(f"{t.label.lower()} zone", str(t.kind))
     win.zone_kind_box.setToolTip("The kind of zone Draw zone makes")
     win.camera_actions = {
         name: action(win, f"{name.title()} view", lambda _=False, n=name: win.viewport.camera(n))
@@ -124,19 +129,19 @@ def help_menu(win, bar: QtWidgets.QMenuBar) -> None:
     """Help: the user guide, the documentation folder, about."""
     help_ = bar.addMenu("&Help")
     win.help_actions = {
-        "guide": action(win, "User guide (the window)", lambda _=False: win.open_doc("app.md")),
-        "docs": action(win, "All documentation", lambda _=False: win.open_doc("")),
-        "inputs": action(
-            win, "Messages and what they mean", lambda _=False: win.open_doc("bad-input.md")
+        "guide": action(
+            win, "User guide (the window)", lambda _=False: help_pages.open_doc(win, "app.md")
         ),
-        "about": action(win, "About LightInv", lambda _=False: win.about()),
+        "docs": action(win, "All documentation", lambda _=False: help_pages.open_doc(win, "")),
+        "inputs": action(
+            win,
+            "Messages and what they mean",
+            lambda _=False: help_pages.open_doc(win, "bad-input.md"),
+        ),
+        "about": action(win, "About LightInv", lambda _=False: help_pages.about(win)),
     }
     for act in win.help_actions.values():
         help_.addAction(act)
-
-
-GOALS = tuple((str(kind), goals.menu_text(kind)) for kind in goals.MENU_GOALS)
-"""(goal kind, menu text) of Design > Goals: the power goals, the climate goals."""
 
 
 def design_menu(win, bar: QtWidgets.QMenuBar) -> None:
@@ -144,20 +149,36 @@ def design_menu(win, bar: QtWidgets.QMenuBar) -> None:
     design = bar.addMenu("&Design")
     for act in (win.act_intention, win.act_clear):
         design.addAction(act)
-    win.act_add_rule = action(win, "Add a geometric &rule...", lambda _=False: win.add_rule())
+    win.act_add_rule = action(win, "Add a geometric &rule...", lambda _=False: win.edits.add_rule())
     design.addAction(win.act_add_rule)
     # Two goals make a Pareto front: both power goals, or annual energy and glazing area.
+    # Every registered goal is offered; one the design cannot take (a match without a
+    # target lighting) is refused with the model's reason.
     menu = design.addMenu("&Goals (two: a Pareto front)")
     win.goal_actions = {}
-    for k, (kind, text) in enumerate(GOALS):
-        if k == 2:
+    climate = False
+    for spec in sorted(goal_specs(), key=lambda s: s.annual):  # the climate goals last
+        if spec.annual and not climate:
+            climate = True
             menu.addSection("Climate (a weather file and a work plane)")
-        act = action(win, text, lambda on, k=kind: win.set_goal(k, on), checkable=True)
+        kind = str(spec.kind)
+        act = action(
+            win,
+            goal_menu_text(kind),
+            lambda on, k=kind: win.edits.set_goal(k, on),
+            checkable=True,
+        )
         win.goal_actions[kind] = act
         menu.addAction(act)
     design.addSeparator()
     for act in win.mode_actions.values():
         design.addAction(act)
+
+
+def goal_menu_text(kind: str) -> str:
+    """The Design > Goals entry of a goal, with its units."""
+    spec = goal_spec(kind)
+    return spec.with_units(spec.menu)
 
 
 def check_goals(win) -> None:

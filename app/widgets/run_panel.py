@@ -11,16 +11,13 @@ from __future__ import annotations
 
 from PySide6 import QtCore, QtWidgets
 
-from app import goals
 from app.document import Document
-from app.plots import ConvergencePlot
+from app.view.convergence_plot import ConvergencePlot
+from app.view.scatter_axes import goal_axis_label
 from lightinv_core.errors import LightInvError
-from lightinv_core.kinds import GoalKind
+from lightinv_core.goals import goal_specs
 from lightinv_core.optimize.method import MethodSpec
 from lightinv_core.optimize.registry import get_method, methods
-
-GOAL_LABELS = {k: (goals.short_name(k), goals.axis_label(k)) for k in GoalKind}
-"""Per goal kind: (its name in the goal list, the plotted objective with its units)."""
 
 
 def sweep_count(method: MethodSpec, design) -> tuple[str, str] | None:
@@ -103,13 +100,10 @@ class RunPanel(QtWidgets.QWidget):
         self.method.setCurrentIndex(self.method.findData(o.method))
         self.goal.clear()
         design = self.doc.design
-        kinds = list(goals.MENU_GOALS)
-        if design.target_sources:
-            kinds.insert(2, GoalKind.MATCH)
-        if design.goals[0].kind not in kinds:  # a goal set in the file (installed power)
-            kinds.append(GoalKind(design.goals[0].kind))
-        for k in kinds:
-            self.goal.addItem(GOAL_LABELS[k][0], str(k))
+        # Every registered goal; one the design cannot take (a match without a target
+        # lighting) is refused with the model's reason when chosen.
+        for spec in goal_specs():
+            self.goal.addItem(spec.short, str(spec.kind))
         self.goal.setCurrentIndex(self.goal.findData(str(design.goals[0].kind)))
         self.goal.setEnabled(not self._multi())
         self.max_evals.setValue(o.max_evals or 0)
@@ -177,7 +171,7 @@ class RunPanel(QtWidgets.QWidget):
         if self._multi():
             method = get_method(self.doc.project.optimizer.method)
             return method.progress_label or "objective of each sub-run"
-        return GOAL_LABELS[GoalKind(self.doc.design.goals[0].kind)][1]
+        return goal_axis_label(self.doc.design.goals[0].kind)
 
     def set_running(self, running: bool) -> None:
         """Enable Cancel (and nothing else) while a run goes on."""

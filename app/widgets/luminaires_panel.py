@@ -11,16 +11,16 @@ under the arrays and in the status bar's warnings.
 
 from __future__ import annotations
 
-import numpy as np
-import pyqtgraph as pg
-from PySide6 import QtCore, QtWidgets
+from PySide6 import QtWidgets
 
-from app import dialogs
-from app.array_dialog import ArrayDialog, WorkplaneDialog
+from app.dialogs import ask
+from app.dialogs.array_dialog import ArrayDialog
+from app.dialogs.workplane_dialog import WorkplaneDialog
 from app.document import Document
+from app.view.polar_plot import PolarPlot
 from lightinv_core.design.en12464 import REQUIREMENTS, preset_intention
 from lightinv_core.errors import LightInvError
-from lightinv_core.light.arrays import Product, resolve_product
+from lightinv_core.light.arrays import resolve_product
 from lightinv_core.luminaires import builtin_catalogue
 from lightinv_core.luminaires.photometry import light_warnings
 
@@ -36,60 +36,6 @@ def _table(columns: tuple[str, ...]) -> QtWidgets.QTableWidget:
     table.setEditTriggers(QtWidgets.QAbstractItemView.NoEditTriggers)
     table.verticalHeader().hide()
     return table
-
-
-class PolarPlot(pg.PlotWidget):
-    """A product's intensity (cd/klm) in its C0-C180 and C90-C270 planes, as a polar
-    diagram: down is nadir (gamma 0), circles every ``ring`` cd/klm."""
-
-    def __init__(self, parent: QtWidgets.QWidget | None = None):
-        super().__init__(parent)
-        self.setAspectLocked(True)
-        self.hideAxis("bottom")
-        self.hideAxis("left")
-        self.setMinimumHeight(170)
-        self.curves: dict[str, np.ndarray] = {}
-
-    def show_product(self, product: Product | None) -> None:
-        """Draw ``product``'s curves (nothing for None)."""
-        self.clear()
-        self.curves = {}
-        if product is None:
-            return
-        gam = np.radians(np.linspace(0.0, 180.0, 181))
-        per_klm = 1000.0 / max(product.lumens, 1e-9)
-        peak = 1.0
-        for c, colour, style in ((0.0, "#1f77b4", QtCore.Qt.SolidLine), (90.0, "#ff7f0e", None)):
-            deg = np.degrees(gam)
-            right = product.photometry.intensity(np.full_like(deg, c), deg) * per_klm
-            left = product.photometry.intensity(np.full_like(deg, c + 180.0), deg) * per_klm
-            r = np.concatenate([right, left[::-1]])
-            t = np.concatenate([gam, -gam[::-1]])
-            x, y = r * np.sin(t), -r * np.cos(t)
-            pen = pg.mkPen(colour, width=2, style=style or QtCore.Qt.DashLine)
-            self.plot(x, y, pen=pen, name=f"C{c:.0f}")
-            self.curves[f"C{c:.0f}"] = np.column_stack([x, y])
-            peak = max(peak, float(r.max()))
-        # At most four rings at a round step, labelled along the 45-degree line.
-        step = 10 ** np.floor(np.log10(peak / 4))
-        ring = next(m * step for m in (1, 2, 2.5, 5, 10) if peak / (m * step) <= 4)
-        for k in range(1, int(peak // ring) + 1):
-            r = k * ring
-            circle = QtWidgets.QGraphicsEllipseItem(-r, -r, 2 * r, 2 * r)
-            circle.setPen(pg.mkPen("#bbbbbb", width=1))
-            self.addItem(circle)
-            label = pg.TextItem(f"{r:g}", color="#777777", anchor=(0, 0))
-            label.setPos(r * np.sqrt(0.5), -r * np.sqrt(0.5))
-            self.addItem(label)
-        for angle in (0.0, 45.0, 90.0):  # nadir, 45 and 90 degrees either side
-            t = np.radians(angle)
-            for sign in (1, -1):
-                self.plot(
-                    [0, sign * peak * np.sin(t)],
-                    [0, -peak * np.cos(t)],
-                    pen=pg.mkPen("#dddddd", width=1),
-                )
-        self.setTitle(f"{product.name}: cd/klm (C0 solid, C90 dashed)", size="8pt")
 
 
 class LuminairesPanel(QtWidgets.QWidget):
@@ -204,7 +150,7 @@ class LuminairesPanel(QtWidgets.QWidget):
         """Ask for a new array (``dialog`` given: take it as answered) and add it."""
         zones = self._luminaire_zones()
         if not zones:
-            dialogs.warn(self, "The scene has no luminaire zone to mount an array in.")
+            ask.warn(self, "The scene has no luminaire zone to mount an array in.")
             return False
         d = self.doc.design
         taken = {s.name for s in d.sources} | {a.name for a in d.arrays}
@@ -213,14 +159,14 @@ class LuminairesPanel(QtWidgets.QWidget):
             product = self.selected_product()
             if product:
                 dialog.product.setCurrentText(product)
-            if not dialogs.accepted(dialog):
+            if not ask.accepted(dialog):
                 return False
         try:
             array = dialog.array()
             resolve_product(array.product, array.watts)
             self.doc.set_arrays((*d.arrays, array), f"add array {array.name}")
         except LightInvError as exc:
-            dialogs.warn(self, str(exc))
+            ask.warn(self, str(exc))
             return False
         return True
 
@@ -236,7 +182,7 @@ class LuminairesPanel(QtWidgets.QWidget):
         arrays = self.doc.design.arrays
         if dialog is None:
             dialog = ArrayDialog(self._luminaire_zones(), arrays[i], parent=self)
-            if not dialogs.accepted(dialog):
+            if not ask.accepted(dialog):
                 return False
         try:
             new = dialog.array()
@@ -245,7 +191,7 @@ class LuminairesPanel(QtWidgets.QWidget):
                 (*arrays[:i], new, *arrays[i + 1 :]), f"edit array {arrays[i].name}"
             )
         except LightInvError as exc:
-            dialogs.warn(self, str(exc))
+            ask.warn(self, str(exc))
             return False
         return True
 
@@ -266,13 +212,13 @@ class LuminairesPanel(QtWidgets.QWidget):
             taken = {w.name for w in d.design.workplanes}
             name = "wp" if "wp" not in taken else self._new_name("wp", taken)
             dialog = WorkplaneDialog(list(d.patches.group_names), name=name, parent=self)
-            if not dialogs.accepted(dialog):
+            if not ask.accepted(dialog):
                 return False
         try:
             wp = dialog.workplane()
             d.set_workplanes((*d.design.workplanes, wp), f"add work plane {wp.name}")
         except LightInvError as exc:
-            dialogs.warn(self, str(exc))
+            ask.warn(self, str(exc))
             return False
         return True
 
@@ -296,7 +242,7 @@ class LuminairesPanel(QtWidgets.QWidget):
         d = self.doc
         planes = d.design.workplanes
         if not planes:
-            dialogs.warn(self, "Add a work plane first: EN 12464-1 values apply to its grid.")
+            ask.warn(self, "Add a work plane first: EN 12464-1 values apply to its grid.")
             return False
         rows = self.planes.selectionModel().selectedRows()
         plane = planes[rows[0].row() if rows else 0].name
@@ -306,7 +252,7 @@ class LuminairesPanel(QtWidgets.QWidget):
         try:
             d.add_intention(preset_intention(key, plane, name))
         except LightInvError as exc:
-            dialogs.warn(self, str(exc))
+            ask.warn(self, str(exc))
             return False
         return True
 

@@ -15,7 +15,8 @@ from pathlib import Path
 import numpy as np
 from PySide6 import QtWidgets
 
-from app import dialogs
+from app.dialogs import ask
+from app.dialogs.fields import ok_cancel
 from lightinv_core.errors import LightInvError
 from lightinv_core.scene.importers.obj_size import count_obj_lines
 from lightinv_core.scene.importers.registry import (
@@ -132,7 +133,7 @@ class ImportDialog(QtWidgets.QDialog):
         form.addRow("Patch size", self.resolution)
         self.skip = QtWidgets.QCheckBox("drop degenerate faces (with a warning) instead of failing")
         form.addRow("", self.skip)
-        form.addRow(dialogs.ok_cancel(self))
+        form.addRow(ok_cancel(self))
         self.units.currentIndexChanged.connect(self._show_size)
         if self.suffix == ".ifc":
             # IFC files state their length unit; ifcopenshell converts it to metres.
@@ -160,7 +161,7 @@ class ImportDialog(QtWidgets.QDialog):
             return str(exc), None
 
     def _browse(self) -> None:
-        path = dialogs.open_file(self, "Materials mapping", "Materials JSON (*.json)")
+        path = ask.open_file(self, "Materials mapping", "Materials JSON (*.json)")
         if path:
             self.materials.setText(path)
 
@@ -191,6 +192,6 @@ class ImportDialog(QtWidgets.QDialog):
             if self.materials.text().strip() and not Path(self.materials.text()).is_file():
                 raise LightInvError(f"no materials file {self.materials.text()!r}")
         except LightInvError as exc:
-            dialogs.warn(self, str(exc))
+            ask.warn(self, str(exc))
             return
         super().accept()

@@ -12,8 +12,8 @@ from pathlib import Path
 
 from PySide6 import QtCore
 
-from app import dialogs
-from app.workers import PrecomputeWorker, ReportWorker, Worker, stop_and_wait
+from app.dialogs import ask
+from app.window.workers import PrecomputeWorker, ReportWorker, Worker, stop_and_wait
 from lightinv_core.errors import LightInvError
 
 
@@ -43,7 +43,7 @@ class BackgroundTasks(QtCore.QObject):
             return
         worker = PrecomputeWorker(self.doc.patches, self.doc.operator_settings, self)
         worker.succeeded.connect(self._precomputed)
-        worker.failed.connect(lambda msg: dialogs.error(self.win, "precompute failed", msg))
+        worker.failed.connect(lambda msg: ask.error(self.win, "precompute failed", msg))
         worker.cancelled.connect(
             lambda: self._say("Precompute cancelled: lighting unavailable until it runs", 6000)
         )
@@ -68,18 +68,18 @@ class BackgroundTasks(QtCore.QObject):
         into it) in a worker (progress bar, Cancel); needs the operator."""
         d = self.doc
         if d.operator is None or self.worker is not None:
-            dialogs.inform(self.win, "Wait for the radiosity operator first.")
+            ask.inform(self.win, "Wait for the radiosity operator first.")
             return False
         try:
             solution = d.design_solution()
         except LightInvError as exc:
-            dialogs.error(self.win, "cannot report", str(exc))
+            ask.error(self.win, "cannot report", str(exc))
             return False
         worker = ReportWorker(d.project, d.prepared(), Path(path), solution, self)
         worker.succeeded.connect(
             lambda info: self._say(f"Report written: {info.path} ({len(info.pages)} pages)", 8000)
         )
-        worker.failed.connect(lambda msg: dialogs.error(self.win, "report failed", msg))
+        worker.failed.connect(lambda msg: ask.error(self.win, "report failed", msg))
         worker.cancelled.connect(lambda: self._say("Report cancelled; no file written", 6000))
         self._start(worker)
         return True

@@ -17,7 +17,7 @@ from typing import NamedTuple
 from PySide6 import QtGui, QtWidgets
 
 from app.document import Document
-from app.results_panel import distinct
+from app.widgets.numbers import distinct
 from lightinv_core.climate.weather import WeatherError
 from lightinv_core.errors import LightInvError
 from lightinv_core.kinds import Bound

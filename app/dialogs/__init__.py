@@ -1,0 +1,1 @@
+"""The window's dialogs, one per module, and ``ask``: its questions as functions."""

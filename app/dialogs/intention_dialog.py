@@ -1,0 +1,136 @@
+"""The lighting intention dialog: name, quantity, scenario and bounds of an intention on
+a group, the selection or a work plane. The quantities are the registry's
+(``lightinv_core.quantities``): a new quantity shows in the list with its bounds."""
+
+from __future__ import annotations
+
+from PySide6 import QtWidgets
+
+from app.dialogs.fields import ok_cancel, optional_number
+from lightinv_core.design.model import DesignError, Intention
+from lightinv_core.kinds import Bound, Scenario
+from lightinv_core.quantities import quantity_spec, quantity_specs
+
+BOUND_FIELDS = {
+    Bound.MIN: ("Minimum", 300.0),
+    Bound.MAX: ("Maximum", 1000.0),
+    Bound.AVERAGE: ("Average at least", 500.0),
+    Bound.UNIFORMITY: ("Uniformity U0 at least", 0.6),
+}
+"""Each bound of an intention: its label and the value the dialog offers."""
+
+
+SCENARIOS = {
+    Scenario.DESIGN: "design: luminaires + skylights at the design exterior lux",
+    Scenario.NIGHT: "night: luminaires only",
+    Scenario.OVERCAST: "overcast: luminaires + the CIE overcast sky",
+    Scenario.ANNUAL: "annual: every occupied hour of the weather year",
+}
+"""The scenarios an intention is judged in (annual: the daylight metrics only)."""
+
+
+class IntentionDialog(QtWidgets.QDialog):
+    """Name, quantity, scenario and bounds of a lighting intention on a group, the
+    selection or a work plane."""
+
+    def __init__(self, target: str, parent: QtWidgets.QWidget | None = None):
+        super().__init__(parent)
+        self.setWindowTitle(f"Lighting intention on {target}")
+        form = QtWidgets.QFormLayout(self)
+        self.name = QtWidgets.QLineEdit(target)
+        form.addRow("Name", self.name)
+        self.quantity = QtWidgets.QComboBox()
+        for q in quantity_specs():
+            self.quantity.addItem(q.label, str(q.name))
+        form.addRow("Quantity", self.quantity)
+        self.scenario = QtWidgets.QComboBox()
+        for sc, text in SCENARIOS.items():
+            self.scenario.addItem(text, str(sc))
+        self.scenario.setToolTip(
+            "The light the intention is judged in. A daylight metric has its own: the "
+            "daylight factor the overcast sky, DA, UDI and sDA the weather year (Climate tab)."
+        )
+        form.addRow("Scenario", self.scenario)
+        self.fields = {}
+        for bound, (label, default) in BOUND_FIELDS.items():
+            key, u0 = str(bound), bound == Bound.UNIFORMITY
+            self.fields[key] = optional_number(
+                form, label, default, 1.0 if u0 else 1e6, decimals=2 if u0 else 1
+            )
+        self.fields[str(Bound.AVERAGE)][0].setChecked(True)
+        self.fields[str(Bound.UNIFORMITY)][0].setChecked(True)
+        form.addRow(ok_cancel(self))
+        self.quantity.currentIndexChanged.connect(self._quantity_changed)
+        self._quantity_changed()
+
+    def _quantity_changed(self) -> None:
+        """A daylight metric fixes the scenario and takes bounds in its own units."""
+        q = quantity_spec(self.quantity.currentData())
+        forced = q.scenario
+        annual = self.scenario.model().item(self.scenario.findData(str(Scenario.ANNUAL)))
+        annual.setEnabled(forced == Scenario.ANNUAL)
+        if forced is not None:
+            self.scenario.setCurrentIndex(self.scenario.findData(str(forced)))
+        elif self.scenario.currentData() in (Scenario.ANNUAL, Scenario.OVERCAST) and (
+            self._last_metric()
+        ):
+            self.scenario.setCurrentIndex(self.scenario.findData(str(Scenario.DESIGN)))
+        self.scenario.setEnabled(forced is None)
+        self._metric = forced is not None
+        decimals, top, defaults = q.decimals, q.high, q.defaults
+        for key, value in zip(("min", "max", "average"), defaults, strict=False):
+            box = self.fields[key][1]
+            box.setDecimals(decimals)
+            box.setMaximum(top)
+            box.setValue(value)
+        self.fields["uniformity"][1].setValue(defaults[3])
+        if q.average_only:  # sDA is the average of a 0/1 mark: only that bound tells
+            self.set_values(min=None, max=None, uniformity=None, average=defaults[2])
+
+    def _last_metric(self) -> bool:
+        return getattr(self, "_metric", False)
+
+    def load(self, intention: Intention) -> None:
+        """Show an existing intention's name, quantity, scenario and bounds (to edit
+        it)."""
+        self.setWindowTitle(f"Edit lighting intention {intention.name}")
+        self.name.setText(intention.name)
+        self.quantity.setCurrentIndex(max(0, self.quantity.findData(str(intention.quantity))))
+        self.scenario.setCurrentIndex(max(0, self.scenario.findData(str(intention.scenario))))
+        self.set_values(**{str(b): getattr(intention, str(b)) for b in Bound})
+
+    def set_quantity(self, quantity: str, scenario: str | None = None) -> None:
+        """Choose the quantity (and the scenario of lux or C) (tests, scripted use)."""
+        self.quantity.setCurrentIndex(self.quantity.findData(str(quantity)))
+        if scenario is not None and self.scenario.isEnabled():
+            self.scenario.setCurrentIndex(self.scenario.findData(str(scenario)))
+
+    def set_values(self, **values) -> None:
+        """Pre-fill bounds (tests, scripted use): key=None unticks a bound."""
+        for key, value in values.items():
+            check, box = self.fields[key]
+            check.setChecked(value is not None)
+            if value is not None:
+                box.setValue(value)
+
+    def intention(self, group: str | None = None, patches=None, grid=None) -> Intention:
+        """The intention described (DesignError if inconsistent, e.g. min above max)."""
+        bounds = {k: box.value() for k, (check, box) in self.fields.items() if check.isChecked()}
+        if not bounds:
+            raise DesignError("tick at least one bound")
+        return Intention(
+            self.name.text().strip() or "intention",
+            group=group,
+            patches=None if patches is None else tuple(int(i) for i in patches),
+            quantity=self.quantity.currentData(),
+            grid=grid,
+            scenario=self.scenario.currentData(),
+            **bounds,
+        )
+
+
+def intention_target(it: Intention) -> str:
+    """What an intention bounds, in words: a group, picked patches, a work plane."""
+    if it.grid is not None:
+        return f"work plane {it.grid}"
+    return it.group if it.group is not None else f"{len(it.patches)} picked patches"

@@ -1,0 +1,135 @@
+"""The scene and design tree: surfaces, emitter zones, sources, intentions, arrays, work
+planes, rules and goals, refreshed from the document; double-clicks and its context menu
+ask the window to add or edit an intention, or delete one or a rule."""
+
+from __future__ import annotations
+
+from PySide6 import QtCore, QtGui, QtWidgets
+
+from app.dialogs.intention_dialog import intention_target
+from app.document import Document
+from lightinv_core.editing.rules import rule_text
+from lightinv_core.kinds import Bound
+
+
+class DesignTree(QtWidgets.QTreeWidget):
+    """Surfaces (groups), emitter zones, sources, lighting intentions and goals."""
+
+    groupActivated = QtCore.Signal(str)
+    intentionActivated = QtCore.Signal(str)  # edit it
+    intentionDeleted = QtCore.Signal(str)
+    ruleDeleted = QtCore.Signal(int)
+
+    def __init__(self, doc: Document, parent: QtWidgets.QWidget | None = None):
+        super().__init__(parent)
+        self.doc = doc
+        self.setHeaderLabels(["item", "details"])
+        self.setColumnWidth(0, 170)
+        for sig in (doc.sceneChanged, doc.designChanged, doc.operatorChanged):
+            sig.connect(self.refresh)
+        self.itemClicked.connect(self._clicked)
+        self.itemDoubleClicked.connect(self._double_clicked)
+        self.setContextMenuPolicy(QtCore.Qt.CustomContextMenu)
+        self.customContextMenuRequested.connect(self._context_menu)
+
+    def refresh(self) -> None:
+        self.clear()
+        d, p = self.doc, self.doc.patches
+        if p is None:
+            return
+        groups = QtWidgets.QTreeWidgetItem(self, ["Surfaces", f"{p.n:,} patches"])
+        for k, g in enumerate(p.group_names):
+            n = int((p.group_id == k).sum())
+            QtWidgets.QTreeWidgetItem(groups, [g, f"{n:,} patches"]).setData(0, 256, ("group", g))
+        zones = QtWidgets.QTreeWidgetItem(self, ["Emitter zones", str(len(d.scene.zones))])
+        for z in d.scene.zones:
+            w, h = d.zone_size(z.name)
+            QtWidgets.QTreeWidgetItem(zones, [z.name, f"{z.kind}, {w:.2f} x {h:.2f} m"]).setData(
+                0, 256, ("zone", z.name)
+            )
+        srcs = QtWidgets.QTreeWidgetItem(self, ["Sources", str(len(d.design.sources))])
+        for s in d.design.sources:
+            item = QtWidgets.QTreeWidgetItem(
+                srcs, [s.name, f"{s.kind} in {s.zone}, {s.area:.2f} m²"]
+            )
+            item.setData(0, 256, ("source", s.name))
+            if s.name == d.current_source:
+                item.setSelected(True)
+        its = QtWidgets.QTreeWidgetItem(
+            self, ["Lighting intentions", str(len(d.design.intentions))]
+        )
+        for it in d.design.intentions:
+            bounds = ", ".join(
+                f"{k} {getattr(it, k):g}" for k in Bound if getattr(it, k) is not None
+            )
+            QtWidgets.QTreeWidgetItem(
+                its, [it.name, f"{intention_target(it)}: {bounds} {it.quantity}, {it.scenario}"]
+            ).setData(0, 256, ("intention", it.name))
+        if d.design.arrays:
+            arrays = QtWidgets.QTreeWidgetItem(
+                self, ["Luminaire arrays", str(sum(a.count for a in d.design.arrays))]
+            )
+            for a in d.design.arrays:
+                QtWidgets.QTreeWidgetItem(
+                    arrays, [a.name, f"{a.rows} x {a.columns} {a.product} in {a.zone}"]
+                )
+        if d.design.workplanes:
+            planes = QtWidgets.QTreeWidgetItem(self, ["Work planes", str(len(d.design.workplanes))])
+            for w in d.design.workplanes:
+                QtWidgets.QTreeWidgetItem(
+                    planes, [w.name, f"{w.height:g} m over {w.group}, border {w.border:g} m"]
+                )
+        rules_item = QtWidgets.QTreeWidgetItem(self, ["Rules", str(len(d.design.rules))])
+        for k, rule in enumerate(d.design.rules):
+            what, bounds = rule_text(rule)
+            QtWidgets.QTreeWidgetItem(rules_item, [what, bounds]).setData(0, 256, ("rule", k))
+        goals = QtWidgets.QTreeWidgetItem(self, ["Goals", ""])
+        for g in d.design.goals:
+            QtWidgets.QTreeWidgetItem(goals, [g.kind, ", ".join(g.kinds)])
+        self.expandAll()
+
+    def _clicked(self, item, _col) -> None:
+        data = item.data(0, 256)
+        if data and data[0] == "source":
+            self.doc.set_current_source(data[1])
+
+    def _double_clicked(self, item, _col) -> None:
+        data = item.data(0, 256)
+        if data and data[0] == "group":
+            self.groupActivated.emit(data[1])
+        elif data and data[0] == "intention":
+            self.intentionActivated.emit(data[1])
+
+    def intention_menu(self, name: str) -> QtWidgets.QMenu:
+        """The menu of an intention's item: edit it, delete it."""
+        menu = QtWidgets.QMenu(self)
+        menu.addAction("Edit...", lambda: self.intentionActivated.emit(name))
+        menu.addAction("Delete", lambda: self.intentionDeleted.emit(name))
+        return menu
+
+    def _context_menu(self, pos: QtCore.QPoint) -> None:
+        item = self.itemAt(pos)
+        data = item.data(0, 256) if item is not None else None
+        if data and data[0] == "intention":
+            self.intention_menu(data[1]).exec(self.viewport().mapToGlobal(pos))
+        elif data and data[0] == "rule":
+            menu = QtWidgets.QMenu(self)
+            menu.addAction("Delete", lambda: self.ruleDeleted.emit(data[1]))
+            menu.exec(self.viewport().mapToGlobal(pos))
+        elif data and data[0] == "group":
+            menu = QtWidgets.QMenu(self)
+            menu.addAction("Add a lighting intention...", lambda: self.groupActivated.emit(data[1]))
+            menu.exec(self.viewport().mapToGlobal(pos))
+
+    def keyPressEvent(self, event: QtGui.QKeyEvent) -> None:
+        """Delete removes the selected intention."""
+        item = self.currentItem()
+        data = item.data(0, 256) if item is not None else None
+        deleting = event.key() in (QtCore.Qt.Key_Delete, QtCore.Qt.Key_Backspace)
+        if deleting and data and data[0] == "intention":
+            self.intentionDeleted.emit(data[1])
+            return
+        if deleting and data and data[0] == "rule":
+            self.ruleDeleted.emit(data[1])
+            return
+        super().keyPressEvent(event)

@@ -1,0 +1,137 @@
+"""The Properties panel's drawn zones: rename, retype, resize or delete the emitter zones
+drawn on the project's scene (the scene is re-meshed)."""
+
+from __future__ import annotations
+
+from PySide6 import QtWidgets
+
+from app.dialogs.fields import source_kind_box
+from app.document import Document
+from lightinv_core.errors import LightInvError, SceneError
+
+
+class ZonePanel(QtWidgets.QGroupBox):
+    """The emitter zones drawn on this project's scene: rename, retype, resize, delete."""
+
+    def __init__(self, doc: Document, parent: QtWidgets.QWidget | None = None):
+        super().__init__("Drawn zones", parent)
+        self.doc = doc
+        form = QtWidgets.QFormLayout(self)
+        self.zone = QtWidgets.QComboBox()
+        form.addRow("Zone", self.zone)
+        self.name = QtWidgets.QLineEdit()
+        form.addRow("Name", self.name)
+        self.kind = source_kind_box()  # the kind is the item's data
+        form.addRow("Kind", self.kind)
+        self.corners = []
+        for label in ("u0", "v0", "u1", "v1"):
+            box = QtWidgets.QDoubleSpinBox(decimals=3, singleStep=0.1, suffix=" m")
+            box.setRange(-1000.0, 1000.0)  # a zone may run on from its surface
+            self.corners.append(box)
+            form.addRow(label, box)
+        self.outline = QtWidgets.QLineEdit()
+        self.outline.setPlaceholderText("rectangle (u0 v0 u1 v1 above)")
+        self.outline.setToolTip(
+            "A polygon zone's corners, metres along the surface's u, v axes: "
+            "'u v; u v; u v; ...' in order around it. Empty: the rectangle above."
+        )
+        form.addRow("Polygon", self.outline)
+        row = QtWidgets.QHBoxLayout()
+        self.apply_button = QtWidgets.QPushButton("Apply")
+        self.delete_button = QtWidgets.QPushButton("Delete zone")
+        row.addWidget(self.apply_button)
+        row.addWidget(self.delete_button)
+        form.addRow(row)
+        self.hint = QtWidgets.QLabel(
+            "Draw zone mode: pick luminaire or skylight zone in the toolbar, then drag a "
+            "rectangle on a ceiling or roof (from below, or from above in Top view); Draw "
+            "polygon zone mode: click its corners. The corners are metres from the "
+            "surface's origin along its u, v axes (shown when a zone is chosen here)."
+        )
+        self.hint.setWordWrap(True)
+        form.addRow(self.hint)
+        self.zone.currentIndexChanged.connect(self._show)
+        self.apply_button.clicked.connect(self.apply)
+        self.delete_button.clicked.connect(self.delete)
+        doc.sceneChanged.connect(self.refresh)
+
+    def refresh(self) -> None:
+        self.zone.blockSignals(True)
+        self.zone.clear()
+        for z in self.doc.user_zones:
+            self.zone.addItem(f"{z.name} on {z.surface}", z.name)
+        self.zone.blockSignals(False)
+        has = bool(self.doc.user_zones)
+        widgets = (self.name, self.kind, *self.corners, self.outline)
+        for w in (*widgets, self.apply_button, self.delete_button):
+            w.setEnabled(has)
+        self._show()
+
+    def _current(self):
+        name = self.zone.currentData()
+        return next((z for z in self.doc.user_zones if z.name == name), None)
+
+    def _show(self) -> None:
+        z = self._current()
+        if z is None:
+            return
+        self.name.setText(z.name)
+        self.kind.setCurrentIndex(max(0, self.kind.findData(str(z.kind))))
+        for box, value in zip(self.corners, z.rect, strict=True):
+            box.setValue(value)
+            box.setEnabled(z.outline is None)  # a polygon's rectangle is its bounds
+        self.outline.setText(
+            # Enough digits that Apply (a rename) gives back the same corners.
+            "" if z.outline is None else "; ".join(f"{u:.12g} {v:.12g}" for u, v in z.outline)
+        )
+
+    def apply(self) -> None:
+        """Write the fields back (the scene is re-meshed)."""
+        from dataclasses import replace
+
+        z = self._current()
+        if z is None:
+            return
+        text = self.outline.text().strip()
+        try:
+            outline = parse_corners(text) if text else None
+            new = replace(
+                z,
+                name=self.name.text().strip(),
+                kind=self.kind.currentData(),
+                rect=None if outline else tuple(b.value() for b in self.corners),
+                outline=outline,
+            )
+        except LightInvError as exc:
+            QtWidgets.QMessageBox.warning(self, "LightInv", str(exc))
+            return
+        self._set([new if u.name == z.name else u for u in self.doc.user_zones])
+
+    def delete(self) -> None:
+        """Remove the zone (and any source placed in it)."""
+        z = self._current()
+        if z is not None:
+            self._set([u for u in self.doc.user_zones if u.name != z.name])
+
+    def _set(self, zones) -> None:
+        try:
+            self.doc.set_user_zones(zones)
+        except LightInvError as exc:
+            QtWidgets.QMessageBox.warning(self, "LightInv", str(exc))
+
+
+def parse_corners(text: str) -> tuple[tuple[float, float], ...]:
+    """Corners typed as 'u v; u v; ...' (commas also separate the two numbers);
+    SceneError on anything else."""
+    corners = []
+    for k, part in enumerate(p for p in text.split(";") if p.strip()):
+        items = part.replace(",", " ").split()
+        try:
+            u, v = (float(x) for x in items)
+        except ValueError:
+            raise SceneError(
+                f"polygon corner {k + 1} ({part.strip()!r}): give two numbers, 'u v', and "
+                "separate corners with ';'"
+            ) from None
+        corners.append((u, v))
+    return tuple(corners)

@@ -1,0 +1,188 @@
+"""Editing the design from the window: what the viewport's picks, drags and drawn zones
+do, and the edits that ask a dialog first (intentions, rules, goals).
+
+``DesignEdits`` turns the viewport's signals into document edits and asks the editing
+dialogs; every edit goes through the document (Edit > Undo takes it back), an edit the
+model refuses is shown and nothing changes. Each ``dialog=`` argument replaces the
+dialog that would be shown (tests, scripts): a dialog whose result is set already is
+not shown.
+"""
+
+from __future__ import annotations
+
+from dataclasses import replace
+
+import numpy as np
+from PySide6 import QtCore
+
+from app.dialogs import ask
+from app.dialogs.intention_dialog import IntentionDialog, intention_target
+from app.dialogs.rule_dialog import RuleDialog
+from app.dialogs.zone_dialog import ZoneDialog
+from app.view.zone_frame import ZoneFrame
+from app.window import actions
+from lightinv_core.errors import LightInvError
+from lightinv_core.scene.edits import ZoneEdit
+from lightinv_core.scene.model import Rect
+
+MIN_ZONE = 0.05  # m: a drawn zone narrower than this is a slip of the mouse
+
+
+def surface_frame_of(zone: ZoneFrame, edit: ZoneEdit) -> ZoneFrame:
+    """The frame of the surface a drawn zone was cut from (its corners are measured along
+    it): the zone's own axes, its origin moved back by the zone's first corner."""
+    u0, v0, u1, v1 = edit.rect
+    origin = zone.origin - u0 * zone.u - v0 * zone.v
+    return ZoneFrame(None, edit.surface, rect=Rect(origin, u1 * zone.u, v1 * zone.v))
+
+
+class DesignEdits(QtCore.QObject):
+    """The design edits of a main window (``window``)."""
+
+    def __init__(self, window):
+        super().__init__(window)
+        self.win, self.doc = window, window.doc
+
+    def _say(self, message: str, ms: int = 4000) -> None:
+        self.win.statusBar().showMessage(message, ms)
+
+    # -- the viewport's picks, drags and zones -------------------------------------------------
+    def picked(self, ids: np.ndarray, add: bool) -> None:
+        """Patches picked in the view: the selection (``add``: added to it)."""
+        ids = np.union1d(self.doc.selection, ids) if add else ids
+        self.doc.set_selection(ids)
+        self._say(f"{len(ids)} patches selected")
+
+    def dragged(self, du: float, dv: float) -> None:
+        """The current source dragged by (du, dv) m in its zone."""
+        if self.doc.current_source is not None:
+            self.doc.move_source(self.doc.current_source, du, dv)
+
+    def surface_frame(self, seen: int | None, near, far) -> ZoneFrame | None:
+        """The surface a zone of the kind being drawn goes on, for the view ray near ->
+        far through the cursor (``seen``: the patch under it, if any)."""
+        try:
+            name, rect = self.doc.zone_surface(self.draw_kind(), near, far - near, seen)
+        except LightInvError as exc:
+            self._say(str(exc), 6000)
+            return None
+        self._say(f"Drawing a {self.draw_kind()} zone on {name}")
+        return ZoneFrame(None, name, rect=rect)
+
+    def draw_kind(self) -> str:
+        """The kind of zone Draw zone makes (the toolbar's choice)."""
+        return self.win.zone_kind_box.currentData()
+
+    def zone_drawn(self, surface, u0, v0, u1, v1, dialog: ZoneDialog | None = None) -> bool:
+        """Ask for the new zone's name and kind, then rebuild the scene with it."""
+        if abs(u1 - u0) < MIN_ZONE or abs(v1 - v0) < MIN_ZONE:
+            self._say("Zone too small: drag a larger rectangle")
+            return False
+        return self._add_zone(surface, dialog, rect=(u0, v0, u1, v1))
+
+    def polygon_drawn(self, surface: str, corners, dialog: ZoneDialog | None = None) -> bool:
+        """Ask for the new polygon zone's name and kind, then rebuild the scene with it."""
+        pts = np.asarray(corners, float)
+        span = pts.max(axis=0) - pts.min(axis=0) if len(pts) else np.zeros(2)
+        if len(pts) < 3 or span.min() < MIN_ZONE:
+            self._say("Zone too small: click at least 3 corners apart")
+            return False
+        return self._add_zone(surface, dialog, outline=tuple(map(tuple, pts)))
+
+    def _add_zone(self, surface: str, dialog: ZoneDialog | None, **shape) -> bool:
+        """Ask for a drawn zone's name and kind, then rebuild the scene with it
+        (``shape``: its ``rect`` or its ``outline``); errors shown, nothing changed."""
+        if dialog is None:
+            dialog = ZoneDialog(surface, self.doc.new_zone_name(), self.win)
+            dialog.kind.setCurrentIndex(max(0, dialog.kind.findData(self.draw_kind())))
+        if not ask.accepted(dialog):
+            return False
+        try:
+            name, kind = dialog.name.text().strip(), dialog.kind.currentData()
+            edit = ZoneEdit(name, kind, surface, **shape)  # a bad name stops nothing
+            self.win.stop_worker()
+            self.doc.set_user_zones((*self.doc.user_zones, edit))
+        except LightInvError as exc:
+            ask.warn(self.win, str(exc))
+            return False
+        return True
+
+    # -- intentions ----------------------------------------------------------------------------
+    def add_intention_on_selection(self, dialog: IntentionDialog | None = None) -> bool:
+        """Ask for bounds and add an intention on the picked patches."""
+        if len(self.doc.selection) == 0:
+            ask.inform(self.win, "Select patches first (Select patches mode).")
+            return False
+        label = f"{len(self.doc.selection)} patches"
+        return self._add_intention(label, None, self.doc.selection, dialog)
+
+    def add_intention_on_group(self, group: str, dialog: IntentionDialog | None = None) -> bool:
+        """Ask for bounds and add an intention on a group's patches."""
+        return self._add_intention(group, group, None, dialog)
+
+    def _add_intention(self, label, group, patches, dialog) -> bool:
+        dialog = dialog or IntentionDialog(label, self.win)
+        if not ask.accepted(dialog):
+            return False
+        try:
+            self.doc.add_intention(dialog.intention(group=group, patches=patches))
+        except LightInvError as exc:
+            ask.warn(self.win, str(exc))
+            return False
+        return True
+
+    def edit_intention(self, name: str, dialog: IntentionDialog | None = None) -> bool:
+        """Change an intention's name, quantity or bounds in the intention dialog."""
+        old = next((i for i in self.doc.design.intentions if i.name == name), None)
+        if old is None:
+            return False
+        if dialog is None:
+            dialog = IntentionDialog(intention_target(old), self.win)
+            dialog.load(old)
+        if not ask.accepted(dialog):
+            return False
+        try:
+            new = dialog.intention(group=old.group, patches=old.patches, grid=old.grid)
+            self.doc.replace_intention(name, replace(new, weight=old.weight))
+        except LightInvError as exc:
+            ask.warn(self.win, str(exc))
+            return False
+        return True
+
+    def delete_intention(self, name: str) -> None:
+        """Remove a lighting intention (Edit > Undo brings it back)."""
+        self.doc.remove_intention(name)
+        self._say(f"Deleted intention {name} (Edit > Undo to restore)", 6000)
+
+    # -- rules and goals -----------------------------------------------------------------------
+    def add_rule(self, dialog: RuleDialog | None = None) -> bool:
+        """Ask for a geometric rule (area, aspect, spacing, align; spacing-to-height and
+        clearance on luminaire arrays) and add it."""
+        d = self.doc.design if self.doc.project else None
+        names = [x.name for x in d.sources] if d is not None else []
+        arrays = [a.name for a in d.arrays] if d is not None else []
+        if not names and not arrays:
+            ask.inform(self.win, "Add sources or luminaire arrays first: rules bind them.")
+            return False
+        dialog = dialog or RuleDialog(names, self.win, arrays)
+        if not ask.accepted(dialog):
+            return False
+        try:
+            self.doc.add_rule(dialog.rule())
+        except LightInvError as exc:
+            ask.warn(self.win, str(exc))
+            return False
+        return True
+
+    def delete_rule(self, index: int) -> None:
+        """Remove a geometric rule (Edit > Undo brings it back)."""
+        self.doc.remove_rule(index)
+        self._say("Deleted a rule (Edit > Undo to restore)", 6000)
+
+    def set_goal(self, kind: str, on: bool) -> None:
+        """Add or remove a goal (Design > Goals); two goals give a Pareto front."""
+        try:
+            self.doc.set_goal(kind, on)
+        except LightInvError as exc:
+            ask.warn(self.win, str(exc))
+        actions.check_goals(self.win)
