@@ -10,6 +10,7 @@ from app.dialogs.fields import ok_cancel, optional_number
 from lightinv_core.design.model import DesignError, Intention
 from lightinv_core.kinds import Bound, Scenario
 from lightinv_core.quantities import quantity_spec, quantity_specs
+from lightinv_core.scenarios import scenario_specs
 
 BOUND_FIELDS = {
     Bound.MIN: ("Minimum", 300.0),
@@ -20,12 +21,6 @@ BOUND_FIELDS = {
 """Each bound of an intention: its label and the value the dialog offers."""
 
 
-SCENARIOS = {
-    Scenario.DESIGN: "design: luminaires + skylights at the design exterior lux",
-    Scenario.NIGHT: "night: luminaires only",
-    Scenario.OVERCAST: "overcast: luminaires + the CIE overcast sky",
-    Scenario.ANNUAL: "annual: every occupied hour of the weather year",
-}
 """The scenarios an intention is judged in (annual: the daylight metrics only)."""
 
 
@@ -44,8 +39,8 @@ class IntentionDialog(QtWidgets.QDialog):
             self.quantity.addItem(q.label, str(q.name))
         form.addRow("Quantity", self.quantity)
         self.scenario = QtWidgets.QComboBox()
-        for sc, text in SCENARIOS.items():
-            self.scenario.addItem(text, str(sc))
+        for sc in scenario_specs():
+            self.scenario.addItem(sc.label, str(sc.name))
         self.scenario.setToolTip(
             "The light the intention is judged in. A daylight metric has its own: the "
             "daylight factor the overcast sky, DA, UDI and sDA the weather year (Climate tab)."
@@ -67,13 +62,12 @@ class IntentionDialog(QtWidgets.QDialog):
         """A daylight metric fixes the scenario and takes bounds in its own units."""
         q = quantity_spec(self.quantity.currentData())
         forced = q.scenario
-        annual = self.scenario.model().item(self.scenario.findData(str(Scenario.ANNUAL)))
-        annual.setEnabled(forced == Scenario.ANNUAL)
+        for row, sc in enumerate(scenario_specs()):
+            # A scenario without an illuminance (the weather year) measures metrics only.
+            self.scenario.model().item(row).setEnabled(sc.lux is not None or sc.name == forced)
         if forced is not None:
             self.scenario.setCurrentIndex(self.scenario.findData(str(forced)))
-        elif self.scenario.currentData() in (Scenario.ANNUAL, Scenario.OVERCAST) and (
-            self._last_metric()
-        ):
+        elif self._last_metric():  # leave the scenario the metric had fixed
             self.scenario.setCurrentIndex(self.scenario.findData(str(Scenario.DESIGN)))
         self.scenario.setEnabled(forced is None)
         self._metric = forced is not None

@@ -1,6 +1,8 @@
-"""The view's daylight maps (View > Colour by): DF, DA300, UDI, the light at night or
-under the overcast sky, and the light of one hour of the year, each of the layout shown,
-on the patches and on the work planes' points.
+"""The view's daylight maps (View > Colour by): the light in each scenario (night,
+overcast, and any registered one), each daylight metric (DF, DA300, UDI, sDA, and any
+registered one) and the light of one hour of the year, each of the layout shown, on the
+patches and on the work planes' points; the lists come from the scenario and quantity
+registries.
 
 Each is read from the layout's light in every scenario (``DocumentModel.layout_daylight``,
 built once per design change); what cannot be computed is said in the map's caption.
@@ -14,18 +16,35 @@ from app.document import Document
 from lightinv_core.editing.climate import hour_state
 from lightinv_core.errors import LightInvError
 from lightinv_core.kinds import Scenario
+from lightinv_core.quantities import is_quantity, quantity_spec, quantity_specs
+from lightinv_core.scenarios import is_scenario, scenario_spec, scenario_specs
 
-MAPS = {
-    # key: (Colour by text, colour bar title, its label format)
-    "night": ("illuminance at night: luminaires only (lux)", "lux, night", "%.0f"),
-    "overcast": ("illuminance under the overcast sky (lux)", "lux, overcast", "%.0f"),
-    "df": ("daylight factor DF (%)", "DF %", "%.1f"),
-    "da": ("daylight autonomy DA300 (% of occupied hours)", "DA300 %", "%.0f"),
-    "udi": ("useful daylight UDI 100-3000 lux (% of hours)", "UDI %", "%.0f"),
-    "hour": ("illuminance at the hour of the year (lux)", "lux", "%.0f"),
-}
-"""The view's daylight maps, each from the layout shown's ``LayoutDaylight``."""
-PERCENT_MAPS = ("da", "udi")  # drawn 0-100 % whatever the range set
+HOUR = "hour"
+"""The key of the map of one hour of the weather year."""
+
+
+def maps() -> dict[str, tuple[str, str, str]]:
+    """The view's daylight maps, key -> (Colour by text, colour bar title, its label
+    format): every scenario with an illuminance but the design one (the view's own),
+    every daylight metric of the quantity registry (DF, then the annual ones: shares
+    drawn in %), and the hour of the year."""
+    out = {
+        s.name: (f"illuminance, {s.label} (lux)", f"lux, {s.name}", "%.0f")
+        for s in scenario_specs()
+        if s.lux is not None and s.name != Scenario.DESIGN
+    }
+    for q in quantity_specs():
+        if q.hours is not None:
+            out[q.name] = (_percent(q.label), f"{q.metric.split()[0]} %", "%.0f")
+        elif q.from_scenarios is not None:
+            out[q.name] = (q.label, f"{q.metric} {q.unit}".strip(), f"%.{q.decimals - 1}f")
+    out[HOUR] = ("illuminance at the hour of the year (lux)", "lux", "%.0f")
+    return out
+
+
+def _percent(label: str) -> str:
+    """An annual metric's label with its shares written in %."""
+    return label.replace("0-1", "%").replace("(share of", "(% of")
 
 
 class MapResult:
@@ -46,10 +65,10 @@ class MapResult:
 
 
 def map_values(doc: Document, key: str, hour: int) -> MapResult:
-    """The map ``key`` (a key of ``MAPS``) of the layout shown, on the patches and the
+    """The map ``key`` (a key of ``maps()``) of the layout shown, on the patches and the
     work planes' points; its values None and the caption saying why when it cannot be
     computed (no light model, an unreadable weather file)."""
-    _, units, fmt = MAPS[key]
+    text, units, fmt = maps()[key]
     try:
         ld = doc.layout_daylight(shown=True)
         if ld is None:
@@ -60,35 +79,47 @@ def map_values(doc: Document, key: str, hour: int) -> MapResult:
             shown.grid_values = _on(ld.points, ld, key, hour)
         return shown
     except LightInvError as exc:
-        return MapResult(None, units, fmt, f"{MAPS[key][0]}: {exc}")
+        return MapResult(None, units, fmt, f"{text}: {exc}")
 
 
 def _map(ld, doc: Document, key: str, hour: int, units: str, fmt: str) -> MapResult:
     p = ld.patches
     values = _on(p, ld, key, hour)
     hint = "\nThe design has no skylights: no daylight." if not p.groups.count else ""
-    if key in (Scenario.NIGHT, Scenario.OVERCAST):
-        cap = "Luminaires only" if key == Scenario.NIGHT else "Luminaires + the CIE overcast sky"
-        return MapResult(values, units, fmt, cap + hint)
-    if key == "df":
-        return MapResult(values, units, fmt, "Daylight factor, CIE overcast sky" + hint)
-    if key in PERCENT_MAPS:
+    if is_scenario(key):
+        light = _capital(scenario_spec(key).describe(doc.design.daylight))
+        return MapResult(values, units, fmt, light + hint)
+    if is_quantity(key):
+        q = quantity_spec(key)
+        if q.hours is None:
+            where = f"{_capital(q.noun)}, {scenario_spec(q.default_scenario).name} scenario"
+            return MapResult(values, units, fmt, where + hint)
         over = f" of {p.year().hours:,} occupied hours" if p.groups.count else ""
-        what = "with 300 lux of daylight" if key == "da" else "with 100-3000 lux of daylight"
-        head = "DA300" if key == "da" else "UDI 100-3000"
-        return MapResult(values, units, fmt, f"{head}: share{over}\n{what}" + hint, (0.0, 100.0))
+        band = q.hours
+        what = (
+            f"with {band.lo:g} lux of daylight or more"
+            if band.hi == np.inf
+            else f"with {band.lo:g}-{band.hi:g} lux of daylight"
+        )
+        caption = f"{q.metric}: share{over}\n{what}" + hint
+        return MapResult(values, units, fmt, caption, (0.0, 100.0))
     state = hour_state(ld, _weather_or_none(doc), hour)
     return MapResult(values, units, fmt, state.text())
 
 
+def _capital(text: str) -> str:
+    return text[:1].upper() + text[1:]
+
+
 def _on(light, ld, key: str, hour: int) -> np.ndarray:
     """The map ``key`` at the receivers of ``light`` (the layout's patches or points)."""
-    if key in (Scenario.NIGHT, Scenario.OVERCAST):
+    if is_scenario(key):
         return light.lux(key)[:, 0]
-    if key == "df":
-        return 100.0 * light.overcast_daylight()[:, 0]
-    if key in PERCENT_MAPS:
-        return 100.0 * (light.da() if key == "da" else light.udi())[:, 0]
+    if is_quantity(key):
+        q = quantity_spec(key)
+        if q.hours is not None:
+            return 100.0 * light.band(q.hours)[:, 0]
+        return q.from_scenarios(light, slice(None))[:, 0]
     if light is ld.patches:
         return ld.hour_lux(hour)
     # The same sum as ``LayoutDaylight.hour_lux``, at the work planes' points.

@@ -7,7 +7,7 @@ from __future__ import annotations
 
 from PySide6 import QtWidgets
 
-from app.view.daylight_maps import MAPS
+from app.view.daylight_maps import maps
 
 COLORMAPS = ("inferno", "viridis", "plasma", "coolwarm", "gray")
 
@@ -21,7 +21,7 @@ class ViewOptions(QtWidgets.QGroupBox):
         self.colour_by = QtWidgets.QComboBox()
         self.colour_by.addItem("illuminance (lux)", "lux")
         self.colour_by.addItem("radiosity B (lm/m²)", "B")
-        for key, (text, _units, _fmt) in MAPS.items():
+        for key, (text, _units, _fmt) in maps().items():
             self.colour_by.addItem(text, key)
         self.colour_by.setToolTip(
             "The design's light (illuminance: the design scenario), or a daylight map of the "

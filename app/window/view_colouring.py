@@ -14,7 +14,7 @@ import numpy as np
 from PySide6 import QtCore
 
 from app.view import luminaire_overlay
-from app.view.daylight_maps import MAPS, map_values
+from app.view.daylight_maps import map_values, maps
 from lightinv_core.errors import LightInvError
 from lightinv_core.light.arrays import array_escape_warnings
 
@@ -82,7 +82,7 @@ class ViewColouring(QtCore.QObject):
             units = "lux, loaded − pinned"
         elif key == "B":
             values, units = field.radiosity, "lm/m²"
-        elif key in MAPS:
+        elif key in maps():
             shown = map_values(self.doc, key, self.win.climate_panel.current_hour())
             values, units, fmt, caption = shown.values, shown.units, shown.fmt, shown.caption
             grids, grid_values = shown.grids, shown.grid_values
