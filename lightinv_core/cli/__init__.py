@@ -18,8 +18,11 @@ from collections.abc import Sequence
 from lightinv_core.cli.output import warn
 from lightinv_core.cli.parser import build_parser
 from lightinv_core.errors import CancelledError, LightInvError
+from lightinv_core.value_text import goal_value
 
 __all__ = ["build_parser", "main"]
+
+_goal_text = goal_value  # its old name here, still used by tests/core/test_extension_points.py
 
 
 def _show_warning(message, category, filename, lineno, file=None, line=None) -> None:

@@ -13,24 +13,8 @@ from lightinv_core.atomic import check_writable
 from lightinv_core.cli.output import failed, out, progress_printer, warn, write_or_rescue
 from lightinv_core.cli.solve_text import solve_text
 from lightinv_core.errors import LightInvError
-from lightinv_core.sources.emission import source_electric_power, source_flux
-from lightinv_core.sources.types import daylit, source_type
-
-
-def _source_summary(src, daylight) -> dict:
-    u0, v0, u1, v1 = src.rect
-    out = {
-        "name": src.name,
-        "zone": src.zone,
-        "kind": src.kind,
-        "corners": [min(u0, u1), min(v0, v1), max(u0, u1), max(v0, v1)],
-        "area_m2": src.area,
-    }
-    if not source_type(src.kind).electric:
-        out[source_type(src.kind).strength] = getattr(src, source_type(src.kind).strength)
-    else:
-        out.update(flux_lm=source_flux(src, daylight), electric_w=source_electric_power(src))
-    return out
+from lightinv_core.sources.types import daylit
+from lightinv_core.value_text import source_summary
 
 
 def _solution_summary(sol, daylight) -> dict:
@@ -38,7 +22,7 @@ def _solution_summary(sol, daylight) -> dict:
         "objectives": dict(sol.objectives),
         "penalty": sol.penalty,
         "feasible": sol.feasible,
-        "sources": [_source_summary(s, daylight) for s in sol.sources],
+        "sources": [source_summary(s, daylight) for s in sol.sources],
         "violations": [dataclasses.asdict(v) for v in sol.violations],
     }
     if sol.arrays:

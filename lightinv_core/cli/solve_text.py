@@ -3,7 +3,7 @@ daylight, violations and front."""
 
 from __future__ import annotations
 
-from lightinv_core.sources.types import source_type
+from lightinv_core.value_text import goal_value, source_line
 
 
 def solve_text(out: dict) -> str:
@@ -15,15 +15,7 @@ def solve_text(out: dict) -> str:
         lines.append(
             f"{out['objective_kind']}: {out['objective']:.6g}   penalty {out['penalty']:.3g}"
         )
-    for s in out.get("sources", []):
-        c = ", ".join(f"{x:.3f}" for x in s["corners"])
-        kind = source_type(s["kind"])
-        extra = (
-            f"{s['flux_lm']:.0f} lm, {s['electric_w']:.1f} W"
-            if kind.electric
-            else f"{kind.strength} {s[kind.strength]:.3f}"
-        )
-        lines.append(f"  {s['name']:<10} {s['zone']:<10} ({c}) m  {s['area_m2']:.2f} m²  {extra}")
+    lines += [f"  {source_line(s)}" for s in out.get("sources", [])]
     for a in out.get("arrays", []):
         lines.append(
             f"  {a['name']:<10} {a['zone']:<10} {a['rows']} x {a['columns']} {a['product']} "
@@ -66,14 +58,7 @@ def solve_text(out: dict) -> str:
         )
         for s in out["pareto"]:
             o = s["objectives"]
-            lines.append("  " + "   ".join(_goal_text(k, o.get(k, 0.0)) for k in q["objectives"]))
+            lines.append("  " + "   ".join(goal_value(k, o.get(k, 0.0)) for k in q["objectives"]))
     if "saved" in out:
         lines.append(f"saved to {out['saved']}")
     return "\n".join(lines)
-
-
-def _goal_text(kind: str, value: float) -> str:
-    """A goal's value with its unit, as the front's lines show it."""
-    from lightinv_core.goals import goal_spec
-
-    return goal_spec(kind).value_text(value)

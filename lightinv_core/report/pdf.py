@@ -58,10 +58,8 @@ from lightinv_core.report.luminaires import (
 )
 from lightinv_core.report.tables import (
     Table,
-    fmt,
     group_table,
     intention_table,
-    objective_text,
     rules_table,
     source_table,
 )
@@ -72,6 +70,7 @@ from lightinv_core.report.views import (
     source_outlines,
 )
 from lightinv_core.sources.types import daylit
+from lightinv_core.value_text import fmt, objective_text
 
 PDF_DPI = 150  # resolution of the rasterised views inside the PDF
 PNG_DPI = 100
