@@ -9,9 +9,10 @@ from lightinv_core.cli import args as types
 from lightinv_core.cli.precompute import cmd_precompute
 from lightinv_core.cli.report import cmd_report
 from lightinv_core.cli.scenes import add_scene_args, cmd_scene_info, cmd_scenes
-from lightinv_core.cli.simulate import AUTO_LRR_PATCHES, cmd_simulate
+from lightinv_core.cli.simulate import cmd_simulate
 from lightinv_core.cli.solve import cmd_solve
 from lightinv_core.optimize.registry import method_names
+from lightinv_core.study.simulation import AUTO_LRR_PATCHES
 from lightinv_core.transport.formfactors import DEFAULT_RAYS, MAX_RAYS
 from lightinv_core.transport.workplane import DEFAULT_BORDER, DEFAULT_HEIGHT
 
