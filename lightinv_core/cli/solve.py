@@ -13,7 +13,9 @@ from lightinv_core.atomic import check_writable
 from lightinv_core.cli.output import failed, out, progress_printer, warn, write_or_rescue
 from lightinv_core.cli.solve_text import solve_text
 from lightinv_core.errors import LightInvError
+from lightinv_core.light.daylight import LayoutDaylight
 from lightinv_core.sources.types import daylit
+from lightinv_core.study import solution_light
 from lightinv_core.value_text import source_summary
 
 
@@ -50,12 +52,9 @@ def _array_summary(a) -> dict:
     }
 
 
-def _daylight_summary(light, design, sol) -> dict:
-    """The solution's daylight on the control work plane: DF (overcast), DA300, sDA, UDI
+def _daylight_summary(lay: LayoutDaylight) -> dict:
+    """A solution's daylight on the control work plane: DF (overcast), DA300, sDA, UDI
     and the dimming energy over the weather year (or why the year could not be read)."""
-    from lightinv_core.light.daylight import layout_daylight
-
-    lay = layout_daylight(light, design, sol.sources, sol.arrays)
     span = lay.grids.spans[lay.control]
     df = 100 * lay.points.overcast_daylight(span)[:, 0]
     out = {
@@ -135,14 +134,10 @@ def cmd_solve(args) -> int:
         if "match" in best.objectives:
             summary["error"] = best.objectives["match"]
         if project.design.workplanes:
-            from lightinv_core.light.grids import design_grids, grid_results
-
-            grids = design_grids(prepared.light, project.design.workplanes)
-            summary["workplanes"] = grid_results(
-                prepared.light, grids, best.sources, best.arrays, project.design.daylight
-            )
+            light = solution_light(prepared, project.design, best)
+            summary["workplanes"] = light.grid_stats
             if daylit(best.sources):
-                summary["daylight"] = _daylight_summary(prepared.light, project.design, best)
+                summary["daylight"] = _daylight_summary(light.daylight)
     if result.pareto is not None:
         summary["pareto"] = [
             _solution_summary(s, project.design.daylight) for s in result.pareto.solutions

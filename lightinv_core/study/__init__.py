@@ -6,7 +6,9 @@
   run keeps its best solution;
 - a forward simulation: ``simulate(SimulationSpec) -> SimulationResult``
   (``study.simulation``: static light, the design sky, the weather year and dimming;
-  ``study.annual``: the year on a work plane), used by ``lightinv-cli simulate``.
+  ``study.annual``: the year on a work plane), used by ``lightinv-cli simulate``;
+- the light of one solution of a project: ``solution_light(prepared, design,
+  solution)`` (``study.solution_light``), used by the report and ``lightinv-cli solve``.
 """
 
 from __future__ import annotations
@@ -32,6 +34,7 @@ from lightinv_core.scene.model import Scene
 from lightinv_core.scene.patches import Patches, mesh_patches
 from lightinv_core.study.annual import DimmingSpec, GridYear
 from lightinv_core.study.simulation import SimulationResult, SimulationSpec, simulate
+from lightinv_core.study.solution_light import SolutionLight, solution_light
 
 __all__ = [
     "DesignProblem",
@@ -41,8 +44,10 @@ __all__ = [
     "RunResult",
     "SimulationResult",
     "SimulationSpec",
+    "SolutionLight",
     "prepare",
     "simulate",
+    "solution_light",
     "solve",
     "solve_seeds",
     "stop_rule",
