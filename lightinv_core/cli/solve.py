@@ -12,10 +12,12 @@ import numpy as np
 from lightinv_core.atomic import check_writable
 from lightinv_core.cli.output import failed, out, progress_printer, warn, write_or_rescue
 from lightinv_core.cli.solve_text import solve_text
+from lightinv_core.design.model import Design
+from lightinv_core.design.solution import Solution
 from lightinv_core.errors import LightInvError
-from lightinv_core.light.daylight import LayoutDaylight
+from lightinv_core.light.model import LightModel
 from lightinv_core.sources.types import daylit
-from lightinv_core.study import solution_light
+from lightinv_core.study import SolutionLight, solution_light
 from lightinv_core.value_text import source_summary
 
 
@@ -52,9 +54,10 @@ def _array_summary(a) -> dict:
     }
 
 
-def _daylight_summary(lay: LayoutDaylight) -> dict:
+def daylight_summary(light: LightModel, design: Design, sol: Solution) -> dict:
     """A solution's daylight on the control work plane: DF (overcast), DA300, sDA, UDI
     and the dimming energy over the weather year (or why the year could not be read)."""
+    lay = SolutionLight(light, design, sol.sources, sol.arrays).daylight
     span = lay.grids.spans[lay.control]
     df = 100 * lay.points.overcast_daylight(span)[:, 0]
     out = {
@@ -137,7 +140,7 @@ def cmd_solve(args) -> int:
             light = solution_light(prepared, project.design, best)
             summary["workplanes"] = light.grid_stats
             if daylit(best.sources):
-                summary["daylight"] = _daylight_summary(light.daylight)
+                summary["daylight"] = daylight_summary(prepared.light, project.design, best)
     if result.pareto is not None:
         summary["pareto"] = [
             _solution_summary(s, project.design.daylight) for s in result.pareto.solutions
