@@ -12,7 +12,7 @@ from lightinv_core.design.model import Daylight
 from lightinv_core.errors import LightInvError
 from lightinv_core.operator.settings import OperatorSettings
 from lightinv_core.sources.luminaire_csv import read_luminaire_csv
-from lightinv_core.study import DimmingSpec, SimulationResult, SimulationSpec, simulate
+from lightinv_core.study import SimulationResult, SimulationSpec, simulate
 from lightinv_core.transport.photometry import write_patch_csv
 from lightinv_core.transport.scene_light import write_grid_csv
 from lightinv_core.transport.workplane import DEFAULT_BORDER, WorkPlane
@@ -54,6 +54,9 @@ def spec_of(args) -> SimulationSpec:
             north_deg=args.north,
             occupancy=args.occupancy,
             ground_reflectance=args.ground_reflectance,
+            target_lux=args.target_lux,
+            min_level=args.min_dimming,
+            standby_w=args.standby_w,
         )
     return SimulationSpec(
         scene,
@@ -65,7 +68,6 @@ def spec_of(args) -> SimulationSpec:
         ground_reflectance=args.ground_reflectance,
         workplane=plane,
         annual=annual,
-        dimming=DimmingSpec(args.target_lux, args.min_dimming, args.standby_w),
         rays=args.rays,
         seed=args.seed,
         method=args.method,

@@ -155,7 +155,7 @@ def annual_payload(res: SimulationResult, spec: SimulationSpec) -> dict:
         **a.metrics.summary(),
     }
     if a.dimming is not None:
-        d, dim = a.dimming, spec.dimming
+        d, dim = a.dimming, spec.annual
         out["dimming"] = {
             "target_lux": dim.target_lux,
             "electric_em_lux": a.electric_em,

@@ -32,13 +32,12 @@ from lightinv_core.optimize.termination import StopRule
 from lightinv_core.project import Project
 from lightinv_core.scene.model import Scene
 from lightinv_core.scene.patches import Patches, mesh_patches
-from lightinv_core.study.annual import DimmingSpec, GridYear
+from lightinv_core.study.annual import GridYear
 from lightinv_core.study.simulation import SimulationResult, SimulationSpec, simulate
 from lightinv_core.study.solution_light import SolutionLight, solution_light
 
 __all__ = [
     "DesignProblem",
-    "DimmingSpec",
     "GridYear",
     "Prepared",
     "RunResult",

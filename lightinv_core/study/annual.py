@@ -67,16 +67,6 @@ def occupied_metrics(year: DaylightYear, coefficients: np.ndarray) -> DaylightMe
 
 
 @dataclass(frozen=True)
-class DimmingSpec:
-    """Daylight-linked dimming of the luminaires: the grid's mean to keep
-    (``target_lux``), their lowest level, standby power (W) drawn all year."""
-
-    target_lux: float = 500.0
-    min_level: float = 0.1
-    standby_w: float = 0.0
-
-
-@dataclass(frozen=True)
 class GridYear:
     """The year on a grid: the ``year`` (occupied hours, exterior lux per sky group),
     its ``groups``, the glazing ``orientations``, ``coefficients`` (q, G) lux per
@@ -109,15 +99,17 @@ def grid_year(daylight: Daylight, orients: list[Orientation], coefficients: np.n
 
 
 def with_dimming(
-    got: GridYear, electric: np.ndarray, installed_w: float, floor_m2: float, spec: DimmingSpec
+    got: GridYear, electric: np.ndarray, installed_w: float, floor_m2: float, daylight: Daylight
 ) -> GridYear:
     """``got`` with the dimming energy of luminaires giving ``electric`` (q,) lux at full
     output and drawing ``installed_w`` (W) in all: the grid's mean daylight per occupied
-    hour is topped up to the target (``climate.metrics``)."""
+    hour is topped up to ``daylight.target_lux`` between ``min_level`` and full output,
+    ``standby_w`` drawn all year (``climate.metrics``)."""
+    d = daylight
     em = float(np.mean(electric))
     daylight_mean = got.coefficients.mean(axis=0) @ got.year.exterior
     dim = dimming_energy(
-        daylight_mean, em, spec.target_lux, installed_w, floor_m2, spec.min_level, spec.standby_w
+        daylight_mean, em, d.target_lux, installed_w, floor_m2, d.min_level, d.standby_w
     )
     return GridYear(
         got.year,

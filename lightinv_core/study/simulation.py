@@ -26,7 +26,7 @@ from lightinv_core.operator.cache import get_operator
 from lightinv_core.operator.settings import OperatorSettings
 from lightinv_core.scene.model import Scene
 from lightinv_core.scene.patches import Patches, mesh_patches
-from lightinv_core.study.annual import DimmingSpec, GridYear, grid_year, with_dimming
+from lightinv_core.study.annual import GridYear, grid_year, with_dimming
 from lightinv_core.transport.annual import orientation_coefficients, orientations
 from lightinv_core.transport.escape import luminaire_escape_warnings
 from lightinv_core.transport.formfactors import (
@@ -74,10 +74,10 @@ class SimulationSpec:
     of diffusing glazing, lit by ``sky`` (``"cie-overcast"``: ``exterior_lux``
     horizontal outside) and/or a weather year (``annual.weather``); ``workplane``: an
     EN 12464-1 grid read-out; ``annual``: the weather file, north bearing, occupancy
-    and ground reflectance of the year (a ``Daylight``), with ``dimming`` of the
-    luminaires. ``rays`` per patch and ``seed`` of the form factors; ``method``
-    "auto", "reference" or "lrr"; ``operator``, ``use_cache`` and ``scheduler`` for
-    the low-rank operator.
+    and ground reflectance of the year and the luminaires' daylight-linked dimming
+    (target lux, lowest level, standby watts): a ``Daylight``. ``rays`` per patch and
+    ``seed`` of the form factors; ``method`` "auto", "reference" or "lrr";
+    ``operator``, ``use_cache`` and ``scheduler`` for the low-rank operator.
     """
 
     scene: Scene
@@ -89,7 +89,6 @@ class SimulationSpec:
     ground_reflectance: float = 0.2
     workplane: WorkPlane | None = None
     annual: Daylight | None = None
-    dimming: DimmingSpec = field(default_factory=DimmingSpec)
     rays: int = DEFAULT_RAYS
     seed: int = 0
     method: str = "auto"
@@ -231,7 +230,7 @@ def _read_workplane(spec, result: SimulationResult, F, caster, light, df: bool) 
             electric = light_grid(grid, alone, caster, luminaires, spec.rays, factors=factors).lux
         plane = spec.workplane
         floor = float(lit.area[lit.group_index(plane.group)].sum())
-        year = with_dimming(year, electric, installed_watts(luminaires), floor, spec.dimming)
+        year = with_dimming(year, electric, installed_watts(luminaires), floor, spec.annual)
     result.annual = year
 
 
