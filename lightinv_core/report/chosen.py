@@ -1,18 +1,17 @@
 """Which solution a report is about, and its light on every patch.
 
-The light comes from the project's ``LightModel`` with the solution's own sources (as
-saved: tied rules already applied), so solutions whose source order or subset differs
-from the design's (two-step fronts) are lit correctly; its luminaire arrays add their
-light with every luminaire placed exactly.
+The light comes from ``study.solution_light`` (the project's ``LightModel``) with the
+solution's own sources (as saved: tied rules already applied), so solutions whose
+source order or subset differs from the design's (two-step fronts) are lit correctly;
+its luminaire arrays add their light with every luminaire placed exactly.
 """
 
 from __future__ import annotations
 
-from dataclasses import dataclass, replace
+from dataclasses import dataclass
 
 from lightinv_core.design.solution import Solution
 from lightinv_core.errors import LightInvError
-from lightinv_core.light.arrays import arrays_field
 from lightinv_core.light.field import LightField
 from lightinv_core.project import Project
 
@@ -66,9 +65,6 @@ def choose_solution(project: Project, solution: Solution | None = None) -> Chose
 def solution_field(project: Project, prepared, solution: Solution) -> LightField:
     """The light of the solution's sources on every patch (``prepared`` is a
     ``lightinv_core.study.Prepared``)."""
-    field = prepared.light.field(solution.sources, project.design.daylight)
-    if solution.arrays:
-        # Luminaire arrays placed exactly (not the optimiser's lattice).
-        H, _ = arrays_field(prepared.patches, prepared.operator, solution.arrays)
-        field = replace(field, illuminance=field.illuminance + H)
-    return field
+    from lightinv_core.study import solution_light
+
+    return solution_light(prepared, project.design, solution).field

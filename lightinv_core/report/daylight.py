@@ -32,9 +32,10 @@ from lightinv_core.light.daylight import SDA_SHARE, AnnualEnergy, LayoutDaylight
 from lightinv_core.light.daylight_year import hours_from, hours_within
 from lightinv_core.report.figures import draw_table, new_figure
 from lightinv_core.report.luminaires import plan_figure
-from lightinv_core.report.tables import Table, fmt
+from lightinv_core.report.tables import Table
 from lightinv_core.report.views import Outline
 from lightinv_core.sources.types import daylit
+from lightinv_core.value_text import fmt
 
 UDI_NAMES = (
     f"UDI <{UDI_BANDS[0]:.0f}",

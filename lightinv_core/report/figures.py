@@ -18,8 +18,9 @@ from matplotlib.ticker import StrMethodFormatter
 from lightinv_core.design.solution import ParetoFront, Solution
 from lightinv_core.kinds import GoalKind
 from lightinv_core.optimize.quality import FrontQuality
-from lightinv_core.report.tables import Table, goal_label
+from lightinv_core.report.tables import Table
 from lightinv_core.report.views import A4_LANDSCAPE
+from lightinv_core.value_text import goal_label
 
 PASS_COLOUR, FAIL_COLOUR, HEAD_COLOUR = "#d9f2d9", "#f8d0d0", "#e4e8f0"
 ROW_HEIGHT = 0.032  # of the page height, per table row

@@ -24,8 +24,9 @@ from lightinv_core.light.grids import DesignGrids
 from lightinv_core.luminaires.photometry import light_warnings
 from lightinv_core.quantities import quantity_spec
 from lightinv_core.report.figures import new_figure
-from lightinv_core.report.tables import FAIL, PASS, Table, fmt
+from lightinv_core.report.tables import FAIL, PASS, Table
 from lightinv_core.transport.workplane import grid_statistics
+from lightinv_core.value_text import fmt
 
 ISO_LEVELS = 8  # iso-lux lines per plan
 EN_LABELS = {Bound.AVERAGE: "Em", Bound.MIN: "Emin", Bound.MAX: "Emax", Bound.UNIFORMITY: "U0"}

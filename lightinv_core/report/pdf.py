@@ -29,12 +29,10 @@ from matplotlib.figure import Figure
 from lightinv_core.atomic import atomic_writer
 from lightinv_core.errors import CancelledError
 from lightinv_core.light.arrays import array_escape_warnings, resolve_product
-from lightinv_core.light.daylight import layout_daylight
-from lightinv_core.light.grids import design_grids, grid_light
 from lightinv_core.optimize.mop import front_pair
 from lightinv_core.optimize.quality import front_quality, front_scales
 from lightinv_core.project import Project
-from lightinv_core.report.chosen import Chosen, choose_solution, solution_field
+from lightinv_core.report.chosen import Chosen, choose_solution
 from lightinv_core.report.daylight import (
     climate_table,
     da_figures,
@@ -58,10 +56,8 @@ from lightinv_core.report.luminaires import (
 )
 from lightinv_core.report.tables import (
     Table,
-    fmt,
     group_table,
     intention_table,
-    objective_text,
     rules_table,
     source_table,
 )
@@ -72,6 +68,8 @@ from lightinv_core.report.views import (
     source_outlines,
 )
 from lightinv_core.sources.types import daylit
+from lightinv_core.study import solution_light
+from lightinv_core.value_text import fmt, objective_text
 
 PDF_DPI = 150  # resolution of the rasterised views inside the PDF
 PNG_DPI = 100
@@ -196,11 +194,12 @@ def write_report(
         chosen = dataclasses.replace(chosen, label=label)
     sol = chosen.solution
     patches, design = prepared.patches, project.design
-    field = solution_field(project, prepared, sol)
+    light = solution_light(prepared, design, sol)
+    field = light.field
     H = field.illuminance
     outlines = source_outlines(patches, sol.sources) + luminaire_outlines(patches, sol.arrays)
     # The layout's light in every scenario: intentions are judged in their own.
-    lay = layout_daylight(prepared.light, design, sol.sources, sol.arrays)
+    lay = light.daylight
     intentions = intention_table(sol, design, field, lay)
 
     def view(name):
@@ -214,11 +213,7 @@ def write_report(
     def tables_second():
         return table_pages([intentions, group_table(field)])
 
-    grid_lux = None
-    grids = None
-    if design.workplanes:
-        grids = design_grids(prepared.light, design.workplanes)
-        grid_lux = grid_light(prepared.light, grids, sol.sources, sol.arrays, design.daylight)
+    grids, grid_lux = light.grids, light.grid_lux
 
     primary = design.goals[0].kind
     plan: list[tuple[str, Callable[[], Figure | list[Figure] | None]]] = [

@@ -2,7 +2,7 @@
 
 Each table is a ``Table`` of already formatted strings (what the PDF shows), so the
 numbers in the report can be checked against these functions' output. Units are in
-the column headers.
+the column headers; values are written by ``lightinv_core.value_text``.
 """
 
 from __future__ import annotations
@@ -32,17 +32,18 @@ from lightinv_core.scene.patches import Patches
 from lightinv_core.scene.zone_grid import zone_grid
 from lightinv_core.sources.emission import source_electric_power, source_flux
 from lightinv_core.sources.types import electric, source_type
+from lightinv_core.value_text import (
+    bound_text,
+    bound_value,
+    fmt,
+    source_setting,
+)
+
+# Written in value_text, still importable from here (tests/core/test_extension_points.py).
+from lightinv_core.value_text import goal_label as goal_label
+from lightinv_core.value_text import objective_text as objective_text
 
 PASS, FAIL = "pass", "FAIL"
-
-
-def _goal_name(kind: str) -> tuple[str, str]:
-    """(name, units) of a goal as the report shows it (the kind itself when unknown: a
-    file from another version)."""
-    if not is_goal(kind):
-        return str(kind), ""
-    spec = goal_spec(kind)
-    return spec.label, spec.unit
 
 
 @dataclass(frozen=True)
@@ -60,36 +61,10 @@ class Table:
             object.__setattr__(self, "flags", ("",) * len(self.rows))
 
 
-def fmt(value: float | None, digits: int = 4) -> str:
-    """A number for the tables: ``digits`` significant digits below 1,000, whole numbers
-    with thousands separators above, "—" for a missing or undefined value."""
-    if value is None or math.isnan(float(value)):
-        return "—"
-    v = float(value)
-    if math.isinf(v):
-        return "inf" if v > 0 else "-inf"
-    if abs(float(f"{v:.{digits}g}")) >= 10 ** (digits - 1):
-        return f"{v:,.0f}"
-    return f"{v:.{digits}g}"
-
-
 def fmt_corners(s: Source) -> str:
     """The rectangle's lower and upper corners in zone (u, v) metres: "(u0, v0)–(u1, v1)"."""
     (a, b), (c, d) = s.u_range, s.v_range
     return f"({a:.2f}, {c:.2f})–({b:.2f}, {d:.2f})"
-
-
-def objective_text(kind: str, value: float) -> str:
-    """ "Electric power: 123.4 W" and the like."""
-    name, units = _goal_name(kind)
-    return f"{name}: {fmt(value)}{' ' + units if units else ''}"
-
-
-def goal_label(kind: str) -> str:
-    """A goal as an axis label: "electric power (W)", "glazing area (m²)", "sDA300/50%"."""
-    name, units = _goal_name(kind)
-    name = name[:1].lower() + name[1:] if name[1:2].islower() else name
-    return f"{name} ({units})" if units else name
 
 
 def source_table(solution: Solution, design: Design) -> Table:
@@ -98,12 +73,8 @@ def source_table(solution: Solution, design: Design) -> Table:
     total_w = 0.0
     for s in solution.sources:
         w, h = s.size
-        kind = source_type(s.kind)
-        if not kind.electric:
-            setting = f"{kind.strength} {getattr(s, kind.strength):.3f}"
-            power = "—"
-        else:
-            setting = f"{fmt(s.flux)} lm" if s.flux is not None else f"{fmt(s.exitance)} lm/m²"
+        power = "—"
+        if source_type(s.kind).electric:
             watts = source_electric_power(s)
             total_w += watts
             power = fmt(watts)
@@ -115,7 +86,7 @@ def source_table(solution: Solution, design: Design) -> Table:
                 fmt_corners(s),
                 f"{w:.2f} x {h:.2f}",
                 f"{s.area:.2f}",
-                setting,
+                source_setting(s),
                 fmt(source_flux(s, design.daylight)),
                 power,
             )
@@ -232,9 +203,6 @@ def intention_table(
             summary = f"{fmt(stats.min[0])} / {fmt(stats.average[0])} / {fmt(stats.max[0])}"
             summary += f" {units}" if units else ""
         for bound, limit, chk in checks:
-            u = "" if bound == Bound.UNIFORMITY or not units else f" {units}"
-            label = "U0" if bound == Bound.UNIFORMITY else str(bound)
-            sign = "≤" if bound == Bound.MAX else "≥"
             met = chk is None or bool(chk.met[0])
             bad = (it.name, bound) in failed if judged else not met
             c = float(chk.c[0]) if chk is not None else float("nan")
@@ -249,9 +217,9 @@ def intention_table(
                 (
                     it.name,
                     where,
-                    f"{label} {sign} {fmt(limit)}{u}",
+                    bound_text(bound, it.quantity, limit),
                     scenario,
-                    f"{fmt(chk.value[0])}{u}" if chk is not None else "—",
+                    bound_value(bound, it.quantity, chk.value[0]) if chk is not None else "—",
                     summary,
                     fmt(u0, 3),
                     result,

@@ -1,13 +1,15 @@
-"""Annual daylight on a work plane, without a radiosity solve per hour.
+"""Daylight coefficients of glazing groups on a work plane, by the reference solver.
 
-Light transport is linear and each glazing pane's exitance is its transmittance
-times the exterior illuminance on its plane, so the daylight at grid point p in
-hour t is ``sum_g c_pg E_g(t)``: one coefficient per pane (lux at the point per lux
-on the pane's outside) times that pane's hourly exterior illuminance
-(``climate.transposition``). A pane is a glazing group's patches of one orientation
-(a group spanning two facades makes two panes). The coefficients cost one reference
-solve per pane; the year is then a (points x panes) @ (panes x hours) product.
-``tests/core/test_annual.py`` checks it against solving hour by hour.
+Light transport is linear and each glazing patch's exitance is its transmittance times
+the exterior illuminance on its plane, so the daylight at grid point p in hour t is
+``sum_g c_pg E_g(t)``: one coefficient per *orientation* g (lux at the point per lux on
+the outside of the glazing facing that way) times that orientation's hourly exterior
+illuminance. The coefficients cost one reference solve per orientation; the year
+(``light.daylight_year``, the optimiser's sky groups) and its statistics are then the
+same as the optimiser's. A *pane* is one glazing group's patches of one orientation (a
+group spanning two facades makes two panes; two groups in one roof make one
+orientation). ``tests/core/test_annual.py`` checks the coefficients against solving
+hour by hour.
 """
 
 from __future__ import annotations
@@ -17,12 +19,13 @@ from dataclasses import dataclass
 import numpy as np
 import scipy.sparse as sp
 
-from lightinv_core.climate.transposition import plane_illuminance, sun_and_sky
-from lightinv_core.climate.weather import Weather
 from lightinv_core.scene.patches import Patches
 from lightinv_core.transport.raycast import RayCaster
 from lightinv_core.transport.scene_light import light_grid, light_scene
 from lightinv_core.transport.workplane import Grid
+
+NORMAL_DECIMALS = 3
+"""Patches whose normals agree to this many decimals face the same way."""
 
 
 @dataclass(frozen=True)
@@ -36,56 +39,65 @@ class Pane:
     transmittance: float
 
 
+def _outward(patches: Patches, idx: np.ndarray) -> np.ndarray:
+    n = patches.normal[idx].mean(axis=0)
+    return -n / np.linalg.norm(n)
+
+
 def panes(patches: Patches, glazing: dict[str, float]) -> list[Pane]:
-    """The glazing groups split by orientation (normals equal to 1e-3)."""
+    """The glazing groups (name -> transmittance) split by orientation."""
     out = []
     for group, t in glazing.items():
         idx = patches.group_index(group)
-        keys = np.round(patches.normal[idx], 3)
+        keys = np.round(patches.normal[idx], NORMAL_DECIMALS)
         for key in np.unique(keys, axis=0):
             sel = idx[np.all(keys == key, axis=1)]
-            n = patches.normal[sel].mean(axis=0)
-            out.append(Pane(group, sel, -n / np.linalg.norm(n), float(t)))
+            out.append(Pane(group, sel, _outward(patches, sel), float(t)))
     return out
 
 
 @dataclass(frozen=True)
-class AnnualDaylight:
-    """``coefficients`` (q, P): grid lux per exterior lux on each pane; ``exterior``
-    (P, h) lux per hour on each pane's outside; ``lux`` (q, h) the daylight per hour."""
+class Orientation:
+    """The panes facing one way and their common ``outward`` unit normal."""
 
-    panes: list[Pane]
-    coefficients: np.ndarray
-    exterior: np.ndarray
+    panes: tuple[Pane, ...]
+    outward: np.ndarray
 
     @property
-    def lux(self) -> np.ndarray:
-        """Daylight (lux) per grid point and hour."""
-        return self.coefficients @ self.exterior
+    def idx(self) -> np.ndarray:
+        """Patch ids of every pane."""
+        return np.concatenate([q.idx for q in self.panes])
 
 
-def annual_daylight(
+def orientations(patches: Patches, glazing: dict[str, float]) -> list[Orientation]:
+    """The panes of ``glazing`` grouped by orientation, in the order first met."""
+    keyed: dict[tuple, list[Pane]] = {}
+    for q in panes(patches, glazing):
+        keyed.setdefault(tuple(np.round(-q.outward, NORMAL_DECIMALS)), []).append(q)
+    out = []
+    for group in keyed.values():
+        idx = np.concatenate([q.idx for q in group])
+        outward = group[0].outward if len(group) == 1 else _outward(patches, idx)
+        out.append(Orientation(tuple(group), outward))
+    return out
+
+
+def orientation_coefficients(
     lit: Patches,
     F: sp.spmatrix,
     caster: RayCaster,
-    glazing: dict[str, float],
-    weather: Weather,
+    orients: list[Orientation],
     grid: Grid,
     factors: sp.spmatrix,
-    ground_reflectance: float = 0.2,
-    north_deg: float = 0.0,
-) -> AnnualDaylight:
-    """Coefficients and hourly exterior light of every pane (see the module); ``lit``
-    are the patches with the glazing black inside, ``factors`` the grid's traced form
-    factors."""
-    sky = sun_and_sky(weather)
-    ps = panes(lit, glazing)
-    coefficients = np.zeros((len(grid.points), len(ps)))
-    exterior = np.zeros((len(ps), weather.hours))
-    for k, pane in enumerate(ps):
+) -> np.ndarray:
+    """(q, G) lux at the grid's points per lux on the outside of each orientation's
+    glazing: one reference solve each. ``lit`` are the patches with the glazing black
+    inside, ``factors`` the grid's traced form factors (``receiver_factors``)."""
+    out = np.zeros((len(grid.points), len(orients)))
+    for g, o in enumerate(orients):
         E = np.zeros(lit.n)
-        E[pane.idx] = pane.transmittance  # 1 lux outside
+        for q in o.panes:
+            E[q.idx] = q.transmittance  # 1 lux outside
         light = light_scene(lit, F, caster, E, [])
-        coefficients[:, k] = light_grid(grid, light, caster, [], 1, factors=factors).lux
-        exterior[k] = plane_illuminance(weather, sky, pane.outward, ground_reflectance, north_deg)
-    return AnnualDaylight(ps, coefficients, exterior)
+        out[:, g] = light_grid(grid, light, caster, [], 1, factors=factors).lux
+    return out

@@ -1,5 +1,6 @@
 """Annual daylight: the weather file, the Perez transposition against pvlib's own, the
-coefficient method against a solve per hour, the metrics and dimming by definition."""
+coefficient method against a solve per hour (the oracle), the optimiser's year
+statistics against the metrics of every hour, the metrics and dimming by definition."""
 
 from __future__ import annotations
 
@@ -17,10 +18,12 @@ from lightinv_core.climate.transposition import (
     sun_and_sky,
 )
 from lightinv_core.climate.weather import WeatherError, read_weather
+from lightinv_core.design.model import Daylight
 from lightinv_core.scene.builders import room_faces
 from lightinv_core.scene.model import Scene, Surface
 from lightinv_core.scene.patches import mesh_patches
-from lightinv_core.transport.annual import annual_daylight, panes
+from lightinv_core.study.annual import grid_year
+from lightinv_core.transport.annual import orientation_coefficients, orientations, panes
 from lightinv_core.transport.formfactors import form_factor_matrix
 from lightinv_core.transport.glazing import glazing_emission
 from lightinv_core.transport.raycast import RayCaster
@@ -99,26 +102,67 @@ def room() -> Scene:
     return Scene("room", surfaces, resolution=0.5)
 
 
-def test_coefficients_match_a_solve_per_hour(weather):
+def _room_light(glazing):
     p = mesh_patches(room())
-    glazing = {"window": 0.7, "rooflight": 0.6}
     _, lit = glazing_emission(p, glazing, 0.0, 0.2)
     caster = RayCaster(p)
     F = form_factor_matrix(p, 256, seed=1, caster=caster)
     grid = work_plane_grid(p, caster, WorkPlane(0.8, 0.5))
     R = receiver_factors(grid.points, grid.normals, caster, p.n, 256, 2)
-    year = annual_daylight(lit, F, caster, glazing, weather, grid, R, 0.2, 30.0)
-    assert [q.group for q in year.panes] == ["window", "rooflight"]
+    return lit, F, caster, grid, R
+
+
+def test_coefficients_match_a_solve_per_hour(weather):
+    """The named oracle: relight the room for each of 12 hours with every pane at its
+    hour's exterior illuminance, against coefficients x the optimiser's year."""
+    glazing = {"window": 0.7, "rooflight": 0.6}
+    lit, F, caster, grid, R = _room_light(glazing)
+    orients = orientations(lit, glazing)
+    assert [[q.group for q in o.panes] for o in orients] == [["window"], ["rooflight"]]
+    coefficients = orientation_coefficients(lit, F, caster, orients, grid, R)
+    got = grid_year(Daylight(weather="builtin", north_deg=30.0), orients, coefficients)
+    lux = coefficients @ got.year.every  # every hour of the file, not only the occupied
     sky = sun_and_sky(weather)
     rng = np.random.default_rng(0)
     hours = rng.choice(np.flatnonzero(weather.ghi > 0), size=12, replace=False)
     for t in hours:
-        E = np.zeros(p.n)
+        E = np.zeros(lit.n)
         for pane in panes(lit, glazing):
             outside = plane_illuminance(weather, sky, pane.outward, 0.2, 30.0)[t]
             E[pane.idx] = pane.transmittance * outside
         direct = light_grid(grid, light_scene(lit, F, caster, E, []), caster, [], 1, factors=R)
-        np.testing.assert_allclose(year.lux[:, t], direct.lux, rtol=1e-8, atol=1e-9)
+        np.testing.assert_allclose(lux[:, t], direct.lux, rtol=1e-8, atol=1e-9)
+
+
+@pytest.mark.parametrize("glazing", [{"rooflight": 0.6}, {"window": 0.7, "rooflight": 0.6}])
+def test_year_statistics_equal_the_metrics_of_every_hour(glazing):
+    """One sky group (sorted search) and two (hour by hour): the same DA300, UDI bands
+    and sDA as ``daylight_metrics`` of the (points x occupied hours) illuminance."""
+    lit, F, caster, grid, R = _room_light(glazing)
+    orients = orientations(lit, glazing)
+    coefficients = orientation_coefficients(lit, F, caster, orients, grid, R)
+    got = grid_year(Daylight(weather="builtin", north_deg=30.0), orients, coefficients)
+    assert (got.year.sorted is not None) == (len(glazing) == 1)
+    hourly = daylight_metrics(got.lux)
+    np.testing.assert_array_equal(got.metrics.da, hourly.da)
+    np.testing.assert_array_equal(got.metrics.udi, hourly.udi)
+    assert got.metrics.sda == hourly.sda and 0 < got.metrics.da.mean() < 1
+
+
+def test_panes_facing_one_way_make_one_orientation():
+    """Two glazing groups in one wall are one orientation: its coefficients are the sum of
+    each group's, so the year has one sky group (the fast, sorted statistics)."""
+    glazing = {"window": 0.7, "walls": 0.5}
+    lit, F, caster, grid, R = _room_light(glazing)
+    (both,) = orientations(lit, glazing)
+    assert [q.group for q in both.panes] == ["window", "walls"]
+    np.testing.assert_allclose(both.outward, [0.0, -1.0, 0.0], atol=1e-12)
+    merged = orientation_coefficients(lit, F, caster, [both], grid, R)[:, 0]
+    alone = [
+        orientation_coefficients(lit, F, caster, orientations(lit, {g: t}), grid, R)[:, 0]
+        for g, t in glazing.items()
+    ]
+    np.testing.assert_allclose(merged, alone[0] + alone[1], rtol=1e-10, atol=1e-12)
 
 
 def test_metrics_and_dimming_by_definition():

@@ -16,6 +16,8 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 from lightinv_core import cli
+from lightinv_core.cli import scenes as cli_scenes
+from lightinv_core.cli import simulate as cli_simulate
 
 MODELS = Path(__file__).resolve().parents[2] / "resources" / "models"
 ROOM = str(MODELS / "meeting_room.obj")
@@ -362,14 +364,14 @@ def test_a_failed_final_write_keeps_the_result(capsys, tmp_path, monkeypatch):
     assert not target.exists()
     assert len(load_project(rescued).pareto.solutions) == len(summary["pareto"])
     # The patch values of a simulation are kept the same way.
-    real_csv = cli.write_patch_csv
+    real_csv = cli_simulate.write_patch_csv
 
     def csv_full(where, *rest):
         if Path(where) == tmp_path / "p.csv":
             raise OSError(errno.ENOSPC, "No space left on device")
         return real_csv(where, *rest)
 
-    monkeypatch.setattr(cli, "write_patch_csv", csv_full)
+    monkeypatch.setattr(cli_simulate, "write_patch_csv", csv_full)
     argv = ["simulate", "cornell", "--emit", "light=100", "--patches-csv", str(tmp_path / "p.csv")]
     assert cli.main([*argv, "--resolution", "0.5"]) == 2
     out, err = capsys.readouterr()
@@ -384,13 +386,12 @@ def test_a_stray_numpy_warning_is_one_line(capsys, monkeypatch):
     two-line warning with a library's source line."""
     import numpy as np
 
-    real = cli.cmd_scenes
+    real = cli_scenes.cmd_scenes
 
     def noisy(args):
         np.log(np.zeros(1))  # RuntimeWarning: divide by zero
         return real(args)
 
-    monkeypatch.setattr(cli, "cmd_scenes", noisy)
     parser = cli.build_parser()
     monkeypatch.setattr(cli, "build_parser", lambda: parser)
     parser._subparsers._group_actions[0].choices["scenes"].set_defaults(func=noisy)

@@ -1,7 +1,14 @@
-"""Running a project's optimisation end to end: scene -> operator -> problem -> method.
+"""Studies of a scene or a project, end to end.
 
-Used by ``lightinv-cli solve`` and the GUI's run panel; everything long takes
-``progress`` and ``cancel`` callbacks and a cancelled run keeps its best solution.
+- a project's optimisation: scene -> operator -> problem -> method (``prepare``,
+  ``solve``, ``solve_seeds``, here), used by ``lightinv-cli solve`` and the GUI's run
+  panel; everything long takes ``progress`` and ``cancel`` callbacks and a cancelled
+  run keeps its best solution;
+- a forward simulation: ``simulate(SimulationSpec) -> SimulationResult``
+  (``study.simulation``: static light, the design sky, the weather year and dimming;
+  ``study.annual``: the year on a work plane), used by ``lightinv-cli simulate``;
+- the light of one solution of a project: ``solution_light(prepared, design,
+  solution)`` (``study.solution_light``), used by the report and ``lightinv-cli solve``.
 """
 
 from __future__ import annotations
@@ -25,6 +32,25 @@ from lightinv_core.optimize.termination import StopRule
 from lightinv_core.project import Project
 from lightinv_core.scene.model import Scene
 from lightinv_core.scene.patches import Patches, mesh_patches
+from lightinv_core.study.annual import GridYear
+from lightinv_core.study.simulation import SimulationResult, SimulationSpec, simulate
+from lightinv_core.study.solution_light import SolutionLight, solution_light
+
+__all__ = [
+    "DesignProblem",
+    "GridYear",
+    "Prepared",
+    "RunResult",
+    "SimulationResult",
+    "SimulationSpec",
+    "SolutionLight",
+    "prepare",
+    "simulate",
+    "solution_light",
+    "solve",
+    "solve_seeds",
+    "stop_rule",
+]
 
 
 @dataclass

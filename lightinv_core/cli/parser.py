@@ -1,0 +1,196 @@
+"""The argument parser of ``lightinv-cli``: one sub-parser per subcommand, each bound to
+its ``cmd_*`` function."""
+
+from __future__ import annotations
+
+import argparse
+
+from lightinv_core.cli import args as types
+from lightinv_core.cli.precompute import cmd_precompute
+from lightinv_core.cli.report import cmd_report
+from lightinv_core.cli.scenes import add_scene_args, cmd_scene_info, cmd_scenes
+from lightinv_core.cli.simulate import cmd_simulate
+from lightinv_core.cli.solve import cmd_solve
+from lightinv_core.optimize.registry import method_names
+from lightinv_core.study.simulation import AUTO_LRR_PATCHES
+from lightinv_core.transport.formfactors import DEFAULT_RAYS, MAX_RAYS
+from lightinv_core.transport.workplane import DEFAULT_BORDER, DEFAULT_HEIGHT
+
+DESCRIPTION = "``lightinv-cli``: the headless command line."
+
+
+class _Parser(argparse.ArgumentParser):
+    """Usage errors as one line on stderr and exit status 2, like every other user error."""
+
+    def error(self, message: str):
+        self.exit(2, f"lightinv-cli: error: {self.prog}: {message} (see --help)\n")
+
+
+def build_parser() -> argparse.ArgumentParser:
+    """The argument parser of ``lightinv-cli``."""
+    ap = _Parser(prog="lightinv-cli", description=DESCRIPTION)
+    sub = ap.add_subparsers(dest="command", required=True, parser_class=_Parser)
+
+    def add(name: str, fn, help_text: str) -> argparse.ArgumentParser:
+        p = sub.add_parser(name, help=help_text, description=help_text)
+        p.add_argument("--json", action="store_true", help="print one JSON object")
+        p.set_defaults(func=fn)
+        return p
+
+    add("scenes", cmd_scenes, "list the built-in scenes")
+
+    add_scene_args(add("scene-info", cmd_scene_info, "patches, groups and zones of a scene"))
+    sim = add("simulate", cmd_simulate, "forward radiosity simulation")
+    add_scene_args(sim)
+    sim.add_argument(
+        "--emit",
+        type=types.group_lumens,
+        action="append",
+        default=[],
+        metavar="GROUP=LUMENS",
+        help="a group emitting this luminous flux (lm), uniformly over its area",
+    )
+    sim.add_argument(
+        "--luminaires",
+        metavar="CSV",
+        help="photometric luminaires, one per row: name,x,y,z,ies,aim_x,aim_y,aim_z,"
+        "c0_x,c0_y,c0_z[,dimming] (IES/LDT paths relative to the CSV; docs/photometry.md)",
+    )
+    sim.add_argument(
+        "--workplane",
+        type=types.length,
+        nargs="?",
+        const=DEFAULT_HEIGHT,
+        metavar="HEIGHT",
+        help=f"an EN 12464-1 grid this high above the floor (m; {DEFAULT_HEIGHT} if no value)",
+    )
+    sim.add_argument(
+        "--border",
+        type=types.length,
+        help=f"work plane: band left out along the walls (m, default {DEFAULT_BORDER})",
+    )
+    sim.add_argument(
+        "--workplane-group", default="floor", help="work plane: the floor group it lies over"
+    )
+    sim.add_argument("--grid-csv", metavar="FILE", help="work plane: write x,y,z,lux per point")
+    sim.add_argument(
+        "--sky",
+        choices=("cie-overcast",),
+        help="light the glazing groups with this sky (docs/daylight.md); adds df (%%) outputs",
+    )
+    sim.add_argument(
+        "--exterior-lux",
+        type=types.lux,
+        default=10000.0,
+        help="unobstructed horizontal illuminance outside (lux, default 10000)",
+    )
+    sim.add_argument(
+        "--glazing",
+        type=types.group_transmittance,
+        action="append",
+        default=[],
+        metavar="GROUP=TRANSMITTANCE",
+        help="a group of diffusing glazing and its visible transmittance (0 to 1)",
+    )
+    sim.add_argument(
+        "--weather",
+        metavar="FILE",
+        help="EPW or TMY3 weather file ('builtin': Greensboro NC) for annual daylight on the "
+        "work plane through the glazing (DA300, sDA, UDI; dimming energy with luminaires)",
+    )
+    sim.add_argument(
+        "--north",
+        type=types.angle,
+        default=0.0,
+        help="compass bearing of the scene's +y axis (deg; 0: +y is north, 90: +y is east)",
+    )
+    sim.add_argument(
+        "--occupancy",
+        type=types.hours,
+        default=(8.0, 18.0),
+        metavar="START-END",
+        help="occupied hours on weekdays, local time (default 8-18)",
+    )
+    sim.add_argument(
+        "--target-lux",
+        type=types.lux,
+        default=500.0,
+        help="dimming: the grid's mean illuminance to keep (lux, default 500)",
+    )
+    sim.add_argument(
+        "--min-dimming",
+        type=types.fraction,
+        default=0.1,
+        help="dimming: lowest level of the luminaires (default 0.1)",
+    )
+    sim.add_argument(
+        "--standby-w",
+        type=types.length,
+        default=0.0,
+        help="dimming: standby power of the controls, drawn all year (W, default 0)",
+    )
+    sim.add_argument(
+        "--ground-reflectance",
+        type=types.fraction,
+        default=0.2,
+        help="reflectance of the ground outside (default 0.2)",
+    )
+    sim.add_argument("--patches-csv", metavar="FILE", help="write one CSV row per patch")
+    sim.add_argument(
+        "--method",
+        choices=("auto", "reference", "lrr"),
+        default="auto",
+        help=f"solver: reference (exact, sparse F) or lrr (the low-rank operator); "
+        f"auto uses lrr above {AUTO_LRR_PATCHES} patches",
+    )
+    sol = add("solve", cmd_solve, "optimise a project file (inverse design)")
+    sol.add_argument("project", help="project file (JSON, schema 1)")
+    sol.add_argument("--seed", type=types.seed, help="random seed (default: the project's)")
+    sol.add_argument(
+        "--method",
+        choices=method_names(),
+        help="optimisation method (default: the project's; docs/design.md compares them)",
+    )
+    sol.add_argument("--max-evals", type=types.count, help="radiosity evaluations at most")
+    sol.add_argument("--time-limit", type=types.positive, help="seconds of optimisation at most")
+    sol.add_argument(
+        "--resolution", type=types.positive, help="override the scene's patch size (m)"
+    )
+    sol.add_argument("-o", "--output", help="save the project with its results to this file")
+    _scheduler_arg(sol)
+    rep = add("report", cmd_report, "write a PDF report of a project's solution")
+    rep.add_argument("project", help="project file holding results (lightinv-cli solve ... -o)")
+    rep.add_argument("-o", "--output", required=True, help="PDF file to write")
+    rep.add_argument("--png-dir", help="also save every page as a PNG in this folder")
+    pre = add("precompute", cmd_precompute, "build or load the radiosity operator of a scene")
+    add_scene_args(pre)
+    for p in (sim, pre):
+        p.add_argument(
+            "--rays",
+            type=types.rays,
+            default=DEFAULT_RAYS,
+            help=f"rays per patch (1 to {MAX_RAYS:,})",
+        )
+        p.add_argument("--seed", type=types.seed, default=0, help="random seed of the form factors")
+        group = p.add_mutually_exclusive_group()
+        group.add_argument("--rank", type=int, help="fix the low-rank operator's rank k")
+        group.add_argument(
+            "--tol",
+            type=float,
+            default=0.01,
+            help="target relative error of C that chooses k (default 0.01)",
+        )
+        p.add_argument("--no-cache", action="store_true", help="neither read nor write the cache")
+        _scheduler_arg(p)
+    return ap
+
+
+def _scheduler_arg(p: argparse.ArgumentParser) -> None:
+    """--scheduler: build the operator on a Dask cluster (docs/cluster.md)."""
+    p.add_argument(
+        "--scheduler",
+        type=types.scheduler,
+        metavar="tcp://HOST:PORT",
+        help="build the radiosity operator on this Dask cluster (the cluster extra; "
+        "docs/cluster.md): the same operator as a local build",
+    )

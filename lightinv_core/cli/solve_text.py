@@ -1,0 +1,64 @@
+"""The text ``solve`` prints: the run, the solution's sources, arrays, work planes,
+daylight, violations and front."""
+
+from __future__ import annotations
+
+from lightinv_core.value_text import goal_value, source_line
+
+
+def solve_text(out: dict) -> str:
+    lines = [
+        f"{out['project']}: {out['status']} ({out['method']}, {out['evaluations']:,} "
+        f"evaluations in {out['seconds']:.2f} s; operator {out['precompute_seconds']:.2f} s)"
+    ]
+    if out.get("objective") is not None:
+        lines.append(
+            f"{out['objective_kind']}: {out['objective']:.6g}   penalty {out['penalty']:.3g}"
+        )
+    lines += [f"  {source_line(s)}" for s in out.get("sources", [])]
+    for a in out.get("arrays", []):
+        lines.append(
+            f"  {a['name']:<10} {a['zone']:<10} {a['rows']} x {a['columns']} {a['product']} "
+            f"(spacing {a['spacing_m'][0]:.2f} x {a['spacing_m'][1]:.2f} m, rotation "
+            f"{a['rotation']}, dimming {a['dimming']:.2f})  {a['electric_w']:.1f} W"
+        )
+    for name, g in out.get("workplanes", {}).items():
+        lines.append(
+            f"  work plane {name}: Em {g['Em']:.0f} lux, Emin {g['Emin']:.0f} lux, "
+            f"Emax {g['Emax']:.0f} lux, U0 {g['U0']:.2f} ({g['points']} points; luminaires "
+            "placed exactly; skylights at the design exterior lux)"
+        )
+    if "daylight" in out:
+        d = out["daylight"]
+        lines.append(
+            f"  daylight on {d['workplane']}: DF mean {d['df_mean']:.2f}%, median "
+            f"{d['df_median']:.2f}%, min {d['df_min']:.2f}% (CIE overcast)"
+        )
+        if "annual_error" in d:
+            lines.append(f"  annual daylight not computed: {d['annual_error']}")
+        else:
+            lines.append(
+                f"  {d['site']}: DA300 mean {100 * d['da300_mean']:.0f}%, sDA300/50% "
+                f"{100 * d['sda300_50']:.0f}%, UDI 100-3000 {100 * d['udi_100_3000_mean']:.0f}%; "
+                f"dimmed lighting {d['energy_kwh']:.0f} kWh a year (full output "
+                f"{d['full_output_kwh']:.0f} kWh), LENI {d['leni_kwh_m2']:.2f} kWh/m² a"
+            )
+    for v in out.get("violations", []):
+        lines.append(
+            f"  violated: {v['name']} {v['constraint']} by {100 * v['amount']:.1f}% "
+            f"({v['value']:.4g} vs {v['bound']:.4g} {v['units']})"
+        )
+    if "pareto" in out:
+        q = out["front_quality"]
+        spread = "–" if q["spacing"] is None else f"{q['spacing']:.4f}"
+        lines.append(
+            f"Pareto front: {len(out['pareto'])} non-dominated of {out['candidates']} "
+            f"candidates; hypervolume {q['hypervolume']:.4f}, spacing {spread} "
+            "(normalised, docs/design.md)"
+        )
+        for s in out["pareto"]:
+            o = s["objectives"]
+            lines.append("  " + "   ".join(goal_value(k, o.get(k, 0.0)) for k in q["objectives"]))
+    if "saved" in out:
+        lines.append(f"saved to {out['saved']}")
+    return "\n".join(lines)

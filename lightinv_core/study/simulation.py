@@ -1,0 +1,264 @@
+"""A forward simulation of a scene: ``simulate(spec) -> SimulationResult``.
+
+Groups emit given fluxes, photometric luminaires shine, the CIE overcast design sky
+lights the glazing groups, and a weather year gives annual daylight and the dimming
+energy on a work plane. Everything goes through the reference solver (exact sparse
+form factors, ``transport``), except plain group emission on a large scene, which the
+low-rank operator (``light.LightModel``) evaluates (``method="lrr"``, or ``"auto"``
+above ``AUTO_LRR_PATCHES``). The annual year and its statistics are the optimiser's
+(``study.annual``).
+"""
+
+from __future__ import annotations
+
+import time
+from collections.abc import Callable
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+
+from lightinv_core.design.model import Daylight
+from lightinv_core.errors import LightInvError
+from lightinv_core.light.model import LightModel
+from lightinv_core.luminaires.photometry import light_warnings
+from lightinv_core.operator.cache import get_operator
+from lightinv_core.operator.settings import OperatorSettings
+from lightinv_core.scene.model import Scene
+from lightinv_core.scene.patches import Patches, mesh_patches
+from lightinv_core.study.annual import GridYear, grid_year, with_dimming
+from lightinv_core.transport.annual import orientation_coefficients, orientations
+from lightinv_core.transport.escape import luminaire_escape_warnings
+from lightinv_core.transport.formfactors import (
+    DEFAULT_RAYS,
+    check_formfactor_memory,
+    escape_warning,
+    form_factor_matrix,
+    lost_fraction,
+)
+from lightinv_core.transport.glazing import glazing_emission
+from lightinv_core.transport.luminaires import PlacedLuminaire
+from lightinv_core.transport.photometry import group_illuminance
+from lightinv_core.transport.raycast import RayCaster
+from lightinv_core.transport.receivers import receiver_factors
+from lightinv_core.transport.scene_light import SceneLight, light_grid, light_scene
+from lightinv_core.transport.solver import group_emission
+from lightinv_core.transport.workplane import Grid, WorkPlane, grid_statistics, work_plane_grid
+
+AUTO_LRR_PATCHES = 3000
+"""Above this many patches, ``method="auto"`` evaluates plain group emission with the
+low-rank operator instead of the reference solver."""
+
+DESIGN_SKY = "cie-overcast"
+
+
+def luminaire_watts(lum: PlacedLuminaire) -> float | None:
+    """Electric power (W) of a luminaire at its set dimming, power taken proportional to
+    output (a linear-dimming driver, as the optimiser's); None when its file gives no
+    input watts."""
+    rated = lum.photometry.input_watts
+    return None if rated is None else rated * lum.dimming
+
+
+def installed_watts(luminaires) -> float:
+    """Electric power (W) of luminaires at their set dimming (unknown watts count 0)."""
+    return float(sum(luminaire_watts(x) or 0.0 for x in luminaires))
+
+
+@dataclass(frozen=True)
+class SimulationSpec:
+    """What to simulate.
+
+    ``emit``: group -> luminous flux (lm) emitted uniformly over its area;
+    ``luminaires``: photometric luminaires; ``glazing``: group -> visible transmittance
+    of diffusing glazing, lit by ``sky`` (``"cie-overcast"``: ``exterior_lux``
+    horizontal outside) and/or a weather year (``annual.weather``); ``workplane``: an
+    EN 12464-1 grid read-out; ``annual``: the weather file, north bearing, occupancy
+    and ground reflectance of the year and the luminaires' daylight-linked dimming
+    (target lux, lowest level, standby watts): a ``Daylight``. ``rays`` per patch and
+    ``seed`` of the form factors; ``method`` "auto", "reference" or "lrr";
+    ``operator``, ``use_cache`` and ``scheduler`` for the low-rank operator.
+    """
+
+    scene: Scene
+    emit: dict[str, float] = field(default_factory=dict)
+    luminaires: tuple[PlacedLuminaire, ...] = ()
+    glazing: dict[str, float] = field(default_factory=dict)
+    sky: str | None = None
+    exterior_lux: float = 10000.0
+    ground_reflectance: float = 0.2
+    workplane: WorkPlane | None = None
+    annual: Daylight | None = None
+    rays: int = DEFAULT_RAYS
+    seed: int = 0
+    method: str = "auto"
+    operator: OperatorSettings | None = None
+    use_cache: bool = True
+    scheduler: str | None = None
+
+    @property
+    def plain(self) -> bool:
+        """Only groups emit and nothing reads a work plane: the operator can do it."""
+        return not self.luminaires and self.workplane is None and not self.daylit
+
+    @property
+    def daylit(self) -> bool:
+        """A sky or a weather year lights the glazing."""
+        return bool(self.sky) or self.annual is not None
+
+
+@dataclass
+class SimulationResult:
+    """What a simulation found.
+
+    ``patches`` as meshed and ``lit`` as lit (glazing black inside), emission ``E``
+    (lm/m²), radiosity ``B`` and illuminance ``H`` per patch; ``groups``: per group
+    min / average / max lux (and ``avg_df`` %, under a design sky); ``light``: the
+    reference solve's flux budget (None with the operator); ``grid``, ``grid_lux`` and
+    ``grid_stats`` the work plane's; ``df_grid`` and ``df_patches`` the daylight factor
+    (%) under a design sky; ``annual`` the weather year on the grid. ``warnings`` about
+    the result (light escaping), ``photometry_warnings`` about the luminaires' files,
+    ``weather_notes`` about the weather file, ``timings`` in seconds;
+    ``operator`` the low-rank operator's facts (method "lrr").
+    """
+
+    scene: Scene
+    patches: Patches
+    lit: Patches
+    method: str
+    E: np.ndarray
+    B: np.ndarray
+    H: np.ndarray
+    groups: list[dict]
+    light: SceneLight | None = None
+    lost_fraction: float | None = None
+    grid: Grid | None = None
+    grid_lux: np.ndarray | None = None
+    grid_stats: dict | None = None
+    df_grid: np.ndarray | None = None
+    df_patches: np.ndarray | None = None
+    annual: GridYear | None = None
+    warnings: list[str] = field(default_factory=list)
+    photometry_warnings: list[str] = field(default_factory=list)
+    weather_notes: list[str] = field(default_factory=list)
+    timings: dict[str, float] = field(default_factory=dict)
+    operator: dict = field(default_factory=dict)
+
+
+Progress = Callable[[float], None] | None
+
+
+def simulate(
+    spec: SimulationSpec,
+    formfactor_progress: Progress = None,
+    operator_progress: Progress = None,
+    warn: Callable[[str], None] | None = None,
+) -> SimulationResult:
+    """Simulate ``spec`` (see the module); ``*_progress(fraction)`` report the form
+    factors or the operator's build, ``warn`` the operator cache's notes."""
+    p = mesh_patches(spec.scene)
+    E = group_emission(p, dict(spec.emit))
+    method = spec.method
+    if method == "lrr" and not spec.plain:
+        raise LightInvError(
+            "luminaires, skies and work planes are simulated with the reference solver; "
+            "leave out --method lrr (or use --method reference)"
+        )
+    if method == "auto":
+        method = "lrr" if spec.plain and p.n > AUTO_LRR_PATCHES else "reference"
+    if method == "lrr":
+        return _simulate_lrr(spec, p, E, operator_progress, warn)
+    return _simulate_reference(spec, p, E, formfactor_progress)
+
+
+def _simulate_reference(spec: SimulationSpec, p: Patches, E, progress) -> SimulationResult:
+    check_formfactor_memory(p, spec.rays)
+    luminaires = list(spec.luminaires)
+    t0 = time.perf_counter()
+    caster = RayCaster(p)
+    F = form_factor_matrix(p, spec.rays, seed=spec.seed, progress=progress, caster=caster)
+    t1 = time.perf_counter()
+    lit = p
+    if spec.glazing:  # black inside; it emits only under a design sky
+        outside = spec.exterior_lux if spec.sky else 0.0
+        glass, lit = glazing_emission(p, dict(spec.glazing), outside, spec.ground_reflectance)
+        E = E + glass
+    light = light_scene(lit, F, caster, E, luminaires, seed=spec.seed)
+    t2 = time.perf_counter()
+    lost = lost_fraction(F, p)
+    warnings = [w for w in [escape_warning(lost)] if w]
+    warnings += luminaire_escape_warnings(luminaires, caster)
+    # Daylight factor (%): illuminance over the unobstructed exterior horizontal one.
+    df = spec.sky is not None and spec.exterior_lux > 0
+    result = SimulationResult(
+        spec.scene, p, lit, "reference", E, light.B, light.H, group_illuminance(p, light.H)
+    )
+    result.light, result.lost_fraction, result.warnings = light, lost, warnings
+    result.timings = {"formfactor_seconds": t1 - t0, "solve_seconds": t2 - t1}
+    if df:
+        result.df_patches = 100.0 * light.H / spec.exterior_lux
+        for s in result.groups:
+            s["avg_df"] = 100.0 * s["avg_lux"] / spec.exterior_lux
+    if spec.workplane is not None:
+        _read_workplane(spec, result, F, caster, light, df)
+    result.photometry_warnings = list(light_warnings(x.photometry for x in luminaires))
+    return result
+
+
+def _read_workplane(spec, result: SimulationResult, F, caster, light, df: bool) -> None:
+    """The work plane's grid, its light, daylight factor and annual year."""
+    p, lit, luminaires = result.patches, result.lit, list(spec.luminaires)
+    grid = work_plane_grid(p, caster, spec.workplane)
+    factors = receiver_factors(grid.points, grid.normals, caster, p.n, spec.rays, spec.seed)
+    grid_light = light_grid(grid, light, caster, luminaires, spec.rays, factors=factors)
+    result.grid, result.grid_lux = grid, grid_light.lux
+    result.grid_stats = grid_statistics(grid_light.lux)
+    if df:
+        result.df_grid = 100.0 * grid_light.lux / spec.exterior_lux
+    if spec.annual is None:
+        return
+    orients = orientations(lit, dict(spec.glazing))
+    coefficients = orientation_coefficients(lit, F, caster, orients, grid, factors)
+    year = grid_year(spec.annual, orients, coefficients)
+    source = Path(year.year.source).name
+    result.weather_notes = [f"weather {source}: {n}" for n in year.year.weather.get("notes", [])]
+    if luminaires:
+        if not spec.emit and not spec.sky:
+            electric = grid_light.lux  # the grid's light is the luminaires' alone
+        else:
+            alone = light_scene(lit, F, caster, np.zeros(lit.n), luminaires, seed=spec.seed)
+            electric = light_grid(grid, alone, caster, luminaires, spec.rays, factors=factors).lux
+        plane = spec.workplane
+        floor = float(lit.area[lit.group_index(plane.group)].sum())
+        year = with_dimming(year, electric, installed_watts(luminaires), floor, spec.annual)
+    result.annual = year
+
+
+def _simulate_lrr(spec: SimulationSpec, p: Patches, E, progress, warn) -> SimulationResult:
+    settings = spec.operator or OperatorSettings(rays=spec.rays, seed=spec.seed)
+    t0 = time.perf_counter()
+    got = get_operator(
+        p,
+        settings,
+        use_cache=spec.use_cache,
+        progress=progress,
+        warn=warn,
+        scheduler=spec.scheduler,
+    )
+    t1 = time.perf_counter()
+    lit_field = LightModel(spec.scene, p, got.operator).emission_field(E)
+    t2 = time.perf_counter()
+    H, B = lit_field.illuminance, lit_field.radiosity
+    zone = got.operator.zone_patches
+    emitted = float(E @ p.area)
+    result = SimulationResult(spec.scene, p, p, "lrr", E, B, H, group_illuminance(p, H))
+    result.timings = {"precompute_seconds": t1 - t0, "solve_seconds": t2 - t1}
+    result.operator = {
+        "k": got.operator.k,
+        "from_cache": got.from_cache,
+        "cache_path": str(got.path) if got.path else None,
+        "estimated_rel_error": got.operator.info["estimated_rel_error"],
+        "emitted_lm": emitted,
+        "emitted_outside_zones_lm": emitted - float(E[zone] @ p.area[zone]),
+    }
+    return result
