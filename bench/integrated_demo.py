@@ -49,7 +49,7 @@ def main() -> None:
         "--weather", default=None, help="another weather file (EPW, TMY3, TMY2) for the demo"
     )
     args = ap.parse_args()
-    from lightinv_core.cli import _daylight_summary
+    from lightinv_core.cli.solve import daylight_summary
 
     project = load_project(PROJECT)
     if args.weather:
@@ -80,7 +80,7 @@ def main() -> None:
         )
         if seed == 0:
             best = min(front.solutions, key=lambda s: s.objectives["min_annual_energy"])
-            daylight = _daylight_summary(prepared.light, project.design, best)
+            daylight = daylight_summary(prepared.light, project.design, best)
             daylight.pop("monthly_kwh")
     least = [min(e for _, e in r["front"]) for r in runs if r["front"]]
     smallest = [r["front"][0][1] for r in runs if r["front"]]

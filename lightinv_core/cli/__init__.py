@@ -19,14 +19,8 @@ from lightinv_core.cli.output import peak_rss_mb, warn
 from lightinv_core.cli.parser import build_parser
 from lightinv_core.cli.solve import daylight_summary
 from lightinv_core.errors import CancelledError, LightInvError
-from lightinv_core.value_text import goal_value
 
 __all__ = ["build_parser", "daylight_summary", "main", "peak_rss_mb"]
-
-# Their old names here, still used by tests/core/test_extension_points.py and
-# bench/integrated_demo.py.
-_goal_text = goal_value
-_daylight_summary = daylight_summary
 
 
 def _show_warning(message, category, filename, lineno, file=None, line=None) -> None:

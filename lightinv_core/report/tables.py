@@ -28,6 +28,7 @@ from lightinv_core.light.intentions import (
     intention_stats,
 )
 from lightinv_core.quantities import quantity_spec
+from lightinv_core.scenarios import scenario_specs
 from lightinv_core.scene.patches import Patches
 from lightinv_core.scene.zone_grid import zone_grid
 from lightinv_core.sources.emission import source_electric_power, source_flux
@@ -227,7 +228,9 @@ def intention_table(
             )
             flags.append(flag)
     used = {it.scenario for it in listed}
-    scenarios = [f"{sc} ({text})" for sc, text in _scenario_texts(design).items() if sc in used]
+    scenarios = [
+        f"{sc.name} ({sc.describe(design.daylight)})" for sc in scenario_specs() if sc.name in used
+    ]
     note = (
         "Averages are area-weighted (grid points: plain means); U0 = min / average. "
         f"Each intention is judged in its scenario: {', '.join(scenarios)}. FAIL gives how "
@@ -251,18 +254,6 @@ def intention_table(
         tuple(flags),
         note=note,
     )
-
-
-def _scenario_texts(design: Design) -> dict[str, str]:
-    """What each scenario's light is, for the tables' notes."""
-    d = design.daylight
-    return {
-        Scenario.DESIGN: f"luminaires plus daylight at {fmt(d.exterior_lux)} lux exterior",
-        Scenario.NIGHT: "luminaires only",
-        Scenario.OVERCAST: f"luminaires plus the CIE overcast sky of {fmt(d.overcast_lux)} "
-        "lux; DF in % of the exterior",
-        Scenario.ANNUAL: "shares 0-1 of the occupied hours of the weather year",
-    }
 
 
 def _measured(

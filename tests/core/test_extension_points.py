@@ -36,6 +36,7 @@ from lightinv_core.quantities import (
 )
 from lightinv_core.report.tables import fmt, goal_label, intention_table, objective_text
 from lightinv_core.study import prepare
+from lightinv_core.value_text import goal_value
 
 FLUX = "min_total_flux"
 LUMINANCE = "luminance"
@@ -143,7 +144,7 @@ def test_a_registered_goal_and_quantity_run_through_every_view(registered, tmp_p
     text = capsys.readouterr().out
     assert f"{FLUX}: {flux:.6g}" in text
     assert "vs 0.001 cd/m²)" in text
-    assert cli._goal_text(FLUX, 1234.4) == "      1234 lm"
+    assert goal_value(FLUX, 1234.4) == "      1234 lm"
 
     # The optimiser read the quantity: the floor's mean luminance meets its bound, just.
     prepared = prepare(project)
