@@ -6,6 +6,7 @@ from __future__ import annotations
 import numpy as np
 
 from lightinv_core.cli.output import peak_rss_mb
+from lightinv_core.quantities import quantity_spec
 from lightinv_core.study import SimulationResult, SimulationSpec
 from lightinv_core.study.simulation import luminaire_watts
 from lightinv_core.transport.annual import panes
@@ -153,6 +154,10 @@ def annual_payload(res: SimulationResult, spec: SimulationSpec) -> dict:
             for q in panes(res.lit, dict(spec.glazing))
         ],
         **a.metrics.summary(),
+        "metrics": {
+            name: {"label": quantity_spec(name).metric, "mean": float(values.mean())}
+            for name, values in a.annual.items()
+        },
     }
     if a.dimming is not None:
         d, dim = a.dimming, spec.annual
@@ -172,13 +177,15 @@ def annual_payload(res: SimulationResult, spec: SimulationSpec) -> dict:
 
 
 def grid_columns(res: SimulationResult) -> dict[str, np.ndarray]:
-    """The grid CSV's columns after x, y, z, lux: df (%), then DA300 and the UDI bands."""
+    """The grid CSV's columns after x, y, z, lux: df (%), then DA300 and the UDI bands,
+    then every annual daylight metric of the quantity registry by its name."""
     columns = {"df": res.df_grid} if res.df_grid is not None else {}
     if res.annual is not None:
         m = res.annual.metrics
         columns.update(
             da300=m.da, udi_n=m.udi[:, 0], udi_s=m.udi[:, 1], udi_a=m.udi[:, 2], udi_x=m.udi[:, 3]
         )
+        columns.update(res.annual.annual)
     return columns
 
 
@@ -193,6 +200,8 @@ def annual_lines(a: dict) -> list[str]:
         f"{100 * a['da300_mean']:.0f}%, sDA300/50% {100 * a['sda300_50']:.0f}%",
         f"UDI <100 {100 * a['udi_n']:.0f}%, 100-300 {100 * a['udi_s']:.0f}%, 300-3000 "
         f"{100 * a['udi_a']:.0f}%, >3000 {100 * a['udi_x']:.0f}% of occupied hours",
+        "annual metrics (means over the grid): "
+        + ", ".join(f"{m['label']} {m['mean']:.3f}" for m in a["metrics"].values()),
     ]
     if "dimming" in a:
         d = a["dimming"]

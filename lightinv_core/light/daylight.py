@@ -26,11 +26,9 @@ from lightinv_core.kinds import Quantity
 from lightinv_core.light.daylight_year import (
     DaylightYear,
     SkyGroups,
+    band_values,
     daylight_year,
     dimming_levels,
-    hours_from,
-    hours_within,
-    reaches_share,
 )
 from lightinv_core.light.intentions import (
     BoundCheck,
@@ -88,17 +86,7 @@ class ScenarioLight:
         (R', m): the share of occupied hours in the band, or its 0/1 point mark."""
         if not self.groups.count:
             return np.zeros_like(self.electric[idx])
-        y = self.year()
-        a = self.coefficients(idx)
-        if band.point_share is not None and band.hi == np.inf:
-            return reaches_share(y, a, band.lo, band.point_share).astype(float)
-        if band.hi == np.inf:
-            hours = hours_from(y, a, band.lo)
-        else:
-            hours = hours_within(y, a, band.lo, band.hi)
-        if band.point_share is not None:
-            return (hours >= np.ceil(band.point_share * y.hours - 1e-9)).astype(float)
-        return hours / y.hours
+        return band_values(self.year(), self.coefficients(idx), band)
 
     def da(self, idx=slice(None)) -> np.ndarray:
         """DA300 (share of occupied hours, 0-1) at receivers idx, (R', m)."""

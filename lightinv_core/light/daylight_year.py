@@ -225,6 +225,22 @@ def hours_within(year: DaylightYear, a: np.ndarray, lo: float, hi: float) -> np.
     return _count_hours(year, a, lambda lux: (lux >= lo) & (lux <= hi))
 
 
+def band_values(year: DaylightYear, a: np.ndarray, band) -> np.ndarray:
+    """An annual daylight metric (a ``quantities.HourBand``) at receivers of coefficients
+    ``a`` (..., G): the share of occupied hours with ``band.lo`` <= daylight <=
+    ``band.hi``, or, with ``band.point_share``, 1.0 where at least that share counts
+    and 0.0 elsewhere; shape a.shape[:-1]."""
+    if band.point_share is not None and band.hi == np.inf:
+        return reaches_share(year, a, band.lo, band.point_share).astype(float)
+    if band.hi == np.inf:
+        hours = hours_from(year, a, band.lo)
+    else:
+        hours = hours_within(year, a, band.lo, band.hi)
+    if band.point_share is not None:
+        return (hours >= np.ceil(band.point_share * year.hours - 1e-9)).astype(float)
+    return hours / year.hours
+
+
 def dimming_sum(
     year: DaylightYear, b: np.ndarray, full: np.ndarray, target: float, min_level: float
 ) -> np.ndarray:

@@ -26,11 +26,13 @@ from lightinv_core.light.daylight import SDA_SHARE
 from lightinv_core.light.daylight_year import (
     DaylightYear,
     SkyGroups,
+    band_values,
     daylight_year,
     hours_from,
     hours_within,
     reaches_share,
 )
+from lightinv_core.quantities import annual_metrics
 from lightinv_core.transport.annual import Orientation
 
 
@@ -70,15 +72,17 @@ def occupied_metrics(year: DaylightYear, coefficients: np.ndarray) -> DaylightMe
 class GridYear:
     """The year on a grid: the ``year`` (occupied hours, exterior lux per sky group),
     its ``groups``, the glazing ``orientations``, ``coefficients`` (q, G) lux per
-    exterior lux, the ``metrics`` per point and, with luminaires, the ``dimming`` of
-    luminaires drawing ``installed_w`` (W) giving ``electric_em`` (lux) at full output
-    over ``floor_m2``."""
+    exterior lux, the ``metrics`` per point (DA300, the UDI bands, sDA), ``annual``: every
+    annual daylight metric of the quantity registry per point, by name, and, with
+    luminaires, the ``dimming`` of luminaires drawing ``installed_w`` (W) giving
+    ``electric_em`` (lux) at full output over ``floor_m2``."""
 
     year: DaylightYear
     groups: SkyGroups
     orientations: list[Orientation]
     coefficients: np.ndarray
     metrics: DaylightMetrics
+    annual: dict[str, np.ndarray]
     dimming: Dimming | None = None
     electric_em: float | None = None
     installed_w: float | None = None
@@ -95,7 +99,9 @@ def grid_year(daylight: Daylight, orients: list[Orientation], coefficients: np.n
     daylight ``coefficients`` (q, G) belong to the glazing ``orients``."""
     groups = glazing_groups(orients, daylight)
     year = daylight_year(groups, daylight)
-    return GridYear(year, groups, orients, coefficients, occupied_metrics(year, coefficients))
+    metrics = occupied_metrics(year, coefficients)
+    annual = {str(q.name): band_values(year, coefficients, q.hours) for q in annual_metrics()}
+    return GridYear(year, groups, orients, coefficients, metrics, annual)
 
 
 def with_dimming(
@@ -117,6 +123,7 @@ def with_dimming(
         got.orientations,
         got.coefficients,
         got.metrics,
+        got.annual,
         dim,
         em,
         installed_w,
