@@ -17,20 +17,23 @@ from typing import Any
 
 from lightinv_core.errors import SceneError
 from lightinv_core.fields import (
+    Boolean,
+    Custom,
     Field,
+    Nullable,
+    Number,
+    Numbers,
     ObjectSpec,
-    _boolean,
-    _choice,
+    String,
     _describe,
     _fail,
     _join,
     _list,
     _number,
     _numbers,
-    _optional,
     _path_string,
-    _string,
     _unique,
+    choice_of,
 )
 from lightinv_core.scene.builtin import BUILTIN_SCENES
 from lightinv_core.scene.edits import ZoneEdit, apply_zone_edits
@@ -131,23 +134,20 @@ ZONE = ObjectSpec(
     (
         Field(
             "name",
-            _string,
-            type="string",
+            String(),
             meaning="the zone's name (sources refer to it with `zone`); also the name of its "
             "new surface",
         ),
         Field(
             "kind",
-            lambda v, p: _choice(v, p, ZONE_KINDS),
-            type=" or ".join(f'`"{k}"`' for k in ZONE_KINDS),
+            choice_of(*ZONE_KINDS),
             meaning="what may be placed in it",
         ),
-        Field("surface", _string, type="string", meaning="the rectangular surface it is drawn on"),
+        Field("surface", String(), meaning="the rectangular surface it is drawn on"),
         Field(
             "rect",
-            lambda v, p: _numbers(v, p, 4),
+            Numbers(4),
             default=None,
-            type="4 numbers",
             doc_default="the outline's bounds",
             meaning="(u0, v0, u1, v1) in metres along the surface's own u and v edges from its "
             "origin; two opposite corners in any order (stored smallest first); needed "
@@ -156,9 +156,12 @@ ZONE = ObjectSpec(
         ),
         Field(
             "outline",
-            _outline,
+            Custom(
+                _outline,
+                "list of [u, v]",
+                {"type": "array", "items": Numbers(2).schema(), "minItems": 3},
+            ),
             default=None,
-            type="list of [u, v]",
             meaning="a zone of any shape: its polygon's corners (at least 3, in order around "
             "it, not crossing itself) in the same metres; sources must lie inside it. Its "
             "bounding rectangle becomes the zone's surface and must lie on the surface",
@@ -226,14 +229,14 @@ SCENE = ObjectSpec(
     (
         Field(
             "builtin",
-            _optional(lambda v, p: _choice(v, p, tuple(BUILTIN_SCENES))),
+            Nullable(choice_of(*BUILTIN_SCENES)),
             None,
             "string",
             "a built-in scene: " + ", ".join(f"`{n}`" for n in BUILTIN_SCENES),
         ),
         Field(
             "obj",
-            _optional(_obj_path),
+            Nullable(Custom(_obj_path, "string", {"type": "string"})),
             None,
             "string",
             "path of a room model: Wavefront `.obj`, glTF `.gltf`/`.glb`, `.ply` or IFC "
@@ -242,15 +245,15 @@ SCENE = ObjectSpec(
         ),
         Field(
             "resolution",
-            _optional(lambda v, p: _number(v, p, lo=MIN_RESOLUTION)),
+            Nullable(Number(lo=MIN_RESOLUTION)),
             None,
-            f"number >= {MIN_RESOLUTION:g}",
+            "",
             "target patch size in metres; null: the scene's default (0.25 m for model files)",
             always=True,
         ),
         Field(
             "materials",
-            _optional(_path_string),
+            Nullable(Custom(_path_string, "string", {"type": "string"})),
             None,
             "string",
             "path of the reflectance JSON file",
@@ -258,18 +261,18 @@ SCENE = ObjectSpec(
         ),
         Field(
             "scale",
-            lambda v, p: _number(v, p, gt=0.0),
+            Number(gt=0.0),
             1.0,
-            "number > 0",
+            "",
             "metres per model unit (0.001 for millimetres)",
             OBJ,
             always=True,
         ),
         Field(
             "up",
-            _optional(lambda v, p: _choice(v, p, UP_AXES)),
+            Nullable(choice_of(*UP_AXES)),
             None,
-            " or ".join(f'`"{a}"`' for a in UP_AXES),
+            "",
             'the model\'s up axis; none: its format\'s (`"y"` for glTF, `"z"` for OBJ, PLY '
             "and IFC), written as the axis taken",
             OBJ,
@@ -277,7 +280,7 @@ SCENE = ObjectSpec(
         ),
         Field(
             "skip_degenerate",
-            _boolean,
+            Boolean(),
             False,
             "boolean",
             "drop degenerate faces (with a warning) instead of failing",
@@ -285,15 +288,18 @@ SCENE = ObjectSpec(
         ),
         Field(
             "group_by",
-            lambda v, p: _choice(v, p, GROUP_BY),
+            choice_of(*GROUP_BY),
             "node",
-            " or ".join(f'`"{g}"`' for g in GROUP_BY),
+            "",
             "glTF files: what names the lighting groups, the nodes' names or the materials'",
             OBJ,
         ),
         Field(
             "reflectances",
-            _reflectances,
+            Custom(
+                _reflectances,
+                schema_={"type": "object", "additionalProperties": Number(lo=0.0, lt=1.0).schema()},
+            ),
             (),
             "object",
             "reflectance (0 to below 1) by lighting group, replacing the scene's own "
@@ -308,6 +314,7 @@ SCENE = ObjectSpec(
             "[new emitter zones](#new-emitter-zones) drawn on the scene; written only when "
             "not empty",
             of=ZONE,
+            many=True,
         ),
     ),
     kind_field="kind",
