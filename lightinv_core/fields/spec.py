@@ -87,7 +87,7 @@ class Field:
         if self.meaning:
             out["description"] = self.meaning
         plain = _plain(self.default)
-        if not self.required and plain is not _NOT_PLAIN:
+        if not self.required and plain is not _NOT_PLAIN and (plain is not None or self.nullable):
             out["default"] = plain
         return out
 
