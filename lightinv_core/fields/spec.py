@@ -13,6 +13,7 @@ checks when a model object is built in code. Reading a JSON object (``read``,
 from __future__ import annotations
 
 import dataclasses
+import functools
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass
 from typing import Any
@@ -196,21 +197,25 @@ class ObjectSpec:
             if not (f.nullable and value is None):
                 self._taken(kind, f, value, path)
 
+    @functools.cached_property
+    def _checks(self) -> tuple[tuple[str, Callable[[Any, str], Any], bool], ...]:
+        return tuple((f.name, f.check, f.nullable) for f in self.fields)
+
     def check_fields(self, obj: Any, where: str) -> None:
         """Check and normalise, in place, the fields of the frozen model dataclass ``obj``
         built in code: a bad value is a ``DesignError`` naming ``where`` and the field (a
         null passes where the field is ``nullable``)."""
-        for f in self.fields:
-            value = getattr(obj, f.name)
-            if value is None and f.nullable:
+        for name, check, nullable in self._checks:
+            value = getattr(obj, name)
+            if value is None and nullable:
                 continue
             try:
-                new = f.check(value, f.name)
+                new = check(value, name)
             except ProjectError as err:
                 raise DesignError(f"{where}: {err.path}: {err.detail}") from None
             if new is not value:
-                object.__setattr__(obj, f.name, new)
-        if self.kind_field in self.names and self.not_taken is not None:
+                object.__setattr__(obj, name, new)
+        if self.not_taken is not None and self.kind_field in self.names:
             kind = getattr(obj, self.kind_field)
             for f in self.fields:
                 value = getattr(obj, f.name)

@@ -17,6 +17,7 @@ from typing import Any
 
 from lightinv_core.fields.checks import (
     NONFINITE,
+    ProjectError,
     _boolean,
     _choice,
     _fail,
@@ -28,6 +29,15 @@ from lightinv_core.fields.checks import (
     _string,
     _unique,
 )
+
+
+def _fast_items(item: Callable[[Any, str], Any], v: tuple) -> tuple | None:
+    """Each of ``v`` checked by ``item``, or None when one fails (the caller then checks
+    again item by item, for the message with its path)."""
+    try:
+        return tuple(item(x, "") for x in v)
+    except ProjectError:
+        return None
 
 
 class Check:
@@ -141,6 +151,8 @@ class String(Check):
     text = "string"
 
     def __call__(self, v: Any, path: str) -> str:
+        if type(v) is str and (self.empty or v.strip()):
+            return v
         return _string(v, path, self.empty)
 
     def schema(self) -> dict:
@@ -175,7 +187,10 @@ class Choice(Check):
         return self.name or " or ".join(f'`"{v}"`' for v in self.values())
 
     def __call__(self, v: Any, path: str) -> Any:
-        return self.convert(_choice(v, path, tuple(str(c) for c in self.values())))
+        values = self.values()
+        if isinstance(v, str) and v in values:
+            return self.convert(v)
+        return self.convert(_choice(v, path, tuple(str(c) for c in values)))
 
     def schema(self) -> dict:
         return {"enum": [str(c) for c in self.values()]}
@@ -199,7 +214,9 @@ class Numbers(Check):
 
     def __call__(self, v: Any, path: str) -> tuple[float, ...]:
         if type(v) is tuple and len(v) == self.count:  # the fast path of a model's value
-            return tuple(self.item(x, f"{path}[{i}]") for i, x in enumerate(v))
+            fast = _fast_items(self.item, v)
+            if fast is not None:
+                return fast
         it = self.item
         return _numbers(v, path, self.count, lo=it.lo, hi=it.hi, gt=it.gt, lt=it.lt)
 
@@ -224,6 +241,10 @@ class ListOf(Check):
         return self.name or f"list of {self.what}"
 
     def __call__(self, v: Any, path: str) -> tuple:
+        if type(v) is tuple and len(v) >= self.min_len:  # the fast path of a model's value
+            fast = _fast_items(self.item, v)
+            if fast is not None and (not self.unique or len(set(fast)) == len(fast)):
+                return fast
         items = _list(v, path, self.item, self.what, self.min_len)
         return _unique(items, path) if self.unique else items
 
@@ -273,6 +294,10 @@ def whole_pair(lo: int, hi: int | None = None) -> Custom:
     item = Integer(lo, hi)
 
     def check(v: Any, p: str) -> tuple[int, int]:
+        if type(v) is tuple and len(v) == 2:  # the fast path of a model's value
+            fast = _fast_items(item, v)
+            if fast is not None:
+                return fast
         items = _list(v, p, item, "whole numbers")
         if len(items) != 2:
             _fail(p, f"expected 2 whole numbers (min, max), got {len(items)}")

@@ -29,6 +29,8 @@ MAX_ARRAY_SIDE = 100
 
 
 def _rotation(v, p: str) -> int:
+    if type(v) is int and v in ROTATIONS:
+        return v
     r = _integer(v, p, lo=0)
     if r not in ROTATIONS:
         _fail(p, f"expected 0 or 90 (degrees), got {r}")
