@@ -1,5 +1,5 @@
 """Field specs: each field of every project-file object is declared once
-(lightinv_core/fields.py: Field, ObjectSpec); reading, messages, writing and the field
+(lightinv_core/fields/: Field, ObjectSpec, declare); reading, messages, writing and the field
 tables of docs/project-file.md come from there. Rerun with LIGHTINV_WRITE_DOCS=1 to
 regenerate the tables after a spec changes."""
 
