@@ -53,16 +53,24 @@ class Check:
         return {}
 
 
+def _short(x: float) -> str:
+    """A bound as the docs write it: 1e10 rather than 10000000000."""
+    if abs(x) >= 1e6 and float(x).is_integer():
+        mantissa, exponent = f"{x:e}".split("e")
+        return f"{float(mantissa):g}e{int(exponent)}"
+    return _fmt(x)
+
+
 def _range_text(lo, hi, gt, lt) -> str:
     """``[0, 1]``, ``(0, 1]``, ``>= 0``, ...: a range as the docs show it."""
-    low = f"[{_fmt(lo)}" if lo is not None else (f"({_fmt(gt)}" if gt is not None else None)
-    high = f"{_fmt(hi)}]" if hi is not None else (f"{_fmt(lt)})" if lt is not None else None)
+    low = f"[{_short(lo)}" if lo is not None else (f"({_short(gt)}" if gt is not None else None)
+    high = f"{_short(hi)}]" if hi is not None else (f"{_short(lt)})" if lt is not None else None)
     if low and high:
         return f" in {low}, {high}"
     if low:
-        return f" >= {_fmt(lo)}" if lo is not None else f" > {_fmt(gt)}"
+        return f" >= {_short(lo)}" if lo is not None else f" > {_short(gt)}"
     if high:
-        return f" <= {_fmt(hi)}" if hi is not None else f" < {_fmt(lt)}"
+        return f" <= {_short(hi)}" if hi is not None else f" < {_short(lt)}"
     return ""
 
 
