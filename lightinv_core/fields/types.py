@@ -77,13 +77,15 @@ def _range_text(lo, hi, gt, lt) -> str:
 @dataclass(frozen=True)
 class Number(Check):
     """A number (float) within optional bounds: ``lo <= x``, ``gt < x``, ``x <= hi``,
-    ``x < lt``; ``finite=False`` also takes inf and nan (and their strings)."""
+    ``x < lt``; ``finite=False`` also takes inf and nan (and their strings); ``hint``
+    says what to do about a bad one."""
 
     lo: float | None = None
     hi: float | None = None
     gt: float | None = None
     lt: float | None = None
     finite: bool = True
+    hint: str = ""  # what to do, added to the message of a bad value
 
     @property
     def text(self) -> str:
@@ -101,7 +103,12 @@ class Number(Check):
             ):
                 return x
         limits = {"lo": self.lo, "hi": self.hi, "gt": self.gt, "lt": self.lt}
-        return _number(v, path, finite=self.finite, **limits)
+        try:
+            return _number(v, path, finite=self.finite, **limits)
+        except ProjectError as err:
+            if not self.hint:
+                raise
+            raise ProjectError(f"{err.detail} ({self.hint})", err.path) from None
 
     def schema(self) -> dict:
         out: dict[str, Any] = {"type": "number"}

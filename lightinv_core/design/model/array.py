@@ -88,7 +88,8 @@ class LuminaireArray:
     dimming: float = field(
         default=1.0,
         metadata=declare(
-            Number(gt=0.0, hi=1.0), "output (and power) of every luminaire, fraction of full"
+            Number(gt=0.0, hi=1.0, hint="to switch it off, remove the array"),
+            "output (and power) of every luminaire, fraction of full",
         ),
     )
     free: tuple[str, ...] = field(
@@ -114,7 +115,9 @@ class LuminaireArray:
     maintenance_factor: float = field(
         default=0.8,
         metadata=declare(
-            Number(gt=0.0, hi=1.0), "maintained / new light (EN 12464-1 Em)", always=True
+            Number(gt=0.0, hi=1.0, hint="typically 0.7-0.9"),
+            "maintained / new light (EN 12464-1 Em)",
+            always=True,
         ),
     )
     watts: float | None = field(
