@@ -5,8 +5,8 @@ design, the ``OperatorSettings`` and ``OptimizerSettings`` of a run, and saved r
 ``TOP`` declares the fields of the file's top level; ``FILE_SPECS`` lists every object's
 spec (the scene's are in ``scene.py``, the design's in its classes in ``design/model/``,
 taken in ``specs.py``, the results' in ``results.py``, the settings' beside their
-classes). A ``Project`` checks each source against its kind (``source_kinds``). ``read`` and ``write`` are driven by
-them.
+classes). A ``Project`` checks each source against its kind (``source_kinds``).
+``read`` and ``write`` are driven by them.
 """
 
 from __future__ import annotations
