@@ -212,7 +212,7 @@ class ObjectSpec:
             try:
                 new = check(value, name)
             except ProjectError as err:
-                raise DesignError(f"{where}: {err.path}: {err.detail}") from None
+                raise DesignError(f"{where}: {_sentence(err)}") from None
             if new is not value:
                 object.__setattr__(obj, name, new)
         if self.not_taken is not None and self.kind_field in self.names:
@@ -292,6 +292,14 @@ def _doc_value(v: Any) -> str:
     if isinstance(v, bool):
         return "true" if v else "false"
     return _fmt(v)
+
+
+def _sentence(err: ProjectError) -> str:
+    """A field's error as the model words it: "rows must be an integer >= 1, got 0"
+    (the file's reader says "rows: expected an integer >= 1, got 0")."""
+    if err.detail.startswith("expected "):
+        return f"{err.path} must be {err.detail.removeprefix('expected ')}"
+    return f"{err.path}: {err.detail}"
 
 
 _NOT_PLAIN = object()

@@ -220,18 +220,18 @@ def kinds_of(source: Source) -> None:
     [
         (
             lambda: Intention("x", patches=[1.5], min=1),
-            r"intention 'x': patches\[0\]: expected an integer >= 0, got number 1\.5",
+            r"intention 'x': patches\[0\] must be an integer >= 0, got number 1\.5",
         ),
-        (lambda: Intention("x", patches=["3"], min=1), "expected an integer >= 0, got string"),
-        (lambda: Intention("x", patches=[True], min=1), "expected an integer >= 0, got true"),
+        (lambda: Intention("x", patches=["3"], min=1), "must be an integer >= 0, got string"),
+        (lambda: Intention("x", patches=[True], min=1), "must be an integer >= 0, got true"),
         (
             lambda: Rule("area", "S1", max=1),
-            "rule 'area': sources: expected a list of source names, got string 'S1'",
+            "rule 'area': sources must be a list of source names, got string 'S1'",
         ),
         (lambda: Rule("spacing", ("a", "a"), min=1), r"sources\[1\]: 'a' is listed twice"),
         (
             lambda: Goal("max_light_power", ("skylights",)),
-            r"kinds\[0\]: expected one of 'luminaire', 'skylight', got string 'skylights'",
+            r"kinds\[0\] must be one of 'luminaire', 'skylight', got string 'skylights'",
         ),
         (lambda: Goal("match", ("skylight",)), "only a max_light_power goal takes source kinds"),
         (lambda: Rule("mirror", ("a", "b"), axis="u", min=1.0), "mirror rules do not take 'min'"),
@@ -241,7 +241,7 @@ def kinds_of(source: Source) -> None:
         (lambda: kinds_of(sky(exitance=10.0)), "exitance: only luminaires have this"),
         (lambda: kinds_of(lum(free=("filter",))), "a luminaire has no filter variable"),
         (lambda: lum(flux=float("nan")), "finite"),
-        (lambda: lum(flux_range=(0, 1, 2)), "flux_range: expected 2 numbers, got 3"),
+        (lambda: lum(flux_range=(0, 1, 2)), "flux_range must be 2 numbers, got 3"),
         (
             lambda: Design((sky(), sky("t")), (Goal("max_light_power"), Goal("max_light_power"))),
             "goal names must be unique",
