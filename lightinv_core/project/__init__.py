@@ -13,13 +13,15 @@ Group and zone names are checked against the scene only when the problem is buil
 Relative scene paths (``obj``, ``materials``) are resolved against the project file's
 folder on loading, and written relative to the new file's folder on saving.
 
-This module is the public API. Each field of every JSON object is declared once as a
-field spec (``lightinv_core.fields.Field`` in an ``ObjectSpec``): the top level in
-``model`` (with the ``Project`` data class), the scene in ``scene`` (with
-``SceneSpec``), the design's objects in ``specs``, saved results in ``results``, the run
-settings beside their classes (``operator/settings.py``, ``optimize/settings.py``).
-``read`` (JSON data -> ``Project``) and ``write`` (``Project`` -> JSON data -> file) are
-driven by those specs, and so are the field tables of docs/project-file.md.
+This module is the public API. Each field of every JSON object is declared once
+(``lightinv_core.fields``): the design's objects in their dataclasses in
+``design/model/`` and the scene in ``SceneSpec`` (field metadata, read back by
+``ObjectSpec.of``; ``specs`` adds which source kinds take which fields, from the source
+types), the top level in ``model``, saved results in ``results``, the run settings beside
+their classes (``operator/settings.py``, ``optimize/settings.py``). ``read`` (JSON data
+-> ``Project``) and ``write`` (``Project`` -> JSON data -> file) are driven by those
+specs, and so are the field tables of docs/project-file.md and its JSON Schema
+(``schema``: docs/project.schema.json).
 """
 
 from __future__ import annotations

@@ -3,9 +3,10 @@
 ``Project`` holds everything saved in a project file: the ``SceneSpec`` it is on, the
 design, the ``OperatorSettings`` and ``OptimizerSettings`` of a run, and saved results.
 ``TOP`` declares the fields of the file's top level; ``FILE_SPECS`` lists every object's
-spec (the scene's are in ``scene.py``, the design's in ``specs.py``, the results' in
-``results.py``, the settings' beside their classes). ``read`` and ``write`` are driven by
-them.
+spec (the scene's are in ``scene.py``, the design's in its classes in ``design/model/``,
+taken in ``specs.py``, the results' in ``results.py``, the settings' beside their
+classes). A ``Project`` checks each source against its kind (``source_kinds``).
+``read`` and ``write`` are driven by them.
 """
 
 from __future__ import annotations
@@ -18,7 +19,16 @@ from typing import Any
 
 from lightinv_core.design.model import Daylight, Design
 from lightinv_core.design.solution import ParetoFront, Solution
-from lightinv_core.fields import Field, ObjectSpec, _fail, _integer, _string, _within
+from lightinv_core.fields import (
+    Custom,
+    Field,
+    Integer,
+    ObjectSpec,
+    String,
+    _fail,
+    _integer,
+    _within,
+)
 from lightinv_core.operator.settings import OPERATOR, OperatorSettings
 from lightinv_core.optimize.settings import OPTIMIZER, OptimizerSettings
 from lightinv_core.project.results import (
@@ -31,6 +41,7 @@ from lightinv_core.project.results import (
     read_results,
 )
 from lightinv_core.project.scene import SCENE, ZONE, SceneSpec, resolve_path
+from lightinv_core.project.source_kinds import check_source_kinds
 from lightinv_core.project.specs import (
     ARRAY,
     DAYLIGHT,
@@ -75,6 +86,7 @@ class Project:
     def __post_init__(self) -> None:
         object.__setattr__(self, "solutions", tuple(self.solutions))
         object.__setattr__(self, "runs", tuple(self.runs))
+        check_source_kinds(self.design)
 
 
 # -- the top level of the file --------------------------------------------------------------
@@ -87,6 +99,11 @@ def _penalty_power(v: Any, path: str) -> int:
     return power
 
 
+PENALTY_POWER = Custom(
+    _penalty_power, "integer", {"type": "integer", "minimum": 2, "multipleOf": 2}
+)
+
+
 def _see(anchor: str, text: str) -> str:
     return f"[{text}](#{anchor})"
 
@@ -96,14 +113,14 @@ TOP = ObjectSpec(
     (
         Field(
             "schema",
-            _integer,
+            Integer(),
             type="integer",
             meaning=f"format version; this LightInv reads `{SCHEMA}`",
         ),
-        Field("name", _string, type="string", meaning="project name"),
+        Field("name", String(), meaning="project name"),
         Field(
             "description",
-            lambda v, p: _string(v, p, empty=True),
+            String(empty=True),
             "",
             "string",
             "free text",
@@ -138,7 +155,7 @@ TOP = ObjectSpec(
         ),
         Field(
             "penalty_power",
-            _penalty_power,
+            PENALTY_POWER,
             2,
             "integer",
             "exponent of the penalty, even, >= 2",
@@ -150,6 +167,7 @@ TOP = ObjectSpec(
             type="list",
             meaning=_see("sources-and-target_sources", "sources") + " to place (may be empty)",
             of=SOURCE,
+            many=True,
         ),
         Field(
             "target_sources",
@@ -159,6 +177,7 @@ TOP = ObjectSpec(
             "the light a `match` goal reproduces",
             always=True,
             of=SOURCE,
+            many=True,
         ),
         Field(
             "arrays",
@@ -167,6 +186,7 @@ TOP = ObjectSpec(
             "list",
             _see("arrays", "luminaire arrays") + " of photometric products",
             of=ARRAY,
+            many=True,
         ),
         Field(
             "workplanes",
@@ -175,6 +195,7 @@ TOP = ObjectSpec(
             "list",
             _see("workplanes", "work planes") + " with EN 12464-1 calculation grids",
             of=WORKPLANE,
+            many=True,
         ),
         Field(
             "rules",
@@ -185,6 +206,7 @@ TOP = ObjectSpec(
             always=True,
             needs=("sources", "arrays"),
             of=RULE,
+            many=True,
         ),
         Field(
             "intentions",
@@ -194,6 +216,7 @@ TOP = ObjectSpec(
             _see("intentions", "lighting intentions"),
             always=True,
             of=INTENTION,
+            many=True,
         ),
         Field(
             "goals",
@@ -202,6 +225,8 @@ TOP = ObjectSpec(
             meaning=_see("goals", "goals") + ", at least one",
             needs=("target_sources",),
             of=GOAL,
+            many=True,
+            schema={"type": "array", "items": {"$ref": "#/$defs/goal"}, "minItems": 1},
         ),
         Field(
             "optimizer",

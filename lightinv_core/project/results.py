@@ -22,19 +22,20 @@ from lightinv_core.design.solution import ParetoFront, Solution, SolutionInfo, V
 from lightinv_core.errors import DesignError
 from lightinv_core.fields import (
     NONFINITE,
+    Choice,
+    Custom,
     Field,
+    Integer,
+    ListOf,
+    Number,
     ObjectSpec,
-    _choice,
+    String,
     _describe,
     _fail,
-    _integer,
     _is_int,
     _is_number,
     _join,
     _list,
-    _number,
-    _string,
-    _unique,
 )
 from lightinv_core.goals import goal_names
 from lightinv_core.optimize.settings import OPTIMIZER, OptimizerSettings
@@ -45,12 +46,9 @@ class Info(dict):
     """A solution's free-form info: its numbers are written exactly as they are."""
 
 
-def _result_number(v: Any, path: str) -> float:
-    return _number(v, path, finite=False)
-
-
-def _text(v: Any, path: str) -> str:
-    return _string(v, path, empty=True)
+_result_number = Number(finite=False)
+"""A result's number: inf and nan too (written as strings)."""
+_text = String(empty=True)
 
 
 def _info_value(v: Any, path: str) -> Any:
@@ -84,8 +82,7 @@ def _info(v: Any, path: str) -> SolutionInfo:
         _fail(path, str(err))
 
 
-def _goal_kind(v: Any, path: str) -> str:
-    return _choice(v, path, goal_names())
+_goal_kind = Choice(goal_names, name="goal kind")
 
 
 def _objectives(v: Any, path: str) -> dict[str, float]:
@@ -137,10 +134,14 @@ SOLUTION = ObjectSpec(
             type="list of sources",
             meaning="the layout, in the format of `sources`",
             of=SOURCE,
+            many=True,
         ),
         Field(
             "objectives",
-            _objectives,
+            Custom(
+                _objectives,
+                schema_={"type": "object", "additionalProperties": _result_number.schema()},
+            ),
             type="object",
             meaning="goal kind -> value: `min_electric_power` in W, `max_light_power` in lm, "
             "`match` as e, `min_installed_power` in W, `min_luminaire_count`, "
@@ -159,17 +160,18 @@ SOLUTION = ObjectSpec(
             "list of violations",
             "every violated rule or intention (below)",
             of=VIOLATION,
+            many=True,
         ),
         Field(
             "x",
-            lambda v, p: _list(v, p, _result_number, "numbers"),
+            ListOf(_result_number, "numbers"),
             (),
             "list of numbers",
             "the variable vector the layout was decoded from",
         ),
         Field(
             "info",
-            _info,
+            Custom(_info, schema_={"type": "object"}),
             SolutionInfo(),
             "object",
             "free-form run information (seed, evaluations, seconds, status, ...)",
@@ -183,6 +185,7 @@ SOLUTION = ObjectSpec(
             "list of arrays",
             "the luminaire arrays as laid out, in the format of `arrays`",
             of=ARRAY,
+            many=True,
             optional=True,
         ),
     ),
@@ -200,9 +203,7 @@ PARETO = ObjectSpec(
     (
         Field(
             "objectives",
-            lambda v, p: _unique(
-                _list(v, p, lambda x, q: _choice(x, q, goal_names()), "goal kinds"), p
-            ),
+            ListOf(_goal_kind, "goal kinds", unique=True),
             type="list of goal kinds",
             meaning="the goal kinds compared, in order",
         ),
@@ -213,6 +214,7 @@ PARETO = ObjectSpec(
             type="list of solutions",
             meaning="the non-dominated solutions",
             of=SOLUTION,
+            many=True,
         ),
         Field(
             "candidates",
@@ -221,6 +223,7 @@ PARETO = ObjectSpec(
             "list of solutions",
             "every solution the front was chosen from",
             of=SOLUTION,
+            many=True,
         ),
     ),
     write_defaults=True,
@@ -267,8 +270,8 @@ class RunRecord:
 RUN = ObjectSpec(
     "run",
     (
-        Field("number", lambda v, p: _integer(v, p, lo=1), type="integer", meaning="1, 2, ..."),
-        Field("method", _string, type="string", meaning="the method it ran with"),
+        Field("number", Integer(lo=1), type="integer", meaning="1, 2, ..."),
+        Field("method", String(), meaning="the method it ran with"),
         Field(
             "time",
             _text,
@@ -287,14 +290,14 @@ RUN = ObjectSpec(
         ),
         Field(
             "seeds",
-            lambda v, p: _list(v, p, _integer, "integers"),
+            ListOf(Integer(), "integers"),
             (),
             "list of integers",
             "the seeds of a several-seed run (empty: the settings' seed)",
         ),
         Field(
             "goals",
-            lambda v, p: _list(v, p, _goal_kind, "goal kinds"),
+            ListOf(_goal_kind, "goal kinds"),
             (),
             "list of goal kinds",
             "the design's goals when it ran, primary first",
@@ -302,12 +305,12 @@ RUN = ObjectSpec(
         Field("status", _text, "", "string", "`feasible`, `infeasible` or `cancelled`"),
         Field(
             "evaluations",
-            lambda v, p: _integer(v, p, lo=0),
+            Integer(lo=0),
             0,
             "integer",
             "light evaluations, all its sub-runs",
         ),
-        Field("seconds", lambda v, p: _number(v, p, lo=0), 0, "number", "wall time, s"),
+        Field("seconds", Number(lo=0), 0, "number", "wall time, s"),
         Field(
             "solutions",
             read_solutions,
@@ -315,6 +318,7 @@ RUN = ObjectSpec(
             "list of solutions",
             "each seed's best",
             of=SOLUTION,
+            many=True,
         ),
         Field(
             "pareto",
@@ -355,6 +359,7 @@ RESULTS = ObjectSpec(
             "pinned results of a deleted run)",
             always=True,
             of=SOLUTION,
+            many=True,
         ),
         Field(
             "pareto",
@@ -373,6 +378,7 @@ RESULTS = ObjectSpec(
             "list of runs",
             "the optimisation runs made in the window, oldest first (below)",
             of=RUN,
+            many=True,
         ),
     ),
 )

@@ -11,26 +11,30 @@ from __future__ import annotations
 import os
 import threading
 from collections import OrderedDict
-from dataclasses import dataclass, replace
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import Any
 
 from lightinv_core.errors import SceneError
 from lightinv_core.fields import (
+    Boolean,
+    Custom,
     Field,
+    Nullable,
+    Number,
+    Numbers,
     ObjectSpec,
-    _boolean,
-    _choice,
+    String,
     _describe,
     _fail,
     _join,
     _list,
     _number,
     _numbers,
-    _optional,
     _path_string,
-    _string,
     _unique,
+    choice_of,
+    declare,
 )
 from lightinv_core.scene.builtin import BUILTIN_SCENES
 from lightinv_core.scene.edits import ZoneEdit, apply_zone_edits
@@ -131,23 +135,20 @@ ZONE = ObjectSpec(
     (
         Field(
             "name",
-            _string,
-            type="string",
+            String(),
             meaning="the zone's name (sources refer to it with `zone`); also the name of its "
             "new surface",
         ),
         Field(
             "kind",
-            lambda v, p: _choice(v, p, ZONE_KINDS),
-            type=" or ".join(f'`"{k}"`' for k in ZONE_KINDS),
+            choice_of(*ZONE_KINDS),
             meaning="what may be placed in it",
         ),
-        Field("surface", _string, type="string", meaning="the rectangular surface it is drawn on"),
+        Field("surface", String(), meaning="the rectangular surface it is drawn on"),
         Field(
             "rect",
-            lambda v, p: _numbers(v, p, 4),
+            Numbers(4),
             default=None,
-            type="4 numbers",
             doc_default="the outline's bounds",
             meaning="(u0, v0, u1, v1) in metres along the surface's own u and v edges from its "
             "origin; two opposite corners in any order (stored smallest first); needed "
@@ -156,9 +157,12 @@ ZONE = ObjectSpec(
         ),
         Field(
             "outline",
-            _outline,
+            Custom(
+                _outline,
+                "list of [u, v]",
+                {"type": "array", "items": Numbers(2).schema(), "minItems": 3},
+            ),
             default=None,
-            type="list of [u, v]",
             meaning="a zone of any shape: its polygon's corners (at least 3, in order around "
             "it, not crossing itself) in the same metres; sources must lie inside it. Its "
             "bounding rectangle becomes the zone's surface and must lie on the surface",
@@ -221,103 +225,6 @@ def _scene_not_taken(kind: str, field: str) -> str:
 
 OBJ = ("obj",)
 
-SCENE = ObjectSpec(
-    "scene",
-    (
-        Field(
-            "builtin",
-            _optional(lambda v, p: _choice(v, p, tuple(BUILTIN_SCENES))),
-            None,
-            "string",
-            "a built-in scene: " + ", ".join(f"`{n}`" for n in BUILTIN_SCENES),
-        ),
-        Field(
-            "obj",
-            _optional(_obj_path),
-            None,
-            "string",
-            "path of a room model: Wavefront `.obj`, glTF `.gltf`/`.glb`, `.ply` or IFC "
-            "`.ifc` (see [obj-import.md](obj-import.md); the field keeps its name for every "
-            "format)",
-        ),
-        Field(
-            "resolution",
-            _optional(lambda v, p: _number(v, p, lo=MIN_RESOLUTION)),
-            None,
-            f"number >= {MIN_RESOLUTION:g}",
-            "target patch size in metres; null: the scene's default (0.25 m for model files)",
-            always=True,
-        ),
-        Field(
-            "materials",
-            _optional(_path_string),
-            None,
-            "string",
-            "path of the reflectance JSON file",
-            OBJ,
-        ),
-        Field(
-            "scale",
-            lambda v, p: _number(v, p, gt=0.0),
-            1.0,
-            "number > 0",
-            "metres per model unit (0.001 for millimetres)",
-            OBJ,
-            always=True,
-        ),
-        Field(
-            "up",
-            _optional(lambda v, p: _choice(v, p, UP_AXES)),
-            None,
-            " or ".join(f'`"{a}"`' for a in UP_AXES),
-            'the model\'s up axis; none: its format\'s (`"y"` for glTF, `"z"` for OBJ, PLY '
-            "and IFC), written as the axis taken",
-            OBJ,
-            always=True,
-        ),
-        Field(
-            "skip_degenerate",
-            _boolean,
-            False,
-            "boolean",
-            "drop degenerate faces (with a warning) instead of failing",
-            OBJ,
-        ),
-        Field(
-            "group_by",
-            lambda v, p: _choice(v, p, GROUP_BY),
-            "node",
-            " or ".join(f'`"{g}"`' for g in GROUP_BY),
-            "glTF files: what names the lighting groups, the nodes' names or the materials'",
-            OBJ,
-        ),
-        Field(
-            "reflectances",
-            _reflectances,
-            (),
-            "object",
-            "reflectance (0 to below 1) by lighting group, replacing the scene's own "
-            '(`{"floor": 0.3}`); written only when not empty',
-            encode=dict,
-        ),
-        Field(
-            "zones",
-            _zone_edits,
-            (),
-            "list",
-            "[new emitter zones](#new-emitter-zones) drawn on the scene; written only when "
-            "not empty",
-            of=ZONE,
-        ),
-    ),
-    kind_field="kind",
-    not_taken=_scene_not_taken,
-    default_anywhere=True,
-    kinds_doc="model files only",
-)
-"""The scene fields, declared once (exactly one of builtin and obj; the kind of a scene
-is the one given)."""
-
 
 @dataclass(frozen=True)
 class SceneSpec:
@@ -335,16 +242,98 @@ class SceneSpec:
     surfaces of the scene (``ZoneEdit``), applied by ``load`` with ``apply_zone_edits``.
     """
 
-    builtin: str | None = SCENE.field("builtin").default
-    obj: str | None = SCENE.field("obj").default
-    resolution: float | None = SCENE.field("resolution").default
-    materials: str | None = SCENE.field("materials").default
-    scale: float = SCENE.field("scale").default
-    up: str | None = SCENE.field("up").default
-    skip_degenerate: bool = SCENE.field("skip_degenerate").default
-    group_by: str = SCENE.field("group_by").default
-    reflectances: tuple[tuple[str, float], ...] = SCENE.field("reflectances").default
-    zones: tuple[ZoneEdit, ...] = SCENE.field("zones").default
+    builtin: str | None = field(
+        default=None,
+        metadata=declare(
+            Nullable(choice_of(*BUILTIN_SCENES)),
+            "a built-in scene: " + ", ".join(f"`{n}`" for n in BUILTIN_SCENES),
+            type="string",
+        ),
+    )
+    obj: str | None = field(
+        default=None,
+        metadata=declare(
+            Nullable(Custom(_obj_path, "string", {"type": "string"})),
+            "path of a room model: Wavefront `.obj`, glTF `.gltf`/`.glb`, `.ply` or IFC "
+            "`.ifc` (see [obj-import.md](obj-import.md); the field keeps its name for every "
+            "format)",
+            type="string",
+        ),
+    )
+    resolution: float | None = field(
+        default=None,
+        metadata=declare(
+            Nullable(Number(lo=MIN_RESOLUTION)),
+            "target patch size in metres; null: the scene's default (0.25 m for model files)",
+            always=True,
+        ),
+    )
+    materials: str | None = field(
+        default=None,
+        metadata=declare(
+            Nullable(Custom(_path_string, "string", {"type": "string"})),
+            "path of the reflectance JSON file",
+            type="string",
+            kinds=OBJ,
+        ),
+    )
+    scale: float = field(
+        default=1.0,
+        metadata=declare(
+            Number(gt=0.0), "metres per model unit (0.001 for millimetres)", kinds=OBJ, always=True
+        ),
+    )
+    up: str | None = field(
+        default=None,
+        metadata=declare(
+            Nullable(choice_of(*UP_AXES)),
+            'the model\'s up axis; none: its format\'s (`"y"` for glTF, `"z"` for OBJ, PLY '
+            "and IFC), written as the axis taken",
+            kinds=OBJ,
+            always=True,
+        ),
+    )
+    skip_degenerate: bool = field(
+        default=False,
+        metadata=declare(
+            Boolean(),
+            "drop degenerate faces (with a warning) instead of failing",
+            type="boolean",
+            kinds=OBJ,
+        ),
+    )
+    group_by: str = field(
+        default="node",
+        metadata=declare(
+            choice_of(*GROUP_BY),
+            "glTF files: what names the lighting groups, the nodes' names or the materials'",
+            kinds=OBJ,
+        ),
+    )
+    reflectances: tuple[tuple[str, float], ...] = field(
+        default=(),
+        metadata=declare(
+            Custom(
+                _reflectances,
+                schema_={"type": "object", "additionalProperties": Number(lo=0.0, lt=1.0).schema()},
+            ),
+            "reflectance (0 to below 1) by lighting group, replacing the scene's own "
+            '(`{"floor": 0.3}`); written only when not empty',
+            type="object",
+            encode=dict,
+        ),
+    )
+    zones: tuple[ZoneEdit, ...] = field(
+        default=(),
+        metadata=declare(
+            _zone_edits,
+            "[new emitter zones](#new-emitter-zones) drawn on the scene; written only when "
+            "not empty",
+            type="list",
+            of=ZONE,
+            many=True,
+        ),
+    )
 
     def __post_init__(self) -> None:
         SCENE.check_object(self)
@@ -384,3 +373,15 @@ class SceneSpec:
         if self.reflectances:
             scene = with_reflectances(scene, self.reflectances)
         return apply_zone_edits(scene, self.zones) if self.zones else scene
+
+
+SCENE = ObjectSpec.of(
+    SceneSpec,
+    "scene",
+    kind_field="kind",
+    not_taken=_scene_not_taken,
+    default_anywhere=True,
+    kinds_doc="model files only",
+)
+"""The scene fields, declared in ``SceneSpec`` (exactly one of builtin and obj; the kind
+of a scene is the one given)."""

@@ -20,6 +20,7 @@ from lightinv_core.light.model import LightModel
 from lightinv_core.operator.build import build_operator
 from lightinv_core.operator.settings import OperatorSettings
 from lightinv_core.optimize.problem import FEASIBILITY_TOL, DesignProblem
+from lightinv_core.project.source_kinds import check_source_kinds
 from lightinv_core.scene.builtin import builtin_scene
 from lightinv_core.scene.patches import mesh_patches
 
@@ -197,8 +198,8 @@ def test_invalid_designs_are_refused_clearly(office):
         Design((sky(),), (Goal("max_light_power"),), (Rule("aspect", ("nope",), max=2),))
     with pytest.raises(DesignError, match="target_sources"):
         Design((sky(),), (Goal("match"),))
-    with pytest.raises(DesignError, match="luminaire needs either flux"):
-        Source("L", "lum_west", "luminaire", (0, 0, 1, 1))
+    with pytest.raises(DesignError, match="luminaire needs either flux or exitance"):
+        kinds_of(Source("L", "lum_west", "luminaire", (0, 0, 1, 1)))
     with pytest.raises(DesignError, match="filter"):
         sky(filter=1.5)
     with pytest.raises(DesignError, match="takes skylights"):
@@ -209,22 +210,38 @@ def test_invalid_designs_are_refused_clearly(office):
         problem(office, (sky(),), intentions=(Intention("t", group="tables", min=1),))
 
 
+def kinds_of(source: Source) -> None:
+    """Check ``source`` against its kind (the source type's own fields)."""
+    check_source_kinds(Design((source,), (Goal("max_light_power"),)))
+
+
 @pytest.mark.parametrize(
     ("build", "message"),
     [
-        (lambda: Intention("x", patches=[1.5], min=1), "not a whole number"),
-        (lambda: Intention("x", patches=["3"], min=1), "not a whole number"),
-        (lambda: Intention("x", patches=[True], min=1), "not a whole number"),
-        (lambda: Rule("area", "S1", max=1), "must be a list"),
-        (lambda: Rule("spacing", ("a", "a"), min=1), "named twice"),
-        (lambda: Goal("max_light_power", ("skylights",)), "must be 'luminaire' or 'skylight'"),
-        (lambda: Goal("match", ("skylight",)), "only max_light_power"),
+        (
+            lambda: Intention("x", patches=[1.5], min=1),
+            r"intention 'x': patches\[0\] must be an integer >= 0, got number 1\.5",
+        ),
+        (lambda: Intention("x", patches=["3"], min=1), "must be an integer >= 0, got string"),
+        (lambda: Intention("x", patches=[True], min=1), "must be an integer >= 0, got true"),
+        (
+            lambda: Rule("area", "S1", max=1),
+            "rule 'area': sources must be a list of source names, got string 'S1'",
+        ),
+        (lambda: Rule("spacing", ("a", "a"), min=1), r"sources\[1\]: 'a' is listed twice"),
+        (
+            lambda: Goal("max_light_power", ("skylights",)),
+            r"kinds\[0\] must be one of 'luminaire', 'skylight', got string 'skylights'",
+        ),
+        (lambda: Goal("match", ("skylight",)), "only a max_light_power goal takes source kinds"),
+        (lambda: Rule("mirror", ("a", "b"), axis="u", min=1.0), "mirror rules do not take 'min'"),
         (lambda: Daylight(exterior_lux=-1.0), "exterior_lux"),
         (lambda: Daylight(transmittance=1.5), "transmittance"),
         (lambda: lum(exitance=10.0), "not both"),
-        (lambda: sky(exitance=10.0), "not a flux or exitance"),
+        (lambda: kinds_of(sky(exitance=10.0)), "exitance: only luminaires have this"),
+        (lambda: kinds_of(lum(free=("filter",))), "a luminaire has no filter variable"),
         (lambda: lum(flux=float("nan")), "finite"),
-        (lambda: lum(flux_range=(0, 1, 2)), "two numbers"),
+        (lambda: lum(flux_range=(0, 1, 2)), "flux_range must be 2 numbers, got 3"),
         (
             lambda: Design((sky(), sky("t")), (Goal("max_light_power"), Goal("max_light_power"))),
             "goal names must be unique",

@@ -1,5 +1,5 @@
 """Field specs: each field of every project-file object is declared once
-(lightinv_core/fields.py: Field, ObjectSpec); reading, messages, writing and the field
+(lightinv_core/fields/: Field, ObjectSpec, declare); reading, messages, writing and the field
 tables of docs/project-file.md come from there. Rerun with LIGHTINV_WRITE_DOCS=1 to
 regenerate the tables after a spec changes."""
 
@@ -90,7 +90,7 @@ def test_each_spec_names_the_fields_of_its_model_class(spec, cls):
     assert len(set(spec.names)) == len(spec.names)
     assert set(spec.names) == set(cls.__dataclass_fields__)
     for f in spec.fields:  # the docs say what each field is
-        assert f.type and f.meaning, f.name
+        assert f.type_text and f.meaning, f.name
 
 
 def test_data_class_defaults_are_the_spec_defaults():

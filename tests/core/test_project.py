@@ -613,7 +613,7 @@ ERRORS = [
     # the design model's own rules, and references inside the file
     (
         _set("sources[3].flux", DELETE),
-        "sources[3]: source 'L1': a luminaire needs either flux (lm) or exitance",
+        "sources[3]: source 'L1': a free flux needs a starting flux",
     ),
     (
         _set("sources[3].flux_range", [5, 5]),
@@ -680,13 +680,16 @@ ERRORS = [
     (_set("sources[0].free[1]", "u0"), "sources[0].free[1]: 'u0' is listed twice"),
     (
         _set("sources[0].efficacy", 80),
-        "sources[0].efficacy: only luminaires have this; a skylight's exitance is filter x "
-        "transmittance x exterior illuminance",
+        "sources[0].efficacy: only luminaires have this (a skylight's own fields: filter)",
     ),
-    (_set("sources[3].filter", 0.5), "sources[3].filter: only skylights have a filter"),
+    (
+        _set("sources[3].filter", 0.5),
+        "sources[3].filter: only skylights have this "
+        "(a luminaire's own fields: flux, flux_range, exitance, efficacy)",
+    ),
     (
         _set("sources[3].exitance", 100),
-        "sources[3]: source 'L1': give a luminaire's flux (lm) or its exitance (lm/m²), not both",
+        "sources[3]: source 'L1': give its flux (lm) or its exitance (lm/m²), not both",
     ),
     (
         _set("target_sources[0].rect", [0, 0, 1]),

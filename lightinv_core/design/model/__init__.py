@@ -1,0 +1,95 @@
+"""The inverse design problem as data: sources, geometric rules, lighting intentions,
+luminaire arrays, work planes, daylight and goals, each a frozen dataclass that declares
+its project-file fields once.
+
+Every field is declared in its class with ``fields.declare``: its typed check (which
+also gives the docs' type and the JSON Schema), default, meaning with units, and how it
+is written. From that one declaration come the checks run when the engine builds an
+object, the project file's reading and its messages (``project/specs.py`` adds only the
+checks that span a list), writing, the field tables of docs/project-file.md and
+docs/project.schema.json. ``__post_init__`` keeps only the checks that tie fields
+together (min <= max, flux or exitance).
+
+Why dataclass fields with metadata, not pydantic models: the engine builds these
+objects in its loops (a solution's sources, ``replace(source, rect=...)``) and frozen
+dataclasses with a fast path for valid values cost no more than before; the bad-input
+catalogue's messages are our own (the JSON path, what was expected, what was given,
+"did you mean"), which pydantic would reword; registries extend the valid kinds at run
+time (``kinds.source_kind_names()``, goals, quantities); and it needs no new runtime
+dependency.
+
+Units: source rectangles in metres in their zone's (u, v) coordinates; luminous flux in
+lm, efficacy in lm/W, exitance in lm/m², illuminance in lux.
+"""
+
+from lightinv_core.design.model.array import (
+    ARRAY_FIELDS,
+    ARRAY_VARIABLES,
+    MAX_ARRAY_SIDE,
+    ROTATIONS,
+    LuminaireArray,
+)
+from lightinv_core.design.model.daylight import (
+    DAYLIGHT_FIELDS,
+    MAX_WATTS,
+    WORKPLANE_FIELDS,
+    Daylight,
+    Workplane,
+)
+from lightinv_core.design.model.design import Design
+from lightinv_core.design.model.goal import GOAL_FIELDS, GOALS, Goal
+from lightinv_core.design.model.intention import INTENTION_FIELDS, MAX_PATCH_ID, Intention
+from lightinv_core.design.model.rule import (
+    ARRAY_RULES,
+    AXES,
+    RULE_FIELDS,
+    RULE_SOURCES,
+    RULE_TAKES,
+    Rule,
+)
+from lightinv_core.design.model.source import (
+    CORNERS,
+    MAX_EFFICACY,
+    MAX_FLUX,
+    SOURCE_FIELDS,
+    SOURCE_KINDS,
+    VARIABLES,
+    Source,
+    source_kind,
+)
+from lightinv_core.errors import DesignError
+
+__all__ = [
+    "ARRAY_FIELDS",
+    "ARRAY_RULES",
+    "ARRAY_VARIABLES",
+    "AXES",
+    "CORNERS",
+    "DAYLIGHT_FIELDS",
+    "GOALS",
+    "GOAL_FIELDS",
+    "INTENTION_FIELDS",
+    "MAX_ARRAY_SIDE",
+    "MAX_EFFICACY",
+    "MAX_FLUX",
+    "MAX_PATCH_ID",
+    "MAX_WATTS",
+    "ROTATIONS",
+    "RULE_FIELDS",
+    "RULE_SOURCES",
+    "RULE_TAKES",
+    "SOURCE_FIELDS",
+    "SOURCE_KINDS",
+    "VARIABLES",
+    "WORKPLANE_FIELDS",
+    "Daylight",
+    "Design",
+    "DesignError",
+    "Goal",
+    "Intention",
+    "LuminaireArray",
+    "Rule",
+    "Source",
+    "Workplane",
+    "source_kind",
+]
