@@ -84,13 +84,13 @@ def test_array_positions_spacing_and_count():
 @pytest.mark.parametrize(
     "kw, message",
     [
-        ({"rows": 0}, "rows: 0 is outside"),
-        ({"rows": 2.5}, "not a whole number"),
+        ({"rows": 0}, "rows must be an integer >= 1, got 0"),
+        ({"rows": 2.5}, "rows must be an integer >= 1, got number 2.5"),
         ({"rotation": 45}, "rotation must be 0 or 90"),
-        ({"dimming": 0}, "dimming must be above 0"),
-        ({"free": ("flux",)}, "unknown variables"),
+        ({"dimming": 0}, "dimming must be a number > 0 and <= 1, got 0"),
+        ({"free": ("flux",)}, r"free\[0\] must be one of 'u0'"),
         ({"rows_range": (4, 2)}, "min 4 is above max 2"),
-        ({"maintenance_factor": 0.0}, "maintenance factor must be above 0"),
+        ({"maintenance_factor": 0.0}, r"maintenance_factor must be a number > 0 and <= 1, got 0 \(typically"),
     ],
 )
 def test_bad_arrays_are_refused_with_one_line(kw, message):
