@@ -88,6 +88,11 @@ def is_scenario(name: object) -> bool:
     return isinstance(name, str) and name in _SCENARIOS
 
 
+def scenario_kind(name: str) -> Scenario | str:
+    """The ``Scenario`` member of a built-in name, the name itself for a registered one."""
+    return Scenario(name) if name in tuple(Scenario) else str(name)
+
+
 def _design(light, idx):
     return light.electric[idx] + light.daylight.exterior_lux * light.sky[:, idx].sum(axis=0)
 

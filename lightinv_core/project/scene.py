@@ -18,6 +18,7 @@ from typing import Any
 from lightinv_core.errors import SceneError
 from lightinv_core.fields import (
     Boolean,
+    Choice,
     Custom,
     Field,
     Nullable,
@@ -36,12 +37,13 @@ from lightinv_core.fields import (
     choice_of,
     declare,
 )
+from lightinv_core.kinds import source_kind_names
 from lightinv_core.scene.builtin import BUILTIN_SCENES
 from lightinv_core.scene.edits import ZoneEdit, apply_zone_edits
 from lightinv_core.scene.importers.faces import UP_AXES
 from lightinv_core.scene.importers.registry import default_up, importer_for, model_suffixes
 from lightinv_core.scene.loading import load_scene
-from lightinv_core.scene.model import MIN_RESOLUTION, ZONE_KINDS, Scene
+from lightinv_core.scene.model import MIN_RESOLUTION, Scene
 
 GROUP_BY = ("node", "material")
 """What names a glTF model's lighting groups (``importers.gltf.GROUP_BY``)."""
@@ -141,7 +143,7 @@ ZONE = ObjectSpec(
         ),
         Field(
             "kind",
-            choice_of(*ZONE_KINDS),
+            Choice(source_kind_names),
             meaning="what may be placed in it",
         ),
         Field("surface", String(), meaning="the rectangular surface it is drawn on"),

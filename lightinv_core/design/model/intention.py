@@ -8,6 +8,7 @@ from lightinv_core.errors import DesignError
 from lightinv_core.fields import Choice, Integer, ListOf, Number, ObjectSpec, String, declare
 from lightinv_core.kinds import Bound, Quantity, Scenario
 from lightinv_core.quantities import quantity_kind, quantity_names, quantity_spec
+from lightinv_core.scenarios import scenario_kind, scenario_names, scenario_spec
 
 MAX_PATCH_ID = 2**53  # project files limit integers to 2^53 too
 
@@ -71,7 +72,7 @@ class Intention:
     scenario: Scenario = field(
         default=Scenario.DESIGN,
         metadata=declare(
-            Choice(lambda: tuple(Scenario), Scenario),
+            Choice(scenario_names, scenario_kind),
             "the light it is judged in: `design` (luminaires + skylights at the design "
             "exterior lux), `night` (luminaires only), `overcast` (luminaires + the CIE "
             "overcast sky); `df` is always `overcast` and `da`, `udi`, `sda` `annual`",
@@ -103,10 +104,12 @@ class Intention:
         if spec.scenario is not None:
             # A daylight metric is measured in its own scenario, whatever was written.
             object.__setattr__(self, "scenario", spec.scenario)
-        elif self.scenario == Scenario.ANNUAL:
-            annual = tuple(q for q in quantity_names() if quantity_spec(q).scenario == "annual")
+        elif scenario_spec(self.scenario).lux is None:
+            # A scenario without an illuminance (the weather year) measures metrics only.
+            its = tuple(q for q in quantity_names() if quantity_spec(q).scenario == self.scenario)
             raise DesignError(
-                f"{where}: the annual scenario bounds a daylight metric: quantity {_either(annual)}"
+                f"{where}: the {self.scenario} scenario bounds a daylight metric: quantity "
+                f"{_either(its)}"
             )
         if sum(x is not None for x in (self.group, self.patches, self.grid)) != 1:
             raise DesignError(
