@@ -16,7 +16,7 @@ import numpy as np
 
 from lightinv_core.design.model import Daylight, Source
 from lightinv_core.errors import DesignError
-from lightinv_core.kinds import SourceKind
+from lightinv_core.kinds import source_kind_names
 from lightinv_core.operator.radiosity import RadiosityOperator
 from lightinv_core.scene.model import Scene
 from lightinv_core.scene.patches import Patches
@@ -55,7 +55,6 @@ def electric_power(sources: Sequence[Source], rect: np.ndarray, flux: np.ndarray
     return total
 
 
-KIND_NAMES = tuple(str(k) for k in SourceKind)
 
 
 class ZoneEmission:
@@ -115,7 +114,7 @@ class ZoneEmission:
         m = rect.shape[0]
         nz = len(self.op.zone_patches)
         V = np.zeros((nz, m), np.float32)
-        by_kind = {k: np.zeros((nz, m), np.float32) for k in KIND_NAMES}
+        by_kind = {k: np.zeros((nz, m), np.float32) for k in source_kind_names()}
         for j, s in enumerate(sources):
             g = self.grid(s.zone)
             ex = source_type(s.kind).exitance(s, rect[:, j], flux[:, j], filt[:, j], daylight)
