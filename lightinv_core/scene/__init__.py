@@ -1,0 +1,1 @@
+"""Scenes: geometry, materials, patches, emitter zones, built-in scenes, drawn zones and model import."""
