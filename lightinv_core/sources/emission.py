@@ -55,8 +55,6 @@ def electric_power(sources: Sequence[Source], rect: np.ndarray, flux: np.ndarray
     return total
 
 
-
-
 class ZoneEmission:
     """The emitter zones of a scene as the operator sees them: each zone's grid and
     its columns in the zone basis, built on first use."""

@@ -90,7 +90,10 @@ def test_array_positions_spacing_and_count():
         ({"dimming": 0}, "dimming must be a number > 0 and <= 1, got 0"),
         ({"free": ("flux",)}, r"free\[0\] must be one of 'u0'"),
         ({"rows_range": (4, 2)}, "min 4 is above max 2"),
-        ({"maintenance_factor": 0.0}, r"maintenance_factor must be a number > 0 and <= 1, got 0 \(typically"),
+        (
+            {"maintenance_factor": 0.0},
+            r"maintenance_factor must be a number > 0 and <= 1, got 0 \(typically",
+        ),
     ],
 )
 def test_bad_arrays_are_refused_with_one_line(kw, message):
