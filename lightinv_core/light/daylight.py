@@ -67,8 +67,6 @@ class ScenarioLight:
         spec = scenario_spec(scenario)
         if spec.lux is None:
             raise ValueError(f"no illuminance in scenario {scenario!r}")
-        if not self.groups.count:  # no glazing: every scenario is the luminaires' light
-            return self.electric[idx]
         return spec.lux(self, idx)
 
     def overcast_daylight(self, idx=slice(None)) -> np.ndarray:

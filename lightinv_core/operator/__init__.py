@@ -1,1 +1,3 @@
-"""The low-rank radiosity operator: build to a target accuracy, evaluation, cache, luminaire responses, a Dask cluster build."""
+"""The low-rank radiosity operator: build to a target accuracy, evaluation, cache,
+luminaire responses, a Dask cluster build.
+"""

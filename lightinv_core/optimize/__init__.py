@@ -1,1 +1,3 @@
-"""Optimisation: the design problem (F, G, penalty), the methods behind one run(problem, context) and their registry."""
+"""Optimisation: the design problem (F, G, penalty), the methods behind one run(problem,
+context) and their registry.
+"""

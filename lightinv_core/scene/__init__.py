@@ -1,1 +1,3 @@
-"""Scenes: geometry, materials, patches, emitter zones, built-in scenes, drawn zones and model import."""
+"""Scenes: geometry, materials, patches, emitter zones, built-in scenes, drawn zones and
+model import.
+"""

@@ -1,1 +1,3 @@
-"""Sources: the kinds of source (their types and registry) and the zone emission of rectangular sources."""
+"""Sources: the kinds of source (their types and registry) and the zone emission of
+rectangular sources.
+"""

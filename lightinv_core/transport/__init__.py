@@ -1,1 +1,3 @@
-"""Light transport by ray casting: form factors, reference radiosity solvers, photometric luminaires, work planes, glazing under a sky."""
+"""Light transport by ray casting: form factors, reference radiosity solvers, photometric
+luminaires, work planes, glazing under a sky.
+"""

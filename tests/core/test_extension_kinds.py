@@ -188,7 +188,9 @@ def test_a_registered_daylight_metric_is_measured_and_reported(registered, tmp_p
     )
     src["scene"]["resolution"] = 0.8
     src["operator"] = {"rank": 80, "rays": 64}
-    src["intentions"].append({"name": "daylit", "grid": "wp", "quantity": DA100, "average": 0.99})
+    src["intentions"].append(
+        {"name": "daylit", "group": "desks", "quantity": DA100, "average": 0.99}
+    )
     src["goals"] = [{"kind": "min_glazing_area"}]
     src["optimizer"] = {"method": "vns", "seed": 0, "max_evals": 200}
     path = tmp_path / "da100.json"
