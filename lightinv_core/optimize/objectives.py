@@ -96,10 +96,7 @@ class DesignGoals:
             (str(k), -1.0 if goal_spec(k).maximise else 1.0) for k in self.objectives
         )
         self.sign = -1.0 if goal_spec(self.primary).maximise else 1.0
-        light_goal = next((g for g in design.goals if g.kind == GoalKind.MAX_LIGHT_POWER), None)
-        # The light-power goal counts its kinds' sources (all kinds when it names none).
-        kinds = (light_goal.kinds if light_goal else ()) or tuple(t.kind for t in source_types())
-        self.power_kinds = tuple(str(k) for k in kinds)
+        self.power_kinds = light_power_kinds(design)
 
     def scaled_primary(self, goals: dict[str, np.ndarray]) -> np.ndarray:
         """The primary goal as minimised, scaled to about [0, 1]."""
@@ -172,6 +169,13 @@ class DesignGoals:
         C = p.light.op.rho[rows, None] * H[level.match_pos]
         C_obj = p.C_obj[rows]
         return np.linalg.norm(C - C_obj[:, None], axis=0) / max(np.linalg.norm(C_obj), 1e-30)
+
+
+def light_power_kinds(design: Design) -> tuple[str, ...]:
+    """The source kinds the light-power goal counts: those its goal names, else all."""
+    goal = next((g for g in design.goals if g.kind == GoalKind.MAX_LIGHT_POWER), None)
+    kinds = (goal.kinds if goal else ()) or tuple(t.kind for t in source_types())
+    return tuple(str(k) for k in kinds)
 
 
 def glazing_area(design: Design, rect: np.ndarray) -> np.ndarray:
