@@ -67,7 +67,7 @@ def _solve(
     res, _ = multilevel(problem, sub, divisors)
     sol = judged(problem, res, method, context.seed, **(info or {})).best
     # A sweep's points carry no convergence history (each is one of many runs).
-    return problem, res, replace(sol, info=sol.info.but(history=()))
+    return res, replace(sol, info=sol.info.but(history=()))
 
 
 def _tagged(progress: ProgressFn | None, run: int, runs: int) -> ProgressFn | None:
@@ -93,10 +93,8 @@ def bounded_range(
     c = context_of(context or RunContext(stop=StopRule(max_evals=5000)), given)
     first, second = design_goal(design, pair[0]), design_goal(design, pair[1])
     own_goals, other_goals = (second, first), (first, second)
-    _, r_own, own = _solve(
-        replace(design, goals=own_goals), light, c, divisors, (0, runs), "epsilon"
-    )
-    _, r_other, other = _solve(
+    r_own, own = _solve(replace(design, goals=own_goals), light, c, divisors, (0, runs), "epsilon")
+    r_other, other = _solve(
         replace(design, goals=other_goals), light, c, divisors, (1, runs), "epsilon"
     )
     a, b = own.objectives[pair[1]], other.objectives[pair[1]]
@@ -138,7 +136,7 @@ def epsilon_constraint(
     for q, eps in enumerate(epsilons):
         if c.cancel is not None and c.cancel():
             break
-        _, res, sol = _solve(
+        res, sol = _solve(
             mop,
             light,
             c.but(seed=c.seed + q, x0=x),
@@ -184,7 +182,7 @@ def two_step(
         if c.cancel is not None and c.cancel():
             break
         seeded = c.but(seed=c.seed + r, x0=None)
-        _, _, first = _solve(step1, light, seeded, divisors, (2 * r, 2 * runs), "two_step")
+        _, first = _solve(step1, light, seeded, divisors, (2 * r, 2 * runs), "two_step")
         fixed = tuple(replace(s, free=()) for s in first.sources)
         step2 = Design(
             (*fixed, *lum),
@@ -194,7 +192,7 @@ def two_step(
             daylight=design.daylight,
             penalty_power=design.penalty_power,
         )
-        _, _, sol = _solve(
+        _, sol = _solve(
             step2,
             light,
             seeded,
