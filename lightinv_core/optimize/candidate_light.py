@@ -78,6 +78,9 @@ class CandidateLight:
     def __init__(self, problem: LightSource, year_box: list):
         self.problem = problem
         self._year_box = year_box  # the weather year, read at the first annual use
+        types = source_types()
+        self._electric = tuple(str(t.kind) for t in types if t.electric)
+        self._daylit = tuple(str(t.kind) for t in types if t.daylit)
 
     def of(
         self,
@@ -144,9 +147,7 @@ class CandidateLight:
         m = rect.shape[0]
         nz = len(p.light.op.zone_patches)
         ext = d.daylight.exterior_lux
-        types = source_types()
-        electric = tuple(str(t.kind) for t in types if t.electric)
-        daylit = tuple(str(t.kind) for t in types if t.daylit)
+        electric, daylit = self._electric, self._daylit
         if d.sources:
             unit = replace(d.daylight, exterior_lux=1.0)
             _, by_unit = p.light.zone_emission(d.sources, rect, flux, filt, unit, split_kinds=True)

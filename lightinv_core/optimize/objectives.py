@@ -97,6 +97,10 @@ class DesignGoals:
         )
         self.sign = -1.0 if goal_spec(self.primary).maximise else 1.0
         self.power_kinds = light_power_kinds(design)
+        # What does not change from candidate to candidate, read once.
+        self._glazed = [j for j, s in enumerate(design.sources) if source_type(s.kind).daylit]
+        self._installed = installed_power(design, light)
+        self._count = float(luminaire_sources(design))
 
     def scaled_primary(self, goals: dict[str, np.ndarray]) -> np.ndarray:
         """The primary goal as minimised, scaled to about [0, 1]."""
@@ -111,8 +115,8 @@ class DesignGoals:
         match = self._match(V, cols, H, level) if p.match is not None else np.zeros(m)
         power_V = sum(by_kind[k] for k in self.power_kinds if k in by_kind)
         watts = p.light.electric_power(d.sources, rect, flux) if d.sources else np.zeros(m)
-        installed = installed_power(d, p.light) * np.ones(m)
-        count = np.full(m, float(luminaire_sources(d)))
+        installed = self._installed * np.ones(m)
+        count = np.full(m, self._count)
         if lay is not None:
             watts = watts + p.arrays.electric_power(lay)
             installed = installed + p.arrays.installed_power(lay)
@@ -124,7 +128,7 @@ class DesignGoals:
             "match": match,
             "min_installed_power": installed,
             "min_luminaire_count": count,
-            "min_glazing_area": glazing_area(d, rect),
+            "min_glazing_area": glazing_area(rect, self._glazed),
             "min_annual_energy": np.full(m, np.nan),
             "max_sda": np.full(m, np.nan),
         }
@@ -178,9 +182,9 @@ def light_power_kinds(design: Design) -> tuple[str, ...]:
     return tuple(str(k) for k in kinds)
 
 
-def glazing_area(design: Design, rect: np.ndarray) -> np.ndarray:
-    """Total area (m²) of the daylit sources of m candidates (rect (m, S, 4))."""
-    sky = [j for j, s in enumerate(design.sources) if source_type(s.kind).daylit]
+def glazing_area(rect: np.ndarray, sky: list[int]) -> np.ndarray:
+    """Total area (m²) of the sources ``sky`` (the daylit ones) of m candidates (rect
+    (m, S, 4))."""
     if not sky:
         return np.zeros(rect.shape[0])
     r = rect[:, sky]
