@@ -33,7 +33,7 @@ class GoalSpec:
     ``maximise``: maximised (else minimised); ``annual``: needs the weather year and a
     control work plane.
     ``value(batch) -> (m,)`` and ``scale(problem) -> float``: for a goal the problem does
-    not compute itself, its value for a batch of candidates (``optimize.problem.GoalBatch``)
+    not compute itself, its value for a batch of candidates (``optimize.objectives.GoalBatch``)
     and the size of its value that scales it to about [0, 1] as a primary goal.
     """
 

@@ -21,12 +21,12 @@ same result even with other runs in other threads.
 from __future__ import annotations
 
 import math
+from typing import Any
 
 import numpy as np
 
-from lightinv_core.optimize.method import MethodSpec, RunContext
+from lightinv_core.optimize.method import MethodSpec, RunContext, context_of
 from lightinv_core.optimize.problem import DesignProblem, Evaluation, Level
-from lightinv_core.optimize.progress import CancelFn, ProgressFn
 from lightinv_core.optimize.result import OptimizationResult
 from lightinv_core.optimize.search import (
     SearchResult,
@@ -36,7 +36,6 @@ from lightinv_core.optimize.search import (
     judged,
     random_start,
 )
-from lightinv_core.optimize.termination import StopRule
 
 SIGMA0 = 0.3
 """Initial step size in the unit cube (a third of each range: wide enough to leave a
@@ -66,25 +65,25 @@ def ranking_fitness(ev: Evaluation) -> np.ndarray:
 
 def cmaes(
     problem: DesignProblem,
-    x0: np.ndarray | None = None,
-    seed: int = 0,
-    stop: StopRule | None = None,
+    context: RunContext | None = None,
     level: Level | None = None,
     popsize: int | None = None,
-    progress: ProgressFn | None = None,
-    cancel: CancelFn | None = None,
+    **given: Any,
 ) -> SearchResult:
-    """Minimise f + P by CMA-ES with IPOP restarts; returns the best solution found.
+    """Minimise f + P by CMA-ES with IPOP restarts at ``level`` (default: every patch),
+    with the context's seed, stop rule and hooks (or those fields ``given`` as
+    keywords); returns the best solution found.
 
-    ``x0`` starts the first run (later restarts start at random layouts); ``popsize``
-    is the first run's population (default ``cma``'s 4 + 3 ln n).
+    ``context.x0`` starts the first run (later restarts start at random layouts);
+    ``popsize`` is the first run's population (default ``cma``'s 4 + 3 ln n).
     """
     import cma  # lazily: only CMA-ES runs need it
 
-    stop = stop or StopRule()
-    rng = np.random.default_rng(seed)
+    c = context_of(context, given)
+    rng = np.random.default_rng(c.seed)
     level = level or problem.level(1)
-    x, budget = first_point(problem, x0, rng, level, stop, cancel)
+    x, budget = first_point(problem, c.x0, rng, level, c.stop, c.cancel)
+    progress = c.progress
     lo, hi = problem.vars.lo, problem.vars.hi
     span = np.where(hi > lo, hi - lo, 1.0)
     lam0 = popsize or 4 + int(3 * math.log(problem.vars.n))
@@ -129,9 +128,7 @@ def cmaes(
 
 def run_cmaes(problem: DesignProblem, context: RunContext) -> OptimizationResult:
     """One CMA-ES run (restarts included) within ``context.stop``."""
-    c = context
-    res = cmaes(problem, c.x0, c.seed, c.stop, None, None, c.progress, c.cancel)
-    return judged(problem, res, CMAES.name, c.seed)
+    return judged(problem, cmaes(problem, context), CMAES.name, context.seed)
 
 
 CMAES = MethodSpec("cmaes", "CMA-ES (IPOP restarts)", run_cmaes)

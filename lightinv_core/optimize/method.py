@@ -70,6 +70,13 @@ class RunContext:
         return replace(self, **changes)
 
 
+def context_of(context: RunContext | None, given: dict[str, Any]) -> RunContext:
+    """``context`` (default: a plain ``RunContext``) with the fields ``given`` as
+    keywords: a search called as ``vns(problem, seed=3, stop=rule)`` or
+    ``vns(problem, context)``."""
+    return (context or RunContext()).but(**given) if given else context or RunContext()
+
+
 def settings_as(cls: type[S], source: Any) -> S:
     """``source`` as the settings dataclass ``cls`` (see ``RunContext.options``)."""
     if isinstance(source, cls):

@@ -11,12 +11,10 @@ infeasible when that runs out.
 from __future__ import annotations
 
 from dataclasses import dataclass, replace
+from typing import Any
 
-import numpy as np
-
-from lightinv_core.optimize.method import MethodSpec, RunContext
+from lightinv_core.optimize.method import MethodSpec, RunContext, context_of
 from lightinv_core.optimize.problem import DesignProblem
-from lightinv_core.optimize.progress import CancelFn, ProgressFn
 from lightinv_core.optimize.result import OptimizationResult
 from lightinv_core.optimize.search import SearchResult, judged
 from lightinv_core.optimize.termination import StopRule
@@ -36,26 +34,25 @@ def full_resolution(divisors: tuple[int, ...]) -> tuple[int, ...]:
 
 def multilevel(
     problem: DesignProblem,
+    context: RunContext | None = None,
     divisors: tuple[int, ...] = DEFAULT_DIVISORS,
-    seed: int = 0,
-    stop: StopRule | None = None,
     level_stop: StopRule | None = None,
-    x0: np.ndarray | None = None,
     trials: int = 32,
-    progress: ProgressFn | None = None,
-    cancel: CancelFn | None = None,
+    **given: Any,
 ) -> tuple[SearchResult, list[SearchResult]]:
-    """Run VNS level by level; returns the result of the last level (every patch: see
-    ``full_resolution``) and every level's result.
+    """Run VNS level by level from ``context.x0``, with the context's seed, stop rule and
+    hooks (or those fields ``given`` as keywords); returns the result of the last level
+    (every patch: see ``full_resolution``) and every level's result.
 
-    ``level_stop`` bounds the coarse levels (default: ``stop``); the evaluation and
-    time budgets of ``stop`` are shared by all levels, the coarse ones using at most
-    1 - ``FULL_LEVEL_SHARE`` of them. A cancelled level ends the run.
+    ``level_stop`` bounds the coarse levels (default: the context's stop); the
+    evaluation and time budgets of that stop are shared by all levels, the coarse ones
+    using at most 1 - ``FULL_LEVEL_SHARE`` of them. A cancelled level ends the run.
     """
-    stop = stop or StopRule()
+    c = context_of(context, given)
+    stop = c.stop
     divisors = full_resolution(divisors)
     results: list[SearchResult] = []
-    x = x0
+    x = c.x0
     used_evals, used_time = 0, 0.0
     for i, d in enumerate(divisors):
         last = i == len(divisors) - 1
@@ -68,16 +65,7 @@ def multilevel(
         if stop.time_limit is not None:
             left_t = stop.time_limit * (1 - keep) - used_time
             rule = replace(rule, time_limit=max(0.0, min(rule.time_limit or left_t, left_t)))
-        res = vns(
-            problem,
-            x0=x,
-            seed=seed + 7919 * i,
-            stop=rule,
-            level=problem.level(d),
-            trials=trials,
-            progress=progress,
-            cancel=cancel,
-        )
+        res = vns(problem, c.but(x0=x, seed=c.seed + 7919 * i, stop=rule), problem.level(d), trials)
         results.append(res)
         x = res.x
         used_evals += res.evaluations
@@ -116,9 +104,7 @@ def run_multilevel(problem: DesignProblem, context: RunContext) -> OptimizationR
     ``context.x0``)."""
     s, c = context.options(MultilevelSettings), context
     level_stop = StopRule(max_evals=s.level_max_evals, target=s.level_target, stall=c.stop.stall)
-    res, levels = multilevel(
-        problem, tuple(s.divisors), c.seed, c.stop, level_stop, c.x0, s.trials, c.progress, c.cancel
-    )
+    res, levels = multilevel(problem, c, tuple(s.divisors), level_stop, s.trials)
     per_level = tuple(r.evaluations for r in levels)
     return judged(problem, res, MULTILEVEL.name, c.seed, level_evaluations=per_level)
 

@@ -24,15 +24,14 @@ import numpy as np
 from lightinv_core.design.model import Goal
 from lightinv_core.design.solution import SolutionInfo
 from lightinv_core.errors import DesignError
+from lightinv_core.optimize.fronts import LIGHT, POWER, design_goal, front_of
 from lightinv_core.optimize.method import MethodSpec, RunContext, SolutionFn, always_front
-from lightinv_core.optimize.mop import LIGHT, POWER, design_goal, front_of
 from lightinv_core.optimize.pareto import hypervolume_2d, non_dominated
 from lightinv_core.optimize.problem import DesignProblem
-from lightinv_core.optimize.progress import CancelFn, Progress, ProgressFn
+from lightinv_core.optimize.progress import Progress
 from lightinv_core.optimize.quality import REFERENCE, front_scales
 from lightinv_core.optimize.result import OptimizationResult
 from lightinv_core.optimize.search import random_layouts
-from lightinv_core.optimize.termination import StopRule
 
 _BIG = 1e12  # stands for +inf (not lit) in F and G: pymoo needs finite numbers
 
@@ -81,19 +80,15 @@ class _Archive:
 
 
 def nsga2(
-    problem: DesignProblem,
-    scales: tuple[float, float],
-    population: int,
-    seed: int = 0,
-    stop: StopRule | None = None,
-    progress: ProgressFn | None = None,
-    cancel: CancelFn | None = None,
+    problem: DesignProblem, scales: tuple[float, float], population: int, context: RunContext
 ) -> NSGA2Run:
-    """Run NSGA-II on ``problem`` (objectives electric power, light power)."""
+    """Run NSGA-II on ``problem`` (objectives electric power, light power) with the
+    context's seed, stop rule, ``progress`` and ``cancel``."""
     from pymoo.algorithms.moo.nsga2 import NSGA2 as PymooNSGA2  # lazily: only front runs need pymoo
     from pymoo.core.problem import Problem
 
-    stop = stop or StopRule()
+    seed, stop = context.seed, context.stop
+    progress, cancel = context.progress, context.cancel
     n = problem.vars.n
     if n == 0:
         raise DesignError("nothing to optimise: no source has a free variable")
@@ -173,7 +168,7 @@ def run_nsga2(problem: DesignProblem, context: RunContext) -> OptimizationResult
     pop, c = context.options(NSGA2Settings).population, context
     mop = front_problem(problem)
     scales = front_scales(mop.design, mop.light)
-    run = nsga2(mop, scales, pop, c.seed, c.stop, c.progress, c.cancel)
+    run = nsga2(mop, scales, pop, c)
     return judged_front(mop, run, pop, NSGA2.name, c.seed, c.on_solution)
 
 

@@ -21,47 +21,42 @@ from __future__ import annotations
 from dataclasses import dataclass, replace
 
 from lightinv_core.design.model import Design
-from lightinv_core.kinds import GoalKind
 from lightinv_core.optimize.cmaes import cmaes
+from lightinv_core.optimize.fronts import OBJECTIVES
 from lightinv_core.optimize.method import MethodSpec, RunContext
 from lightinv_core.optimize.nsga2 import NSGA2
 from lightinv_core.optimize.problem import DesignProblem
-from lightinv_core.optimize.progress import CancelFn, Progress, ProgressFn
+from lightinv_core.optimize.progress import Progress
 from lightinv_core.optimize.result import OptimizationResult
 from lightinv_core.optimize.search import SearchResult, better, judged
-from lightinv_core.optimize.termination import StopRule
 from lightinv_core.optimize.vns import vns
 
 CMA_SHARE = 0.5
 """Part of the evaluation and time budgets CMA-ES may use before VNS takes over."""
-FRONT_GOALS = frozenset({GoalKind.MIN_ELECTRIC_POWER, GoalKind.MAX_LIGHT_POWER})
+FRONT_GOALS = frozenset(OBJECTIVES)
 
 
 def wants_front(design: Design) -> bool:
     """Whether ``auto`` finds a front for ``design``: it has both power goals."""
-    return {GoalKind(g.kind) for g in design.goals} >= FRONT_GOALS
+    return {str(g.kind) for g in design.goals} >= FRONT_GOALS
 
 
 def cma_then_vns(
-    problem: DesignProblem,
-    seed: int,
-    stop: StopRule,
-    trials: int = 32,
-    progress: ProgressFn | None = None,
-    cancel: CancelFn | None = None,
+    problem: DesignProblem, context: RunContext, trials: int = 32
 ) -> tuple[SearchResult, int]:
     """CMA-ES for ``CMA_SHARE`` of the budgets, then VNS from a random layout with the
     rest (a second, different search: where CMA-ES's restarts keep ending on one local
     optimum, VNS's small moves from elsewhere find the answer). Returns the best over
     both phases and the evaluations CMA-ES used. Progress and history are one
     continuous curve of the best so far (VNS's evaluations and seconds counted on from
-    CMA-ES's)."""
+    CMA-ES's). The context's ``x0`` is not read: both phases start at random layouts."""
+    seed, stop, progress = context.seed, context.stop, context.progress
     first = replace(
         stop,
         max_evals=None if stop.max_evals is None else max(1, int(stop.max_evals * CMA_SHARE)),
         time_limit=None if stop.time_limit is None else stop.time_limit * CMA_SHARE,
     )
-    a = cmaes(problem, seed=seed, stop=first, progress=progress, cancel=cancel)
+    a = cmaes(problem, context.but(x0=None, stop=first))
     if a.status in ("cancelled", "target"):
         return a, a.evaluations
     rest = replace(
@@ -82,15 +77,10 @@ def cma_then_vns(
             p = replace(p, best_value=a.value, best_penalty=a.penalty, best_goal=a.goal, best_x=a_x)
         progress(p)
 
-    b = vns(
-        problem,
-        x0=None,
-        seed=seed + 104_729,
-        stop=rest,
-        trials=trials,
-        progress=None if progress is None else shifted,
-        cancel=cancel,
+    later = context.but(
+        x0=None, seed=seed + 104_729, stop=rest, progress=None if progress is None else shifted
     )
+    b = vns(problem, later, trials=trials)
     best = b if better(b.value, b.penalty, a.value, a.penalty) else a
     history = a.history + [
         (e + a.evaluations, v, pen, g)
@@ -125,9 +115,8 @@ def run_auto(problem: DesignProblem, context: RunContext) -> OptimizationResult:
     s = context.options(AutoSettings)
     if wants_front(problem.design):
         return NSGA2.run(problem, context.but(settings=s))
-    c = context
-    res, cma_evals = cma_then_vns(problem, c.seed, c.stop, s.trials, c.progress, c.cancel)
-    return judged(problem, res, AUTO.name, c.seed, extra={"cmaes_evaluations": cma_evals})
+    res, cma_evals = cma_then_vns(problem, context, s.trials)
+    return judged(problem, res, AUTO.name, context.seed, extra={"cmaes_evaluations": cma_evals})
 
 
 AUTO = MethodSpec(

@@ -25,14 +25,19 @@ import numpy as np
 
 from lightinv_core.design.model import Design
 from lightinv_core.design.solution import Solution
-from lightinv_core.kinds import MAXIMISED_GOALS, GoalKind, SourceKind
+from lightinv_core.goals import goal_spec
 from lightinv_core.light.arrays import resolve_product
 from lightinv_core.light.model import LightModel
-from lightinv_core.optimize.mop import CLIMATE, OBJECTIVES, front_pair
+from lightinv_core.optimize.fronts import CLIMATE, OBJECTIVES, front_pair
+from lightinv_core.optimize.objectives import (
+    electric_scale,
+    energy_scale,
+    glazing_scale,
+    light_power_kinds,
+)
 from lightinv_core.optimize.pareto import hypervolume_2d
-from lightinv_core.optimize.problem import electric_scale, energy_scale, glazing_scale
 
-POWER, LIGHT = str(GoalKind.MIN_ELECTRIC_POWER), str(GoalKind.MAX_LIGHT_POWER)
+POWER, LIGHT = (str(k) for k in OBJECTIVES)
 REFERENCE = (1.0, 0.0)
 """Reference point in (P/P_max, L/L_max): full electric power and no light."""
 
@@ -40,7 +45,7 @@ REFERENCE = (1.0, 0.0)
 def _reference(pair) -> tuple[float, float]:
     """The reference point of ``pair`` in normalised values: 1 for a minimised
     objective (its largest value), 0 for a maximised one (none of it)."""
-    return tuple(0.0 if k in MAXIMISED_GOALS else 1.0 for k in pair)
+    return tuple(0.0 if goal_spec(k).maximise else 1.0 for k in pair)
 
 
 @dataclass(frozen=True)
@@ -73,8 +78,7 @@ def front_scales(design: Design, light: LightModel) -> tuple[float, float]:
     products = [resolve_product(a.product, a.watts) for a in design.arrays]
     if front_pair(design) == CLIMATE:
         return energy_scale(design, light, products), glazing_scale(design, light)
-    goal = next((g for g in design.goals if g.kind == GoalKind.MAX_LIGHT_POWER), None)
-    kinds = (goal.kinds if goal else ()) or tuple(SourceKind)
+    kinds = light_power_kinds(design)
     counted = [s for s in design.sources if s.kind in kinds]
     return electric_scale(design, light, products), light.power_scale(counted, design.daylight)
 
@@ -83,14 +87,14 @@ def normalised(F: np.ndarray, scales: tuple[float, float], pair=OBJECTIVES) -> n
     """Rows of the two objectives ``pair`` (default P in W, L in lm) as minimised
     normalised points (P/P_max, -L/L_max)."""
     F = np.asarray(F, dtype=float).reshape(-1, 2)
-    sign = [-1.0 if k in MAXIMISED_GOALS else 1.0 for k in pair]
+    sign = [-1.0 if goal_spec(k).maximise else 1.0 for k in pair]
     return np.column_stack([sign[0] * F[:, 0] / scales[0], sign[1] * F[:, 1] / scales[1]])
 
 
 def hypervolume(F: np.ndarray, scales: tuple[float, float], pair=OBJECTIVES) -> float:
     """Hypervolume of the points F (default (P, L) in W, lm) in the normalised plane."""
     ref = _reference(pair)
-    sign = [-1.0 if k in MAXIMISED_GOALS else 1.0 for k in pair]
+    sign = [-1.0 if goal_spec(k).maximise else 1.0 for k in pair]
     return hypervolume_2d(normalised(F, scales, pair), (sign[0] * ref[0], sign[1] * ref[1]))
 
 

@@ -1,10 +1,11 @@
 """Every optimisation method, found by name: project files, the CLI, study.py and the GUI
 read their choices from here.
 
-The built-in methods are listed by name and module, and a module is imported only when
-its method is first asked for (``method_names`` imports none: checking a project file's
-``method`` does not load pymoo). Each is a ``MethodSpec`` (method.py) in its module.
-``register`` adds a method from anywhere (a plug-in, a test), ``unregister`` removes it.
+The built-in methods are listed by name and module (``catalogue.py``), and a module is
+imported only when its method is first asked for (``method_names`` imports none:
+checking a project file's ``method`` does not load pymoo). Each is a ``MethodSpec``
+(method.py) in its module. ``register`` adds a method from anywhere (a plug-in, a
+test), ``unregister`` removes it.
 """
 
 from __future__ import annotations
@@ -13,46 +14,31 @@ from importlib import import_module
 
 from lightinv_core.design.model import Design
 from lightinv_core.errors import DesignError
+from lightinv_core.optimize.catalogue import BUILT_IN, REGISTERED, method_names
 from lightinv_core.optimize.method import MethodSpec
 
-_BUILT_IN: dict[str, str] = {
-    "auto": "portfolio:AUTO",
-    "vns": "vns:VNS",
-    "multilevel": "multilevel:MULTILEVEL",
-    "cmaes": "cmaes:CMAES",
-    "epsilon": "mop:EPSILON",
-    "two_step": "mop:TWO_STEP",
-    "nsga2": "nsga2:NSGA2",
-}
-"""Name -> "module:spec" (in this package) of each built-in method, in the order the GUI
-lists them."""
-_REGISTERED: dict[str, MethodSpec] = {}
+__all__ = ["finds_front", "get_method", "method_names", "methods", "register", "unregister"]
 
 
 def _built_in(name: str) -> MethodSpec:
-    module, attr = _BUILT_IN[name].split(":")
+    module, attr = BUILT_IN[name].split(":")
     spec = getattr(import_module(f"{__package__}.{module}"), attr)
     if spec.name != name:
-        raise RuntimeError(f"{_BUILT_IN[name]} is named {spec.name!r}, not {name!r}")
+        raise RuntimeError(f"{BUILT_IN[name]} is named {spec.name!r}, not {name!r}")
     return spec
 
 
 def register(spec: MethodSpec) -> None:
     """Add ``spec`` under its name (DesignError if the name is taken)."""
-    if spec.name in _BUILT_IN or spec.name in _REGISTERED:
+    if spec.name in BUILT_IN or spec.name in REGISTERED:
         raise DesignError(f"an optimisation method named {spec.name!r} exists already")
-    _REGISTERED[spec.name] = spec
+    REGISTERED[spec.name] = spec
 
 
 def unregister(name: str) -> None:
     """Remove the method ``register`` added as ``name`` (built-in ones stay)."""
-    if _REGISTERED.pop(name, None) is None:
+    if REGISTERED.pop(name, None) is None:
         raise DesignError(f"no registered optimisation method {name!r} to remove")
-
-
-def method_names() -> tuple[str, ...]:
-    """The registry names of every method, in the order the GUI lists them."""
-    return (*_BUILT_IN, *_REGISTERED)
 
 
 def methods() -> tuple[MethodSpec, ...]:
@@ -62,9 +48,9 @@ def methods() -> tuple[MethodSpec, ...]:
 
 def get_method(name: str) -> MethodSpec:
     """The method registered as ``name`` (DesignError listing the known ones)."""
-    if name in _REGISTERED:
-        return _REGISTERED[name]
-    if name in _BUILT_IN:
+    if name in REGISTERED:
+        return REGISTERED[name]
+    if name in BUILT_IN:
         return _built_in(name)
     raise DesignError(
         f"unknown optimisation method {name!r} (methods: {', '.join(method_names())})"

@@ -17,7 +17,7 @@ import numpy as np
 from lightinv_core.design.geometry import MIN_SIDE, rule_names
 from lightinv_core.design.solution import SolutionInfo
 from lightinv_core.errors import DesignError
-from lightinv_core.kinds import MAXIMISED_GOALS
+from lightinv_core.goals import goal_spec
 from lightinv_core.optimize.problem import DesignProblem, Evaluation, Level
 from lightinv_core.optimize.progress import CancelFn, Progress
 from lightinv_core.optimize.result import HistoryRow, OptimizationResult, status_of
@@ -143,7 +143,7 @@ def goal_of(problem: DesignProblem, ev: Evaluation, j: int) -> float:
 
 def reached(problem: DesignProblem, goal: float, target: float) -> bool:
     """Whether the primary goal value ``goal`` meets ``target`` (at least, for light power)."""
-    if problem.primary in MAXIMISED_GOALS:
+    if goal_spec(problem.primary).maximise:
         return goal >= target
     return goal <= target
 

@@ -16,13 +16,12 @@ from lightinv_core.fields import (
     _number,
     _optional,
 )
+from lightinv_core.optimize.catalogue import method_names
 
 
 def _method(v, path: str) -> str:
-    """A method name the registry knows, looked up when a file is read (importing the
-    registry here would tie the settings to every algorithm; it imports none itself)."""
-    from lightinv_core.optimize.registry import method_names
-
+    """A method name the catalogue knows (built in or registered), looked up when a
+    file is read."""
     return _choice(v, path, method_names())
 
 

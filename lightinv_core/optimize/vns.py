@@ -23,15 +23,14 @@ cancelled run returns its best solution. Everything random comes from
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 
-from lightinv_core.optimize.method import MethodSpec, RunContext
+from lightinv_core.optimize.method import MethodSpec, RunContext, context_of
 from lightinv_core.optimize.problem import DesignProblem, Level
-from lightinv_core.optimize.progress import CancelFn, ProgressFn
 from lightinv_core.optimize.result import OptimizationResult
 from lightinv_core.optimize.search import SearchResult, best_of, better, first_point, judged
-from lightinv_core.optimize.termination import StopRule
 
 R_VALUES = (0.1, 0.2, 0.3, 0.4, 0.5, 0.6, 0.7, 0.8, 0.9, 1.0)
 MAX_V = 4
@@ -50,19 +49,19 @@ def neighbourhoods(
 
 def vns(
     problem: DesignProblem,
-    x0: np.ndarray | None = None,
-    seed: int = 0,
-    stop: StopRule | None = None,
+    context: RunContext | None = None,
     level: Level | None = None,
     trials: int = 32,
-    progress: ProgressFn | None = None,
-    cancel: CancelFn | None = None,
+    **given: Any,
 ) -> SearchResult:
-    """Minimise f + P over the problem's variables; returns the best solution found."""
-    stop = stop or StopRule()
-    rng = np.random.default_rng(seed)
+    """Minimise f + P over the problem's variables at ``level`` (default: every patch)
+    from ``context.x0``, with its seed, stop rule and hooks (or those fields ``given``
+    as keywords); returns the best solution found."""
+    c = context_of(context, given)
+    rng = np.random.default_rng(c.seed)
     level = level or problem.level(1)
-    x, budget = first_point(problem, x0, rng, level, stop, cancel)
+    x, budget = first_point(problem, c.x0, rng, level, c.stop, c.cancel)
+    progress = c.progress
     nvar = problem.vars.n
     lo, hi = problem.vars.lo, problem.vars.hi
     span = hi - lo
@@ -101,10 +100,8 @@ class VNSSettings:
 
 def run_vns(problem: DesignProblem, context: RunContext) -> OptimizationResult:
     """One VNS run on every patch, from ``context.x0`` or a random layout."""
-    trials = context.options(VNSSettings).trials
-    c = context
-    res = vns(problem, c.x0, c.seed, c.stop, None, trials, c.progress, c.cancel)
-    return judged(problem, res, VNS.name, c.seed)
+    res = vns(problem, context, trials=context.options(VNSSettings).trials)
+    return judged(problem, res, VNS.name, context.seed)
 
 
 VNS = MethodSpec("vns", "VNS", run_vns, VNSSettings)

@@ -151,7 +151,7 @@ def test_multilevel_warm_starts_and_ends_on_all_patches(office):
     p = match_problem(office)
     total, levels = multilevel(
         p,
-        (16, 4, 1),
+        divisors=(16, 4, 1),
         seed=2,
         stop=StopRule(max_evals=6000, target=0.02),
         level_stop=StopRule(max_evals=2000, target=0.02),
@@ -289,10 +289,10 @@ def test_sweeps_report_each_run_and_each_point(office):
         LightModel(scene, patches, op),
         count=3,
         stop=StopRule(max_evals=600),
-        progress=lambda q, n, sol: points.append((q, n)),
-        vns_progress=snaps.append,
+        on_solution=points.append,
+        progress=snaps.append,
     )
-    assert points == [(1, 3), (2, 3), (3, 3)] and len(front.candidates) == 3
+    assert points == list(front.candidates) and len(points) == 3
     assert sorted({(s.run, s.runs) for s in snaps}) == [(r, 5) for r in range(5)]
     # Cancelling during the range runs ends the sweep before any point.
     calls = iter(range(10**6))

@@ -141,3 +141,14 @@ def test_the_settings_and_the_names_load_no_algorithm():
     )
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
     assert out.stdout.strip() == "[]"
+
+
+def test_the_settings_check_method_names_without_the_registry():
+    code = (
+        "import sys\n"
+        "from lightinv_core.optimize.settings import OptimizerSettings\n"
+        "OptimizerSettings(method='two_step')\n"
+        "print('lightinv_core.optimize.registry' in sys.modules)\n"
+    )
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
+    assert out.stdout.strip() == "False"

@@ -157,7 +157,7 @@ def test_auto_starts_as_cmaes_then_searches_again_with_vns(light):
     stop = StopRule(max_evals=3000)
     alone = cmaes(p, seed=1, stop=StopRule(max_evals=1500))
     snaps = []
-    both, cma_evals = cma_then_vns(p, 1, stop, progress=snaps.append)
+    both, cma_evals = cma_then_vns(p, RunContext(seed=1, stop=stop, progress=snaps.append))
     # The first phase is CMA-ES with half the budget, step for step.
     assert cma_evals == alone.evaluations
     assert both.history[: len(alone.history)] == alone.history
@@ -175,7 +175,7 @@ def test_auto_starts_as_cmaes_then_searches_again_with_vns(light):
 def test_auto_stops_at_a_target_reached_by_cmaes(light):
     p = match_problem(light)
     alone = cmaes(p, seed=2, stop=StopRule(max_evals=1500, target=0.03))
-    both, _ = cma_then_vns(p, 2, StopRule(max_evals=3000, target=0.03))
+    both, _ = cma_then_vns(p, RunContext(seed=2, stop=StopRule(max_evals=3000, target=0.03)))
     assert alone.status == both.status == "target"
     assert both.evaluations == alone.evaluations and np.array_equal(both.x, alone.x)
 

@@ -1,0 +1,192 @@
+"""The light of a batch of candidates at a level's receivers (one GEMM per batch).
+
+``CandidateLight.of`` turns decoded variables into zone emission V (nz, m), split by
+source kind, and, where the goals or intentions read it, the lux H at the receivers:
+the zone sources' light from the operator plus the luminaire arrays' light blended from
+their lattice responses (or, to judge a solution, the arrays placed exactly). Designs
+judged in other scenarios than the design daylight get the light in parts: the
+electric sources' light and each sky group's daylight per exterior lux
+(``light/daylight.py``), at the same cost.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, replace
+from typing import Protocol
+
+import numpy as np
+
+from lightinv_core.design.model import Design
+from lightinv_core.design.variables import ArrayLayout, Variables
+from lightinv_core.kinds import Scenario
+from lightinv_core.light.arrays import ArrayLight, arrays_field
+from lightinv_core.light.daylight import ScenarioLight
+from lightinv_core.light.grids import DesignGrids
+from lightinv_core.light.model import LightModel
+from lightinv_core.optimize.levels import Level
+from lightinv_core.scene.patches import Patches
+from lightinv_core.sources.types import source_types
+
+
+@dataclass(frozen=True)
+class Lit:
+    """The light of m candidates: ``V`` (nz, m) zone emission in the design scenario,
+    ``by_kind`` its parts by source kind, ``cols`` the zone columns any candidate emits
+    from; ``H`` (receivers, m) lux in the design scenario (None when no receiver is
+    read) and, for designs judged in other scenarios, ``parts``: the electric sources'
+    light and each sky group's daylight per exterior lux (``light/daylight.py``)."""
+
+    V: np.ndarray
+    by_kind: dict
+    cols: np.ndarray
+    H: np.ndarray | None
+    parts: ScenarioLight | None = None
+
+
+class LightSource(Protocol):
+    """What ``CandidateLight`` reads of its problem (``DesignProblem``)."""
+
+    design: Design
+    light: LightModel
+    patches: Patches
+    vars: Variables
+    grids: DesignGrids | None
+    split: bool
+    sky: object
+    match: object
+
+    @property
+    def arrays(self) -> ArrayLight | None: ...
+
+    def arrays_at(self, x: np.ndarray) -> tuple: ...
+
+
+def _kinds_total(by_kind: dict, kinds: tuple[str, ...], shape: tuple) -> np.ndarray:
+    """The sum of ``by_kind``'s parts of ``kinds`` (float32 zeros of ``shape`` for none)."""
+    parts = [by_kind[k] for k in kinds if k in by_kind]
+    if not parts:
+        return np.zeros(shape, np.float32)
+    total = parts[0]
+    for part in parts[1:]:
+        total = total + part
+    return total
+
+
+class CandidateLight:
+    """The light of candidates of one problem (see the module docstring)."""
+
+    def __init__(self, problem: LightSource, year_box: list):
+        self.problem = problem
+        self._year_box = year_box  # the weather year, read at the first annual use
+        types = source_types()
+        self._electric = tuple(str(t.kind) for t in types if t.electric)
+        self._daylit = tuple(str(t.kind) for t in types if t.daylit)
+
+    def of(
+        self,
+        rect,
+        flux,
+        filt,
+        level: Level,
+        lay: ArrayLayout | None,
+        arrays_H: np.ndarray | None = None,
+    ) -> Lit:
+        """The light of m candidates (see ``Lit``): zone sources plus arrays, lit from
+        the lattice blend for ``lay`` or, given, the arrays' exact light ``arrays_H``."""
+        p = self.problem
+        d = p.design
+        m = rect.shape[0]
+        nz = len(p.light.op.zone_patches)
+        if p.split:
+            return self._split(rect, flux, filt, level, lay, arrays_H)
+        if d.sources:
+            V, by_kind = p.light.zone_emission(
+                d.sources, rect, flux, filt, d.daylight, split_kinds=True
+            )
+        else:
+            V = np.zeros((nz, m), np.float32)
+            by_kind = {str(t.kind): V for t in source_types()}
+        cols = np.flatnonzero(np.any(V != 0, axis=1))
+        H = None
+        if self.needs_field(level):
+            H = self._receiver_light(V, cols, level, lay, arrays_H)
+        return Lit(V, by_kind, cols, H)
+
+    def needs_field(self, level: Level) -> bool:
+        """Whether anything reads the lux at the level's receivers."""
+        p = self.problem
+        # At the full level the match error comes from the Gram matrix, not the field.
+        need = bool(p.design.intentions) or p.split
+        need = need or (p.match is not None and level.divisor > 1)
+        Phi = level.receivers.Phi_rows
+        return need and (Phi is None or Phi.shape[0] > 0)
+
+    def points(self) -> int:
+        """Work-plane grid points among the receivers."""
+        grids = self.problem.grids
+        return 0 if grids is None else len(grids.points)
+
+    def _receiver_light(self, V, cols, level: Level, lay, arrays_H=None) -> np.ndarray:
+        """Lux at the level's receivers of emission V (nz, m) plus the arrays' light."""
+        H = None
+        blend = level.arrays_R is not None and arrays_H is None and lay is not None
+        if len(cols) or not (blend or arrays_H is not None):
+            H = self.problem.light.illuminance(V, level.receivers, cols)
+        if blend:
+            lit = level.arrays_R @ self.problem.arrays.weights(lay)
+            H = lit if H is None else H + lit
+        elif arrays_H is not None:
+            H = arrays_H if H is None else H + arrays_H
+        return H
+
+    def _split(self, rect, flux, filt, level: Level, lay, arrays_H) -> Lit:
+        """``of`` for designs judged in several scenarios: the electric sources' light
+        and each sky group's daylight per exterior lux, computed apart."""
+        p = self.problem
+        d = p.design
+        m = rect.shape[0]
+        nz = len(p.light.op.zone_patches)
+        ext = d.daylight.exterior_lux
+        electric, daylit = self._electric, self._daylit
+        if d.sources:
+            unit = replace(d.daylight, exterior_lux=1.0)
+            _, by_unit = p.light.zone_emission(d.sources, rect, flux, filt, unit, split_kinds=True)
+            V_lum = _kinds_total(by_unit, electric, (nz, m))
+            V_sky = _kinds_total(by_unit, daylit, (nz, m))
+        else:
+            by_unit = {}
+            V_lum = V_sky = np.zeros((nz, m), np.float32)
+        V = V_lum + np.float32(ext) * V_sky
+        by_kind = {k: by_unit.get(k, V_lum) for k in electric}
+        by_kind |= {k: ext * by_unit.get(k, V_sky) for k in daylit}
+        cols = np.flatnonzero(np.any(V != 0, axis=1))
+        if not self.needs_field(level):
+            return Lit(V, by_kind, cols, None)
+        lum_cols = np.flatnonzero(np.any(V_lum != 0, axis=1))
+        lux = self._receiver_light(V_lum, lum_cols, level, lay, arrays_H)
+        if lux is None:
+            lux = np.zeros((len(level.rows) + self.points(), m))
+        sky = np.zeros((p.sky.count, *lux.shape))
+        for g, gcols in enumerate(p.sky.cols):
+            on = gcols[np.any(V_sky[gcols] != 0, axis=1)]
+            if not len(on):
+                continue
+            Vg = V_sky
+            if p.sky.count > 1:  # only this group's rows (the product may read all)
+                Vg = np.zeros_like(V_sky)
+                Vg[on] = V_sky[on]
+            sky[g] = p.light.illuminance(Vg, level.receivers, on)
+        parts = ScenarioLight(d.daylight, p.sky, lux, sky, self._year_box)
+        return Lit(V, by_kind, cols, parts.lux(Scenario.DESIGN), parts)
+
+    def judged(self, x: np.ndarray, lv: Level) -> Lit:
+        """The light of layout x at level ``lv``'s receivers, its arrays placed exactly
+        (not blended from the lattice): what a solution is judged on."""
+        p = self.problem
+        rect, flux, filt = p.vars.decode(x[None])
+        if not p.design.arrays:
+            return self.of(rect, flux, filt, lv, None)
+        points = None if p.grids is None else p.grids.points
+        Hp, Hq = arrays_field(p.patches, p.light.op, p.arrays_at(x), points)
+        exact = np.concatenate([Hp[lv.rows], Hq])[:, None]
+        return self.of(rect, flux, filt, lv, None, arrays_H=exact)
