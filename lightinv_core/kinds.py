@@ -115,11 +115,6 @@ class GoalKind(Kind):
     MIN_GLAZING_AREA = "min_glazing_area"  # area of the skylight sources, m²
 
 
-MAXIMISED_GOALS = frozenset({GoalKind.MAX_LIGHT_POWER, GoalKind.MAX_SDA})
-"""The built-in goals whose value is maximised, for the optimizer modules that do not yet
-read ``goals.goal_spec(kind).maximise`` (test_extension_points checks they agree)."""
-
-
 class VariableName(Kind):
     """A source's optimisation variables: rectangle corners (m), flux (lm), filter."""
 

@@ -23,6 +23,7 @@ from lightinv_core.errors import LightInvError
 from lightinv_core.light.arrays import resolve_product
 from lightinv_core.luminaires import builtin_catalogue
 from lightinv_core.luminaires.photometry import light_warnings
+from lightinv_core.sources.types import source_type
 
 ARRAY_COLUMNS = ("array", "zone", "product", "layout", "spacing m", "C0", "dimming", "W")
 PLANE_COLUMNS = ("work plane", "height m", "points", "Em lux", "Emin lux", "Emax lux", "U0")
@@ -138,7 +139,9 @@ class LuminairesPanel(QtWidgets.QWidget):
         d = self.doc
         if d.project is None:
             return {}
-        return {z: d.zone_size(z) for z in d.patches.zone_names if d.zone_kind(z) == "luminaire"}
+        return {
+            z: d.zone_size(z) for z in d.patches.zone_names if source_type(d.zone_kind(z)).electric
+        }
 
     def _new_name(self, prefix: str, taken) -> str:
         k = 1

@@ -21,11 +21,10 @@ from lightinv_core.editing import result_label
 from lightinv_core.goals import (
     GoalSpec,
     goal_spec,
-    goal_specs,
     register_goal,
     unregister_goal,
 )
-from lightinv_core.kinds import MAXIMISED_GOALS, GoalKind, Quantity
+from lightinv_core.kinds import GoalKind, Quantity
 from lightinv_core.optimize.problem import DesignProblem
 from lightinv_core.project import load_project
 from lightinv_core.quantities import (
@@ -178,9 +177,3 @@ def test_unregistered_names_are_refused_and_builtins_stay(registered):
     with pytest.raises(ValueError, match="built in"):
         unregister_quantity(Quantity.LUX)
     assert quantity_spec(LUMINANCE).default_scenario == "design"
-
-
-def test_the_optimizers_direction_table_agrees_with_the_goal_specs():
-    builtin = [s for s in goal_specs() if s.kind in tuple(GoalKind)]
-    assert {s.kind for s in builtin if s.maximise} == MAXIMISED_GOALS
-    assert [s.kind for s in builtin] == list(GoalKind)
