@@ -27,7 +27,7 @@ from pathlib import Path
 import numpy as np
 
 from lightinv_core.climate import weather_checks as checks
-from lightinv_core.climate.weather_formats import WeatherError, read_records
+from lightinv_core.climate.weather_formats import WeatherError, read_records, require_pvlib
 from lightinv_core.textcodec import decode_text
 
 __all__ = ["BUILTIN", "Weather", "WeatherError", "load_weather", "read_weather", "require_pvlib"]
@@ -35,18 +35,6 @@ __all__ = ["BUILTIN", "Weather", "WeatherError", "load_weather", "read_weather",
 BUILTIN = Path(__file__).resolve().parents[2] / "resources" / "weather" / "greensboro-nc-tmy3.csv"
 """The shipped weather file (see the module)."""
 MAX_BYTES = 64 * 2**20
-
-
-def require_pvlib():
-    """The pvlib module, or a WeatherError saying how to install it."""
-    try:
-        import pvlib
-    except ImportError:
-        raise WeatherError(
-            "climate-based daylight needs pvlib: install the climate extra "
-            "(pip install 'lightinv[climate]'; ./dev.sh does)"
-        ) from None
-    return pvlib
 
 
 @dataclass(frozen=True, eq=False)

@@ -23,7 +23,7 @@ import warnings
 import numpy as np
 
 from lightinv_core.climate.efficacy import perez_efficacy, precipitable_water
-from lightinv_core.climate.weather_formats import Records, WeatherError, is_date
+from lightinv_core.climate.weather_formats import Records, WeatherError, is_date, require_pvlib
 
 LIMITS = {"ghi": 1500.0, "dni": 1400.0, "dhi": 1000.0}
 """W/m²: irradiance above these is no measurement (the extraterrestrial normal
@@ -139,8 +139,6 @@ def check_site(rec: Records, source: str) -> list[str]:
 def sun_elevation(times, rec: Records, shift_h: float = 0.0) -> tuple[np.ndarray, ...]:
     """Apparent solar elevation (deg) at the start, middle and end of each hour (the
     hours moved by ``shift_h`` when testing another clock)."""
-    from lightinv_core.climate.weather import require_pvlib
-
     pvlib = require_pvlib()
     out = []
     with warnings.catch_warnings():
@@ -158,8 +156,6 @@ def _quick_elevation(times, rec: Records, shift_h: float) -> np.ndarray:
     """Solar elevation (deg, about 0.5 degree accurate: Spencer's declination and
     equation of time) at ``times`` moved by ``shift_h``: cheap enough to try every
     clock from -12 to +12 h."""
-    from lightinv_core.climate.weather import require_pvlib
-
     sp = require_pvlib().solarposition
     doy = np.asarray(times.day_of_year, dtype=float)
     hours = np.asarray(times.hour + times.minute / 60.0, dtype=float) + shift_h

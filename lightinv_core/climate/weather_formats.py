@@ -33,6 +33,18 @@ class WeatherError(LightInvError):
     """A weather file cannot be read or used."""
 
 
+def require_pvlib():
+    """The pvlib module, or a WeatherError saying how to install it."""
+    try:
+        import pvlib
+    except ImportError:
+        raise WeatherError(
+            "climate-based daylight needs pvlib: install the climate extra "
+            "(pip install 'lightinv[climate]'; ./dev.sh does)"
+        ) from None
+    return pvlib
+
+
 @dataclass
 class Records:
     """One file's site and hourly records (see the module); ``lines`` the file's line
@@ -246,8 +258,6 @@ def is_date(year: int, month: int, day: int) -> bool:
 
 def read_tmy2(path: str | os.PathLike, source: str) -> Records:
     """The records of an NREL TMY2 file, read with pvlib's parser (fixed columns)."""
-    from lightinv_core.climate.weather import require_pvlib
-
     pvlib = require_pvlib()
     try:
         df, meta = pvlib.iotools.read_tmy2(str(path))
