@@ -102,6 +102,7 @@ def test_no_import_cycles_between_modules():
     """No two modules of the core or the app import each other, even through others or
     inside a function (grimp, import-linter's graph, sees those too)."""
     import grimp  # import-linter's graph (the dev extra)
+
     graph = grimp.build_graph("lightinv_core", "app")
     adjacency = {m: graph.find_modules_directly_imported_by(m) for m in graph.modules}
     assert _cycles(adjacency) == []
