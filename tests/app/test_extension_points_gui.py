@@ -143,12 +143,6 @@ def test_the_goal_is_in_the_goals_menu_and_the_run_panel(qtbot, window):
     _goal_through_the_window(qtbot, window)
 
 
-@pytest.mark.xfail(
-    strict=True,
-    reason="core: optimize/portfolio.wants_front casts every goal to GoalKind, so with the "
-    "default method (auto) the run panel fails on a registered goal "
-    "(ValueError: 'min_strip_count' is not a valid GoalKind)",
-)
 def test_the_goal_with_the_auto_method(qtbot, window):
     assert window.new_project("cornell", 0.5)
     wait_for_operator(qtbot, window)
