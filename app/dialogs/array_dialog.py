@@ -68,6 +68,7 @@ class ArrayDialog(QtWidgets.QDialog):
         self.product.addItems([e.name for e in builtin_catalogue()])
         self.product.setCurrentText(base.product)
         browse = QtWidgets.QPushButton("File…")
+        browse.setAutoDefault(False)  # Enter is OK, not another file chooser
         browse.clicked.connect(self._browse)
         row = QtWidgets.QHBoxLayout()
         row.addWidget(self.product, 1)
@@ -135,6 +136,16 @@ class ArrayDialog(QtWidgets.QDialog):
         self.zone.currentTextChanged.connect(self._zone_changed)
         form.addRow(ok_cancel(self))
         self._update()
+
+    def accept(self) -> None:
+        """Close only on an array that can be built (OK or Enter); else say why and stay."""
+        try:
+            a = self.array()
+            resolve_product(a.product, a.watts)
+        except LightInvError as exc:
+            ask.warn(self, str(exc))
+            return
+        super().accept()
 
     def _browse(self) -> None:
         path = ask.open_file(self, "Photometric file", "IES or EULUMDAT (*.ies *.ldt)")

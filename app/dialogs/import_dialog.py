@@ -122,6 +122,7 @@ class ImportDialog(QtWidgets.QDialog):
             else "none: the materials' colours, else reflectance 0.5"
         )
         browse = QtWidgets.QPushButton("Choose...")
+        browse.setAutoDefault(False)  # Enter is OK, not another file chooser
         browse.clicked.connect(self._browse)
         mrow = QtWidgets.QHBoxLayout()
         mrow.addWidget(self.materials)

@@ -5,8 +5,10 @@ from __future__ import annotations
 
 from PySide6 import QtWidgets
 
+from app.dialogs import ask
 from app.dialogs.fields import number_box, ok_cancel
 from lightinv_core.design.model import Workplane
+from lightinv_core.errors import LightInvError
 
 
 class WorkplaneDialog(QtWidgets.QDialog):
@@ -34,6 +36,15 @@ class WorkplaneDialog(QtWidgets.QDialog):
         self.group.setCurrentText(base.group)
         form.addRow("Floor group", self.group)
         form.addRow(ok_cancel(self))
+
+    def accept(self) -> None:
+        """Close only on a work plane that can be built (OK or Enter); else say why."""
+        try:
+            self.workplane()
+        except LightInvError as exc:
+            ask.warn(self, str(exc))
+            return
+        super().accept()
 
     def workplane(self) -> Workplane:
         """The work plane as entered (DesignError naming the bad field)."""

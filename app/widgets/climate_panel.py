@@ -60,13 +60,16 @@ class ClimatePanel(QtWidgets.QWidget):
         self.message.setStyleSheet("color: #a01010;")
         self.message.hide()
         outer.addWidget(self.message)
-        row = QtWidgets.QHBoxLayout()
-        outer.addLayout(row, 1)
-        row.addWidget(self._site_group())
-        row.addWidget(self._control_group())
-        row.addWidget(self._hour_group())
+        # Two by two, not four in a row: the Optimisation dock shares a 1366 px laptop
+        # screen's width with the Properties and Luminaires column.
+        grid = QtWidgets.QGridLayout()
+        outer.addLayout(grid, 1)
+        grid.addWidget(self._site_group(), 0, 0)
+        grid.addWidget(self._control_group(), 0, 1)
+        grid.addWidget(self._hour_group(), 1, 0)
         self.energy = EnergyBox()
-        row.addWidget(self.energy, 1)
+        grid.addWidget(self.energy, 1, 1)
+        grid.setColumnStretch(1, 1)
         self._fields = (
             self.north,
             self.ground,

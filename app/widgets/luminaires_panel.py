@@ -91,6 +91,10 @@ class LuminairesPanel(QtWidgets.QWidget):
         self.preset.addItem("EN 12464-1 intention…", None)
         for r in REQUIREMENTS:
             self.preset.addItem(f"{r.activity}: {r.em:g} lux, U0 {r.u0:.2f}", r.key)
+        # The longest activity would widen the dock past a laptop's (1366 px) screen and
+        # push the Remove buttons out of sight: the box shrinks, its list stays whole.
+        self.preset.setSizeAdjustPolicy(QtWidgets.QComboBox.AdjustToMinimumContentsLengthWithIcon)
+        self.preset.setMinimumContentsLength(16)
         for w in (self.add_plane_button, self.remove_plane_button, self.preset):
             row.addWidget(w)
         wp.addLayout(row)

@@ -28,6 +28,12 @@ class ViewOptions(QtWidgets.QGroupBox):
             "layout shown (weather, occupancy and the hour of the year: the Climate tab). "
             "DA and UDI are drawn 0-100%; the daylight factor on its own range."
         )
+        # Its longest entry would make the Properties dock wider than a laptop leaves it:
+        # the box shrinks, the list shows the entries whole.
+        self.colour_by.setSizeAdjustPolicy(
+            QtWidgets.QComboBox.AdjustToMinimumContentsLengthWithIcon
+        )
+        self.colour_by.setMinimumContentsLength(18)
         form.addRow("Colour by", self.colour_by)
         self.cmap = QtWidgets.QComboBox()
         self.cmap.addItems(COLORMAPS)

@@ -47,6 +47,9 @@ from lightinv_core.project import Project
 
 __all__ = ["MAX_RECENT", "MainWindow"]
 
+PREFERRED_SIZE = QtCore.QSize(1400, 900)
+"""The window's size on a screen with room for it (px)."""
+
 
 class MainWindow(QtWidgets.QMainWindow):
     """One open project at a time."""
@@ -58,6 +61,7 @@ class MainWindow(QtWidgets.QMainWindow):
         autosave_folder: Path | None = None,
     ):
         super().__init__()
+        self._fitted = False  # fitted to the screen with its title bar (showEvent)
         self.settings = settings or QtCore.QSettings("LightInv", "LightInv")
         self.doc = Document(self)
         self.run_after_precompute = False  # lightinv --run: start once the operator is there
@@ -89,14 +93,41 @@ class MainWindow(QtWidgets.QMainWindow):
         self._status()
         self.colouring = ViewColouring(self)
         self._connect()
-        self.resize(1400, 900)
+        self.fit_to_screen()
         self._initial_state = self.saveState()  # View > Restore the panel layout
         geometry = self.settings.value("geometry")
         if geometry is not None:
             self.restoreGeometry(geometry)
             self.restoreState(self.settings.value("windowState"))
+            self.fit_to_screen(self.size())  # saved on a larger screen: fit this one
 
     # -- layout --------------------------------------------------------------------------------
+    def fit_to_screen(self, preferred: QtCore.QSize = PREFERRED_SIZE) -> None:
+        """Take ``preferred`` pixels, or the screen's available area (less the taskbar
+        and the title bar) if smaller, on that area: Run and the status bar stay on a
+        1366 x 768 laptop screen."""
+        screen = self.screen() or QtGui.QGuiApplication.primaryScreen()
+        if screen is None:
+            self.resize(preferred)
+            return
+        avail = screen.availableGeometry()
+        # The frame (a window manager's title bar and borders) once shown; a guess before.
+        frame = QtCore.QSize(0, 0)
+        if self.isVisible():
+            frame = (self.frameGeometry().size() - self.geometry().size()).expandedTo(frame)
+        size = preferred.boundedTo(avail.size() - frame)
+        self.resize(size)
+        geo = self.frameGeometry()
+        if not avail.contains(geo):
+            geo.moveTopLeft(avail.topLeft())
+            self.move(geo.topLeft())
+
+    def showEvent(self, event: QtGui.QShowEvent) -> None:
+        super().showEvent(event)
+        if not self._fitted:  # the title bar is known once shown: fit with it
+            self._fitted = True
+            QtCore.QTimer.singleShot(0, lambda: self.fit_to_screen(self.size()))
+
     def _dock(self, title: str, name: str, widget, area, scroll: bool = False) -> None:
         dock = QtWidgets.QDockWidget(title, self)
         dock.setObjectName(name)
@@ -130,6 +161,9 @@ class MainWindow(QtWidgets.QMainWindow):
             self.findChild(QtWidgets.QDockWidget, "luminaires"),
         )
         self.findChild(QtWidgets.QDockWidget, "properties").raise_()
+        # The right column runs down to the status bar, beside the Optimisation dock: on
+        # a laptop's 768 px the panels there would otherwise get a third of the height.
+        self.setCorner(QtCore.Qt.BottomRightCorner, QtCore.Qt.RightDockWidgetArea)
         self.tabs = QtWidgets.QTabWidget()
         self.tabs.addTab(self.run_panel, "Run")
         self.tabs.addTab(self.achieved_panel, "Achieved")

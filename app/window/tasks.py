@@ -54,8 +54,10 @@ class BackgroundTasks(QtCore.QObject):
         if got.operator.digest != self.doc.patches.digest():
             return  # the scene changed while the worker ran: _done builds for the new one
         self.doc.set_operator(got.operator)
-        err = got.operator.info["estimated_rel_error"]
-        self.win.status_rank.setText(f"rank k = {got.operator.k} (error {100 * err:.2f}%)")
+        info = got.operator.info
+        # Without zones the error is estimated on light no source gives (cache.py).
+        err = f"error {100 * info['estimated_rel_error']:.2f}%" if info.get("nz", 1) else "no zones"
+        self.win.status_rank.setText(f"rank k = {got.operator.k} ({err})")
         how = "loaded from the cache" if got.from_cache else "built"
         self._say(f"Operator {how} in {got.seconds:.1f} s", 6000)
         self.win.set_warnings("operator", self.worker.warnings)

@@ -88,6 +88,12 @@ class LoadWorker(Worker):
         return load_scene_of(self.project, self.path)
 
 
+WINDOW_REMEDY = (
+    "import the model again with a larger patch size (File > Import model..., Patch size)"
+)
+"""What a user of the window can do about a missed accuracy target (it has no --rank)."""
+
+
 class PrecomputeWorker(Worker):
     """Builds (or loads from the cache) the radiosity operator of some patches."""
 
@@ -105,6 +111,7 @@ class PrecomputeWorker(Worker):
             progress=self.progress.emit,
             cancel=self.is_cancelled,
             warn=self.warnings.append,
+            remedy=WINDOW_REMEDY,
         )
         self.progress.emit(1.0)
         return got

@@ -44,8 +44,12 @@ class SceneEdits(DocumentState):
     ) -> tuple[str, Rect]:
         """(surface name, Rect) a zone of ``kind`` drawn along a view ray goes on: the
         patch ``seen`` under the cursor's surface if it suits, else the first along the
-        ray (``zones.zone_surface``); DesignError saying where such zones go if none."""
-        return _zones.zone_surface(self.scene, self.patches, kind, origin, direction, seen)
+        ray (``zones.zone_surface``), named as the drawn zones name it (a piece a drawn
+        zone left: the surface it was cut from); DesignError saying where such zones go
+        if none."""
+        return _zones.zone_surface(
+            self.scene, self.patches, kind, origin, direction, seen, self.user_zones
+        )
 
     def new_zone_name(self) -> str:
         """A free name for a drawn zone (Z1, Z2, ...)."""

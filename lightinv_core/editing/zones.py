@@ -100,16 +100,48 @@ def _plane_distance(point, normal, p0, d) -> float | None:
     return t if t > 0 else None
 
 
+def drawn_on(scene: Scene, drawn: Sequence[ZoneEdit], name: str, rect: Rect) -> tuple[str, Rect]:
+    """(surface name, Rect) a new zone drawn on surface ``name`` of ``scene`` is given as.
+
+    The drawn zones ``drawn`` are applied to the scene as loaded, where the pieces a
+    zone leaves of a surface (``"ceiling~3"``) do not exist: a zone drawn on such a piece
+    names the surface it came from (``"ceiling"``), in that surface's metres. Its
+    rectangle is the extent of the pieces and the drawn zones cut from it (they tile it,
+    and each keeps its u and v directions). Any other surface is returned as it is."""
+    root = name.split("~")[0]
+    cut = {z.name for z in drawn if z.surface == root}
+    if root == name or not cut:
+        return name, rect
+    eu, ev = rect.u / np.linalg.norm(rect.u), rect.v / np.linalg.norm(rect.v)
+    corners = [
+        p
+        for s in scene.surfaces
+        if s.rect is not None and (s.name.split("~")[0] == root or s.name in cut)
+        for p in (s.rect.origin, s.rect.origin + s.rect.u + s.rect.v)
+    ]
+    u = [float((p - rect.origin) @ eu) for p in corners]
+    v = [float((p - rect.origin) @ ev) for p in corners]
+    origin = rect.origin + min(u) * eu + min(v) * ev
+    return root, Rect(origin, (max(u) - min(u)) * eu, (max(v) - min(v)) * ev)
+
+
 def zone_surface(
-    scene: Scene, patches: Patches, kind: str, origin, direction, seen: int | None = None
+    scene: Scene,
+    patches: Patches,
+    kind: str,
+    origin,
+    direction,
+    seen: int | None = None,
+    drawn: Sequence[ZoneEdit] = (),
 ) -> tuple[str, Rect]:
     """(surface name, its Rect) on which a zone of ``kind`` drawn along the view ray
     (``origin``, ``direction``) goes, ``seen`` being the patch under the cursor (None:
     nothing): the first drawable surface facing down that the ray crosses up to the one
     seen (a ceiling seen from below, or looked through from above); else, for a kind
     that may go on walls (``on_walls``: a luminaire), the drawable surface seen if it
-    does not face up (a wall). A
-    DesignError says where such zones go when there is none."""
+    does not face up (a wall). A surface a drawn zone (of ``drawn``) has cut is named
+    as it was drawn on (``drawn_on``). A DesignError says where such zones go when
+    there is none."""
     p0, d = np.asarray(origin, float), np.asarray(direction, float)
     limit = np.inf
     if seen is not None:
@@ -119,12 +151,12 @@ def zone_surface(
     for t, name in surfaces_on_ray(scene, p0, d):
         rect = drawable.get(name)
         if t <= limit and rect is not None and rect.normal[2] < DOWN:
-            return name, rect
+            return drawn_on(scene, drawn, name, rect)
     walls = on_walls(kind)  # DesignError for an unknown kind
     if walls and seen is not None:
         found = drawable_surface(scene, patches, seen)
         if found is not None and found[1].normal[2] < UP:
-            return found
+            return drawn_on(scene, drawn, *found)
     where = WHERE_SEEN if walls else WHERE_DOWN
     raise DesignError(
         f"{kind} zones are drawn on {where}, on a planar rectangle that is not a zone "

@@ -254,21 +254,32 @@ def open_scene_warning(op: RadiosityOperator) -> str | None:
     return escape_warning(float(op.info.get("lost_fraction", 0.0)))
 
 
-def accuracy_warning(op: RadiosityOperator) -> str | None:
-    """A warning when the build stopped at its largest rank above the target error."""
+CLI_REMEDY = "fix a higher rank (--rank) or use a coarser resolution"
+"""What a command-line user can do about a missed accuracy target."""
+
+
+def accuracy_warning(op: RadiosityOperator, remedy: str = CLI_REMEDY) -> str | None:
+    """A warning when the build stopped at its largest rank above the target error;
+    ``remedy`` says what the user can do (the window has no --rank).
+
+    None for a scene without emitter zones: its error is estimated on scattered single
+    patches emitting (``accuracy.sample_emissions``), light no source can give (sources
+    and arrays lie in zones), and the low-rank part resolves such point-like emitters
+    badly (tens of percent on a bare room whose first zone brings it under 1%)."""
     info = op.info
-    if info.get("tol_met", True):
+    if info.get("tol_met", True) or info.get("nz", 1) == 0:
         return None
     return (
         f"the radiosity operator's estimated error is {100 * info['estimated_rel_error']:.1f}% "
         f"(target {100 * info['tol']:.1f}%) at its largest rank, k = {op.k}: reflected light "
-        "may be off by about that much; fix a higher rank (--rank) or use a coarser resolution"
+        f"may be off by about that much; {remedy}"
     )
 
 
-def operator_warnings(op: RadiosityOperator) -> list[str]:
-    """Everything worth telling the user about an operator: escaping light, accuracy."""
-    return [w for w in (open_scene_warning(op), accuracy_warning(op)) if w]
+def operator_warnings(op: RadiosityOperator, remedy: str = CLI_REMEDY) -> list[str]:
+    """Everything worth telling the user about an operator: escaping light, accuracy
+    (``remedy``: what the user can do about it)."""
+    return [w for w in (open_scene_warning(op), accuracy_warning(op, remedy)) if w]
 
 
 def get_operator(
@@ -279,12 +290,15 @@ def get_operator(
     cancel: Callable[[], bool] | None = None,
     warn: Callable[[str], None] | None = None,
     scheduler: str | None = None,
+    remedy: str = CLI_REMEDY,
 ) -> CachedOperator:
     """Load the operator built with ``settings`` (default ``OperatorSettings()``) from the
     cache, or build it (and cache it); ``scheduler`` (``tcp://host:port``) builds it on
     that Dask cluster (the same operator, so it is not part of the cache key).
 
-    A stale or corrupt cache file is reported through ``warn`` and rebuilt.
+    A stale or corrupt cache file is reported through ``warn`` and rebuilt; the
+    operator's warnings go to ``warn`` too (``remedy``: what the user can do about a
+    missed accuracy target).
     """
     import time
 
@@ -299,14 +313,14 @@ def get_operator(
             op = load_operator(path, key)
             if op.digest != patches.digest():
                 raise CacheError(f"{path.name}: geometry digest differs (stale)")
-            for msg in operator_warnings(op) if warn is not None else ():
+            for msg in operator_warnings(op, remedy) if warn is not None else ():
                 warn(msg)
             return CachedOperator(op, True, path, time.perf_counter() - t0)
         except CacheError as exc:
             if warn is not None:
                 warn(f"operator cache {exc}; rebuilding")
     op = build_operator(patches, settings, progress=progress, cancel=cancel, scheduler=scheduler)
-    for msg in operator_warnings(op) if warn is not None else ():
+    for msg in operator_warnings(op, remedy) if warn is not None else ():
         warn(msg)
     if path is not None:
         try:
