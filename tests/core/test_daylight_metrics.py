@@ -10,20 +10,9 @@ import pytest
 
 from lightinv_core.design.model import Daylight
 from lightinv_core.light.daylight import ScenarioLight
-from lightinv_core.light.daylight_year import DaylightYear, SkyGroups
+from lightinv_core.light.daylight_year import SkyGroups
 from lightinv_core.quantities import HourBand, annual_metrics, quantity_spec
-
-
-def _year(exterior: np.ndarray) -> DaylightYear:
-    """A synthetic weather year of occupied hours, sorted when there is one sky group."""
-    T = exterior.shape[1]
-    one = exterior.shape[0] == 1
-    srt = np.sort(exterior[0]) if one else None
-    prefix = np.concatenate([[0.0], np.cumsum(srt)]) if one else None
-    months = (np.arange(T) % 12 + 1).astype(np.int8)
-    return DaylightYear(
-        "synthetic", "", None, exterior, np.ones(T, bool), exterior, months, srt, prefix
-    )
+from tests.core.test_scenarios import _year
 
 
 def _light(groups: int, seed: int = 5):
