@@ -35,16 +35,18 @@ def maps() -> dict[str, tuple[str, str, str]]:
     }
     for q in quantity_specs():
         if q.hours is not None:
-            out[q.name] = (_percent(q.label), f"{q.metric.split()[0]} %", "%.0f")
+            out[q.name] = (_annual_text(q), f"{q.metric.split()[0]} %", "%.0f")
         elif q.from_scenarios is not None:
             out[q.name] = (q.label, f"{q.metric} {q.unit}".strip(), f"%.{q.decimals - 1}f")
     out[HOUR] = ("illuminance at the hour of the year (lux)", "lux", "%.0f")
     return out
 
 
-def _percent(label: str) -> str:
-    """An annual metric's label with its shares written in %."""
-    return label.replace("0-1", "%").replace("(share of", "(% of")
+def _annual_text(q) -> str:
+    """An annual metric's Colour by entry: its name, then what its % means."""
+    if q.hours.point_share is None:
+        return f"{q.noun} {q.metric} (% of occupied hours)"
+    return f"{q.noun} {q.metric} (100 % where a point counts)"
 
 
 class MapResult:
