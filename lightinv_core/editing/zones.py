@@ -8,11 +8,12 @@ rules that name them (``rules.only_in_zones``).
 Which surface a zone is drawn on (``zone_surface``): rooms face inwards and the viewport
 culls back faces, so from above (Top view) the ceiling is invisible and the floor, or a
 wall near the edge, is what is seen; a luminaire zone drawn there used to land on the
-floor. Zones go on the kind-appropriate surface: the first surface facing down (a ceiling
-or roof, seen from below or looked through from above) that the view ray crosses before
-it reaches what is seen; failing that, a zone of a kind that is not daylit (a luminaire)
-may go on the wall seen (it does not face up), a daylit one (a skylight) nowhere. z is
-up.
+floor. Zones go where their source type's ``placement`` allows (``sources.types``): a
+kind placed on ceilings takes the first surface facing down (a ceiling or roof, seen
+from below or looked through from above) that the view ray crosses before it reaches
+what is seen; failing that, the surface seen if its class (ceiling, wall, floor, by its
+front normal) is in the placement: a luminaire also goes on a wall, a window (glazing)
+on any planar face, a skylight only overhead. z is up.
 """
 
 from __future__ import annotations
@@ -26,25 +27,26 @@ from lightinv_core.errors import DesignError
 from lightinv_core.scene.edits import ZoneEdit, rect_surfaces
 from lightinv_core.scene.model import Rect, Scene
 from lightinv_core.scene.patches import Patches
-from lightinv_core.sources.types import source_type
+from lightinv_core.sources.types import (
+    CEILING,
+    WALL,
+    placement_text,
+    source_type,
+    surface_class,
+)
 
-DOWN = -0.1
-"""A surface faces down (a ceiling, or a roof pitched up to 84°) when the z component of
-its unit front normal is below this."""
-UP = 0.5
-"""A luminaire zone may go on a surface seen whose front normal's z is below this (a wall,
-not a floor)."""
-WHERE_DOWN = "ceilings and roofs (surfaces facing down into the room)"
-WHERE_SEEN = "ceilings and roofs (facing down), or walls seen from the room"
-"""Where zones of a kind go, for the error when there is no such surface: a daylit kind
-(its light follows the sky, as a skylight's glazing does) only on surfaces facing down,
-any other kind (a luminaire) also on a wall."""
+
+def placement(kind: str) -> frozenset[str]:
+    """The classes of surface (``sources.types.CEILING``, ``WALL``, ``FLOOR``) a zone of
+    source kind ``kind`` may go on: its type's ``placement`` (DesignError for an unknown
+    kind)."""
+    return frozenset(source_type(kind).placement)
 
 
 def on_walls(kind: str) -> bool:
-    """Whether a zone of source kind ``kind`` may go on a wall seen (its type is not
-    daylit: a luminaire may hang on a wall, glazing lit by the sky may not)."""
-    return not source_type(kind).daylit
+    """Whether a zone of source kind ``kind`` may go on a wall seen (its type's
+    placement holds walls: a luminaire or a window may, a skylight may not)."""
+    return WALL in placement(kind)
 
 
 def drawable_surface(scene: Scene, patches: Patches, patch: int) -> tuple[str, Rect] | None:
@@ -136,29 +138,29 @@ def zone_surface(
 ) -> tuple[str, Rect]:
     """(surface name, its Rect) on which a zone of ``kind`` drawn along the view ray
     (``origin``, ``direction``) goes, ``seen`` being the patch under the cursor (None:
-    nothing): the first drawable surface facing down that the ray crosses up to the one
-    seen (a ceiling seen from below, or looked through from above); else, for a kind
-    that may go on walls (``on_walls``: a luminaire), the drawable surface seen if it
-    does not face up (a wall). A surface a drawn zone (of ``drawn``) has cut is named
-    as it was drawn on (``drawn_on``). A DesignError says where such zones go when
-    there is none."""
+    nothing). For a kind placed on ceilings (``placement``), the first drawable surface
+    facing down that the ray crosses up to the one seen (a ceiling seen from below, or
+    looked through from above); else the drawable surface seen, if its class (a wall for
+    a luminaire; any planar face for a window) is in the kind's placement. A surface a
+    drawn zone (of ``drawn``) has cut is named as it was drawn on (``drawn_on``). A
+    DesignError says where such zones go when there is none."""
+    where = placement(kind)  # DesignError for an unknown kind
     p0, d = np.asarray(origin, float), np.asarray(direction, float)
     limit = np.inf
     if seen is not None:
         t = _plane_distance(patches.origin[seen], patches.normal[seen], p0, d)
         limit = np.inf if t is None else t * (1 + 1e-6) + 1e-9
-    drawable = dict(rect_surfaces(scene))
-    for t, name in surfaces_on_ray(scene, p0, d):
-        rect = drawable.get(name)
-        if t <= limit and rect is not None and rect.normal[2] < DOWN:
-            return drawn_on(scene, drawn, name, rect)
-    walls = on_walls(kind)  # DesignError for an unknown kind
-    if walls and seen is not None:
+    if CEILING in where:
+        drawable = dict(rect_surfaces(scene))
+        for t, name in surfaces_on_ray(scene, p0, d):
+            rect = drawable.get(name)
+            if t <= limit and rect is not None and surface_class(rect.normal) == CEILING:
+                return drawn_on(scene, drawn, name, rect)
+    if seen is not None:
         found = drawable_surface(scene, patches, seen)
-        if found is not None and found[1].normal[2] < UP:
+        if found is not None and surface_class(found[1].normal) in where:
             return drawn_on(scene, drawn, *found)
-    where = WHERE_SEEN if walls else WHERE_DOWN
     raise DesignError(
-        f"{kind} zones are drawn on {where}, on a planar rectangle that is not a zone "
-        "yet; there is none under the cursor"
+        f"{kind} zones are drawn on {placement_text(where)}, on a planar rectangle that "
+        "is not a zone yet; there is none under the cursor"
     )

@@ -4,11 +4,17 @@ Every kind of source the light model knows is one ``SourceType`` here, found by 
 ``SourceKind``. The zone emission, the power goals and every view ask the type, never
 switch on the kind themselves, so a new kind is a new class plus one registry line.
 
-Today's two kinds are both Lambertian rectangles in an emitter zone:
+Today's three kinds are Lambertian rectangles in an emitter zone:
 - ``ZoneLuminaire``: exitance = flux / area (lm/m²), or a luminous panel's fixed
-  exitance; electric power = flux / efficacy (W);
+  exitance; electric power = flux / efficacy (W); on ceilings, roofs and walls;
 - ``DiffusingGlazing`` (skylights): exitance = filter x glazing transmittance x exterior
-  diffuse illuminance (``Daylight``); no electric power.
+  diffuse illuminance (``Daylight``); no electric power; on ceilings and roofs;
+- ``WindowGlazing`` (windows): the same diffusing glazing on any planar face (a wall, a
+  sloped roof): the sky groups (``light.daylight_year``) give it the light on its own
+  plane, half the sky and half the ground for a wall.
+
+Where a kind's zones may be drawn is its ``placement``: a set of ``CEILING``, ``WALL``
+and ``FLOOR``, the classes of surface by the way their front faces (``surface_class``).
 """
 
 from __future__ import annotations
@@ -19,7 +25,40 @@ import numpy as np
 
 from lightinv_core.design.model import Daylight, Source
 from lightinv_core.errors import DesignError
-from lightinv_core.kinds import SourceKind, add_source_kind, remove_source_kind
+from lightinv_core.kinds import SourceKind, add_source_kind, remove_source_kind, source_kind_names
+
+CEILING = "ceiling"
+"""A surface whose front faces down into the room: a ceiling, or a roof pitched up to
+84° (the z of its unit front normal below ``FACES_DOWN``)."""
+WALL = "wall"
+"""A surface neither facing down nor up: a wall, seen from the room."""
+FLOOR = "floor"
+"""A surface whose front faces up (z of its normal at least ``FACES_UP``): a floor, a
+desk top."""
+FACES_DOWN = -0.1
+FACES_UP = 0.5
+OVERHEAD = frozenset({CEILING})
+OVERHEAD_OR_WALL = frozenset({CEILING, WALL})
+ANY_FACE = frozenset({CEILING, WALL, FLOOR})
+PLACEMENT_TEXT = {
+    OVERHEAD: "ceilings and roofs (surfaces facing down into the room)",
+    OVERHEAD_OR_WALL: "ceilings and roofs (facing down), or walls seen from the room",
+    ANY_FACE: "any planar face seen from the room (walls, ceilings, sloped roofs)",
+}
+"""How people read a placement, for the error when no such surface is under the cursor."""
+
+
+def surface_class(normal) -> str:
+    """``CEILING``, ``WALL`` or ``FLOOR``: the class of a surface by its unit front
+    ``normal`` (z up)."""
+    z = float(normal[2])
+    return CEILING if z < FACES_DOWN else FLOOR if z >= FACES_UP else WALL
+
+
+def placement_text(placement: frozenset[str]) -> str:
+    """Where zones of a placement go, for people."""
+    known = PLACEMENT_TEXT.get(frozenset(placement))
+    return known or ", ".join(f"{c}s" for c in sorted(placement)) or "no surface"
 
 
 def rect_areas(rect: np.ndarray) -> np.ndarray:
@@ -36,7 +75,9 @@ class SourceType(Protocol):
     the sky and the weather year (daylight scenarios, sDA, glazing area); ``strength``:
     the ``Source`` field that sets how much it emits (``"flux"``, lm, or ``"filter"``, a
     fraction), with ``strength_label`` its name for people; ``fields``: the ``Source``
-    fields that belong to this kind alone (the project reader refuses them on another).
+    fields that belong to this kind alone (the project reader refuses them on another);
+    ``placement``: the classes of surface (``CEILING``, ``WALL``, ``FLOOR``) its zones
+    may be drawn on.
     """
 
     kind: str
@@ -47,6 +88,7 @@ class SourceType(Protocol):
     strength: str
     strength_label: str
     fields: tuple[str, ...]
+    placement: frozenset[str]
 
     def exitance(
         self, s: Source, rect: np.ndarray, flux: np.ndarray, filt: np.ndarray, daylight: Daylight
@@ -84,6 +126,7 @@ class ZoneLuminaire:
     strength = "flux"
     strength_label = "Flux (lm)"
     fields = ("flux", "flux_range", "exitance", "efficacy")
+    placement = OVERHEAD_OR_WALL
 
     def exitance(self, s, rect, flux, filt, daylight):
         if s.exitance is not None:
@@ -120,6 +163,7 @@ class DiffusingGlazing:
     strength = "filter"
     strength_label = "Filter"
     fields = ("filter",)
+    placement = OVERHEAD
 
     def exitance(self, s, rect, flux, filt, daylight):
         return filt * daylight.transmittance * daylight.exterior_lux
@@ -137,8 +181,21 @@ class DiffusingGlazing:
         return 0.0
 
 
+class WindowGlazing(DiffusingGlazing):
+    """A window: diffusing glazing on any planar face, a wall's included. Its light is
+    the sky and ground on its own plane (the sky groups), as a skylight's is; clear
+    glass, which passes a view of the sky, is not modelled (docs/daylight.md)."""
+
+    kind = "window"
+    label = "Window (glazing)"
+    stem = "W"
+    placement = ANY_FACE
+
+
+if WindowGlazing.kind not in source_kind_names():
+    add_source_kind(WindowGlazing.kind)  # a built-in kind that kinds.SourceKind may name
 SOURCE_TYPES: dict[str, SourceType] = {
-    str(t.kind): t for t in (ZoneLuminaire(), DiffusingGlazing())
+    str(t.kind): t for t in (ZoneLuminaire(), DiffusingGlazing(), WindowGlazing())
 }
 _BUILT_IN = tuple(SOURCE_TYPES)
 

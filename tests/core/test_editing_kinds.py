@@ -15,6 +15,7 @@ from lightinv_core.editing.zones import on_walls
 from lightinv_core.errors import DesignError
 from lightinv_core.kinds import RuleKind
 from lightinv_core.sources.types import (
+    OVERHEAD_OR_WALL,
     SOURCE_TYPES,
     DiffusingGlazing,
     ZoneLuminaire,
@@ -41,10 +42,11 @@ class RoofLight(DiffusingGlazing):
 
 
 class WallPanel(DiffusingGlazing):
-    """Skylights as a type that is not daylit (a luminous panel fed from elsewhere)."""
+    """Skylights as a type placed on walls too (its placement, not whether it is
+    daylit, says where it goes)."""
 
     stem = "W"
-    daylit = False
+    placement = OVERHEAD_OR_WALL
 
 
 @pytest.fixture
@@ -75,7 +77,7 @@ def test_a_new_source_is_named_and_started_by_its_type(monkeypatch):
         edit_rules.new_source(d, "z", "lamp", (2.0, 2.0))
 
 
-def test_only_kinds_that_are_not_daylit_go_on_walls(kinds, monkeypatch):
+def test_only_kinds_placed_on_walls_go_on_walls(kinds, monkeypatch):
     assert on_walls("luminaire") and on_walls("pendant")
     assert not on_walls("skylight") and not on_walls("roof_light")
     doc = DocumentModel()
