@@ -1,6 +1,7 @@
 """After File > Import model: what the import made of the file (the core's
 ``ImportReport``): a one-line summary, what needs a look (elements dropped, windows or
-ceilings that are no zones, cuts skipped), and the whole report on request.
+ceilings that are no zones, cuts skipped, defaults assumed such as the reflectance of a
+model without materials), and the whole report on request.
 
 Shown without blocking the window when something needs a look; a clean import only says
 its summary in the status bar (``import_summary``).
@@ -33,6 +34,7 @@ def attention_lines(report: ImportReport) -> list[str]:
         out.append(f"{len(report.not_zoned)} window(s) or ceiling(s) are plain surfaces, no zones")
     if report.skipped:
         out.append(f"{len(report.skipped)} part(s) skipped within what was kept")
+    out += [f"Assumed: {note}" for note in report.notes]
     return out
 
 

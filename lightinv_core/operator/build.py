@@ -4,7 +4,8 @@ Steps: trace the form factors F once (sparse, O(n * rays) memory, kept in float3
 compute reference solutions for a few sampled emission vectors, then build the
 low-rank part at k = n/64 clusters and its transfer G = V^T R D3 of the zone
 patches' light (k x nz, from the left: O(nnz(F) k)), and double k until the
-measured relative error of C is within ``tol`` (or use the given ``rank``).
+measured relative error of C is within ``tol`` (or use the given ``rank``). A scene
+without emitter zones keeps the first k: no source the error stands for emits.
 Nothing of size n x n or n x nz is ever formed: memory O(nnz(F) + n k + k nz).
 """
 
@@ -218,7 +219,11 @@ def _build(patches, settings, k, k_max, run, step, check, cancel, t0) -> Radiosi
         # clusters than asked (one per surface at least), and doubling the request would
         # build the same operator again.
         k_next = min(2 * max(k, op.k), k_max)
-        done = rank is not None or err.mean() <= tol or k >= k_max or op.k >= k_max
+        # Without emitter zones nothing the error samples stand for emits (the samples
+        # are then scattered patches): a higher rank would buy accuracy no source uses,
+        # so the first try is kept (the zones drawn later trigger a new build).
+        done = rank is not None or not len(zone_patches) or err.mean() <= tol
+        done = done or k >= k_max or op.k >= k_max
         if not done and not fits_in_memory(patches, rays, k_next):
             done = memory_limited = True
         if done:
@@ -236,7 +241,7 @@ def _build(patches, settings, k, k_max, run, step, check, cancel, t0) -> Radiosi
         "tol": tol,
         "estimated_rel_error": tries[-1]["mean_rel_error"],
         "estimated_max_rel_error": tries[-1]["max_rel_error"],
-        "tol_met": rank is not None or tries[-1]["mean_rel_error"] <= tol,
+        "tol_met": rank is not None or not len(zone_patches) or tries[-1]["mean_rel_error"] <= tol,
         "memory_limited": memory_limited,
         "tries": tries,
         "formfactor_seconds": t_ff,

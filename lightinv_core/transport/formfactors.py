@@ -263,10 +263,21 @@ def escape_warning(lost: float) -> str | None:
 
 
 def lost_fraction(F: sp.spmatrix, patches: Patches) -> float:
-    """Area-weighted fraction of the light leaving the patches that hits nothing
-    (or a back face): 0 for a closed room, the escaping share for an open model."""
-    sums = np.asarray(F.sum(axis=1)).ravel()
-    return float(np.dot(patches.area, 1.0 - sums) / patches.area.sum())
+    """Fraction of the light leaving the surfaces that hits nothing (or a back face):
+    0 for a closed room, the escaping share for an open model.
+
+    Each patch's lost share (1 - its row sum) is weighed by the light it can receive:
+    the flux reaching it when every patch leaves 1 lm/m² (``F^T A``, by reciprocity).
+    A face no light reaches, such as the floor under a closed desk box or the box's
+    bottom lying on it, lights nothing and is not an opening, though its rays meet
+    the back of the box or leave through the floor. When no light reaches any face
+    (every face looks away), the patches weigh by their area: all of it escapes."""
+    area = patches.area
+    lost = 1.0 - np.asarray(F.sum(axis=1)).ravel()
+    received = np.asarray(F.T @ area).ravel()
+    if received.sum() <= 1e-9 * area.sum():
+        return float(np.dot(area, lost) / area.sum())
+    return float(np.dot(received, lost) / received.sum())
 
 
 def reciprocal_column(F: sp.spmatrix, patches: Patches, j: int) -> np.ndarray:

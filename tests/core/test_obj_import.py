@@ -99,6 +99,13 @@ def test_box_room_groups_areas_and_patches(tmp_path):
     assert scene.info["source"] == str(tmp_path / "room.obj")
     assert scene.info["warnings"] == []
     report = report_of(scene)
+    # No MTL: every group has the default reflectance, which the report says.
+    assert report.notes == (
+        "no MTL Kd for group(s) 'ceiling', 'floor', 'walls' (every surface), and the "
+        "materials mapping does not name them: they use the built-in default reflectance "
+        "0.5; give reflectances in a materials JSON file (the import dialog's Materials "
+        "JSON) or change them after import",
+    )
     assert [(it.name, it.outcome, it.becomes) for it in report.items] == [
         ("floor", "group", "floor"),
         ("ceiling", "group", "ceiling"),
@@ -106,7 +113,7 @@ def test_box_room_groups_areas_and_patches(tmp_path):
     ]
     assert report.items[2].area_m2 == pytest.approx(2 * (4 + 3) * 2.5)
     assert report.summary() == "room.obj: 3 items: 0 zones, 3 groups, 0 dropped"
-    assert not report.needs_attention
+    assert report.needs_attention and report.lines()[-2] == "assumed (1):"
 
 
 def test_rectangles_become_grids_other_quads_triangles(tmp_path):
@@ -459,10 +466,11 @@ def test_l_shaped_zone_is_rejected(tmp_path):
 def test_zone_errors(tmp_path):
     fails(
         tmp_path,
-        CEILING + "g zone:sky:window\nf 5 8 7 6\n",
+        CEILING + "g zone:sky:lamp\nf 5 8 7 6\n",
         re.escape(
-            "room.obj line 12: group 'zone:sky:window': zone kind 'window' is not one of "
-            "skylight, luminaire; name the group zone:sky:skylight or zone:sky:luminaire"
+            "room.obj line 12: group 'zone:sky:lamp': zone kind 'lamp' is not one of "
+            "skylight, window, luminaire; name the group zone:sky:skylight, zone:sky:window "
+            "or zone:sky:luminaire"
         ),
     )
     fails(

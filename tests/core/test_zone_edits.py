@@ -38,7 +38,7 @@ def test_zone_edit_normalises_and_validates():
     cases = [
         (("", "luminaire", "ceiling", (0, 0, 1, 1)), "name must be a non-empty string"),
         (("Z", "luminaire", " ", (0, 0, 1, 1)), "surface must be a non-empty string"),
-        (("Z", "window", "ceiling", (0, 0, 1, 1)), "kind 'window' is not one of"),
+        (("Z", "lamp", "ceiling", (0, 0, 1, 1)), "kind 'lamp' is not one of"),
         (("Z", "skylight", "ceiling", (0, 0, 1)), "rect must be 4 finite numbers"),
         (("Z", "skylight", "ceiling", (0, 0, math.nan, 1)), "rect must be 4 finite numbers"),
         (("Z", "skylight", "ceiling", (0, 0, True, 1)), "rect must be 4 finite numbers"),

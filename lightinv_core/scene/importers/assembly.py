@@ -12,6 +12,7 @@ from __future__ import annotations
 import math
 import numbers
 import os
+from dataclasses import replace
 from pathlib import Path
 
 import numpy as np
@@ -58,6 +59,7 @@ def assemble_scene(
     warnings += rho.warnings()
     _scale_warning(data.vertices, scale, fname, warnings)
     report = face_report(data.faces, geom, keep, places, dropped, extra_items)
+    report = replace(report, notes=tuple(rho.defaults_used()))
     info = {"source": str(places.path), "warnings": warnings, REPORT_KEY: report.to_dict()}
     try:
         surfaces, zones = surfaces_of(groups)

@@ -74,7 +74,8 @@ def zone_spec(group: str, where: str) -> tuple[str, str] | None:
     if kind.lower() not in source_kind_names():
         raise ObjImportError(
             f"{where}: group {clip(group)}: zone kind {clip(kind)} is not one of "
-            f"skylight, luminaire; name the group zone:{name}:skylight or zone:{name}:luminaire"
+            f"skylight, window, luminaire; name the group zone:{name}:skylight, "
+            f"zone:{name}:window or zone:{name}:luminaire"
         )
     return name, kind.lower()
 

@@ -110,6 +110,7 @@ class Reflectances:
         self.mats, self.kd, self.places = mats, kd, places
         self.capped: dict[str, float] = {}
         self.defaulted: set[str] = set()
+        self.bare: set[str] = set()  # groups with faces of no material, not mapped
         self.groups: set[str] = set()
         self.materials: set[str | None] = set()
 
@@ -127,10 +128,36 @@ class Reflectances:
             return min(lum, KD_CAP)
         if material is not None:
             self.defaulted.add(material)
+        else:
+            self.bare.add(group)
         return self.mats.default
 
+    def defaults_used(self) -> list[str]:
+        """Where the default reflectance stood in for one the file or the mapping did
+        not give: materials without a colour, and groups whose faces name no material
+        (an OBJ without MTL); each line says which default and where to give one."""
+        out = []
+        if self.defaulted:
+            where = self.places.colour_file or f"its {self.places.colour}"
+            out.append(
+                f"no reflectance for material(s) {_names(self.defaulted)} (not in the materials "
+                f"mapping or {where}); they use the default {self.mats.default:g}"
+            )
+        if self.bare:
+            given = self.mats.default != DEFAULT_REFLECTANCE
+            source = f"the {self.mats.source}'s default" if given else "the built-in default"
+            every = " (every surface)" if self.bare == self.groups else ""
+            out.append(
+                f"no {self.places.colour} for group(s) {_names(self.bare)}{every}, and the "
+                f"materials mapping does not name them: they use {source} reflectance "
+                f"{self.mats.default:g}; give reflectances in a materials JSON file (the "
+                "import dialog's Materials JSON) or change them after import"
+            )
+        return out
+
     def warnings(self) -> list[str]:
-        """One warning per capped material, defaulted materials and unused mapping names."""
+        """One warning per capped material, materials without a colour and unused
+        mapping names (groups without any material are the import report's notes)."""
         colour = self.places.colour
         out = [
             f"material {clip(m)}: {colour} luminance {lum:.3g} capped at {KD_CAP} (exporters "
@@ -140,11 +167,7 @@ class Reflectances:
             for m, lum in self.capped.items()
         ]
         if self.defaulted:
-            where = self.places.colour_file or f"its {colour}"
-            out.append(
-                f"no reflectance for material(s) {_names(self.defaulted)} (not in the materials "
-                f"mapping or {where}); they use the default {self.mats.default:g}"
-            )
+            out.append(self.defaults_used()[0])
         for key, seen in (("groups", self.groups), ("materials", self.materials)):
             unused = set(getattr(self.mats, key)) - seen
             if unused:

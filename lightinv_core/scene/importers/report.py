@@ -68,6 +68,9 @@ class ImportReport:
     skipped: tuple[str, ...] = ()
     """What was skipped within items that stay (faces dropped, cuts not made), one line
     each."""
+    notes: tuple[str, ...] = ()
+    """What the import assumed that the file did not say (a default reflectance where
+    the file has no materials), one line each."""
 
     def counts(self) -> dict[str, dict[str, int]]:
         """Kind -> outcome -> number of items, kinds in order of first appearance."""
@@ -94,7 +97,7 @@ class ImportReport:
         """Whether something was dropped (besides spaces, openings and the like),
         skipped, or did not become the zone it could have been."""
         unexpected = [it for it in self.dropped if not it.reason.startswith(EXPECTED)]
-        return bool(self.skipped or self.not_zoned or unexpected)
+        return bool(self.skipped or self.not_zoned or unexpected or self.notes)
 
     def summary(self) -> str:
         """One line: ``"room.ifc: 12 elements: 3 zones, 8 groups, 1 dropped"``."""
@@ -115,7 +118,7 @@ class ImportReport:
     def lines(self) -> list[str]:
         """The summary, a table of kinds by outcome, then the items dropped, left
         without their zone or kept in another group (alike ones on one line, with their
-        reason), and what was skipped."""
+        reason), what was skipped and what was assumed."""
         head = f"  {'kind':<28} {'zone':>5} {'group':>6} {'kept':>5} {'dropped':>8}"
         out = [self.summary(), head]
         for kind, row in self.counts().items():
@@ -136,6 +139,9 @@ class ImportReport:
             out += [f"  {line}" for line in self.skipped[:SHOWN]]
             if len(self.skipped) > SHOWN:
                 out.append(f"  ... {len(self.skipped) - SHOWN} more (--json lists them all)")
+        if self.notes:
+            out.append(f"assumed ({len(self.notes)}):")
+            out += [f"  {line}" for line in self.notes]
         return out
 
     def to_dict(self) -> dict:
@@ -145,6 +151,7 @@ class ImportReport:
             "counts": self.counts(),
             "items": [it.to_dict() for it in self.items],
             "skipped": list(self.skipped),
+            "notes": list(self.notes),
         }
 
     @classmethod
@@ -161,7 +168,8 @@ class ImportReport:
             for d in data.get("items", ())
         )
         skipped = tuple(str(s) for s in data.get("skipped", ()))
-        return cls(str(data.get("source", "")), items, skipped)
+        notes = tuple(str(s) for s in data.get("notes", ()))
+        return cls(str(data.get("source", "")), items, skipped, notes)
 
 
 def _alike(items: list[ImportItem]) -> list[str]:
