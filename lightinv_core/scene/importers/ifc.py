@@ -41,6 +41,7 @@ from lightinv_core.scene.importers.ifc_geometry import (
     planes_of,
     rectangles,
 )
+from lightinv_core.scene.importers.ifc_openings import bodiless_windows
 from lightinv_core.scene.importers.ifc_report import SKIPPED_REASONS, Stages, ifc_report
 from lightinv_core.scene.importers.materials import load_materials
 from lightinv_core.scene.importers.report import KEY as REPORT_KEY
@@ -105,7 +106,7 @@ def load_ifc(
     mats = load_materials(materials)
     fname = path.name
     model = _open(ifcopenshell, path)
-    elements, spaces, parts = _elements(ifcopenshell, model, fname)
+    elements, spaces, parts, unplaced = _elements(ifcopenshell, model, fname)
     planes = planes_of(elements, _role, shapely)
     stages = Stages(len(elements))
     stages.record("faces", planes)
@@ -126,7 +127,7 @@ def load_ifc(
     zones, notes = _zones(planes, elements, shapely, warnings, fname)
     names = _group_names(elements)
     report = ifc_report(
-        fname, model, elements, names, stages, zones, notes, parts, failed, warnings
+        fname, model, elements, names, stages, zones, notes, parts, failed, warnings, unplaced
     )
     data, places, counts = _faces(planes, elements, zones, scale, up, path)
     data.warnings.extend(warnings)
@@ -217,8 +218,10 @@ def _check_references(log: str, fname: str) -> None:
 
 
 def _elements(ifcopenshell, model, fname: str):
-    """The building elements with geometry, ordered by their id in the file; the names
-    of the spaces; and the parts merged into windows (``Part``s)."""
+    """The building elements with geometry, ordered by their id in the file (windows
+    without a body that fill an opening as panes, ``ifc_openings``); the names of the
+    spaces; the parts merged into windows (``Part``s); and id -> why of the windows
+    without a body that could not be placed."""
     settings = ifcopenshell.geom.settings()
     settings.set("use-world-coords", True)
     # Elements are meshed in parallel, leaving a core for the window (on this 2-core
@@ -250,6 +253,9 @@ def _elements(ifcopenshell, model, fname: str):
             )
         )
     out, parts = _windows_of_parts(model, out)
+    seen = {e.id for e in out} | {p.id for p in parts}
+    panes, unplaced = bodiless_windows(model, seen, _label, _in_roof)
+    out += panes
     if not out:
         raise ObjImportError(
             f"{fname}: no building elements with geometry (walls, slabs, roofs, ...); "
@@ -257,7 +263,7 @@ def _elements(ifcopenshell, model, fname: str):
         )
     out.sort(key=lambda e: e.id)
     spaces = sorted((s.Name or s.LongName or s.GlobalId) for s in model.by_type("IfcSpace"))
-    return out, spaces, parts
+    return out, spaces, parts, unplaced
 
 
 def _label(entity) -> str:

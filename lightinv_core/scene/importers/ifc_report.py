@@ -76,9 +76,12 @@ def ifc_report(
     parts: list[Part],
     failed: list[Failure],
     warnings: list[str],
+    unplaced: dict[int, str] | None = None,
 ) -> ImportReport:
     """The report of the import; warnings added for windows and ceilings that were left
-    out entirely and for cuts shapely could not make."""
+    out entirely, windows without a body that could not be placed (``unplaced``: id ->
+    why) and cuts shapely could not make."""
+    unplaced = unplaced or {}
     items = []
     lost = []
     for k, e in enumerate(elements):
@@ -98,10 +101,20 @@ def ifc_report(
         why = "a part of its window: the window's frames and pane make its surfaces"
         items.append(ImportItem(part.ifc_class, f"{part.name} #{part.id}", "kept", window, why))
     seen = set(group_of) | {part.id for part in parts}
-    for product, item in _not_meshed(model, seen):
+    skipped_windows = []
+    for product, item in _not_meshed(model, seen, unplaced):
         items.append(item)
-        if item.kind == "IfcWindow" and not item.reason.startswith(EXPECTED):
+        if product.id() in unplaced:
+            skipped_windows.append(f"IfcWindow:{_name(product)}")
+        elif item.kind == "IfcWindow" and not item.reason.startswith(EXPECTED):
             lost.append(f"IfcWindow:{_name(product)}")
+    if skipped_windows:
+        warnings.append(
+            f"{fname}: {len(skipped_windows)} window(s) without a body "
+            f"({_shown(skipped_windows)}) were skipped: nothing gives where their glass is "
+            "(no opening filled, or no OverallWidth and OverallHeight); draw window zones "
+            "on their walls instead; see the import report"
+        )
     if lost:
         warnings.append(
             f"{fname}: {len(lost)} window(s) or ceiling(s) ({_shown(lost)}) were left out "
@@ -133,10 +146,10 @@ def _failures(fname, names, failed: list[Failure], warnings: list[str]) -> list[
     return lines
 
 
-def _not_meshed(model, seen: set[int]) -> list[tuple[object, ImportItem]]:
+def _not_meshed(model, seen: set[int], unplaced: dict) -> list[tuple[object, ImportItem]]:
     """Products that are no element of the import, each with its item: left out by
-    class, or without a body (containers whose parts are imported are left to their
-    parts)."""
+    class, or without a body (``unplaced``: id -> why, for the windows that could not
+    be placed; containers whose parts are imported are left to their parts)."""
     out = []
     for product in model.by_type("IfcProduct"):
         if product.id() in seen:
@@ -151,6 +164,7 @@ def _not_meshed(model, seen: set[int]) -> list[tuple[object, ImportItem]]:
         if _has_parts(product):
             continue
         why = NO_BODY if getattr(product, "Representation", None) is None else NOT_MESHED
+        why = unplaced.get(product.id(), why)
         out.append((product, ImportItem(product.is_a(), label, "dropped", None, why)))
     return out
 
