@@ -1,13 +1,20 @@
 """The Properties panel's drawn zones: rename, retype, resize or delete the emitter zones
-drawn on the project's scene (the scene is re-meshed)."""
+drawn on the project's scene (the scene is re-meshed), and make the face picked in the
+view a zone (a window on a wall: any planar face may become glazing)."""
 
 from __future__ import annotations
 
 from PySide6 import QtWidgets
 
+from app.dialogs import ask
 from app.dialogs.fields import source_kind_box
+from app.dialogs.zone_dialog import ZoneDialog
 from app.document import Document
+from lightinv_core.editing.zones import surface_label
 from lightinv_core.errors import LightInvError, SceneError
+
+WINDOW = "window"
+"""The kind the picked face becomes first (the dialog offers every kind)."""
 
 
 class ZonePanel(QtWidgets.QGroupBox):
@@ -42,24 +49,33 @@ class ZonePanel(QtWidgets.QGroupBox):
         row.addWidget(self.apply_button)
         row.addWidget(self.delete_button)
         form.addRow(row)
+        self.face_button = QtWidgets.QPushButton("Make picked face a zone...")
+        self.face_button.setToolTip(
+            "The whole planar face under the first patch picked (Select patches mode) "
+            "becomes a zone: a window (glazing) first, any kind in the dialog"
+        )
+        form.addRow(self.face_button)
         self.hint = QtWidgets.QLabel(
-            "Draw zone mode: pick luminaire or skylight zone in the toolbar, then drag a "
-            "rectangle on a ceiling or roof (from below, or from above in Top view); Draw "
-            "polygon zone mode: click its corners. The corners are metres from the "
-            "surface's origin along its u, v axes (shown when a zone is chosen here)."
+            "Draw zone mode: pick the zone's kind in the toolbar, then drag a rectangle: "
+            "luminaire and skylight zones on a ceiling or roof (from below, or from above "
+            "in Top view), luminaires also on walls, window (glazing) zones on any planar "
+            "face, walls included; Draw polygon zone mode: click its corners. Or pick a "
+            "face (Select patches) and press Make picked face a zone. The corners are "
+            "metres from the surface's origin along its u, v axes."
         )
         self.hint.setWordWrap(True)
         form.addRow(self.hint)
         self.zone.currentIndexChanged.connect(self._show)
         self.apply_button.clicked.connect(self.apply)
         self.delete_button.clicked.connect(self.delete)
+        self.face_button.clicked.connect(lambda: self.zone_from_face())
         doc.sceneChanged.connect(self.refresh)
 
     def refresh(self) -> None:
         self.zone.blockSignals(True)
         self.zone.clear()
         for z in self.doc.user_zones:
-            self.zone.addItem(f"{z.name} on {z.surface}", z.name)
+            self.zone.addItem(f"{z.name} on {surface_label(z.surface)}", z.name)
         self.zone.blockSignals(False)
         has = bool(self.doc.user_zones)
         widgets = (self.name, self.kind, *self.corners, self.outline)
@@ -106,6 +122,35 @@ class ZonePanel(QtWidgets.QGroupBox):
             QtWidgets.QMessageBox.warning(self, "LightInv", str(exc))
             return
         self._set([new if u.name == z.name else u for u in self.doc.user_zones])
+
+    def zone_from_face(self, dialog: ZoneDialog | None = None) -> bool:
+        """Make the whole face under the first picked patch a zone, named and typed in
+        the zone dialog (a window first); says why not when it cannot."""
+        picked = getattr(self.doc, "selection", ())
+        if len(picked) == 0:
+            QtWidgets.QMessageBox.information(
+                self, "LightInv", "Pick a face first: Select patches mode, click the face."
+            )
+            return False
+        try:
+            surface, rect = self.doc.face_zone(int(picked[0]))
+        except LightInvError as exc:
+            QtWidgets.QMessageBox.warning(self, "LightInv", str(exc))
+            return False
+        if dialog is None:
+            dialog = ZoneDialog(surface, self.doc.new_zone_name(), self, rect=rect)
+            dialog.kind.setCurrentIndex(max(0, dialog.kind.findData(WINDOW)))
+        if not ask.accepted(dialog):
+            return False
+        from lightinv_core.scene.edits import ZoneEdit
+
+        try:
+            edit = ZoneEdit(dialog.name.text().strip(), dialog.kind.currentData(), surface, rect)
+        except LightInvError as exc:
+            QtWidgets.QMessageBox.warning(self, "LightInv", str(exc))
+            return False
+        self._set([*self.doc.user_zones, edit])
+        return True
 
     def delete(self) -> None:
         """Remove the zone (and any source placed in it)."""

@@ -51,6 +51,11 @@ class SceneEdits(DocumentState):
             self.scene, self.patches, kind, origin, direction, seen, self.user_zones
         )
 
+    def face_zone(self, patch: int) -> tuple[str, tuple[float, float, float, float]]:
+        """(surface name, rect) of a zone covering the whole face under ``patch``, as the
+        drawn zones name it (``zones.face_zone``); DesignError if it cannot be one."""
+        return _zones.face_zone(self.scene, self.patches, patch, self.user_zones)
+
     def new_zone_name(self) -> str:
         """A free name for a drawn zone (Z1, Z2, ...)."""
         return _zones.new_zone_name(self.scene)

@@ -35,6 +35,11 @@ from lightinv_core.sources.types import (
     surface_class,
 )
 
+HEAD_ON = 0.05
+"""How much more squarely (cosine of the view ray to its normal) the surface seen must
+face the view than the ceiling the ray crosses to take a zone of a kind that may go on
+either."""
+
 
 def placement(kind: str) -> frozenset[str]:
     """The classes of surface (``sources.types.CEILING``, ``WALL``, ``FLOOR``) a zone of
@@ -140,8 +145,9 @@ def zone_surface(
     (``origin``, ``direction``) goes, ``seen`` being the patch under the cursor (None:
     nothing). For a kind placed on ceilings (``placement``), the first drawable surface
     facing down that the ray crosses up to the one seen (a ceiling seen from below, or
-    looked through from above); else the drawable surface seen, if its class (a wall for
-    a luminaire; any planar face for a window) is in the kind's placement. A surface a
+    looked through from above); the drawable surface seen, if its class (a wall for a
+    luminaire; any planar face for a window) is in the kind's placement, instead when it
+    faces the view more squarely (by ``HEAD_ON``) than that ceiling. A surface a
     drawn zone (of ``drawn``) has cut is named as it was drawn on (``drawn_on``). A
     DesignError says where such zones go when there is none."""
     where = placement(kind)  # DesignError for an unknown kind
@@ -150,17 +156,72 @@ def zone_surface(
     if seen is not None:
         t = _plane_distance(patches.origin[seen], patches.normal[seen], p0, d)
         limit = np.inf if t is None else t * (1 + 1e-6) + 1e-9
+    found = []
     if CEILING in where:
         drawable = dict(rect_surfaces(scene))
         for t, name in surfaces_on_ray(scene, p0, d):
             rect = drawable.get(name)
             if t <= limit and rect is not None and surface_class(rect.normal) == CEILING:
-                return drawn_on(scene, drawn, name, rect)
+                found.append((name, rect))
+                break
     if seen is not None:
-        found = drawable_surface(scene, patches, seen)
-        if found is not None and surface_class(found[1].normal) in where:
-            return drawn_on(scene, drawn, *found)
+        face = drawable_surface(scene, patches, seen)
+        if face is not None and surface_class(face[1].normal) in where:
+            found.append(face)
+    if found:
+        # The ceiling the ray crosses, unless the surface seen faces the view more
+        # squarely: from above (Top view) the wall seen at the edge is grazed and the
+        # ceiling meant; looking at a wall from the side, the ceiling crossed near its
+        # edge is grazed and the wall meant.
+        square = [abs(float(r.normal @ d)) / float(np.linalg.norm(d)) for _, r in found]
+        best = found[-1] if square[-1] > square[0] + HEAD_ON else found[0]
+        return drawn_on(scene, drawn, *best)
     raise DesignError(
         f"{kind} zones are drawn on {placement_text(where)}, on a planar rectangle that "
         "is not a zone yet; there is none under the cursor"
     )
+
+
+def surface_label(name: str) -> str:
+    """A surface's name for people: the pieces a drawn zone leaves (``"ceiling~3"``)
+    are the surface they came from, an imported group's rectangles (``"walls.rect2"``)
+    its faces: ``"ceiling"``, ``"walls, face 2"``."""
+    root = name.split("~")[0]
+    group, dot, number = root.rpartition(".rect")
+    return f"{group}, face {number}" if dot and number.isdigit() else root
+
+
+def zone_size(rect=None, outline=None) -> tuple[float, float, float]:
+    """(width, height, area) of a drawn zone, m and m²: its rectangle (u0, v0, u1, v1),
+    or its polygon's bounds and area."""
+    if outline is not None:
+        p = np.asarray(outline, float)
+        w, h = np.ptp(p, axis=0)
+        x, y = p[:, 0], p[:, 1]
+        area = 0.5 * abs(float(x @ np.roll(y, -1) - y @ np.roll(x, -1)))
+        return float(w), float(h), area
+    u0, v0, u1, v1 = (float(c) for c in rect)
+    return abs(u1 - u0), abs(v1 - v0), abs(u1 - u0) * abs(v1 - v0)
+
+
+def face_zone(
+    scene: Scene, patches: Patches, patch: int, drawn: Sequence[ZoneEdit] = ()
+) -> tuple[str, tuple[float, float, float, float]]:
+    """(surface name, rect) of a zone covering the whole planar face under ``patch``:
+    the face picked in the view made a zone (a window on a wall, say). A piece a drawn
+    zone left is given in the metres of the surface it was cut from (``drawn_on``).
+    DesignError when the face is no drawable rectangle (a zone already, or curved)."""
+    found = drawable_surface(scene, patches, patch)
+    if found is None:
+        name = patches.surface_names[patches.surface_id[patch]]
+        raise DesignError(
+            f"the picked face ({surface_label(name)}) cannot become a zone: it is a zone "
+            "already, or not a planar rectangle; draw the zone on it instead"
+        )
+    name, rect = found
+    root, frame = drawn_on(scene, drawn, name, rect)
+    eu, ev = frame.u / np.linalg.norm(frame.u), frame.v / np.linalg.norm(frame.v)
+    corners = [rect.origin, rect.origin + rect.u + rect.v]
+    u = [float((c - frame.origin) @ eu) for c in corners]
+    v = [float((c - frame.origin) @ ev) for c in corners]
+    return root, (min(u), min(v), max(u), max(v))

@@ -153,3 +153,45 @@ def test_the_year_on_a_wall_window_is_pvlibs_perez_on_a_vertical_south_plane(lit
     assert year.every[0] == pytest.approx(lux, rel=1e-6, abs=1e-3)
     # And the window gets less than a skylight would over the year, more than none.
     assert 0 < year.every[0].sum() < (weather.gh_lux).sum()
+
+
+def test_from_the_front_view_a_window_goes_on_the_wall_seen_not_the_ceiling_grazed(doc):
+    # Front view: the camera south of the room and above it, looking north down a
+    # little; the south wall is culled and the north wall seen. The ray crosses the
+    # ceiling's plane just inside its south edge: that ceiling is grazed, not meant.
+    eye, target = np.array([5.0, -16.0, 6.4]), np.array([4.5, 7.0, 1.6])
+    north = nearest(doc, "walls", target)
+    name, rect = doc.zone_surface("window", eye, target - eye, north)
+    assert doc.scene.surface(name).group == "walls" and rect.normal[1] == pytest.approx(-1)
+    # A skylight has only the ceiling; a luminaire, like the window, the wall.
+    name, _ = doc.zone_surface("skylight", eye, target - eye, north)
+    assert doc.scene.surface(name).group == "ceiling"
+    name, _ = doc.zone_surface("luminaire", eye, target - eye, north)
+    assert doc.scene.surface(name).group == "walls"
+
+
+def test_a_picked_face_becomes_a_zone_in_its_surfaces_metres(doc):
+    from lightinv_core.editing.zones import surface_label, zone_size
+
+    window_on_south_wall(doc)
+    # A piece the window left of the south wall: the zone covers that piece, given in
+    # the wall's own metres.
+    piece = nearest(doc, "walls", (5.0, 0.0, 0.3))
+    name = doc.patches.surface_names[doc.patches.surface_id[piece]]
+    assert "~" in name
+    was = doc.scene.surface(name).rect
+    surface, rect = doc.face_zone(piece)
+    assert surface == doc.user_zones[0].surface and "~" not in surface
+    w, h, area = zone_size(rect)
+    assert area == pytest.approx(w * h) == pytest.approx(doc.scene.surface(name).area)
+    doc.add_user_zone("Low", "window", surface, rect)
+    low = doc.scene.surface("Low").rect
+    assert low.origin + 0.5 * (low.u + low.v) == pytest.approx(was.origin + 0.5 * (was.u + was.v))
+    assert sorted(low.size) == pytest.approx(sorted(was.size))
+    with pytest.raises(DesignError, match="cannot become a zone"):
+        doc.face_zone(nearest(doc, "walls", (5.0, 0.0, 1.6)))  # the window zone itself
+    assert surface_label("walls.rect2~3") == "walls, face 2"
+    assert surface_label("ceiling~3") == "ceiling" and surface_label("IfcWall:N") == "IfcWall:N"
+    assert zone_size(outline=[(0, 0), (2, 0), (2, 1), (1, 2), (0, 1)]) == pytest.approx(
+        (2.0, 2.0, 3.0)
+    )
