@@ -56,12 +56,10 @@ class ZonePanel(QtWidgets.QGroupBox):
         )
         form.addRow(self.face_button)
         self.hint = QtWidgets.QLabel(
-            "Draw zone mode: pick the zone's kind in the toolbar, then drag a rectangle: "
-            "luminaire and skylight zones on a ceiling or roof (from below, or from above "
-            "in Top view), luminaires also on walls, window (glazing) zones on any planar "
-            "face, walls included; Draw polygon zone mode: click its corners. Or pick a "
-            "face (Select patches) and press Make picked face a zone. The corners are "
-            "metres from the surface's origin along its u, v axes."
+            "Draw zone: pick the kind in the toolbar, drag a rectangle (Draw polygon "
+            "zone: click corners). Skylights go on ceilings and roofs, luminaires also on "
+            "walls, windows (glazing) on any planar face. Or pick a face (Select patches) "
+            "and press Make picked face a zone. Corners: metres along the surface's u, v."
         )
         self.hint.setWordWrap(True)
         form.addRow(self.hint)
