@@ -557,7 +557,7 @@ ERRORS = [
     ),
     (
         _set("sources[0].kind", "lamp"),
-        "sources[0].kind: expected one of 'luminaire', 'skylight', got string 'lamp'",
+        "sources[0].kind: expected one of 'luminaire', 'skylight', 'window', got string 'lamp'",
     ),
     (
         _set("sources[0].free[0]", "w"),
@@ -675,7 +675,8 @@ ERRORS = [
     ),
     (
         _set("goals[0].kinds[0]", "skylights"),
-        "goals[0].kinds[0]: expected one of 'luminaire', 'skylight', got string 'skylights'",
+        "goals[0].kinds[0]: expected one of 'luminaire', 'skylight', 'window', got string "
+        "'skylights'",
     ),
     (_set("sources[0].free[1]", "u0"), "sources[0].free[1]: 'u0' is listed twice"),
     (
@@ -684,7 +685,7 @@ ERRORS = [
     ),
     (
         _set("sources[3].filter", 0.5),
-        "sources[3].filter: only skylights have this "
+        "sources[3].filter: only skylights or windows have this "
         "(a luminaire's own fields: flux, flux_range, exitance, efficacy)",
     ),
     (
