@@ -42,8 +42,8 @@ def _fmt(x: float) -> str:
 
 @dataclass(frozen=True)
 class ZoneEdit:
-    """A new emitter zone ``name`` of ``kind`` ("skylight" or "luminaire") drawn on the
-    rectangular surface ``surface``.
+    """A new emitter zone ``name`` of ``kind`` ("skylight", "window", "luminaire", ...)
+    drawn on the rectangular surface ``surface``.
 
     ``rect`` is (u0, v0, u1, v1) in metres along the surface's u and v edges from its
     origin; the corners may be given in any order and are stored as
