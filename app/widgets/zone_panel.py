@@ -24,6 +24,13 @@ class ZonePanel(QtWidgets.QGroupBox):
         super().__init__("Drawn zones", parent)
         self.doc = doc
         form = QtWidgets.QFormLayout(self)
+        # First, so the two clicks that make a side window need no scrolling.
+        self.face_button = QtWidgets.QPushButton("Make picked face a zone...")
+        self.face_button.setToolTip(
+            "The whole planar face under the first patch picked (Select patches mode) "
+            "becomes a zone: a window (glazing) first, any kind in the dialog"
+        )
+        form.addRow(self.face_button)
         self.zone = QtWidgets.QComboBox()
         form.addRow("Zone", self.zone)
         self.name = QtWidgets.QLineEdit()
@@ -49,12 +56,6 @@ class ZonePanel(QtWidgets.QGroupBox):
         row.addWidget(self.apply_button)
         row.addWidget(self.delete_button)
         form.addRow(row)
-        self.face_button = QtWidgets.QPushButton("Make picked face a zone...")
-        self.face_button.setToolTip(
-            "The whole planar face under the first patch picked (Select patches mode) "
-            "becomes a zone: a window (glazing) first, any kind in the dialog"
-        )
-        form.addRow(self.face_button)
         self.hint = QtWidgets.QLabel(
             "Draw zone: pick the kind in the toolbar, drag a rectangle (Draw polygon "
             "zone: click corners). Skylights go on ceilings and roofs, luminaires also on "
