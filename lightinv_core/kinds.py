@@ -24,6 +24,7 @@ class SourceKind(Kind):
 
     LUMINAIRE = "luminaire"  # electric: flux (lm) or exitance (lm/m²), efficacy (lm/W)
     SKYLIGHT = "skylight"  # glazing: exitance = filter x transmittance x exterior lux
+    WINDOW = "window"  # glazing on any planar face (walls included), a skylight's light
 
 
 _SOURCE_KINDS: list[str] = [str(k) for k in SourceKind]

@@ -93,7 +93,7 @@ class DesignEdits(QtCore.QObject):
         """Ask for a drawn zone's name and kind, then rebuild the scene with it
         (``shape``: its ``rect`` or its ``outline``); errors shown, nothing changed."""
         if dialog is None:
-            dialog = ZoneDialog(surface, self.doc.new_zone_name(), self.win)
+            dialog = ZoneDialog(surface, self.doc.new_zone_name(), self.win, **shape)
             dialog.kind.setCurrentIndex(max(0, dialog.kind.findData(self.draw_kind())))
         if not ask.accepted(dialog):
             return False

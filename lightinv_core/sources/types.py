@@ -25,7 +25,7 @@ import numpy as np
 
 from lightinv_core.design.model import Daylight, Source
 from lightinv_core.errors import DesignError
-from lightinv_core.kinds import SourceKind, add_source_kind, remove_source_kind, source_kind_names
+from lightinv_core.kinds import SourceKind, add_source_kind, remove_source_kind
 
 CEILING = "ceiling"
 """A surface whose front faces down into the room: a ceiling, or a roof pitched up to
@@ -186,14 +186,12 @@ class WindowGlazing(DiffusingGlazing):
     the sky and ground on its own plane (the sky groups), as a skylight's is; clear
     glass, which passes a view of the sky, is not modelled (docs/daylight.md)."""
 
-    kind = "window"
+    kind = SourceKind.WINDOW
     label = "Window (glazing)"
     stem = "W"
     placement = ANY_FACE
 
 
-if WindowGlazing.kind not in source_kind_names():
-    add_source_kind(WindowGlazing.kind)  # a built-in kind that kinds.SourceKind may name
 SOURCE_TYPES: dict[str, SourceType] = {
     str(t.kind): t for t in (ZoneLuminaire(), DiffusingGlazing(), WindowGlazing())
 }

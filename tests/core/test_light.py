@@ -78,8 +78,8 @@ def test_energy_balance_and_source_sums(cornell):
 
 def test_every_source_kind_is_registered_and_consistent(office):
     # Every kind the vocabulary names has a type, and every type's kind is a valid name
-    # (the window kind registers itself until kinds.SourceKind names it).
-    assert set(SourceKind) <= set(SOURCE_TYPES) <= set(source_kind_names())
+    # (the window kind included).
+    assert set(SourceKind) == set(SOURCE_TYPES) <= set(source_kind_names())
     day = Daylight(exterior_lux=8000.0, transmittance=0.5)
     sky = Source("S", "skylight", "skylight", (1.0, 1.0, 3.0, 2.0), filter=0.4)
     lum = Source("L", "lum_west", "luminaire", (0.5, 1.0, 1.5, 3.0), flux=3000.0, efficacy=120)
