@@ -40,6 +40,7 @@ from app.window.recovery import Autosaver, Recoverable
 from app.window.recovery import offer_recovery as _offer_recovery
 from app.window.recovery import recover as _recover
 from app.window.run_control import RunController
+from app.window.scroll_page import FitScrollArea, page
 from app.window.status_bar import ElidingStatusBar, window_title
 from app.window.tasks import BackgroundTasks
 from app.window.undo import undo_stack
@@ -52,20 +53,6 @@ __all__ = ["MAX_RECENT", "MainWindow"]
 
 PREFERRED_SIZE = QtCore.QSize(1400, 900)
 """The window's size on a screen with room for it (px)."""
-
-
-def _page(*panels: QtWidgets.QWidget) -> QtWidgets.QScrollArea:
-    """``panels`` one above the other, scrolled only on a screen too small for them."""
-    box = QtWidgets.QWidget()
-    lay = QtWidgets.QVBoxLayout(box)
-    for panel in panels:
-        lay.addWidget(panel)
-    lay.addStretch(1)
-    area = QtWidgets.QScrollArea()
-    area.setWidgetResizable(True)
-    area.setFrameShape(QtWidgets.QFrame.NoFrame)
-    area.setWidget(box)
-    return area
 
 
 class MainWindow(QtWidgets.QMainWindow):
@@ -152,11 +139,7 @@ class MainWindow(QtWidgets.QMainWindow):
         if scroll:
             # A panel taller than the screen scrolls instead of making the window taller
             # than a laptop's (1366 x 768) screen.
-            area_ = QtWidgets.QScrollArea()
-            area_.setWidgetResizable(True)
-            area_.setFrameShape(QtWidgets.QFrame.NoFrame)
-            area_.setWidget(widget)
-            widget = area_
+            widget = FitScrollArea(widget)
         dock.setWidget(widget)
         self.addDockWidget(area, dock)
 
@@ -171,7 +154,7 @@ class MainWindow(QtWidgets.QMainWindow):
             "Materials and view": (self.materials_panel, self.view_options),
         }
         for title, panels in pages.items():
-            self.properties.addTab(_page(*panels), title)
+            self.properties.addTab(page(*panels), title)
         self._dock("Properties", "properties", self.properties, QtCore.Qt.RightDockWidgetArea)
         self._dock(
             "Luminaires", "luminaires", self.luminaires_panel, QtCore.Qt.RightDockWidgetArea, True
