@@ -25,7 +25,10 @@ class FitScrollArea(QtWidgets.QScrollArea):
         widget.installEventFilter(self)
 
     def sizeHint(self) -> QtCore.QSize:
-        return self.widget().sizeHint()
+        # The panel's wish, bounded as QScrollArea bounds it (36 x 24 lines): the docks
+        # must not take the view's room.
+        h = self.fontMetrics().height()
+        return self.widget().sizeHint().boundedTo(QtCore.QSize(36 * h, 24 * h))
 
     def minimumSizeHint(self) -> QtCore.QSize:
         # As narrow as the panel may be, and short: the rest scrolls.

@@ -115,6 +115,10 @@ def test_every_button_of_the_side_docks_is_on_screen_at_1366_x_768(
     window.grab().save(str(SHOTS / "luminaires.png"))
     assert all(whole(b) for b in buttons), [(b.text(), whole(b)) for b in buttons]
     assert scrolled(luminaires) == []
+    # The polar curve whole in its box (squeezed below its minimum, it was cut off).
+    polar = window.luminaires_panel.polar
+    assert polar.parentWidget().rect().contains(polar.geometry())
+    assert polar.height() >= polar.minimumHeight()
 
 
 def test_the_source_page_names_the_selected_sources_own_zone(qtbot, window, monkeypatch, tmp_path):
