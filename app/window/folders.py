@@ -54,10 +54,12 @@ class FolderMemory(QtCore.QObject):
         return Path.home()
 
     def point(self) -> None:
-        """Make the next file dialog start in ``start()``."""
+        """Make the next file dialog start in ``start()`` (the path event comes with
+        every edit: a dialog object is made only when the folder changes)."""
         folder = str(self.start())
-        QtWidgets.QFileDialog().setDirectory(folder)  # Qt's last visited folder
-        self._pointed = folder
+        if folder != self._pointed:
+            QtWidgets.QFileDialog().setDirectory(folder)  # Qt's last visited folder
+            self._pointed = folder
 
     def chosen(self, path: str | Path) -> None:
         """Remember the folder of a file the user chose ("": cancelled, nothing)."""
@@ -66,6 +68,7 @@ class FolderMemory(QtCore.QObject):
         folder = Path(path).resolve().parent
         if folder.is_dir():
             self.settings.setValue(KEY, str(folder))
+        self._pointed = None  # a dialog went elsewhere meanwhile: point it again
         self.point()
 
     def keep_visited(self) -> None:
