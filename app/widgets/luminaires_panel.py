@@ -18,6 +18,7 @@ from app.dialogs.array_dialog import ArrayDialog
 from app.dialogs.workplane_dialog import WorkplaneDialog
 from app.document import Document
 from app.view.polar_plot import PolarPlot
+from app.widgets.elided_label import ElidedLabel
 from lightinv_core.design.en12464 import REQUIREMENTS, preset_intention
 from lightinv_core.errors import LightInvError
 from lightinv_core.light.arrays import resolve_product
@@ -115,7 +116,7 @@ class LuminairesPanel(QtWidgets.QWidget):
         self.add_plane_button.clicked.connect(lambda: self.add_workplane())
         self.remove_plane_button.clicked.connect(self.remove_workplane)
         self.preset.activated.connect(self._preset)
-        self.status = QtWidgets.QLabel()
+        self.status = ElidedLabel()  # never wider than the dock; whole on hover
         wp.addWidget(self.status)
         lay.addWidget(wp_box)
 

@@ -10,6 +10,7 @@ from __future__ import annotations
 from PySide6 import QtWidgets
 
 from app.document import Document
+from app.widgets.elided_label import ElidedLabel
 from lightinv_core.design.model import CORNERS
 from lightinv_core.errors import LightInvError
 from lightinv_core.sources.types import source_type
@@ -55,7 +56,7 @@ class SourcePanel(QtWidgets.QGroupBox):
         # as the selected source's zone).
         self.name = QtWidgets.QLabel("-")
         form.addRow("Selected source", self.name)
-        self.own_zone = QtWidgets.QLabel("-")
+        self.own_zone = ElidedLabel("-")  # a long zone name must not widen the dock
         form.addRow("In zone", self.own_zone)
         self.zone = QtWidgets.QComboBox()
         self.zone.setToolTip("The emitter zone a new source is added in")

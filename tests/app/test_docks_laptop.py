@@ -338,3 +338,18 @@ def test_status_messages_fit_and_the_title_keeps_the_name(qtbot, window, monkeyp
     title = window.windowTitle()
     assert title.startswith("classroom.json - ") and title.endswith(" - LightInv")
     assert "…" in title and len(title) < 80
+
+
+def test_a_line_too_long_for_its_panel_is_elided_and_whole_on_hover(qtbot):
+    from app.widgets.elided_label import ElidedLabel
+
+    text = "Precomputing the luminaire arrays' light: 45% (12 s); the search starts after it"
+    label = ElidedLabel(text + "\nrun 1 of 3")
+    qtbot.addWidget(label)
+    label.resize(200, 60)
+    label.show()
+    first, second = label.text().split("\n")
+    assert first.endswith("…") and label.fontMetrics().horizontalAdvance(first) <= 200
+    assert second == "run 1 of 3" and label.toolTip() == text + "\nrun 1 of 3"
+    label.resize(900, 60)
+    assert label.text() == label.full_text() == text + "\nrun 1 of 3" and label.toolTip() == ""
