@@ -11,7 +11,12 @@ from lightinv_core.light.arrays import Product
 
 class PolarPlot(pg.PlotWidget):
     """A product's intensity (cd/klm) in its C0-C180 and C90-C270 planes, as a polar
-    diagram: down is nadir (gamma 0), circles every ``ring`` cd/klm."""
+    diagram: down is nadir (gamma 0), circles every ``ring`` cd/klm.
+
+    The diagram always fills the widget: its range is the curves' and rings' box, set
+    again on every resize (it was auto-ranged over the ring labels too, whose size is in
+    pixels, and shrank to a dot in a dock made wider or shorter). No panning or zooming:
+    a diagram to read, not a plot to explore."""
 
     def __init__(self, parent: QtWidgets.QWidget | None = None):
         super().__init__(parent)
@@ -19,13 +24,27 @@ class PolarPlot(pg.PlotWidget):
         self.hideAxis("bottom")
         self.hideAxis("left")
         self.setMinimumHeight(170)
+        self.setMouseEnabled(x=False, y=False)
+        self.hideButtons()
+        self.setMenuEnabled(False)
         self.curves: dict[str, np.ndarray] = {}
+        self.box: QtCore.QRectF | None = None  # the diagram's extent (cd/klm)
+
+    def resizeEvent(self, event) -> None:
+        super().resizeEvent(event)
+        self._fit()
+
+    def _fit(self) -> None:
+        if getattr(self, "box", None) is not None:  # None until the first product
+            self.getPlotItem().getViewBox().setRange(rect=self.box, padding=0.04)
 
     def show_product(self, product: Product | None) -> None:
         """Draw ``product``'s curves (nothing for None)."""
         self.clear()
         self.curves = {}
+        self.box = None
         if product is None:
+            self.setTitle("")
             return
         gam = np.radians(np.linspace(0.0, 180.0, 181))
         per_klm = 1000.0 / max(product.lumens, 1e-9)
@@ -61,3 +80,8 @@ class PolarPlot(pg.PlotWidget):
                     pen=pg.mkPen("#dddddd", width=1),
                 )
         self.setTitle(f"{product.name}: cd/klm (C0 solid, C90 dashed)", size="8pt")
+        # The whole diagram: the curves, the rings and the guide lines (radius ``peak``).
+        xy = np.vstack(list(self.curves.values()))
+        reach = max(peak, int(peak // ring) * ring, float(np.abs(xy).max()))
+        self.box = QtCore.QRectF(-reach, -reach, 2 * reach, 2 * reach)
+        self._fit()

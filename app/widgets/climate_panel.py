@@ -161,6 +161,9 @@ class ClimatePanel(QtWidgets.QWidget):
         form.addRow("Standby", self.standby)
         self.plane = QtWidgets.QComboBox()
         self.plane.setToolTip("The work plane the dimming, the annual energy and sDA read")
+        # Sized to its entries as they change ("none: add a work plane (Luminaires)" was
+        # cut to the width of the entries it had when first shown).
+        self.plane.setSizeAdjustPolicy(QtWidgets.QComboBox.AdjustToContents)
         form.addRow("Control work plane", self.plane)
         self.start.valueChanged.connect(self._occupancy_edited)
         self.end.valueChanged.connect(self._occupancy_edited)

@@ -9,7 +9,27 @@ from PySide6 import QtCore, QtGui, QtWidgets
 from app.dialogs.intention_dialog import intention_target
 from app.document import Document
 from lightinv_core.editing.rules import rule_text
+from lightinv_core.goals import goal_spec
 from lightinv_core.kinds import Bound
+
+
+def arrays_text(arrays) -> str:
+    """How many arrays and luminaires in all: "1 array, 6 luminaires"."""
+    n, total = len(arrays), sum(a.count for a in arrays)
+    return f"{n} array{'s' * (n != 1)}, {total} luminaire{'s' * (total != 1)}"
+
+
+def goal_texts(goal) -> list[str]:
+    """A goal's row: its name from the goals registry ("Least electric power", not
+    the file's ``min_electric_power``), then the unit and the source kinds it counts."""
+    try:
+        spec = goal_spec(goal.kind)
+    except KeyError:  # a kind no longer registered: its file name is all there is
+        return [str(goal.kind), ", ".join(goal.kinds)]
+    details = [f"in {spec.unit}"] if spec.unit else []
+    if goal.kinds:
+        details.append("of " + ", ".join(goal.kinds))
+    return [spec.menu, ", ".join(details)]
 
 
 class DesignTree(QtWidgets.QTreeWidget):
@@ -66,12 +86,15 @@ class DesignTree(QtWidgets.QTreeWidget):
                 its, [it.name, f"{intention_target(it)}: {bounds} {it.quantity}, {it.scenario}"]
             ).setData(0, 256, ("intention", it.name))
         if d.design.arrays:
+            # The count beside a heading is of the items under it (it showed the
+            # luminaires, "Luminaire arrays 6" for one array of 2 x 3).
             arrays = QtWidgets.QTreeWidgetItem(
-                self, ["Luminaire arrays", str(sum(a.count for a in d.design.arrays))]
+                self, ["Luminaire arrays", arrays_text(d.design.arrays)]
             )
             for a in d.design.arrays:
                 QtWidgets.QTreeWidgetItem(
-                    arrays, [a.name, f"{a.rows} x {a.columns} {a.product} in {a.zone}"]
+                    arrays,
+                    [a.name, f"{a.rows} x {a.columns} = {a.count} {a.product} in {a.zone}"],
                 )
         if d.design.workplanes:
             planes = QtWidgets.QTreeWidgetItem(self, ["Work planes", str(len(d.design.workplanes))])
@@ -83,10 +106,14 @@ class DesignTree(QtWidgets.QTreeWidget):
         for k, rule in enumerate(d.design.rules):
             what, bounds = rule_text(rule)
             QtWidgets.QTreeWidgetItem(rules_item, [what, bounds]).setData(0, 256, ("rule", k))
-        goals = QtWidgets.QTreeWidgetItem(self, ["Goals", ""])
+        goals = QtWidgets.QTreeWidgetItem(self, ["Goals", str(len(d.design.goals))])
         for g in d.design.goals:
-            QtWidgets.QTreeWidgetItem(goals, [g.kind, ", ".join(g.kinds)])
+            QtWidgets.QTreeWidgetItem(goals, goal_texts(g))
         self.expandAll()
+        # The details column is cut in a narrow dock: each row's whole text on hover.
+        for item in self.findItems("", QtCore.Qt.MatchContains | QtCore.Qt.MatchRecursive):
+            item.setToolTip(1, item.text(1))
+            item.setToolTip(0, item.text(0))
 
     def _clicked(self, item, _col) -> None:
         data = item.data(0, 256)

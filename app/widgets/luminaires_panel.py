@@ -11,13 +11,14 @@ under the arrays and in the status bar's warnings.
 
 from __future__ import annotations
 
-from PySide6 import QtWidgets
+from PySide6 import QtCore, QtWidgets
 
 from app.dialogs import ask
 from app.dialogs.array_dialog import ArrayDialog
 from app.dialogs.workplane_dialog import WorkplaneDialog
 from app.document import Document
 from app.view.polar_plot import PolarPlot
+from app.widgets.elided_label import ElidedLabel
 from lightinv_core.design.en12464 import REQUIREMENTS, preset_intention
 from lightinv_core.errors import LightInvError
 from lightinv_core.light.arrays import resolve_product
@@ -29,9 +30,23 @@ ARRAY_COLUMNS = ("array", "zone", "product", "layout", "spacing m", "C0", "dimmi
 PLANE_COLUMNS = ("work plane", "height m", "points", "Em lux", "Emin lux", "Emax lux", "U0")
 
 
+class CompactTable(QtWidgets.QTableWidget):
+    """A table that asks for three rows' height: a word-wrapped warning makes the
+    panel's layout give a box its preferred height, and a table's usual one squeezed
+    the catalogue box below its minimum, cutting the polar curve off (1366 x 768)."""
+
+    ROWS = 3
+
+    def sizeHint(self) -> QtCore.QSize:
+        rows = self.ROWS * self.verticalHeader().defaultSectionSize()
+        bar = self.horizontalScrollBar().sizeHint().height()
+        height = self.horizontalHeader().sizeHint().height() + rows + bar + 2 * self.frameWidth()
+        return QtCore.QSize(super().sizeHint().width(), height)
+
+
 def _table(columns: tuple[str, ...]) -> QtWidgets.QTableWidget:
     """A read-only table selected by rows."""
-    table = QtWidgets.QTableWidget(0, len(columns))
+    table = CompactTable(0, len(columns))
     table.setHorizontalHeaderLabels(columns)
     table.setSelectionBehavior(QtWidgets.QAbstractItemView.SelectRows)
     table.setEditTriggers(QtWidgets.QAbstractItemView.NoEditTriggers)
@@ -101,8 +116,7 @@ class LuminairesPanel(QtWidgets.QWidget):
         self.add_plane_button.clicked.connect(lambda: self.add_workplane())
         self.remove_plane_button.clicked.connect(self.remove_workplane)
         self.preset.activated.connect(self._preset)
-        self.status = QtWidgets.QLabel()
-        self.status.setWordWrap(True)
+        self.status = ElidedLabel()  # never wider than the dock; whole on hover
         wp.addWidget(self.status)
         lay.addWidget(wp_box)
 
@@ -314,8 +328,10 @@ class LuminairesPanel(QtWidgets.QWidget):
         if design is not None and planes and not stats:
             self.status.setText("Values appear once the radiosity operator is ready.")
         elif design is not None and arrays:
-            total = sum(a.count for a in arrays)
-            self.status.setText(f"{total} luminaires in {len(arrays)} arrays.")
+            total, n = sum(a.count for a in arrays), len(arrays)
+            self.status.setText(
+                f"{total} luminaire{'s' * (total != 1)} in {n} array{'s' * (n != 1)}."
+            )
         else:
             self.status.setText("")
 

@@ -10,6 +10,7 @@ from __future__ import annotations
 from PySide6 import QtWidgets
 
 from app.document import Document
+from app.widgets.elided_label import ElidedLabel
 from lightinv_core.design.model import CORNERS
 from lightinv_core.errors import LightInvError
 from lightinv_core.sources.types import source_type
@@ -34,6 +35,15 @@ def strength_field(s) -> str:
     return t.strength
 
 
+def zone_text(doc: Document, zone: str) -> str:
+    """A zone with its kind and size: "downlights (luminaire zone, 2.00 x 0.50 m)"."""
+    try:
+        w, h = doc.zone_size(zone)
+        return f"{zone} ({doc.zone_kind(zone)} zone, {w:.2f} x {h:.2f} m)"
+    except (KeyError, LightInvError):  # a zone the scene no longer has
+        return zone
+
+
 class SourcePanel(QtWidgets.QGroupBox):
     """Edits the current source numerically; adding and removing sources."""
 
@@ -41,15 +51,17 @@ class SourcePanel(QtWidgets.QGroupBox):
         super().__init__("Source", parent)
         self.doc = doc
         form = QtWidgets.QFormLayout(self)
-        self.zone = QtWidgets.QComboBox()
-        self.add_button = QtWidgets.QPushButton("Add source in zone")
-        self.remove_button = QtWidgets.QPushButton("Remove source")
-        row = QtWidgets.QHBoxLayout()
-        row.addWidget(self.zone)
-        row.addWidget(self.add_button)
-        form.addRow("Zone", row)
+        # The selected source and its own zone first; the zone a new source goes in is
+        # asked for with the Add button below (the one "Zone" box above the fields read
+        # as the selected source's zone).
         self.name = QtWidgets.QLabel("-")
-        form.addRow("Current", self.name)
+        form.addRow("Selected source", self.name)
+        self.own_zone = ElidedLabel("-")  # a long zone name must not widen the dock
+        form.addRow("In zone", self.own_zone)
+        self.zone = QtWidgets.QComboBox()
+        self.zone.setToolTip("The emitter zone a new source is added in")
+        self.add_button = QtWidgets.QPushButton("Add source")
+        self.remove_button = QtWidgets.QPushButton("Remove source")
         self.corners = []
         for label in ("u0", "v0", "u1", "v1"):
             box = QtWidgets.QDoubleSpinBox(decimals=3, singleStep=0.05, suffix=" m")
@@ -103,6 +115,14 @@ class SourcePanel(QtWidgets.QGroupBox):
         self.mirror.currentIndexChanged.connect(self._mirror_edited)
         self.mirror_axis.currentIndexChanged.connect(self._mirror_edited)
         form.addRow(self.remove_button)
+        line = QtWidgets.QFrame()
+        line.setFrameShape(QtWidgets.QFrame.HLine)
+        line.setFrameShadow(QtWidgets.QFrame.Sunken)
+        form.addRow(line)
+        row = QtWidgets.QHBoxLayout()
+        row.addWidget(self.zone, 1)
+        row.addWidget(self.add_button)
+        form.addRow("New source in", row)
         self.add_button.clicked.connect(self._add)
         self.remove_button.clicked.connect(self._remove)
         doc.sceneChanged.connect(self._fill_zones)
@@ -131,12 +151,14 @@ class SourcePanel(QtWidgets.QGroupBox):
             b.blockSignals(True)
         try:
             if name is None or name not in {s.name for s in self.doc.design.sources}:
-                self.name.setText("no source: add one in a zone")
+                self.name.setText("none: add one in a zone below")
+                self.own_zone.setText("-")
                 for b in boxes:
                     b.setEnabled(False)
                 return
             s = self.doc.design.source(name)
-            self.name.setText(f"{s.name} ({s.kind} in {s.zone})")
+            self.name.setText(f"{s.name} ({s.kind})")
+            self.own_zone.setText(zone_text(self.doc, s.zone))
             self.centred.setEnabled(True)
             self.centred.setChecked(self.doc.centred(name))
             self.mirror.clear()

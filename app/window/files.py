@@ -187,6 +187,7 @@ class ProjectFiles(QtCore.QObject):
 
     def open_dialog(self) -> None:
         path = ask.open_file(self.win, "Open project")
+        self.win.folders.chosen(path)
         if path:
             self.open_path(path)
 
@@ -197,6 +198,7 @@ class ProjectFiles(QtCore.QObject):
             from app.dialogs.import_dialog import ImportDialog, model_filter
 
             path = ask.open_file(self.win, "Import model", model_filter())
+            self.win.folders.chosen(path)
             if not path:
                 return False
 
@@ -226,15 +228,18 @@ class ProjectFiles(QtCore.QObject):
 
     def save_as_dialog(self) -> bool:
         path = ask.save_file(self.win, "Save project", suffix=".json")
+        self.win.folders.chosen(path)
         return bool(path) and self.save_to(path)
 
     def export_png_dialog(self) -> None:
         path = ask.save_file(self.win, "Export viewport", "PNG image (*.png)", suffix=".png")
+        self.win.folders.chosen(path)
         if path:
             self.win.viewport.screenshot(path)
 
     def export_report_dialog(self) -> None:
         path = ask.save_file(self.win, "Export report", "PDF (*.pdf)", suffix=".pdf")
+        self.win.folders.chosen(path)
         if path:
             self.win.export_report(path)
 

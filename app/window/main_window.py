@@ -35,14 +35,18 @@ from app.widgets.zone_panel import ZonePanel
 from app.window import actions
 from app.window.design_edits import DesignEdits, surface_frame_of
 from app.window.files import MAX_RECENT, ProjectFiles
+from app.window.folders import FolderMemory
 from app.window.recovery import Autosaver, Recoverable
 from app.window.recovery import offer_recovery as _offer_recovery
 from app.window.recovery import recover as _recover
 from app.window.run_control import RunController
+from app.window.scroll_page import FitScrollArea, page
+from app.window.status_bar import ElidingStatusBar, window_title
 from app.window.tasks import BackgroundTasks
 from app.window.undo import undo_stack
 from app.window.view_colouring import ViewColouring
 from app.window.workers import PrecomputeWorker, Worker
+from lightinv_core.editing.changes import CURRENT_SOURCE
 from lightinv_core.project import Project
 
 __all__ = ["MAX_RECENT", "MainWindow"]
@@ -82,6 +86,7 @@ class MainWindow(QtWidgets.QMainWindow):
         self.view_options = ViewOptions()
         self._docks()
         self.files = ProjectFiles(self)
+        self.folders = FolderMemory(self)  # where the file dialogs start
         self.tasks = BackgroundTasks(self)
         self.undo_stack = undo_stack(self)
         self.edits = DesignEdits(self)
@@ -134,24 +139,23 @@ class MainWindow(QtWidgets.QMainWindow):
         if scroll:
             # A panel taller than the screen scrolls instead of making the window taller
             # than a laptop's (1366 x 768) screen.
-            area_ = QtWidgets.QScrollArea()
-            area_.setWidgetResizable(True)
-            area_.setFrameShape(QtWidgets.QFrame.NoFrame)
-            area_.setWidget(widget)
-            widget = area_
+            widget = FitScrollArea(widget)
         dock.setWidget(widget)
         self.addDockWidget(area, dock)
 
     def _docks(self) -> None:
         self._dock("Scene and design", "tree", self.tree, QtCore.Qt.LeftDockWidgetArea)
-        box = QtWidgets.QWidget()
-        lay = QtWidgets.QVBoxLayout(box)
-        lay.addWidget(self.source_panel)
-        lay.addWidget(self.zone_panel)
-        lay.addWidget(self.materials_panel)
-        lay.addWidget(self.view_options)
-        lay.addStretch(1)
-        self._dock("Properties", "properties", box, QtCore.Qt.RightDockWidgetArea, scroll=True)
+        # Properties as pages: the four panels in one column were twice a laptop's
+        # height (1366 x 768), so its buttons were reached by scrolling.
+        self.properties = QtWidgets.QTabWidget()
+        pages = {
+            "Source": (self.source_panel,),
+            "Drawn zones": (self.zone_panel,),
+            "Materials and view": (self.materials_panel, self.view_options),
+        }
+        for title, panels in pages.items():
+            self.properties.addTab(page(*panels), title)
+        self._dock("Properties", "properties", self.properties, QtCore.Qt.RightDockWidgetArea)
         self._dock(
             "Luminaires", "luminaires", self.luminaires_panel, QtCore.Qt.RightDockWidgetArea, True
         )
@@ -178,6 +182,7 @@ class MainWindow(QtWidgets.QMainWindow):
         self.climate_panel.setMinimumHeight(0)
 
     def _status(self) -> None:
+        self.setStatusBar(ElidingStatusBar())  # messages elided to fit, whole in the tooltip
         self.status_patches = QtWidgets.QLabel()
         self.status_rank = QtWidgets.QLabel()
         self.status_eval = QtWidgets.QLabel()
@@ -213,6 +218,9 @@ class MainWindow(QtWidgets.QMainWindow):
         self.viewport.sourceDragged.connect(e.dragged)
         self.viewport.zoneDrawn.connect(e.zone_drawn)
         self.viewport.polygonDrawn.connect(e.polygon_drawn)
+        for drawn in (self.viewport.zoneDrawn, self.viewport.polygonDrawn):  # its fields
+            drawn.connect(lambda *_: self.show_properties(self.zone_panel))
+        d.designChanged.connect(self._source_chosen)
         self.viewport.surface_frame = e.surface_frame
         self.tree.groupActivated.connect(e.add_intention_on_group)
         self.tree.intentionActivated.connect(e.edit_intention)
@@ -246,6 +254,18 @@ class MainWindow(QtWidgets.QMainWindow):
     def warnings(self) -> list[str]:
         """Every warning kept, scene first."""
         return [m for msgs in self._warnings.values() for m in msgs]
+
+    def show_properties(self, page: QtWidgets.QWidget) -> None:
+        """Bring the Properties page holding ``page`` (a panel) to the front."""
+        for i in range(self.properties.count()):
+            if self.properties.widget(i).isAncestorOf(page):
+                self.properties.setCurrentIndex(i)
+        self.findChild(QtWidgets.QDockWidget, "properties").raise_()
+
+    def _source_chosen(self, change) -> None:
+        """A source added or chosen (not a project opened): its page of Properties."""
+        if CURRENT_SOURCE in change.changed and len(change.changed) <= 2 and change.current_source:
+            self.show_properties(self.source_panel)
 
     def show_warnings(self) -> None:
         """The warnings in full (the status bar's button)."""
@@ -312,8 +332,12 @@ class MainWindow(QtWidgets.QMainWindow):
 
     def _title(self) -> None:
         d = self.doc
-        name = d.path.name if d.path else (d.project.name if d.project else "")
-        self.setWindowTitle(f"LightInv - {name}{' *' if d.dirty else ''}")
+        if d.project is None:
+            self.setWindowTitle("LightInv")
+            return
+        name = d.path.name if d.path else d.project.name
+        folder = str(Path(d.path).resolve().parent) if d.path else None
+        self.setWindowTitle(window_title(name, folder, d.dirty))
 
     # -- picking, dragging, drawing, intentions ------------------------------------------------
     def set_mode(self, mode: str) -> None:
@@ -412,6 +436,7 @@ class MainWindow(QtWidgets.QMainWindow):
         self.stop_worker()
         self.files.wait_abandoned()  # loads cancelled but still running end first
         self.autosaver.close()  # a clean exit: nothing to recover
+        self.folders.keep_visited()
         self.settings.setValue("geometry", self.saveGeometry())
         self.settings.setValue("windowState", self.saveState())
         self.viewport.close_plotter()

@@ -127,7 +127,7 @@ def recover(window, rec: Recoverable) -> bool:
     if not window.load_project(rec.project, rec.original):
         return False
     doc = window.doc
-    doc.mark_dirty()
+    doc.mark_unsaved()
     running = [s for s in rec.project.solutions if s.info.status == "running"]
     if running:
         with contextlib.suppress(LightInvError):

@@ -38,7 +38,7 @@ class ProjectFile(DocumentState):
         if path is None:
             raise ValueError("no file name yet: use Save As")
         save_project(self._project, path)
-        self.path, self.dirty = path, False
+        self.path, self.dirty, self._saved = path, False, self._project
         self._emit_path()
         return path
 
@@ -71,6 +71,15 @@ class ProjectFile(DocumentState):
             self._emit_design()
             self._emit_results()
             self._relight()
+        # Undoing every edit since the file was opened or saved leaves nothing unsaved
+        # (unless a run or a pin since is carried over: then the project differs).
+        self.dirty = not self.is_saved(self._project)
+        self._emit_path()
+
+    def mark_unsaved(self) -> None:
+        """Flag work that no file holds (recovered from an autosave): unsaved until
+        saved, even once every later edit is undone."""
+        self._saved = None
         self.mark_dirty()
 
 

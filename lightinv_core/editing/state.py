@@ -56,6 +56,9 @@ class DocumentState:
         self.current_source: str | None = None
         self.path: Path | None = None
         self.dirty = False
+        # The project as its file holds it (opened or saved; None: no file holds this
+        # work, e.g. recovered from an autosave): back to it by undo, nothing is unsaved.
+        self._saved: Project | None = None
         self.shown: Solution | None = None  # the result last loaded into the design
         self._browsed: int | None = _results.ALL  # the run whose results are listed
         self._run_mark = 1  # the next run's number at least: a deleted run's is not reused
@@ -112,6 +115,7 @@ class DocumentState:
         self.shown, self._preview, self.rebuilt = None, None, rebuild
         self._daylight.clear()  # it holds the old light model
         if not rebuild:
+            self._saved = project
             self._browsed, self._run_mark = _results.ALL, 1
             self._announced = (None, None)  # another project: every field is new
         self.selection = np.zeros(0, np.int64)
@@ -124,9 +128,20 @@ class DocumentState:
         self._emit_results()
 
     def mark_dirty(self) -> None:
-        """Flag unsaved changes (e.g. work recovered from an autosave)."""
+        """Flag unsaved changes."""
         self.dirty = True
         self._emit_path()
+
+    def is_saved(self, project: Project) -> bool:
+        """Whether ``project`` is what the file holds (the state last opened or saved)."""
+        if self._saved is None:
+            return False
+        if project is self._saved:
+            return True
+        try:
+            return bool(project == self._saved)
+        except (TypeError, ValueError):  # a field that does not compare (an array): unsaved
+            return False
 
     # -- the design -----------------------------------------------------------------------------
     def _set_design(self, design: Design, label: str = "edit the design") -> None:
