@@ -7,6 +7,7 @@ so desks and columns are taken out) when the room is closed, else the bounding b
 
 from __future__ import annotations
 
+import dataclasses
 import math
 from collections.abc import Sequence
 from pathlib import Path
@@ -19,10 +20,12 @@ from lightinv_core.report.tables import Table
 from lightinv_core.scene.patches import Patches
 from lightinv_core.sources.types import source_type
 
-DEFAULT_MF = 0.8
-"""The maintenance factor a luminaire array gets unless set: CIE 97:2005's value for a
-clean room with a 3-year cleaning cycle and LED luminaires (EN 12464-1 asks for the
-factor to be stated with the design)."""
+DEFAULT_MF = next(
+    f.default for f in dataclasses.fields(LuminaireArray) if f.name == "maintenance_factor"
+)
+"""The maintenance factor a luminaire array gets unless set (the design model's
+default, 0.8): CIE 97:2005's value for a clean room with a 3-year cleaning cycle and
+LED luminaires (EN 12464-1 asks for the factor to be stated with the design)."""
 
 
 def floor_area(patches: Patches) -> float:
