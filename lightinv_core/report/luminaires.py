@@ -10,6 +10,7 @@ Grid values come with the luminaires placed exactly (not the optimiser's lattice
 
 from __future__ import annotations
 
+import textwrap
 from collections.abc import Sequence
 
 import numpy as np
@@ -211,7 +212,8 @@ def plan_figure(
     subfigure of a report page) when given."""
     fig = new_figure() if fig is None else fig
     ax = fig.add_axes([0.08, 0.1, 0.78, 0.8])
-    ax.set_title(title, fontsize=12)
+    # A long title (the DF plan's) wraps rather than running off a portrait page.
+    ax.set_title("\n".join(textwrap.wrap(title, 95)) if "\n" not in title else title, fontsize=11)
     sc = ax.scatter(pts[:, 0], pts[:, 1], c=val, cmap=cmap, s=30, vmin=0.0, vmax=vmax)
     if len(pts) >= 4 and np.ptp(val) > 0:
         levels = np.linspace(val.min(), val.max(), ISO_LEVELS + 2)[1:-1]
