@@ -95,18 +95,23 @@ def title_blocks(ctx: Context) -> list[Block]:
     source = project.path.name if project.path is not None else "(unsaved project)"
     desc = textwrap.wrap(project.description, 105)[:3]
 
+    # A long name wraps (up to two lines) rather than running off the page.
+    name = textwrap.wrap(project.name, 44)[:2] or [""]
+    extra = 0.36 * (len(name) - 1)
+
     def title(sf) -> None:
-        h = 1.15 + 0.17 * len(desc)
+        h = 1.15 + extra + 0.17 * len(desc)
         sf.text(0, 1 - 0.12 / h, "Lighting design report", fontsize=10, color="0.35", va="top")
-        sf.text(0, 1 - 0.32 / h, project.name, fontsize=20, fontweight="bold", va="top")
-        y = 0.78
+        for k, line in enumerate(name):
+            sf.text(0, 1 - (0.32 + 0.36 * k) / h, line, fontsize=20, fontweight="bold", va="top")
+        y = 0.78 + extra
         for line in desc:
             sf.text(0, 1 - y / h, line, fontsize=9.5, color="0.25", va="top")
             y += 0.17
         meta = f"Date {date}   ·   project file {source}   ·   layout: {ctx.chosen.label}"
         sf.text(0, 1 - (y + 0.08) / h, meta, fontsize=9, va="top")
 
-    blocks = [drawing(1.15 + 0.17 * len(desc), title, "title")]
+    blocks = [drawing(1.15 + extra + 0.17 * len(desc), title, "title", shrink=1.0)]
     rules = rules_table(sol, project.design, ctx.prepared.patches)
     blocks.append(
         table_block(status_table(project.design, sol, ctx.light.daylight, rules), "title")

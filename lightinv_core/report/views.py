@@ -227,11 +227,12 @@ def render_view(
             continue
         ax.plot(closed[:, 0], closed[:, 1], color=OUTLINE_COLOUR, lw=1.4, zorder=4)
         centres.setdefault(o.label, []).append(xy.mean(axis=0))
-    for name, cs in centres.items():
-        # On the luminaire nearest the array's middle: a mark between luminaires would
-        # point at nothing.
-        cs = np.asarray(cs)
-        c = cs[np.argmin(np.linalg.norm(cs - cs.mean(axis=0), axis=1))]
+    span = float(np.ptp(verts.reshape(-1, 2), axis=0).max()) if len(verts) else 1.0
+    placed = _spread(
+        {name: _anchor(np.asarray(cs)) for name, cs in centres.items()},
+        MARKER_SPACING * span if numbered else 0.0,
+    )
+    for name, c in placed.items():
         text = str(numbers[name]) if name in numbers else name
         ax.annotate(
             text,
@@ -262,6 +263,41 @@ def render_view(
     fig.colorbar(coll, ax=ax, label=label, extend=extend, shrink=0.85)
     ax.set_title(title if title is not None else f"{label.split(' (')[0]}, {cam.title}")
     return fig
+
+
+MARKER_SPACING = 0.035
+"""Least distance between two numbered markers, as a share of the view's width: closer
+markers are pushed apart (an array above a skylight, a source seen edge-on)."""
+
+
+def _anchor(centres: np.ndarray) -> np.ndarray:
+    """Where an outline group's marker goes: on the luminaire nearest the group's
+    middle (a mark between luminaires would point at nothing)."""
+    return centres[np.argmin(np.linalg.norm(centres - centres.mean(axis=0), axis=1))]
+
+
+def _spread(points: dict[str, np.ndarray], gap: float) -> dict[str, np.ndarray]:
+    """The points moved apart until no two are closer than ``gap`` (a few passes of
+    pushing each close pair apart along the line joining them, sideways if they
+    coincide)."""
+    names = list(points)
+    p = np.array([points[n] for n in names], dtype=float).reshape(-1, 2)
+    for _ in range(30):
+        moved = False
+        for i in range(len(p)):
+            for j in range(i + 1, len(p)):
+                d = p[j] - p[i]
+                dist = float(np.hypot(*d))
+                if dist >= gap:
+                    continue
+                way = d / dist if dist > 1e-12 else np.array([1.0, 0.0])
+                push = 0.5 * (gap - dist) + 1e-9
+                p[i] -= way * push
+                p[j] += way * push
+                moved = True
+        if not moved:
+            break
+    return {n: p[k] for k, n in enumerate(names)}
 
 
 def marker_numbers(outlines: Sequence[Outline]) -> dict[str, int]:
