@@ -293,3 +293,31 @@ def test_flow_keeps_headings_with_their_text_and_shrinks_drawings_to_fill():
     pages = compose([drawing(6.0, lambda sf: None, "one"), table_block(long, "t")])
     assert [len(p) for p in pages] == [2, 1]
     assert _used(pages[0]) > 0.9 * TEXT_HEIGHT
+
+
+def test_a_layout_is_matched_with_skylights_and_arrays():
+    from lightinv_core.design.model import Design, Goal, Source
+    from lightinv_core.design.solution import Solution
+    from lightinv_core.project import OptimizerSettings, Project, SceneSpec
+    from lightinv_core.project.results import RunRecord
+    from lightinv_core.report.provenance import same_layout
+
+    sky = Source("S1", "skylight", "skylight", (1.0, 0.5, 3.0, 1.5), filter=0.2)
+    lum = Source("L1", "lum_west", "luminaire", (0.5, 1.5, 1.5, 4.5), flux=8000.0)
+    array = LuminaireArray("A1", "lum", PANEL, (0.0, 0.0, 6.0, 9.0), rows=4, columns=3)
+    found = Solution((sky, lum), {}, 0.0, info={"method": "vns", "seed": 4}, arrays=(array,))
+    on_screen = Solution((lum, sky), {}, 0.0, arrays=(array,))  # judged afresh: no info
+    assert same_layout(found, on_screen)
+    assert not same_layout(found, replace(on_screen, sources=(lum, replace(sky, filter=0.3))))
+    assert not same_layout(found, replace(on_screen, arrays=(replace(array, rows=5),)))
+    assert not same_layout(found, replace(on_screen, arrays=(replace(array, dimming=0.5),)))
+    design = Design((sky, lum), (Goal("min_electric_power"),))
+    run = RunRecord(
+        2, "vns", "2026-11-26T10:00:00", OptimizerSettings(max_evals=77), (), solutions=(found,)
+    )
+    project = Project("p", SceneSpec(builtin="office"), design, runs=(run,))
+    got = provenance(project, on_screen)
+    assert got is not None and got.run is run and got.solution is found
+    assert got.settings.max_evals == 77
+    moved = replace(on_screen, sources=(replace(lum, rect=(0.6, 1.5, 1.5, 4.5)), sky))
+    assert provenance(project, moved) is None
