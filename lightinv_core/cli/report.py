@@ -26,6 +26,8 @@ def cmd_report(args) -> int:
         "project": project.name,
         "report": str(info.path),
         "pages": list(info.pages),
+        "sections": list(info.sections),
+        "optimiser": info.optimiser,
         "png_files": [str(p) for p in info.png_files],
         "solution": info.solution,
         "feasible": info.feasible,
@@ -33,8 +35,10 @@ def cmd_report(args) -> int:
         "operator_from_cache": prepared.from_cache,
     }
     state = "feasible" if info.feasible else "infeasible"
+    found = f", found by {info.optimiser}" if info.optimiser else ""
     text = (
-        f"{info.path}: {len(info.pages)} pages ({info.solution}, {state}) in {info.seconds:.1f} s"
+        f"{info.path}: {len(info.pages)} pages ({info.solution}, {state}{found}) "
+        f"in {info.seconds:.1f} s"
     )
     if info.png_files:
         text += f"\n{len(info.png_files)} PNG pages in {args.png_dir}"

@@ -317,12 +317,18 @@ def energy_table(section: DaylightSection) -> Table:
 def energy_figure(section: DaylightSection) -> Figure | None:
     """The energy page: the dimming table above a bar chart of each month's lighting
     energy (kWh); None without the energy (no weather year)."""
-    e = section.energy
-    if e is None:
+    if section.energy is None:
         return None
     fig = new_figure()
     y = draw_table(fig, energy_table(section), 0.94)
-    ax = fig.add_axes((0.08, 0.06, 0.87, max(y - 0.12, 0.15)))
+    monthly_chart(section, fig, (0.08, 0.06, 0.87, max(y - 0.12, 0.15)))
+    return fig
+
+
+def monthly_chart(section: DaylightSection, fig, rect=(0.08, 0.1, 0.87, 0.78)) -> None:
+    """Each month's lighting energy with dimming (kWh) as bars, in ``rect`` of ``fig``."""
+    e = section.energy
+    ax = fig.add_axes(rect)
     months = [calendar.month_abbr[m] for m in range(1, 13)]
     kwh = np.asarray(e.monthly_kwh, float)
     bars = ax.bar(months, kwh, color="C0")
@@ -335,7 +341,6 @@ def energy_figure(section: DaylightSection) -> Figure | None:
         fontsize=11,
         loc="left",
     )
-    return fig
 
 
 def _outlines(section: DaylightSection, outlines) -> list[Outline]:
@@ -345,50 +350,51 @@ def _outlines(section: DaylightSection, outlines) -> list[Outline]:
 
 def df_figures(section: DaylightSection, outlines=()) -> list[Figure]:
     """A plan of each work plane coloured by DF (%), the skylights' outlines dashed."""
-    figs = []
-    for p in section.planes:
-        title = (
-            f"Daylight factor on work plane {p.name} at z = {p.points[0, 2]:.2f} m "
-            f"(CIE overcast sky): mean {fmt(p.df_mean, 3)}%, median {fmt(p.df_median, 3)}%, "
-            f"min {fmt(p.df_min, 3)}%"
-        )
-        figs.append(
-            plan_figure(
-                p.points,
-                p.df,
-                p.spacing,
-                title,
-                "daylight factor (%)",
-                cmap="cividis",
-                level_format="%.2g",
-                outlines=_outlines(section, outlines),
-            )
-        )
-    return figs
+    return [df_plan(section, p, outlines) for p in section.planes]
+
+
+def df_plan(section: DaylightSection, p, outlines=(), fig=None):
+    """The DF (%) plan of one work plane ``p`` (a ``section.planes`` item), into ``fig``
+    when given."""
+    title = (
+        f"Daylight factor on work plane {p.name} at z = {p.points[0, 2]:.2f} m "
+        f"(CIE overcast sky): mean {fmt(p.df_mean, 3)}%, median {fmt(p.df_median, 3)}%, "
+        f"min {fmt(p.df_min, 3)}%"
+    )
+    return plan_figure(
+        p.points,
+        p.df,
+        p.spacing,
+        title,
+        "daylight factor (%)",
+        cmap="cividis",
+        level_format="%.2g",
+        outlines=_outlines(section, outlines),
+        fig=fig,
+    )
 
 
 def da_figures(section: DaylightSection, outlines=()) -> list[Figure]:
     """A plan of each work plane coloured by DA300 (% of the occupied hours); none
     without the weather year."""
-    figs = []
-    for p in section.planes:
-        if p.da is None:
-            continue
-        title = (
-            f"Daylight autonomy DA300 on work plane {p.name}: mean {pct(p.da_mean)}%, "
-            f"sDA300/50% {pct(p.sda)}%\n{section.site}, {section.hours:,} occupied hours"
-        )
-        figs.append(
-            plan_figure(
-                p.points,
-                100.0 * p.da,
-                p.spacing,
-                title,
-                f"DA300 (% of occupied hours with daylight >= {DA_THRESHOLD:.0f} lux)",
-                cmap="viridis",
-                level_format="%.0f",
-                vmax=100.0,
-                outlines=_outlines(section, outlines),
-            )
-        )
-    return figs
+    return [da_plan(section, p, outlines) for p in section.planes if p.da is not None]
+
+
+def da_plan(section: DaylightSection, p, outlines=(), fig=None):
+    """The DA300 plan of one work plane ``p`` with its DA values, into ``fig`` when given."""
+    title = (
+        f"Daylight autonomy DA300 on work plane {p.name}: mean {pct(p.da_mean)}%, "
+        f"sDA300/50% {pct(p.sda)}%\n{section.site}, {section.hours:,} occupied hours"
+    )
+    return plan_figure(
+        p.points,
+        100.0 * p.da,
+        p.spacing,
+        title,
+        f"DA300 (% of occupied hours with daylight >= {DA_THRESHOLD:.0f} lux)",
+        cmap="viridis",
+        level_format="%.0f",
+        vmax=100.0,
+        outlines=_outlines(section, outlines),
+        fig=fig,
+    )

@@ -1,4 +1,5 @@
-"""The report's non-view pages as matplotlib figures: title, tables, convergence, Pareto.
+"""The report's plots as matplotlib figures: convergence, Pareto; and a table drawn on a
+page (``draw_table``, the daylight section's energy page).
 
 Every function returns a ``matplotlib.figure.Figure`` with an Agg canvas (pyplot is
 never used). Text is real text, so it stays selectable and searchable in the PDF.
@@ -8,7 +9,6 @@ from __future__ import annotations
 
 import math
 import textwrap
-from collections.abc import Sequence
 
 import numpy as np
 from matplotlib.backends.backend_agg import FigureCanvasAgg
@@ -24,43 +24,12 @@ from lightinv_core.value_text import goal_label
 
 PASS_COLOUR, FAIL_COLOUR, HEAD_COLOUR = "#d9f2d9", "#f8d0d0", "#e4e8f0"
 ROW_HEIGHT = 0.032  # of the page height, per table row
-ROWS_PER_PAGE = 20
 
 
 def new_figure(figsize: tuple[float, float] = A4_LANDSCAPE, **kwargs) -> Figure:
     """A figure with an Agg canvas, independent of pyplot and of the global backend."""
     fig = Figure(figsize=figsize, **kwargs)
     FigureCanvasAgg(fig)
-    return fig
-
-
-def text_page(
-    title: str, sections: Sequence[tuple[str, Sequence[str]]], subtitle: str = ""
-) -> Figure:
-    """A page of headed blocks of text lines (the title page)."""
-    fig = new_figure()
-    fig.text(0.06, 0.93, title, fontsize=20, fontweight="bold", va="top")
-    y = 0.87
-    if subtitle:
-        wrapped = textwrap.wrap(subtitle, 110)
-        if len(wrapped) > 6:
-            wrapped = [*wrapped[:5], wrapped[5] + " …"]
-        for line in wrapped:
-            fig.text(0.06, y, line, fontsize=10.5, va="top", color="0.25")
-            y -= 0.028
-        y -= 0.01
-    col_x, col_top = 0.06, y
-    for head, raw in sections:
-        lines = [part for line in raw for part in textwrap.wrap(line, 100, subsequent_indent="  ")]
-        need = 0.04 + 0.027 * len(lines)
-        if y - need < 0.04 and col_x < 0.5:  # second column
-            col_x, y = 0.53, col_top
-        fig.text(col_x, y, head, fontsize=12.5, fontweight="bold", va="top")
-        y -= 0.038
-        for line in lines:
-            fig.text(col_x + 0.015, y, line, fontsize=10, va="top")
-            y -= 0.027
-        y -= 0.015
     return fig
 
 
@@ -112,28 +81,6 @@ def draw_table(
     return y - 0.03
 
 
-def table_pages(tables: Sequence[Table | None]) -> list[Figure]:
-    """Pages holding the tables in order, several per page when they fit, long ones
-    split over pages ("(continued)")."""
-    pages: list[Figure] = []
-    fig, y = None, 0.0
-    for table in tables:
-        if table is None:
-            continue
-        chunks = [
-            range(a, min(a + ROWS_PER_PAGE, len(table.rows)))
-            for a in range(0, max(1, len(table.rows)), ROWS_PER_PAGE)
-        ]
-        for c, rows in enumerate(chunks):
-            need = 0.12 + ROW_HEIGHT * (len(rows) + 1)
-            if fig is None or y - need < 0.04:
-                fig, y = new_figure(), 0.94
-                pages.append(fig)
-            title = table.title if c == 0 else f"{table.title} (continued)"
-            y = draw_table(fig, table, y, rows, title)
-    return pages
-
-
 def _levels(history: np.ndarray, stage_evals=None) -> tuple[np.ndarray, list[float]]:
     """Cumulative evaluations of a (possibly multilevel) history, and where stages start.
 
@@ -158,9 +105,10 @@ def _levels(history: np.ndarray, stage_evals=None) -> tuple[np.ndarray, list[flo
     return out, starts
 
 
-def convergence_figure(solution: Solution, primary: str) -> Figure | None:
+def convergence_figure(solution: Solution, primary: str, fig=None) -> Figure | None:
     """Best primary goal and best penalty against evaluations, from ``info.history``
-    (rows: evaluations, best f + P, best P, best goal); None without a history."""
+    (rows: evaluations, best f + P, best P, best goal); None without a history. Into
+    ``fig`` (a subfigure of a report page) when given."""
     rows = solution.info.history
     if not rows:
         return None
@@ -173,7 +121,7 @@ def convergence_figure(solution: Solution, primary: str) -> Figure | None:
     x = np.r_[ev, end]
     name = goal_label(primary)
     short = name.split(" (")[0]
-    fig = new_figure(layout="constrained")
+    fig = new_figure(layout="constrained") if fig is None else fig
     ax1, ax2 = fig.subplots(2, 1, sharex=True)
     goal = np.r_[H[:, 3], H[-1, 3]]
     ok = np.isfinite(goal)
@@ -228,13 +176,13 @@ MAX_LABELLED_POINTS = 20
 
 
 def pareto_figure(
-    front: ParetoFront, chosen: Solution | None, quality: FrontQuality | None = None
+    front: ParetoFront, chosen: Solution | None, quality: FrontQuality | None = None, fig=None
 ) -> Figure | None:
     """The front's second objective against its first (``front.objectives``: reflected
     light power (lm) against electric power (W) for the power/light fronts, e.g. glazing
     area against annual energy for a climate front) of its solutions and the other
     candidates, the reported solution marked, the front's hypervolume and spacing in
-    the title when ``quality`` is given; None when empty."""
+    the title when ``quality`` is given; None when empty. Into ``fig`` when given."""
     if not front.solutions:
         return None
     default = (str(GoalKind.MIN_ELECTRIC_POWER), str(GoalKind.MAX_LIGHT_POWER))
@@ -246,7 +194,7 @@ def pareto_figure(
             dtype=float,
         ).reshape(-1, 2)
 
-    fig = new_figure(layout="constrained")
+    fig = new_figure(layout="constrained") if fig is None else fig
     ax = fig.add_subplot()
     front_ids = {id(s) for s in front.solutions}
     others = [s for s in front.candidates if id(s) not in front_ids and s not in front.solutions]

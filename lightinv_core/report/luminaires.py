@@ -2,7 +2,6 @@
 
 - the luminaire schedule: per array its product, count, spacing, rotation, dimming,
   flux and power, and the totals; the products' photometry warnings in its note;
-- polar curves of each product (C0-C180 and C90-C270 planes, cd per 1000 lm);
 - per work plane: its grid and the maintained values Em, Emin, Emax and U0 against the
   intentions on it, with an iso-lux plan.
 
@@ -11,6 +10,7 @@ Grid values come with the luminaires placed exactly (not the optimiser's lattice
 
 from __future__ import annotations
 
+import textwrap
 from collections.abc import Sequence
 
 import numpy as np
@@ -24,7 +24,7 @@ from lightinv_core.light.grids import DesignGrids
 from lightinv_core.luminaires.photometry import light_warnings
 from lightinv_core.quantities import quantity_spec
 from lightinv_core.report.figures import new_figure
-from lightinv_core.report.tables import FAIL, PASS, Table
+from lightinv_core.report.tables import FAIL, PASS, Table, product_title
 from lightinv_core.transport.workplane import grid_statistics
 from lightinv_core.value_text import fmt
 
@@ -50,7 +50,7 @@ def luminaire_table(arrays: Sequence[LuminaireArray], warnings: Sequence[str] = 
         rows.append(
             (
                 a.name,
-                p.name,
+                product_title(p),
                 f"{a.rows} x {a.columns} = {a.count}",
                 f"{su:.2f} x {sv:.2f}",
                 f"{a.rotation}°",
@@ -91,32 +91,6 @@ def _warnings_note(products: Sequence[Product]) -> str:
     note: the same lines the command line and the window show."""
     warnings = light_warnings(p.photometry for p in products)
     return "".join(f" Warning: {w}." for w in warnings)
-
-
-def polar_figure(products: Sequence[Product]):
-    """Polar curves (cd/klm) of each product in its C0-C180 and C90-C270 planes."""
-    products = list({p.name: p for p in products}.values())
-    if not products:
-        return None
-    fig = new_figure()
-    fig.suptitle(
-        "Luminous intensity distributions (cd per 1000 lm)", fontsize=14, x=0.06, ha="left"
-    )
-    gam = np.linspace(0.0, 180.0, 181)
-    for k, p in enumerate(products):
-        ax = fig.add_subplot(1, len(products), k + 1, projection="polar")
-        ax.set_theta_zero_location("S")
-        per_klm = 1000.0 / max(p.lumens, 1e-9)
-        for c, style in ((0.0, "-"), (90.0, "--")):
-            right = p.photometry.intensity(np.full_like(gam, c), gam) * per_klm
-            left = p.photometry.intensity(np.full_like(gam, c + 180.0), gam) * per_klm
-            theta = np.concatenate([np.radians(gam), -np.radians(gam[::-1])])
-            r = np.concatenate([right, left[::-1]])
-            ax.plot(theta, r, style, lw=1.6, label=f"C{c:.0f}-C{c + 180:.0f}")
-        ax.set_title(f"{p.name}\n{p.lumens:,.0f} lm, {p.watts:g} W", fontsize=10)
-        ax.tick_params(labelsize=7)
-        ax.legend(fontsize=7, loc="lower right", bbox_to_anchor=(1.15, -0.12))
-    return fig
 
 
 def grid_table(
@@ -230,13 +204,16 @@ def plan_figure(
     level_format: str = "%.0f",
     vmax: float | None = None,
     outlines: list | None = None,
+    fig=None,
 ):
     """A plan of one work plane's grid points ``pts`` (q, 3) coloured by ``val`` (q,)
     from 0, with iso-lines labelled by ``level_format``, a colour bar labelled ``label``
-    and, optionally, 3-D ``outlines`` (``views.Outline``) drawn in plan."""
-    fig = new_figure()
+    and, optionally, 3-D ``outlines`` (``views.Outline``) drawn in plan; into ``fig`` (a
+    subfigure of a report page) when given."""
+    fig = new_figure() if fig is None else fig
     ax = fig.add_axes([0.08, 0.1, 0.78, 0.8])
-    ax.set_title(title, fontsize=12)
+    # A long title (the DF plan's) wraps rather than running off a portrait page.
+    ax.set_title("\n".join(textwrap.wrap(title, 95)) if "\n" not in title else title, fontsize=11)
     sc = ax.scatter(pts[:, 0], pts[:, 1], c=val, cmap=cmap, s=30, vmin=0.0, vmax=vmax)
     if len(pts) >= 4 and np.ptp(val) > 0:
         levels = np.linspace(val.min(), val.max(), ISO_LEVELS + 2)[1:-1]
@@ -246,10 +223,15 @@ def plan_figure(
     lo = pts[:, :2].min(axis=0) - pad
     hi = pts[:, :2].max(axis=0) + pad
     for o in outlines or ():
+        if o.kind == "zone":
+            continue
         xy = np.asarray(o.points, float)[:, :2]
         closed = np.vstack([xy, xy[:1]])
-        ax.plot(closed[:, 0], closed[:, 1], color="#00a5c0", lw=1.4, ls="--", zorder=3)
-        ax.annotate(o.label, xy.mean(axis=0), color="#00a5c0", fontsize=8, ha="center", va="center")
+        ax.plot(closed[:, 0], closed[:, 1], color="#00a5c0", lw=1.2, ls="--", zorder=3)
+        if o.kind != "luminaire":  # one label per source; luminaires are many: unlabelled
+            ax.annotate(
+                o.label, xy.mean(axis=0), color="#00a5c0", fontsize=8, ha="center", va="center"
+            )
         lo, hi = np.minimum(lo, xy.min(axis=0) - pad), np.maximum(hi, xy.max(axis=0) + pad)
     ax.set_aspect("equal")
     ax.set_xlim(lo[0], hi[0])
@@ -261,16 +243,15 @@ def plan_figure(
     return fig
 
 
-def isolux_figures(grids: DesignGrids, lux: np.ndarray) -> list:
-    """A plan of each work plane: the grid points coloured by lux, with iso-lux lines."""
-    figs = []
-    for name, span in grids.spans.items():
-        pts, val = grids.points[span], lux[span]
-        st = grid_statistics(val)
-        title = (
-            f"Work plane {name} at z = {pts[0, 2]:.2f} m: Em {st['Em']:.0f} lux, "
-            f"Emin {st['Emin']:.0f}, Emax {st['Emax']:.0f}, U0 {st['U0']:.2f}"
-        )
-        spacing = grids.grids[name].spacing
-        figs.append(plan_figure(pts, val, spacing, title, "illuminance (lux)"))
-    return figs
+def isolux_plan(grids: DesignGrids, lux: np.ndarray, name: str, fig=None, outlines=None):
+    """The plan of work plane ``name`` coloured by ``lux`` with iso-lux lines (into
+    ``fig`` when given; ``outlines`` drawn in plan)."""
+    span = grids.spans[name]
+    pts, val = grids.points[span], lux[span]
+    st = grid_statistics(val)
+    title = (
+        f"Work plane {name} at z = {pts[0, 2]:.2f} m: Em {st['Em']:.0f} lux, "
+        f"Emin {st['Emin']:.0f}, Emax {st['Emax']:.0f}, U0 {st['U0']:.2f}"
+    )
+    spacing = grids.grids[name].spacing
+    return plan_figure(pts, val, spacing, title, "illuminance (lux)", fig=fig, outlines=outlines)

@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from pathlib import Path
 
 import numpy as np
 
@@ -19,7 +20,7 @@ from lightinv_core.design.variables import array_layout
 from lightinv_core.errors import LightInvError
 from lightinv_core.goals import bounded_goal, goal_spec, is_goal
 from lightinv_core.kinds import Bound, Scenario
-from lightinv_core.light.arrays import array_shapes
+from lightinv_core.light.arrays import Product, array_shapes, resolve_product
 from lightinv_core.light.daylight import LayoutDaylight
 from lightinv_core.light.field import LightField
 from lightinv_core.light.intentions import (
@@ -62,6 +63,20 @@ class Table:
             object.__setattr__(self, "flags", ("",) * len(self.rows))
 
 
+SHORT_NAME = 36
+"""A product name longer than this (an IES file's luminaire description) is replaced by
+its catalogue number or file name where space is short."""
+
+
+def product_title(p: Product) -> str:
+    """A product's name for tables and headings: its name, or when that is a long
+    description, the manufacturer's catalogue number (else the file's name)."""
+    if len(p.name) <= SHORT_NAME:
+        return p.name
+    ph = p.photometry
+    return ph.catalogue_number or (Path(ph.source).stem if ph.source else p.name[:SHORT_NAME])
+
+
 def fmt_corners(s: Source) -> str:
     """The rectangle's lower and upper corners in zone (u, v) metres: "(u0, v0)–(u1, v1)"."""
     (a, b), (c, d) = s.u_range, s.v_range
@@ -69,7 +84,9 @@ def fmt_corners(s: Source) -> str:
 
 
 def source_table(solution: Solution, design: Design) -> Table:
-    """One row per source: zone, corners, size and area, flux or filter, electric power."""
+    """One row per source and per luminaire array: zone, corners, size and area, flux or
+    filter (an array: its rows x columns of which product), emitted flux, electric
+    power."""
     rows = []
     total_w = 0.0
     for s in solution.sources:
@@ -92,7 +109,32 @@ def source_table(solution: Solution, design: Design) -> Table:
                 power,
             )
         )
-    note = f"Total electric power {fmt(total_w)} W." if electric(solution.sources) else ""
+    for a in solution.arrays:
+        p = resolve_product(a.product, a.watts)
+        u0, v0, u1, v1 = a.rect
+        watts = a.count * p.watts * a.dimming
+        total_w += watts
+        rows.append(
+            (
+                a.name,
+                "luminaire array",
+                a.zone,
+                f"({u0:.2f}, {v0:.2f})–({u1:.2f}, {v1:.2f})",
+                f"{abs(u1 - u0):.2f} x {abs(v1 - v0):.2f}",
+                f"{abs(u1 - u0) * abs(v1 - v0):.2f}",
+                f"{a.rows} x {a.columns} {product_title(p)}"
+                + (f" at {100 * a.dimming:.0f}%" if a.dimming < 1 else ""),
+                fmt(a.count * p.lumens * a.dimming),
+                fmt(watts),
+            )
+        )
+    note = (
+        f"Total electric power {fmt(total_w)} W."
+        if electric(solution.sources) or solution.arrays
+        else ""
+    )
+    if solution.arrays:
+        note += " An array's row is the rectangle its luminaires fill evenly."
     return Table(
         "Sources",
         (

@@ -20,16 +20,18 @@ import numpy as np
 from matplotlib.backends.backend_agg import FigureCanvasAgg
 from matplotlib.collections import PolyCollection
 from matplotlib.colors import Normalize
-from matplotlib.figure import Figure
+from matplotlib.figure import Figure, FigureBase
 
 from lightinv_core.design.model import LuminaireArray, Source
 from lightinv_core.errors import LightInvError
 from lightinv_core.light.arrays import resolve_product
 from lightinv_core.light.arrays import zone_frame as light_zone_frame
+from lightinv_core.report.tables import Table
 from lightinv_core.scene.patches import Patches
 from lightinv_core.scene.zone_grid import zone_grid
 
 A4_LANDSCAPE = (11.69, 8.27)
+OUTLINE_COLOUR = "#00e5ff"
 
 
 @dataclass(frozen=True)
@@ -68,7 +70,8 @@ CAMERAS = {
 
 @dataclass(frozen=True)
 class Outline:
-    """A closed 3-D polygon drawn over a view: a source (``kind`` "source") or an emitter
+    """A closed 3-D polygon drawn over a view: a source (``kind`` "source"), one
+    luminaire of an array ("luminaire", labelled with the array's name) or an emitter
     zone ("zone"), with its label."""
 
     label: str
@@ -136,7 +139,8 @@ def source_outlines(
 
 
 def luminaire_outlines(patches: Patches, arrays: Sequence[LuminaireArray]) -> list[Outline]:
-    """Outlines of every luminaire opening of the arrays (as written) in 3-D."""
+    """Outlines of every luminaire opening of the arrays (as written) in 3-D, each
+    labelled with its array's name."""
     out = []
     for a in arrays:
         prod = resolve_product(a.product, a.watts)
@@ -144,7 +148,7 @@ def luminaire_outlines(patches: Patches, arrays: Sequence[LuminaireArray]) -> li
         w, length = (max(x, 0.05) for x in prod.opening)
         # The opening's length runs along C0: u at rotation 0, v at 90.
         hu, hv = (length / 2, w / 2) if a.rotation == 0 else (w / 2, length / 2)
-        for k, (cu, cv) in enumerate(a.positions()):
+        for cu, cv in a.positions():
             corners = [
                 (cu - hu, cv - hv),
                 (cu + hu, cv - hv),
@@ -152,7 +156,7 @@ def luminaire_outlines(patches: Patches, arrays: Sequence[LuminaireArray]) -> li
                 (cu - hu, cv + hv),
             ]
             pts = np.array([frame.point(u, v) for u, v in corners])
-            out.append(Outline(f"{a.name}.{k + 1}", pts, "source"))
+            out.append(Outline(a.name, pts, "luminaire"))
     return out
 
 
@@ -168,13 +172,18 @@ def render_view(
     label: str = "Illuminance (lux)",
     title: str | None = None,
     figsize: tuple[float, float] = A4_LANDSCAPE,
-) -> Figure:
+    fig: FigureBase | None = None,
+    numbered: bool = False,
+) -> FigureBase:
     """A figure of the patches facing ``camera`` coloured by ``values`` (one per patch),
     with a colour bar labelled ``label`` and the ``outlines`` drawn on top.
 
     ``vmin``/``vmax`` fix the colour range (default: 0 to the 99th percentile of the
     visible values, so a few hot spots do not wash out the rest; the bar then shows an
-    arrow for the values above).
+    arrow for the values above). ``fig``: draw into this (sub)figure instead of a new
+    one. ``numbered``: mark each source and array with its number from
+    ``marker_numbers`` (listed by ``marker_legend``) instead of its name, so that many
+    luminaires stay readable.
     """
     cam = camera_of(camera)
     values = np.asarray(values, dtype=float)
@@ -192,8 +201,9 @@ def render_view(
     if not vmax > vmin:  # also catches NaN
         vmax = vmin + 1.0
 
-    fig = Figure(figsize=figsize, layout="constrained")
-    FigureCanvasAgg(fig)
+    if fig is None:
+        fig = Figure(figsize=figsize, layout="constrained")
+        FigureCanvasAgg(fig)
     ax = fig.add_subplot()
     coll = PolyCollection(
         verts,
@@ -206,25 +216,37 @@ def render_view(
     )
     coll.set_rasterized(True)  # a PDF keeps one image, not 25,000 paths
     ax.add_collection(coll)
+    numbers = marker_numbers(outlines) if numbered else {}
+    centres: dict[str, list[np.ndarray]] = {}
     for o in outlines:
         p = np.asarray(o.points, float)
         xy = np.stack([p @ right, p @ up], axis=-1)
         closed = np.vstack([xy, xy[:1]])
         if o.kind == "zone":
             ax.plot(closed[:, 0], closed[:, 1], color="0.75", lw=0.9, ls="--", zorder=3)
-        else:
-            ax.plot(closed[:, 0], closed[:, 1], color="#00e5ff", lw=1.8, zorder=4)
-            c = xy.mean(axis=0)
-            ax.annotate(
-                o.label,
-                c,
-                color="#00e5ff",
-                fontsize=9,
-                ha="center",
-                va="center",
-                zorder=5,
-                fontweight="bold",
-            )
+            continue
+        ax.plot(closed[:, 0], closed[:, 1], color=OUTLINE_COLOUR, lw=1.4, zorder=4)
+        centres.setdefault(o.label, []).append(xy.mean(axis=0))
+    span = float(np.ptp(verts.reshape(-1, 2), axis=0).max()) if len(verts) else 1.0
+    placed = _spread(
+        {name: _anchor(np.asarray(cs)) for name, cs in centres.items()},
+        MARKER_SPACING * span if numbered else 0.0,
+    )
+    for name, c in placed.items():
+        text = str(numbers[name]) if name in numbers else name
+        ax.annotate(
+            text,
+            c,
+            color="black" if numbered else OUTLINE_COLOUR,
+            fontsize=8 if numbered else 9,
+            ha="center",
+            va="center",
+            zorder=5,
+            fontweight="bold",
+            bbox=dict(boxstyle="circle,pad=0.25", fc="white", ec="#007c91", lw=0.8)
+            if numbered
+            else None,
+        )
     if len(verts):
         lo, hi = verts.reshape(-1, 2).min(axis=0), verts.reshape(-1, 2).max(axis=0)
         pad = 0.03 * max(hi - lo)
@@ -241,3 +263,78 @@ def render_view(
     fig.colorbar(coll, ax=ax, label=label, extend=extend, shrink=0.85)
     ax.set_title(title if title is not None else f"{label.split(' (')[0]}, {cam.title}")
     return fig
+
+
+MARKER_SPACING = 0.035
+"""Least distance between two numbered markers, as a share of the view's width: closer
+markers are pushed apart (an array above a skylight, a source seen edge-on)."""
+
+
+def _anchor(centres: np.ndarray) -> np.ndarray:
+    """Where an outline group's marker goes: on the luminaire nearest the group's
+    middle (a mark between luminaires would point at nothing)."""
+    return centres[np.argmin(np.linalg.norm(centres - centres.mean(axis=0), axis=1))]
+
+
+def _spread(points: dict[str, np.ndarray], gap: float) -> dict[str, np.ndarray]:
+    """The points moved apart until no two are closer than ``gap`` (a few passes of
+    pushing each close pair apart along the line joining them, sideways if they
+    coincide)."""
+    names = list(points)
+    p = np.array([points[n] for n in names], dtype=float).reshape(-1, 2)
+    for _ in range(30):
+        moved = False
+        for i in range(len(p)):
+            for j in range(i + 1, len(p)):
+                d = p[j] - p[i]
+                dist = float(np.hypot(*d))
+                if dist >= gap:
+                    continue
+                way = d / dist if dist > 1e-12 else np.array([1.0, 0.0])
+                push = 0.5 * (gap - dist) + 1e-9
+                p[i] -= way * push
+                p[j] += way * push
+                moved = True
+        if not moved:
+            break
+    return {n: p[k] for k, n in enumerate(names)}
+
+
+def marker_numbers(outlines: Sequence[Outline]) -> dict[str, int]:
+    """1, 2, ... for each source and array drawn, in the order of the outlines."""
+    labels = [o.label for o in outlines if o.kind != "zone"]
+    return {label: k for k, label in enumerate(dict.fromkeys(labels), 1)}
+
+
+def marker_legend(outlines: Sequence[Outline], describe: dict[str, str] | None = None) -> Table:
+    """The numbered markers' legend (``tables.Table``): number, name, what it is (from
+    ``describe``: name -> text) and how many luminaires it outlines."""
+    numbers = marker_numbers(outlines)
+    counts: dict[str, int] = {}
+    kinds: dict[str, str] = {}
+    for o in outlines:
+        if o.kind != "zone":
+            counts[o.label] = counts.get(o.label, 0) + 1
+            kinds[o.label] = o.kind
+    rows = []
+    for label, n in numbers.items():
+        what = (describe or {}).get(
+            label, "luminaire array" if kinds[label] == "luminaire" else "source"
+        )
+        rows.append(
+            (str(n), label, what, str(counts[label]) if kinds[label] == "luminaire" else "1")
+        )
+    return Table("Legend of the views", ("no.", "name", "what", "luminaires"), tuple(rows))
+
+
+def view_extent(patches: Patches, camera: str | Camera) -> tuple[float, float]:
+    """Width and height (m) of what ``camera`` sees of the patches."""
+    cam = camera_of(camera)
+    right, up, _ = cam.basis()
+    idx = visible_patches(patches, cam)
+    if not len(idx):
+        return 1.0, 1.0
+    pts = patch_polygons(patches, idx).reshape(-1, 3)
+    w = float(np.ptp(pts @ right))
+    h = float(np.ptp(pts @ up))
+    return max(w, 1e-3), max(h, 1e-3)

