@@ -24,7 +24,16 @@ from PySide6 import QtCore, QtWidgets
 from pyvistaqt import QtInteractor
 
 from app.view.picking import camera_ray, scene_cells_in
-from app.view.vtk_shapes import carried_values, draw_zone_axes, polylines, remove_zone_axes, veil
+from app.view.vtk_shapes import (
+    carried_values,
+    draw_zone_axes,
+    hint_box,
+    material_colours,
+    polylines,
+    remove_zone_axes,
+    surface_edges,
+    veil,
+)
 from app.view.zone_drawing import ZoneDrawing
 from app.view.zone_frame import ZoneFrame
 from lightinv_core.scene.patches import Patches
@@ -55,7 +64,9 @@ class Viewport(QtWidgets.QWidget):
         self.plotter.set_background("white")
         self.plotter.add_axes(interactive=False, color="black")  # which way x, y, z point
         self.mesh: pv.PolyData | None = None
-        self.has_values = False  # the patches show light (not the grey of no light model)
+        self.has_values = False  # the patches show light (not their materials: no light yet)
+        self.edges: pv.PolyData | None = None  # the surfaces' outlines, drawn with materials
+        self.hint: str | None = None  # what to do next (set_hint), along the bottom
         self.busy_text: str | None = None
         self.axes_frame: ZoneFrame | None = None  # the frame whose axes are drawn
         self.axes_title = ""
@@ -110,11 +121,16 @@ class Viewport(QtWidgets.QWidget):
         camera = self.plotter.camera_position if keep_picture else None
         self.mesh = pv.PolyData(vertices.astype(float), cells)
         self.mesh.cell_data["value"] = np.zeros(len(faces), np.float32)
+        self.mesh.cell_data["material"] = material_colours(patches.rho)[tri_patch]
+        span = float(np.linalg.norm(vertices.max(axis=0) - vertices.min(axis=0)))
+        self.edges = surface_edges(patches, max(0.004 * span, 0.005))
         if old is not None:
             self.mesh.cell_data["value"] = carried_values(old, self.mesh)
         self.tri_patch = tri_patch
         self.frames = {z: ZoneFrame(patches, z) for z in zones}
-        self.plotter.clear()  # every actor goes, the veil and the axes too
+        self.plotter.clear()  # every actor goes, the veil and the axes too, and the lights
+        # A headlight for the materials' Lambert shading (the light's colours ignore it).
+        self.plotter.add_light(pv.Light(light_type="headlight"))
         self.busy_text = None
         caption, self.caption = self.caption, None
         self.plotter.add_mesh(
@@ -137,13 +153,15 @@ class Viewport(QtWidgets.QWidget):
             },
         )
         self.set_caption(caption)
+        self._draw_hint()
         self.set_zone_outlines()
         self.axes_frame = None
+        self.has_values = True  # as the scene actor is made: _show_materials switches
         if old is not None:
             lo, hi = self.clim or (0.0, float(max(self.mesh.cell_data["value"].max(), 1e-6)))
             self.plotter.actors["scene"].mapper.scalar_range = (lo, hi)
         else:
-            self._paint_grey(True)
+            self._show_materials(True)
         if camera is not None:
             self.plotter.camera_position = camera
             self.render_now()
@@ -153,8 +171,9 @@ class Viewport(QtWidgets.QWidget):
     def set_values(
         self, per_patch: np.ndarray | None, units: str = "lux", fmt: str = "%.0f"
     ) -> None:
-        """Colour the patches (in place, no new actor); None paints them grey (no
-        lighting). ``units`` titles the colour bar, ``fmt`` its labels (printf style)."""
+        """Colour the patches (in place, no new actor); None shows their materials
+        instead (no light yet: ``_show_materials``). ``units`` titles the colour bar,
+        ``fmt`` its labels (printf style)."""
         if self.mesh is None:
             return
         values = (
@@ -163,7 +182,7 @@ class Viewport(QtWidgets.QWidget):
             else np.asarray(per_patch, dtype=np.float32)[self.tri_patch]
         )
         if (per_patch is None) == self.has_values:
-            self._paint_grey(per_patch is None)
+            self._show_materials(per_patch is None)
         self.mesh.cell_data["value"][:] = values
         lo, hi = self.clim if self.clim is not None else (0.0, float(max(values.max(), 1e-6)))
         self.plotter.actors["scene"].mapper.scalar_range = (lo, hi)
@@ -197,15 +216,52 @@ class Viewport(QtWidgets.QWidget):
             )
         self.request_render()
 
-    def _paint_grey(self, grey: bool) -> None:
-        """No light model: the patches plain light grey (a colour map at zero is black)."""
+    def _show_materials(self, on: bool) -> None:
+        """No light yet (no light model, or a design that emits none): each patch in the
+        grey of its reflectance, shaded by a headlight (Lambert: faces turned from the
+        camera darker) and the surfaces outlined, so the room reads before it is lit
+        (a colour map at zero is black: the room was a black box). No colour bar then:
+        a scale of zeros says nothing."""
         actor = self.plotter.actors.get("scene")
-        self.has_values = not grey
+        self.has_values = not on
         if actor is not None:
-            actor.mapper.scalar_visibility = not grey
-            actor.prop.color = "#d8d8d8"
+            mapper = actor.mapper
+            mapper.array_name = "material" if on else "value"
+            mapper.color_mode = "direct" if on else "map"
+            mapper.scalar_visibility = True
+            actor.prop.lighting = on
+            actor.prop.ambient, actor.prop.diffuse = (0.45, 0.55) if on else (0.0, 1.0)
         for bar in self.plotter.scalar_bars.values():
-            bar.SetVisibility(not grey)  # no colours: no scale of zeros either
+            bar.SetVisibility(not on)
+        self.plotter.remove_actor("edges", render=False)
+        if on and self.edges is not None:
+            self.plotter.add_mesh(
+                self.edges,
+                name="edges",
+                color="#303030",
+                lighting=False,
+                culling="back",
+                pickable=False,
+                reset_camera=False,
+                render=False,
+            )
+
+    def set_hint(self, text: str | None) -> None:
+        """What to do next on the design (a box along the bottom of the view); None
+        removes it."""
+        if text == self.hint:
+            return
+        self.hint = text
+        self._draw_hint()
+        self.request_render()
+
+    def _draw_hint(self) -> None:
+        self.plotter.remove_actor("hint", render=False)
+        if self.hint:
+            lines = [w for line in self.hint.split("\n") for w in textwrap.wrap(line, 60)]
+            self.plotter.add_actor(
+                hint_box("\n".join(lines)), name="hint", reset_camera=False, render=False
+            )
 
     def set_busy(self, text: str | None) -> None:
         """Veil the picture and say why (the light model being built: ``text``); None
