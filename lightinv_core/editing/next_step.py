@@ -49,7 +49,7 @@ TEXTS = {
         "add light in the zones. Luminaires tab: pick a catalogue product and press Add "
         "array…; or Properties: Add source in zone (a skylight or a panel)."
     ),
-    "workplane": "add a work plane to judge the light on. Luminaires tab: Add work plane….",
+    "workplane": "add a work plane to judge the light on (Luminaires tab, Add work plane…)",
     "intention": (
         "say what light the work plane needs. Luminaires tab: choose an EN 12464-1 "
         "intention in the box beside Add work plane… (or Add intention on picked patches)."
