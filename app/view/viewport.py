@@ -356,6 +356,25 @@ class Viewport(QtWidgets.QWidget):
         """Paint ``patch_ids`` red over the lighting (patches breaking an intention)."""
         self._overlay("offending", patch_ids, "#ff1010", 0.6)
 
+    def set_point_marks(self, points: np.ndarray | None) -> None:
+        """Red dots at ``points`` (k, 3) m (work-plane points breaking an intention);
+        None removes them. (Not named "offending-...": pyvista's add_mesh(name=
+        "offending") removes the actors whose names begin so.)"""
+        self.plotter.remove_actor("grid-marks", render=False)
+        if points is not None and len(points):
+            self.plotter.add_mesh(
+                pv.PolyData(np.asarray(points, float) + np.array([0.0, 0.0, 0.02])),
+                name="grid-marks",
+                color="#ff1010",
+                point_size=9,
+                render_points_as_spheres=True,
+                lighting=False,
+                pickable=False,
+                reset_camera=False,
+                render=False,
+            )
+        self.request_render()
+
     def _overlay(self, name: str, patch_ids: np.ndarray, color: str, opacity: float) -> None:
         """A translucent, named layer over some patches (replacing the previous one)."""
         self.plotter.remove_actor(name, render=False)

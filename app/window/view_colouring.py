@@ -46,6 +46,9 @@ class ViewColouring(QtCore.QObject):
         # The next-step hint follows every change that can complete a step.
         for signal in (self.doc.sceneChanged, self.doc.designChanged, self.doc.resultsChanged):
             signal.connect(self.update_hint)
+        # The grid points that break a work-plane intention, beside the floor under them
+        # that the Violations tab highlights.
+        window.violations_panel.highlightChanged.connect(self.mark_broken_points)
 
     def shown_sources(self) -> tuple:
         """The sources the view outlines: a running optimisation's best so far, else the
@@ -127,6 +130,23 @@ class ViewColouring(QtCore.QObject):
             )
         self.viewport.set_caption(caption)
         self.viewport.set_values(values, units, fmt)
+
+    def mark_broken_points(self) -> None:
+        """Red dots on the work-plane points that break the violation selected in the
+        Violations tab (or every one), while its highlight box is ticked."""
+        panel, d = self.win.violations_panel, self.doc
+        grids, _ = d.shown_grids() if d.project is not None else (None, None)
+        points = []
+        if grids is not None and panel.highlight.isChecked() and d.shown is not None:
+            rows = {i.row() for i in panel.table.selectionModel().selectedRows()}
+            chosen = {(d.shown.violations[r].name, d.shown.violations[r].constraint) for r in rows}
+            points = [
+                p
+                for name, bound, _, p in d.offending_points()
+                if not chosen or (name, bound) in chosen
+            ]
+        marked = np.concatenate(points) if points else np.zeros(0, np.int64)
+        self.viewport.set_point_marks(grids.points[np.unique(marked)] if len(marked) else None)
 
     def update_hint(self) -> None:
         """The next step of the open design's workflow over the view (draw zones, add
