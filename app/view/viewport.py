@@ -26,11 +26,13 @@ from pyvistaqt import QtInteractor
 from app.view.picking import camera_ray, scene_cells_in
 from app.view.vtk_shapes import (
     carried_values,
+    draw_point_marks,
     draw_zone_axes,
     hint_box,
     material_colours,
     polylines,
     remove_zone_axes,
+    show_materials,
     surface_edges,
     veil,
 )
@@ -217,34 +219,11 @@ class Viewport(QtWidgets.QWidget):
         self.request_render()
 
     def _show_materials(self, on: bool) -> None:
-        """No light yet (no light model, or a design that emits none): each patch in the
-        grey of its reflectance, shaded by a headlight (Lambert: faces turned from the
-        camera darker) and the surfaces outlined, so the room reads before it is lit
-        (a colour map at zero is black: the room was a black box). No colour bar then:
-        a scale of zeros says nothing."""
-        actor = self.plotter.actors.get("scene")
+        """No light yet (no light model, or a design that emits none): the patches in
+        the grey of their reflectance, headlit, outlined, no colour bar
+        (``vtk_shapes.show_materials``); ``on`` False: back to the light's colours."""
         self.has_values = not on
-        if actor is not None:
-            mapper = actor.mapper
-            mapper.array_name = "material" if on else "value"
-            mapper.color_mode = "direct" if on else "map"
-            mapper.scalar_visibility = True
-            actor.prop.lighting = on
-            actor.prop.ambient, actor.prop.diffuse = (0.45, 0.55) if on else (0.0, 1.0)
-        for bar in self.plotter.scalar_bars.values():
-            bar.SetVisibility(not on)
-        self.plotter.remove_actor("edges", render=False)
-        if on and self.edges is not None:
-            self.plotter.add_mesh(
-                self.edges,
-                name="edges",
-                color="#303030",
-                lighting=False,
-                culling="back",
-                pickable=False,
-                reset_camera=False,
-                render=False,
-            )
+        show_materials(self.plotter, on, self.edges)
 
     def set_hint(self, text: str | None) -> None:
         """What to do next on the design (a box along the bottom of the view); None
@@ -358,21 +337,8 @@ class Viewport(QtWidgets.QWidget):
 
     def set_point_marks(self, points: np.ndarray | None) -> None:
         """Red dots at ``points`` (k, 3) m (work-plane points breaking an intention);
-        None removes them. (Not named "offending-...": pyvista's add_mesh(name=
-        "offending") removes the actors whose names begin so.)"""
-        self.plotter.remove_actor("grid-marks", render=False)
-        if points is not None and len(points):
-            self.plotter.add_mesh(
-                pv.PolyData(np.asarray(points, float) + np.array([0.0, 0.0, 0.02])),
-                name="grid-marks",
-                color="#ff1010",
-                point_size=9,
-                render_points_as_spheres=True,
-                lighting=False,
-                pickable=False,
-                reset_camera=False,
-                render=False,
-            )
+        None removes them."""
+        draw_point_marks(self.plotter, points)
         self.request_render()
 
     def _overlay(self, name: str, patch_ids: np.ndarray, color: str, opacity: float) -> None:

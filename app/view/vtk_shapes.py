@@ -190,3 +190,51 @@ def hint_box(text: str) -> vtk.vtkTextActor:
     prop.SetJustificationToRight()
     actor.SetPickable(False)
     return actor
+
+
+def show_materials(plotter, on: bool, edges: pv.PolyData | None) -> None:
+    """The "scene" actor in its materials (``on``: the "material" colours, lit by the
+    headlight, Lambert-shaded, ``edges`` outlining the surfaces, no colour bar: a scale
+    of zeros over a black room said nothing) or in the light's colours (the "value"
+    array through the colour map, unlit, with its colour bar). No render."""
+    actor = plotter.actors.get("scene")
+    if actor is not None:
+        mapper = actor.mapper
+        mapper.array_name = "material" if on else "value"
+        mapper.color_mode = "direct" if on else "map"
+        mapper.scalar_visibility = True
+        actor.prop.lighting = on
+        actor.prop.ambient, actor.prop.diffuse = (0.45, 0.55) if on else (0.0, 1.0)
+    for bar in plotter.scalar_bars.values():
+        bar.SetVisibility(not on)
+    plotter.remove_actor("edges", render=False)
+    if on and edges is not None:
+        plotter.add_mesh(
+            edges,
+            name="edges",
+            color="#303030",
+            lighting=False,
+            culling="back",
+            pickable=False,
+            reset_camera=False,
+            render=False,
+        )
+
+
+def draw_point_marks(plotter, points: np.ndarray | None) -> None:
+    """Red dots at ``points`` (k, 3) m, 2 cm above them, as the "grid-marks" actor
+    (replacing it; None or none: removed). Not named "offending-...": pyvista's
+    add_mesh(name="offending") removes the actors whose names begin so. No render."""
+    plotter.remove_actor("grid-marks", render=False)
+    if points is not None and len(points):
+        plotter.add_mesh(
+            pv.PolyData(np.asarray(points, float) + np.array([0.0, 0.0, 0.02])),
+            name="grid-marks",
+            color="#ff1010",
+            point_size=9,
+            render_points_as_spheres=True,
+            lighting=False,
+            pickable=False,
+            reset_camera=False,
+            render=False,
+        )

@@ -95,7 +95,7 @@ class ViewColouring(QtCore.QObject):
         if other is not None:
             # Difference view: the loaded layout minus a pinned one, centred on zero, on
             # the patches and the work planes alike (signed labels).
-            values = field.illuminance - self.doc.lighting_of(other.sources)
+            values = field.illuminance - self.doc.lighting_of(other.sources, other.arrays)
             m = float(np.abs(values).max()) or 1.0
             if grids is not None and grid_values is not None:
                 pinned = self.doc.grid_lux_of(other.sources, other.arrays)

@@ -18,6 +18,7 @@ from lightinv_core.editing.changes import OperatorChanged
 from lightinv_core.editing.lighting import ShownLight
 from lightinv_core.editing.state import DocumentState
 from lightinv_core.errors import DesignError, LightInvError
+from lightinv_core.light.arrays import arrays_field
 from lightinv_core.light.daylight import LayoutDaylight
 from lightinv_core.light.field import LightField
 from lightinv_core.light.grids import DesignGrids, grid_light
@@ -140,12 +141,21 @@ class LightView(DocumentState):
         is shown; None before the operator exists."""
         return None if self._light_shown is None else self._light_shown.design_field(self.design)
 
-    def lighting_of(self, sources) -> np.ndarray | None:
-        """Illuminance (lux) of every patch lit by ``sources`` (e.g. a pinned result's)
-        under the design's tied rules; None before the operator exists."""
+    def lighting_of(self, sources, arrays=()) -> np.ndarray | None:
+        """Illuminance (lux) of every patch lit by ``sources`` and luminaire ``arrays``
+        (e.g. a pinned result's, as the design shown is lit by its own arrays too) under
+        the design's tied rules; None before the operator exists."""
         if self._light_shown is None:
             return None
-        return self._light_shown.of_sources(self.design, sources)
+        lux = self._light_shown.of_sources(self.design, sources)
+        arrays = tuple(arrays)
+        if not arrays:
+            return lux
+        memo = getattr(self, "_arrays_compared", None)
+        if memo is None or memo[0] != (self.light, arrays):
+            H, _ = arrays_field(self.patches, self.light.op, arrays)
+            self._arrays_compared = memo = ((self.light, arrays), H)
+        return lux + memo[1]
 
     def set_preview(self, sources=None) -> None:
         """Light the view with ``sources`` as lit (a running best) without changing the
