@@ -69,6 +69,7 @@ class Viewport(QtWidgets.QWidget):
         self.has_values = False  # the patches show light (not their materials: no light yet)
         self.edges: pv.PolyData | None = None  # the surfaces' outlines, drawn with materials
         self.hint: str | None = None  # what to do next (set_hint), along the bottom
+        self.keep_camera = False  # the next set_scene keeps the camera (the same room)
         self.busy_text: str | None = None
         self.axes_frame: ZoneFrame | None = None  # the frame whose axes are drawn
         self.axes_title = ""
@@ -120,7 +121,9 @@ class Viewport(QtWidgets.QWidget):
         vertices, faces, tri_patch = patches.triangle_mesh()
         cells = np.hstack([np.full((len(faces), 1), 3), faces]).ravel()
         old = self.mesh if keep_picture and self.has_values else None
-        camera = self.plotter.camera_position if keep_picture else None
+        keep_camera = (keep_picture or self.keep_camera) and self.mesh is not None
+        camera = self.plotter.camera_position if keep_camera else None
+        self.keep_camera = False
         self.mesh = pv.PolyData(vertices.astype(float), cells)
         self.mesh.cell_data["value"] = np.zeros(len(faces), np.float32)
         self.mesh.cell_data["material"] = material_colours(patches.rho)[tri_patch]

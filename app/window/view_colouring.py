@@ -46,6 +46,10 @@ class ViewColouring(QtCore.QObject):
         # The next-step hint follows every change that can complete a step.
         for signal in (self.doc.sceneChanged, self.doc.designChanged, self.doc.resultsChanged):
             signal.connect(self.update_hint)
+        # Connected before the window's own slot, which builds the new mesh: a zone drawn
+        # on a room with no light yet keeps the camera too (the window keeps the picture,
+        # and with it the camera, only when there was light to keep).
+        self.doc.sceneChanged.connect(self._scene_changed)
         # The grid points that break a work-plane intention, beside the floor under them
         # that the Violations tab highlights.
         window.violations_panel.highlightChanged.connect(self.mark_broken_points)
@@ -130,6 +134,9 @@ class ViewColouring(QtCore.QObject):
             )
         self.viewport.set_caption(caption)
         self.viewport.set_values(values, units, fmt)
+
+    def _scene_changed(self, change) -> None:
+        self.viewport.keep_camera = bool(change.rebuilt)
 
     def mark_broken_points(self) -> None:
         """Red dots on the work-plane points that break the violation selected in the

@@ -67,8 +67,11 @@ def test_an_imported_room_shows_its_materials_and_the_next_step_until_lit(
 
     # A luminaire zone dragged from just off the west wall and off the grid: its
     # corners snap to the wall (x = 0) and to the 0.1 m grid.
+    top = vp.plotter.camera_position
     draw_zone(window, "luminaire", (0.09, 2.015, 3.0), (3.985, 4.015, 3.0))
     wait_for_operator(qtbot, window, timeout=120_000)
+    # The same room re-meshed keeps the camera (it went back to iso, unlit).
+    assert vp.plotter.camera_position == top
     (zone,) = [z.name for z in d.scene.zones]
     lo, hi = zone_corners(d, zone).min(axis=0), zone_corners(d, zone).max(axis=0)
     assert lo[:2] == pytest.approx((0.0, 2.0), abs=1e-9)

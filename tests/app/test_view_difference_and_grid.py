@@ -57,6 +57,7 @@ def test_difference_view_and_broken_grid_points(qtbot, window, monkeypatch, tmp_
     wait_for_operator(qtbot, window, timeout=120_000)
     vp, d = window.viewport, window.doc
     assert vp.caption.startswith("Illuminance, design scenario")
+    assert vp.hint is None and "hint" not in vp.plotter.actors  # a run's results: done
     tabs = window.tabs
     tabs.setCurrentIndex([tabs.tabText(i) for i in range(tabs.count())].index("Solutions"))
     panel = window.solutions_panel
