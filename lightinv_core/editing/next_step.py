@@ -52,7 +52,7 @@ TEXTS = {
     "workplane": "add a work plane to judge the light on (Luminaires tab, Add work plane…)",
     "intention": (
         "say what light the work plane needs. Luminaires tab: choose an EN 12464-1 "
-        "intention in the box beside Add work plane… (or Add intention on picked patches)."
+        "intention in the box beside Add work plane… (or Select patches, then Add intention)."
     ),
     "run": (
         "press Run (toolbar, F5): the optimiser places and sizes the light to meet the "
