@@ -109,6 +109,13 @@ def _map(ld, doc: Document, key: str, hour: int, units: str, fmt: str) -> MapRes
     return MapResult(values, units, fmt, state.text())
 
 
+def design_caption(doc: Document, what: str) -> str:
+    """The caption of the design's own light (``what``: "Illuminance", "Radiosity B"):
+    the scenario it is in and what lights it there (the view named no scenario)."""
+    light = scenario_spec(Scenario.DESIGN).describe(doc.design.daylight)
+    return f"{what}, {Scenario.DESIGN} scenario: {light}"
+
+
 def _capital(text: str) -> str:
     return text[:1].upper() + text[1:]
 

@@ -67,9 +67,10 @@ def draw(plotter, patches, arrays, grids=None, lux=None, fmt="{:.0f}", clim=None
     draw_planes(plotter, grids, lux, fmt, clim)
 
 
-def draw_planes(plotter, grids, lux, fmt="{:.0f}", clim=None) -> None:
+def draw_planes(plotter, grids, lux, fmt="{:.0f}", clim=None, cmap="inferno") -> None:
     """Draw (or clear: ``grids`` None) the work planes with a value at each grid point
-    (lux by default) and iso-lines of it labelled with ``fmt``."""
+    (lux by default) and iso-lines of it labelled with ``fmt``, coloured by ``cmap``
+    (the difference view's: a signed one, "coolwarm")."""
     for name in NAMES[1:]:
         plotter.remove_actor(name, render=False)
     if grids is None or lux is None or not len(grids.points):
@@ -83,7 +84,7 @@ def draw_planes(plotter, grids, lux, fmt="{:.0f}", clim=None) -> None:
         plane,
         name="workplane",
         scalars="lux",
-        cmap="inferno",
+        cmap=cmap,
         opacity=0.55,
         show_scalar_bar=False,
         clim=clim,

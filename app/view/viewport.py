@@ -24,7 +24,18 @@ from PySide6 import QtCore, QtWidgets
 from pyvistaqt import QtInteractor
 
 from app.view.picking import camera_ray, scene_cells_in
-from app.view.vtk_shapes import carried_values, draw_zone_axes, polylines, remove_zone_axes, veil
+from app.view.vtk_shapes import (
+    carried_values,
+    draw_point_marks,
+    draw_zone_axes,
+    hint_box,
+    material_colours,
+    polylines,
+    remove_zone_axes,
+    show_materials,
+    surface_edges,
+    veil,
+)
 from app.view.zone_drawing import ZoneDrawing
 from app.view.zone_frame import ZoneFrame
 from lightinv_core.scene.patches import Patches
@@ -55,7 +66,10 @@ class Viewport(QtWidgets.QWidget):
         self.plotter.set_background("white")
         self.plotter.add_axes(interactive=False, color="black")  # which way x, y, z point
         self.mesh: pv.PolyData | None = None
-        self.has_values = False  # the patches show light (not the grey of no light model)
+        self.has_values = False  # the patches show light (not their materials: no light yet)
+        self.edges: pv.PolyData | None = None  # the surfaces' outlines, drawn with materials
+        self.hint: str | None = None  # what to do next (set_hint), along the bottom
+        self.keep_camera = False  # the next set_scene keeps the camera (the same room)
         self.busy_text: str | None = None
         self.axes_frame: ZoneFrame | None = None  # the frame whose axes are drawn
         self.axes_title = ""
@@ -107,14 +121,21 @@ class Viewport(QtWidgets.QWidget):
         vertices, faces, tri_patch = patches.triangle_mesh()
         cells = np.hstack([np.full((len(faces), 1), 3), faces]).ravel()
         old = self.mesh if keep_picture and self.has_values else None
-        camera = self.plotter.camera_position if keep_picture else None
+        keep_camera = (keep_picture or self.keep_camera) and self.mesh is not None
+        camera = self.plotter.camera_position if keep_camera else None
+        self.keep_camera = False
         self.mesh = pv.PolyData(vertices.astype(float), cells)
         self.mesh.cell_data["value"] = np.zeros(len(faces), np.float32)
+        self.mesh.cell_data["material"] = material_colours(patches.rho)[tri_patch]
+        span = float(np.linalg.norm(vertices.max(axis=0) - vertices.min(axis=0)))
+        self.edges = surface_edges(patches, max(0.004 * span, 0.005))
         if old is not None:
             self.mesh.cell_data["value"] = carried_values(old, self.mesh)
         self.tri_patch = tri_patch
         self.frames = {z: ZoneFrame(patches, z) for z in zones}
-        self.plotter.clear()  # every actor goes, the veil and the axes too
+        self.plotter.clear()  # every actor goes, the veil and the axes too, and the lights
+        # A headlight for the materials' Lambert shading (the light's colours ignore it).
+        self.plotter.add_light(pv.Light(light_type="headlight"))
         self.busy_text = None
         caption, self.caption = self.caption, None
         self.plotter.add_mesh(
@@ -137,13 +158,15 @@ class Viewport(QtWidgets.QWidget):
             },
         )
         self.set_caption(caption)
+        self._draw_hint()
         self.set_zone_outlines()
         self.axes_frame = None
+        self.has_values = True  # as the scene actor is made: _show_materials switches
         if old is not None:
             lo, hi = self.clim or (0.0, float(max(self.mesh.cell_data["value"].max(), 1e-6)))
             self.plotter.actors["scene"].mapper.scalar_range = (lo, hi)
         else:
-            self._paint_grey(True)
+            self._show_materials(True)
         if camera is not None:
             self.plotter.camera_position = camera
             self.render_now()
@@ -153,8 +176,9 @@ class Viewport(QtWidgets.QWidget):
     def set_values(
         self, per_patch: np.ndarray | None, units: str = "lux", fmt: str = "%.0f"
     ) -> None:
-        """Colour the patches (in place, no new actor); None paints them grey (no
-        lighting). ``units`` titles the colour bar, ``fmt`` its labels (printf style)."""
+        """Colour the patches (in place, no new actor); None shows their materials
+        instead (no light yet: ``_show_materials``). ``units`` titles the colour bar,
+        ``fmt`` its labels (printf style)."""
         if self.mesh is None:
             return
         values = (
@@ -163,7 +187,7 @@ class Viewport(QtWidgets.QWidget):
             else np.asarray(per_patch, dtype=np.float32)[self.tri_patch]
         )
         if (per_patch is None) == self.has_values:
-            self._paint_grey(per_patch is None)
+            self._show_materials(per_patch is None)
         self.mesh.cell_data["value"][:] = values
         lo, hi = self.clim if self.clim is not None else (0.0, float(max(values.max(), 1e-6)))
         self.plotter.actors["scene"].mapper.scalar_range = (lo, hi)
@@ -197,15 +221,29 @@ class Viewport(QtWidgets.QWidget):
             )
         self.request_render()
 
-    def _paint_grey(self, grey: bool) -> None:
-        """No light model: the patches plain light grey (a colour map at zero is black)."""
-        actor = self.plotter.actors.get("scene")
-        self.has_values = not grey
-        if actor is not None:
-            actor.mapper.scalar_visibility = not grey
-            actor.prop.color = "#d8d8d8"
-        for bar in self.plotter.scalar_bars.values():
-            bar.SetVisibility(not grey)  # no colours: no scale of zeros either
+    def _show_materials(self, on: bool) -> None:
+        """No light yet (no light model, or a design that emits none): the patches in
+        the grey of their reflectance, headlit, outlined, no colour bar
+        (``vtk_shapes.show_materials``); ``on`` False: back to the light's colours."""
+        self.has_values = not on
+        show_materials(self.plotter, on, self.edges)
+
+    def set_hint(self, text: str | None) -> None:
+        """What to do next on the design (a box along the bottom of the view); None
+        removes it."""
+        if text == self.hint:
+            return
+        self.hint = text
+        self._draw_hint()
+        self.request_render()
+
+    def _draw_hint(self) -> None:
+        self.plotter.remove_actor("hint", render=False)
+        if self.hint:
+            lines = [w for line in self.hint.split("\n") for w in textwrap.wrap(line, 60)]
+            self.plotter.add_actor(
+                hint_box("\n".join(lines)), name="hint", reset_camera=False, render=False
+            )
 
     def set_busy(self, text: str | None) -> None:
         """Veil the picture and say why (the light model being built: ``text``); None
@@ -299,6 +337,12 @@ class Viewport(QtWidgets.QWidget):
     def set_highlight(self, patch_ids: np.ndarray) -> None:
         """Paint ``patch_ids`` red over the lighting (patches breaking an intention)."""
         self._overlay("offending", patch_ids, "#ff1010", 0.6)
+
+    def set_point_marks(self, points: np.ndarray | None) -> None:
+        """Red dots at ``points`` (k, 3) m (work-plane points breaking an intention);
+        None removes them."""
+        draw_point_marks(self.plotter, points)
+        self.request_render()
 
     def _overlay(self, name: str, patch_ids: np.ndarray, color: str, opacity: float) -> None:
         """A translucent, named layer over some patches (replacing the previous one)."""

@@ -1,5 +1,6 @@
 """Drawing a zone in the viewport: a rectangle dragged on a surface, or a polygon clicked
-corner by corner.
+corner by corner, each corner snapped (within a few pixels) to the surface's corners and
+edges, the corners of zones already on it, and a 0.1 m grid (``snap_uv``).
 
 ``ZoneDrawing`` holds what is being drawn (the rectangle's first corner, the polygon's
 corners so far) and draws it as a red outline; the viewport hands it the mouse and key
@@ -14,6 +15,37 @@ import numpy as np
 from PySide6 import QtCore
 
 CLOSE_SNAP = 0.02  # of the surface's size: a click this near the first corner closes
+SNAP_PIXELS = 8  # a corner this near (on screen) a vertex, an edge or a grid line snaps to it
+GRID_STEP = 0.1  # m: the grid corners snap to, along the surface's u and v axes
+COPLANAR = 0.02  # m: another zone's corners this near the surface's plane snap too
+
+
+def snap_uv(
+    uv: tuple[float, float],
+    size: tuple[float, float],
+    tol: float,
+    vertices=(),
+    grid: float = GRID_STEP,
+) -> tuple[float, float]:
+    """``uv`` (m on a surface of ``size`` (w, h) m) snapped within ``tol`` m: to a vertex
+    (the surface's corners and ``vertices``, e.g. other zones' corners) first; else each
+    coordinate to an edge (the surface's, or a vertex's line), else to the ``grid``."""
+    w, h = size
+    points = np.array([(0.0, 0.0), (w, 0.0), (w, h), (0.0, h), *vertices], float)
+    dist = np.hypot(*(points - uv).T)
+    if dist.min() <= tol:
+        u, v = points[int(np.argmin(dist))]
+        return float(u), float(v)
+
+    def along(x: float, lines) -> float:
+        lines = np.asarray(lines, float)
+        near = np.abs(lines - x)
+        if near.min() <= tol:
+            return float(lines[int(np.argmin(near))])
+        g = grid * round(x / grid)
+        return float(g) if abs(g - x) <= tol else float(x)
+
+    return along(uv[0], points[:, 0]), along(uv[1], points[:, 1])
 
 
 class ZoneDrawing:
@@ -24,6 +56,32 @@ class ZoneDrawing:
         self.draft = None  # a rectangle: (ZoneFrame of its surface, its first corner (u, v))
         self.poly = None  # a polygon: (ZoneFrame of its surface, its corners [(u, v), ...])
         self.skip_release = False  # the release that follows a closing double-click
+
+    def snapped(self, frame, x: int, y: int) -> tuple[float, float] | None:
+        """The point of ``frame``'s surface under display point (x, y), snapped
+        (``snap_uv``) within ``SNAP_PIXELS`` on screen: to its corners and edges, the
+        corners of zones drawn on it, and a 0.1 m grid. None if the ray misses."""
+        ray = self.view.ray(x, y)
+        uv = frame.from_ray(*ray)
+        if uv is None:
+            return None
+        tol = 0.0
+        for dx, dy in ((SNAP_PIXELS, 0), (0, SNAP_PIXELS)):
+            other = frame.from_ray(*self.view.ray(x + dx, y + dy))
+            if other is not None:
+                tol = max(tol, float(np.hypot(*np.subtract(other, uv))))
+        return snap_uv(uv, frame.size, tol, self._zone_corners(frame))
+
+    def _zone_corners(self, frame) -> list[tuple[float, float]]:
+        """The corners of the zones in the view that lie on ``frame``'s plane, in its
+        metres."""
+        out = []
+        for zone in self.view.frames.values():
+            for p in zone.outline_loop()[:-1]:
+                q = p - frame.origin
+                if abs(float(np.dot(q, frame.normal))) < COPLANAR:
+                    out.append((float(np.dot(q, frame.u)), float(np.dot(q, frame.v))))
+        return out
 
     def polygon_event(self, et, event) -> bool:
         """Polygon mode: each click adds a corner on the surface; a double-click, Enter or
@@ -77,7 +135,7 @@ class ZoneDrawing:
                 self.show_polygon()
             return
         frame, corners = self.poly
-        uv = frame.from_ray(*self.view.ray(x, y))
+        uv = self.snapped(frame, x, y)
         if uv is None:
             return
         if len(corners) >= 3 and np.hypot(*np.subtract(uv, corners[0])) < CLOSE_SNAP * max(
@@ -93,7 +151,7 @@ class ZoneDrawing:
         frame, corners = self.poly
         pts = list(corners)
         if x is not None:
-            uv = frame.from_ray(*self.view.ray(x, y))
+            uv = self.snapped(frame, x, y)
             if uv is not None:
                 pts.append(uv)
         loop = np.array([frame.to_world(u, v) for u, v in [*pts, pts[0]]])
@@ -131,7 +189,7 @@ class ZoneDrawing:
         frame = self.view.surface_frame(int(hit[0]) if len(hit) else None, near, far)
         if frame is None:
             return
-        uv = frame.from_ray(near, far)
+        uv = self.snapped(frame, x, y)
         if uv is not None:
             self.draft = (frame, uv)
             self.view.show_axes(frame, f"{frame.name} (0, 0)")
@@ -139,7 +197,7 @@ class ZoneDrawing:
     def show_draft(self, x: int, y: int) -> tuple[float, float, float, float] | None:
         """Draw the rectangle being dragged; returns it (m, clipped to the surface)."""
         frame, (u0, v0) = self.draft
-        uv = frame.from_ray(*self.view.ray(x, y))
+        uv = self.snapped(frame, x, y)
         if uv is None:
             return None
         w, h = frame.size

@@ -14,9 +14,17 @@ import numpy as np
 from PySide6 import QtCore
 
 from app.view import luminaire_overlay
-from app.view.daylight_maps import map_values, maps
+from app.view.daylight_maps import design_caption, map_values, maps
+from lightinv_core.editing.next_step import document_next_step
+from lightinv_core.editing.results import result_label
 from lightinv_core.errors import LightInvError
 from lightinv_core.light.arrays import array_escape_warnings
+
+NO_LIGHT = (
+    "No light yet: the design has no luminaire or skylight. "
+    "Surfaces are shown in the grey of their reflectance."
+)
+"""The caption of a design that emits no light (the view shows its materials)."""
 
 
 class ViewColouring(QtCore.QObject):
@@ -35,6 +43,16 @@ class ViewColouring(QtCore.QObject):
         o.auto_range.toggled.connect(self.recolour)
         o.range_max.valueChanged.connect(self.recolour)
         o.zone_axes.toggled.connect(self._zone_axes_toggled)
+        # The next-step hint follows every change that can complete a step.
+        for signal in (self.doc.sceneChanged, self.doc.designChanged, self.doc.resultsChanged):
+            signal.connect(self.update_hint)
+        # Connected before the window's own slot, which builds the new mesh: a zone drawn
+        # on a room with no light yet keeps the camera too (the window keeps the picture,
+        # and with it the camera, only when there was light to keep).
+        self.doc.sceneChanged.connect(self._scene_changed)
+        # The grid points that break a work-plane intention, beside the floor under them
+        # that the Violations tab highlights.
+        window.violations_panel.highlightChanged.connect(self.mark_broken_points)
 
     def shown_sources(self) -> tuple:
         """The sources the view outlines: a running optimisation's best so far, else the
@@ -54,8 +72,12 @@ class ViewColouring(QtCore.QObject):
         if d.project is not None and self.viewport.mesh is not None:
             luminaire_overlay.draw(self.viewport.plotter, d.patches, d.design.arrays)
             self._luminaire_warnings(d.patches, d.design.arrays)
-        if field is None:
-            self.viewport.set_caption(None)
+        self.update_hint()
+        if field is None or not np.any(field.illuminance > 0):
+            # No light model, or a design that emits none: its materials, not a black
+            # room under a colour bar of zeros.
+            luminaire_overlay.draw_planes(self.viewport.plotter, None, None)
+            self.viewport.set_caption(None if field is None else NO_LIGHT)
             self.viewport.set_values(None)
             return
         self.paint(field)
@@ -73,15 +95,26 @@ class ViewColouring(QtCore.QObject):
             self.viewport.set_colormap(cmap)
         key, fmt, caption = self.options.colour_by.currentData(), "%.0f", None
         grids, grid_values = self.doc.shown_grids()
-        label, plane_clim = "{:.0f}", None
+        label, plane_clim, plane_cmap = "{:.0f}", None, "inferno"
         if other is not None:
-            # Difference view: the loaded layout minus a pinned one, centred on zero.
-            values = field.illuminance - self.doc.lighting_of(other.sources)
+            # Difference view: the loaded layout minus a pinned one, centred on zero, on
+            # the patches and the work planes alike (signed labels).
+            values = field.illuminance - self.doc.lighting_of(other.sources, other.arrays)
             m = float(np.abs(values).max()) or 1.0
+            if grids is not None and grid_values is not None:
+                pinned = self.doc.grid_lux_of(other.sources, other.arrays)
+                grid_values = grid_values - pinned
+                m = max(m, float(np.abs(grid_values).max()))
+                label, plane_clim, plane_cmap = "{:+.0f}", (-m, m), "coolwarm"
             self.viewport.clim = (-m, m)
-            units = "lux, loaded − pinned"
+            units, fmt = "Δ lux", "%+.0f"  # a short title: a long one was cut off
+            caption = (
+                f"Difference: the loaded layout minus the pinned one ({result_label(other)}), "
+                "lux; red brighter, blue darker"
+            )
         elif key == "B":
             values, units = field.radiosity, "lm/m²"
+            caption = design_caption(self.doc, "Radiosity B")
         elif key in maps():
             shown = map_values(self.doc, key, self.win.climate_panel.current_hour())
             values, units, fmt, caption = shown.values, shown.units, shown.fmt, shown.caption
@@ -93,13 +126,41 @@ class ViewColouring(QtCore.QObject):
                 self.viewport.clim = None  # a few percent: the lux range means nothing
         else:
             values, units = field.illuminance, "lux"
+            caption = design_caption(self.doc, "Illuminance")
         if self.viewport.mesh is not None:
             # The work planes show the same quantity as the patches, iso-lines labelled.
             luminaire_overlay.draw_planes(
-                self.viewport.plotter, grids, grid_values, label, plane_clim
+                self.viewport.plotter, grids, grid_values, label, plane_clim, plane_cmap
             )
         self.viewport.set_caption(caption)
         self.viewport.set_values(values, units, fmt)
+
+    def _scene_changed(self, change) -> None:
+        self.viewport.keep_camera = bool(change.rebuilt)
+
+    def mark_broken_points(self) -> None:
+        """Red dots on the work-plane points that break the violation selected in the
+        Violations tab (or every one), while its highlight box is ticked."""
+        panel, d = self.win.violations_panel, self.doc
+        grids, _ = d.shown_grids() if d.project is not None else (None, None)
+        points = []
+        if grids is not None and panel.highlight.isChecked() and d.shown is not None:
+            rows = {i.row() for i in panel.table.selectionModel().selectedRows()}
+            chosen = {(d.shown.violations[r].name, d.shown.violations[r].constraint) for r in rows}
+            points = [
+                p
+                for name, bound, _, p in d.offending_points()
+                if not chosen or (name, bound) in chosen
+            ]
+        marked = np.concatenate(points) if points else np.zeros(0, np.int64)
+        self.viewport.set_point_marks(grids.points[np.unique(marked)] if len(marked) else None)
+
+    def update_hint(self) -> None:
+        """The next step of the open design's workflow over the view (draw zones, add
+        light, a work plane, its EN 12464-1 intention, Run:
+        ``lightinv_core.editing.next_step``), gone once a run has left results."""
+        step = document_next_step(self.doc)
+        self.viewport.set_hint(None if step is None else step.hint())
 
     def hour_moved(self, _hour: int) -> None:
         """The hour slider moved: relight the view if it shows that hour (a sum over the

@@ -10,16 +10,19 @@ for the difference view.
 from __future__ import annotations
 
 import numpy as np
+from scipy.spatial import cKDTree
 
 from lightinv_core.design.model import Source
 from lightinv_core.design.solution import Solution, SolutionInfo
 from lightinv_core.editing.changes import OperatorChanged
 from lightinv_core.editing.lighting import ShownLight
 from lightinv_core.editing.state import DocumentState
-from lightinv_core.errors import DesignError
+from lightinv_core.errors import DesignError, LightInvError
+from lightinv_core.light.arrays import arrays_field
 from lightinv_core.light.daylight import LayoutDaylight
 from lightinv_core.light.field import LightField
-from lightinv_core.light.grids import DesignGrids
+from lightinv_core.light.grids import DesignGrids, grid_light
+from lightinv_core.light.intentions import bound_checks, intention_stats, offending
 from lightinv_core.light.model import LightModel
 from lightinv_core.operator.radiosity import RadiosityOperator
 from lightinv_core.optimize.problem import DesignProblem
@@ -61,10 +64,54 @@ class LightView(DocumentState):
 
     def offending_patches(self) -> list[tuple[str, str, np.ndarray]]:
         """Where the design's light breaks its intentions: (intention, bound, patch ids)
-        per violated bound; empty before the operator exists or when a geometric rule
-        fails."""
+        per violated bound (a work plane's: the floor patches under its points that
+        break it, ``offending_points``); empty before the operator exists or when a
+        geometric rule fails."""
         problem = self.problem()
-        return [] if problem is None else problem.offending_patches(problem.vars.initial())
+        if problem is None:
+            return []
+        x = problem.vars.initial()
+        if np.any(problem.rule_violations(x[None]) > 0):
+            return []
+        out = problem.offending_patches(x)
+        for name, bound, plane, points in self.offending_points():
+            out.append((name, bound, self._patches_under(plane, points)))
+        return out
+
+    def offending_points(self) -> list[tuple[str, str, str, np.ndarray]]:
+        """Where the design's light breaks its work-plane intentions: (intention, bound,
+        work plane, grid point indices into ``shown_grids``'s points) per violated bound,
+        judged in the intention's scenario (an EN 12464-1 preset's: night); a short
+        average marks every point of its plane. Empty before the operator exists."""
+        gridded = [it for it in self.design.intentions if it.grid is not None]
+        ld = self.layout_daylight() if gridded else None
+        if ld is None or ld.grids is None:
+            return []
+        out = []
+        for it in gridded:
+            try:
+                q, w = ld.quantity(it)
+            except LightInvError:
+                continue  # a metric that cannot be had (no weather): judged elsewhere
+            stats = intention_stats(q[:, None], w)
+            first = ld.grids.spans[it.grid].start
+            for check in bound_checks(it, stats):
+                if not check.met[0]:
+                    mask = offending(check, q, float(stats.average[0]))
+                    out.append((it.name, str(check.bound), it.grid, first + np.flatnonzero(mask)))
+        return out
+
+    def _patches_under(self, plane: str, points: np.ndarray) -> np.ndarray:
+        """The patches of work plane ``plane``'s floor group straight under grid
+        ``points`` (their indices): the nearest in plan."""
+        grids, _ = self.shown_grids()
+        group = next(w.group for w in self.design.workplanes if w.name == plane)
+        floor = self.patches.group_index(group)
+        if grids is None or not len(points) or not len(floor):
+            return np.zeros(0, np.int64)
+        tree = cKDTree(self.patches.centroid[floor, :2])
+        _, nearest = tree.query(grids.points[points, :2])
+        return np.unique(floor[nearest]).astype(np.int64)
 
     # -- the light shown ------------------------------------------------------------------------
     def effective_sources(self) -> tuple[Source, ...]:
@@ -94,12 +141,21 @@ class LightView(DocumentState):
         is shown; None before the operator exists."""
         return None if self._light_shown is None else self._light_shown.design_field(self.design)
 
-    def lighting_of(self, sources) -> np.ndarray | None:
-        """Illuminance (lux) of every patch lit by ``sources`` (e.g. a pinned result's)
-        under the design's tied rules; None before the operator exists."""
+    def lighting_of(self, sources, arrays=()) -> np.ndarray | None:
+        """Illuminance (lux) of every patch lit by ``sources`` and luminaire ``arrays``
+        (e.g. a pinned result's, as the design shown is lit by its own arrays too) under
+        the design's tied rules; None before the operator exists."""
         if self._light_shown is None:
             return None
-        return self._light_shown.of_sources(self.design, sources)
+        lux = self._light_shown.of_sources(self.design, sources)
+        arrays = tuple(arrays)
+        if not arrays:
+            return lux
+        memo = getattr(self, "_arrays_compared", None)
+        if memo is None or memo[0] != (self.light, arrays):
+            H, _ = arrays_field(self.patches, self.light.op, arrays)
+            self._arrays_compared = memo = ((self.light, arrays), H)
+        return lux + memo[1]
 
     def set_preview(self, sources=None) -> None:
         """Light the view with ``sources`` as lit (a running best) without changing the
@@ -132,3 +188,17 @@ class LightView(DocumentState):
             return None
         preview = self._preview if shown else None
         return self._daylight.get(self.light, self.design, preview)
+
+    def grid_lux_of(self, sources, arrays=()) -> np.ndarray | None:
+        """Illuminance (lux) at the work planes' grid points (``shown_grids``' order) lit
+        by ``sources`` and ``arrays`` (a pinned result's, for the difference view), in
+        the design scenario; None before the operator exists or without work planes."""
+        grids, _ = self.shown_grids()
+        if grids is None or self.light is None:
+            return None
+        key = (grids, tuple(sources), tuple(arrays), self.design.daylight)
+        memo = getattr(self, "_grid_compared", None)
+        if memo is None or memo[0] != key:
+            lux = grid_light(self.light, grids, tuple(sources), tuple(arrays), self.design.daylight)
+            self._grid_compared = memo = (key, lux)
+        return memo[1]

@@ -182,7 +182,8 @@ def test_the_hour_slider_relights_the_view(qtbot, window):
     assert time.perf_counter() - t0 < 24 * 2.0
     # Unticking returns the view to the design's illuminance.
     panel.show_hour.setChecked(False)
-    assert window.view_options.colour_by.currentData() == "lux" and window.viewport.caption is None
+    assert window.view_options.colour_by.currentData() == "lux"
+    assert window.viewport.caption.startswith("Illuminance, design scenario: ")  # named (#29)
     assert np.allclose(_shown(window), d.lighting(), rtol=1e-5)
     # A design edit builds the light once more.
     d.update_source("L1", flux=6000.0)
@@ -218,7 +219,8 @@ def test_daylight_maps_colour_the_patches(qtbot, window):
     )
     assert np.allclose(_shown(window), ld.patches.lux("overcast")[:, 0], rtol=1e-5)
     window.view_options.colour_by.setCurrentIndex(window.view_options.colour_by.findData("lux"))
-    assert bar.GetTitle() == "lux" and bar.GetLabelFormat() == "%.0f" and vp.caption is None
+    assert bar.GetTitle() == "lux" and bar.GetLabelFormat() == "%.0f"
+    assert vp.caption.startswith("Illuminance, design scenario: ")  # the scenario named (#29)
 
 
 def test_monthly_energy_is_charted_with_annual_kwh_and_leni(qtbot, window):
