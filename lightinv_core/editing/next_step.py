@@ -47,7 +47,7 @@ TEXTS = {
     ),
     "light": (
         "add light in the zones. Luminaires tab: pick a catalogue product and press Add "
-        "array…; or Properties: Add source in zone (a skylight or a panel)."
+        "array…; or Properties > Source: Add source (a skylight or a panel)."
     ),
     "workplane": "add a work plane to judge the light on (Luminaires tab, Add work plane…)",
     "intention": (

@@ -14,6 +14,7 @@ from PySide6.QtTest import QTest
 from app.view.zone_drawing import snap_uv
 from tests.app.conftest import wait_for_operator
 from tests.app.test_dialog_buttons import answer, button, click
+from tests.app.test_docks_laptop import click_tab
 from tests.app.test_main_window import send_mouse, to_qt
 from tests.app.test_zones_on_imported_room import draw_zone, import_room
 
@@ -94,11 +95,12 @@ def test_an_imported_room_shows_its_materials_and_the_next_step_until_lit(
     got = zone_corners(d, poly)[:, :2]
     assert sorted(map(tuple, np.round(got, 6))) == [(6.0, 2.0), (8.0, 5.0), (9.0, 2.0)]
 
-    # Light added by a click on Add source in zone: the view is coloured by it, with
+    # Light added by a click on the Source page's Add source: the view is coloured by it, with
     # its colour bar and the scenario named; the hint moves on to the work plane.
     props = window.source_panel
+    click_tab(window, "Source")
     props.zone.setCurrentIndex(props.zone.findText(f"{zone} (luminaire)"))
-    QTest.mouseClick(button(props, "Add source in zone"), QtCore.Qt.LeftButton)
+    QTest.mouseClick(button(props, "Add source"), QtCore.Qt.LeftButton)
     qtbot.waitUntil(lambda: vp.has_values, timeout=30_000)
     assert any(bar.GetVisibility() for bar in vp.plotter.scalar_bars.values())
     assert "edges" not in vp.plotter.actors
