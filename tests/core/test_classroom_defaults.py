@@ -86,3 +86,22 @@ def test_the_lattice_is_coarser_for_a_work_plane_far_below(classroom):
     wall = prepared.patches.group_index("walls")
     top = wall[np.argmax(prepared.patches.centroid[wall, 2])]
     assert lattice_step(frame, np.array([top]), pb.grids.points, prepared.patches, 0.25) == 0.25
+
+
+def test_a_result_s_penalty_is_the_sum_over_its_listed_violations(classroom):
+    # At most 2 x 2 panels: the spacing rule leaves one panel, far too little light. The
+    # solution's penalty (shown by the window, the results table and the report) is
+    # recomputed from its violations, weight x amount^power, not from the search's
+    # columns with their tolerance and margin (issue #29: 0.842 shown against 0.752).
+    project, prepared = classroom
+    (array,) = project.design.arrays
+    small = replace(array, rows_range=(1, 2), columns_range=(1, 2))
+    design = replace(project.design, arrays=(small,))
+    optimizer = replace(project.optimizer, max_evals=300)
+    best = solve(replace(project, design=design, optimizer=optimizer), prepared).best
+    assert not best.feasible and best.arrays[0].count == 1
+    (intention,) = design.intentions
+    amounts = [v.amount for v in best.violations]
+    assert {v.constraint for v in best.violations} == {"average", "uniformity"}
+    power = design.penalty_power
+    assert best.penalty == pytest.approx(sum(intention.weight * a**power for a in amounts))
