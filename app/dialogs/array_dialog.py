@@ -17,6 +17,7 @@ from PySide6 import QtWidgets
 
 from app.dialogs import ask
 from app.dialogs.fields import integer_box, number_box, ok_cancel
+from lightinv_core.design.arrays import DEFAULT_SHR
 from lightinv_core.design.model import ARRAY_VARIABLES, LuminaireArray, new_array
 from lightinv_core.errors import LightInvError
 from lightinv_core.light.arrays import resolve_product
@@ -168,6 +169,8 @@ class ArrayDialog(QtWidgets.QDialog):
         text = (
             f"{a.count} luminaires, spacing {su:.2f} x {sv:.2f} m; "
             f"{a.count * p.lumens * a.dimming:,.0f} lm, {a.count * p.watts * a.dimming:,.1f} W"
+            f"<br>The optimiser keeps the spacing within {DEFAULT_SHR:g} x the mounting "
+            "height above the work plane unless a spacing/height rule names this array."
         )
         # What changes the product's light (a tilt table not applied, a light output ratio
         # above 100%), as the panel, the status bar and the report say it.
