@@ -31,7 +31,7 @@ from lightinv_core.design.model import LuminaireArray, Workplane
 from lightinv_core.design.variables import ArrayLayout
 from lightinv_core.errors import DesignError, LightInvError
 from lightinv_core.luminaires import Photometry, builtin_catalogue, read_photometry
-from lightinv_core.operator.luminaire_basis import luminaire_responses
+from lightinv_core.operator.luminaire_basis import BASIS_SAMPLES, luminaire_responses
 from lightinv_core.operator.radiosity import RadiosityOperator
 from lightinv_core.scene.patches import Patches
 from lightinv_core.scene.zone_grid import zone_grid
@@ -40,17 +40,17 @@ from lightinv_core.transport.formfactors import DEFAULT_RAYS, form_factor_matrix
 from lightinv_core.transport.luminaires import PlacedLuminaire
 from lightinv_core.transport.raycast import RayCaster
 
-LATTICE = 0.25
-"""Finest lattice step (m) of the precomputed positions (docs/photometry.md)."""
-LATTICE_MAX = 0.5
-"""Coarsest lattice step (m)."""
+LATTICE, LATTICE_MAX = 0.25, 0.5
+"""Finest and coarsest lattice steps (m) of the precomputed positions."""
 STEP_PER_THROW = 0.22
 """Lattice step per metre of throw (least distance from the zone's plane to a receiver):
 light d m away changes over about d, the blend's error falls as (step / d)^4. On the
 10 x 7 x 3 m classroom's work plane (d = 2.25 m; 12 random panel layouts against exact
-placement) 0.5 m is off by at most 0.24% on Em, 0.0005 on U0, 1% at a point (0.25 m:
-0.001%, 0.0001, 0.07%; 0.75 m: 0.45%, 0.002, 2.4%): inside the search's 0.5% margin
-(``optimize/judge.py``) with a quarter of the placements (docs/photometry.md)."""
+placement) 0.5 m errs at most 0.29% on Em, 0.0013 on U0, 0.8% at a point (0.25 m:
+0.001%, 0.0001, 0.07%), inside the search's 0.5% margin (``optimize/judge.py``), with a
+quarter of the placements (docs/photometry.md)."""
+FEED_SAMPLES = 1
+"""Direct-light samples a patch when no patch is a receiver (classroom: errors as with 4)."""
 MOUNT_OFFSET = 0.02
 """Photometric centre below the mounting surface, m."""
 DEFAULT_PLANE_HEIGHT = 0.8
@@ -179,8 +179,7 @@ def form_factors(patches: Patches, op: RadiosityOperator) -> sp.csr_matrix:
         return F
     F = _FF_CACHE.get(op)
     if F is None:
-        rays = int(op.info.get("rays", DEFAULT_RAYS))
-        seed = int(op.info.get("seed", 0))
+        rays, seed = int(op.info.get("rays", DEFAULT_RAYS)), int(op.info.get("seed", 0))
         F = _FF_CACHE[op] = form_factor_matrix(patches, rays, seed=seed)
     return F
 
@@ -248,10 +247,11 @@ class ArrayLight:
             pts,
             caster=caster_for(patches),
             rays=int(op.info.get("rays", DEFAULT_RAYS)),
+            # No receiver patch: the patches' direct light only feeds the smooth bounces.
+            samples=BASIS_SAMPLES if len(self.rows) else FEED_SAMPLES,
             progress=progress,
             cancel=cancel,
         )
-        # One matrix for patches and points: a batch is one product.
         self.R = np.ascontiguousarray(np.vstack([resp.at_rows, resp.at_points]))
         self.shapes_opening = np.array([p.opening for p in self.products]).reshape(-1, 2)
 
@@ -343,8 +343,7 @@ class ArrayLight:
 def lattice_step(
     frame: ZoneFrame, rows: np.ndarray, points: np.ndarray, patches: Patches, finest: float
 ) -> float:
-    """A zone's lattice step (m): ``STEP_PER_THROW`` x the least distance from its plane
-    to a receiver (``rows``' centroids, ``points``), in ``finest`` .. ``LATTICE_MAX``."""
+    """A zone's lattice step (m): ``STEP_PER_THROW`` x its least distance to a receiver."""
     where = np.vstack([patches.centroid[rows], np.asarray(points, float).reshape(-1, 3)])
     if not len(where):
         return finest
