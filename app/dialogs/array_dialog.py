@@ -138,6 +138,11 @@ class ArrayDialog(QtWidgets.QDialog):
         form.addRow(ok_cancel(self))
         self._update()
 
+    def showEvent(self, event) -> None:
+        """Open tall enough for the summary's wrapped lines."""
+        super().showEvent(event)
+        self.resize(self.width(), max(self.height(), self.heightForWidth(self.width())))
+
     def accept(self) -> None:
         """Close only on an array that can be built (OK or Enter); else say why and stay."""
         try:
@@ -169,8 +174,8 @@ class ArrayDialog(QtWidgets.QDialog):
         text = (
             f"{a.count} luminaires, spacing {su:.2f} x {sv:.2f} m; "
             f"{a.count * p.lumens * a.dimming:,.0f} lm, {a.count * p.watts * a.dimming:,.1f} W"
-            f"<br>The optimiser keeps the spacing within {DEFAULT_SHR:g} x the mounting "
-            "height above the work plane unless a spacing/height rule names this array."
+            f"<br>Spacing kept within {DEFAULT_SHR:g} x the mounting height above the work "
+            "plane (a spacing/height rule overrides)."
         )
         # What changes the product's light (a tilt table not applied, a light output ratio
         # above 100%), as the panel, the status bar and the report say it.
