@@ -31,7 +31,7 @@ from lightinv_core.design.model import LuminaireArray, Workplane
 from lightinv_core.design.variables import ArrayLayout
 from lightinv_core.errors import DesignError, LightInvError
 from lightinv_core.luminaires import Photometry, builtin_catalogue, read_photometry
-from lightinv_core.operator.luminaire_basis import BASIS_SAMPLES, luminaire_responses
+from lightinv_core.operator.luminaire_basis import luminaire_responses
 from lightinv_core.operator.radiosity import RadiosityOperator
 from lightinv_core.scene.patches import Patches
 from lightinv_core.scene.zone_grid import zone_grid
@@ -42,15 +42,13 @@ from lightinv_core.transport.raycast import RayCaster
 
 LATTICE, LATTICE_MAX = 0.25, 0.5
 """Finest and coarsest lattice steps (m) of the precomputed positions."""
-STEP_PER_THROW = 0.22
+STEP_PER_THROW = 0.15
 """Lattice step per metre of throw (least distance from the zone's plane to a receiver):
-light d m away changes over about d, the blend's error falls as (step / d)^4. On the
-10 x 7 x 3 m classroom's work plane (d = 2.25 m; 12 random panel layouts against exact
-placement) 0.5 m errs at most 0.29% on Em, 0.0013 on U0, 0.8% at a point (0.25 m:
-0.001%, 0.0001, 0.07%), inside the search's 0.5% margin (``optimize/judge.py``), with a
-quarter of the placements (docs/photometry.md)."""
-FEED_SAMPLES = 1
-"""Direct-light samples a patch when no patch is a receiver (classroom: errors as with 4)."""
+light d m away changes over about d. Against exact placement, the 0.34 m step of the
+classroom's work plane (d = 2.25 m, 12 panel layouts) errs at most 0.11% on Em, 0.0003
+on U0; the office benchmark's batwing strips (60 layouts, 640 placements instead of 900)
+0.05% on Em, 0.06% on U0, as at 0.25 m. 0.22 x d let the batwing's U0 err 0.43%, near
+the search's 0.5% margin (``optimize/judge.py``; docs/photometry.md)."""
 MOUNT_OFFSET = 0.02
 """Photometric centre below the mounting surface, m."""
 DEFAULT_PLANE_HEIGHT = 0.8
@@ -247,8 +245,6 @@ class ArrayLight:
             pts,
             caster=caster_for(patches),
             rays=int(op.info.get("rays", DEFAULT_RAYS)),
-            # No receiver patch: the patches' direct light only feeds the smooth bounces.
-            samples=BASIS_SAMPLES if len(self.rows) else FEED_SAMPLES,
             progress=progress,
             cancel=cancel,
         )
