@@ -47,7 +47,7 @@ STEP_PER_THROW = 0.15
 light d m away changes over about d. Against exact placement, the 0.34 m step of the
 classroom's work plane (d = 2.25 m, 12 panel layouts) errs at most 0.11% on Em, 0.0003
 on U0; the office benchmark's batwing strips (60 layouts, 640 placements instead of 900)
-0.05% on Em, 0.06% on U0, as at 0.25 m. 0.22 x d let the batwing's U0 err 0.43%, near
+0.07% on Em, 0.11% on U0, as at 0.25 m. 0.22 x d let the batwing's U0 err 0.43%, near
 the search's 0.5% margin (``optimize/judge.py``; docs/photometry.md)."""
 MOUNT_OFFSET = 0.02
 """Photometric centre below the mounting surface, m."""
