@@ -3,8 +3,10 @@
 An array is one product (from the catalogue, or an IES/EULUMDAT file) laid out evenly in
 a luminaire zone: rows and columns at the centres of equal cells of a rectangle, a
 rotation of 0 or 90 degrees, a dimming level, and which of these the optimiser may
-change. The dialog shows the spacing and the array's power as they are typed, and the
-product's photometry warnings (what changes its light) once it is chosen.
+change: by default the rows and columns, every luminaire at full output (a dimmed
+answer needs dimming controls; tick "dimming" to allow it). The dialog shows the
+spacing and the array's power as they are typed, and the product's photometry warnings
+(what changes its light) once it is chosen.
 """
 
 from __future__ import annotations
@@ -15,7 +17,8 @@ from PySide6 import QtWidgets
 
 from app.dialogs import ask
 from app.dialogs.fields import integer_box, number_box, ok_cancel
-from lightinv_core.design.model import ARRAY_VARIABLES, LuminaireArray
+from lightinv_core.design.arrays import DEFAULT_SHR
+from lightinv_core.design.model import ARRAY_VARIABLES, LuminaireArray, new_array
 from lightinv_core.errors import LightInvError
 from lightinv_core.light.arrays import resolve_product
 from lightinv_core.luminaires import builtin_catalogue
@@ -30,6 +33,11 @@ FREE_LABELS = {
     "columns": "columns",
     "rotation": "rotation",
     "dimming": "dimming",
+}
+FREE_TIPS = {
+    "dimming": "Let the optimiser dim the luminaires (it then needs dimming controls); "
+    "unticked, every luminaire runs at the dimming above (full output by default) and "
+    "the least power is the fewest luminaires.",
 }
 
 
@@ -48,15 +56,7 @@ class ArrayDialog(QtWidgets.QDialog):
         self.zones = zones
         zone = base.zone if base is not None else next(iter(zones), "")
         w, h = zones.get(zone, (1.0, 1.0))
-        base = base or LuminaireArray(
-            name,
-            zone,
-            builtin_catalogue()[0].name,
-            (0.0, 0.0, w, h),
-            rows=2,
-            columns=2,
-            free=("rows", "columns", "dimming"),
-        )
+        base = base or new_array(name, zone, builtin_catalogue()[0].name, (w, h))
         form = QtWidgets.QFormLayout(self)
         self.name = QtWidgets.QLineEdit(base.name)
         form.addRow("Name", self.name)
@@ -100,6 +100,7 @@ class ArrayDialog(QtWidgets.QDialog):
         for var in ARRAY_VARIABLES:
             box = QtWidgets.QCheckBox(FREE_LABELS[var])
             box.setChecked(var in base.free)
+            box.setToolTip(FREE_TIPS.get(var, ""))
             self.free[var] = box
             free.addWidget(box)
         form.addRow("Free for the optimiser", free)
@@ -137,6 +138,11 @@ class ArrayDialog(QtWidgets.QDialog):
         form.addRow(ok_cancel(self))
         self._update()
 
+    def showEvent(self, event) -> None:
+        """Open tall enough for the summary's wrapped lines."""
+        super().showEvent(event)
+        self.resize(self.width(), max(self.height(), self.heightForWidth(self.width())))
+
     def accept(self) -> None:
         """Close only on an array that can be built (OK or Enter); else say why and stay."""
         try:
@@ -168,6 +174,8 @@ class ArrayDialog(QtWidgets.QDialog):
         text = (
             f"{a.count} luminaires, spacing {su:.2f} x {sv:.2f} m; "
             f"{a.count * p.lumens * a.dimming:,.0f} lm, {a.count * p.watts * a.dimming:,.1f} W"
+            f"<br>Spacing kept within {DEFAULT_SHR:g} x the mounting height above the work "
+            "plane (a spacing/height rule overrides)."
         )
         # What changes the product's light (a tilt table not applied, a light output ratio
         # above 100%), as the panel, the status bar and the report say it.

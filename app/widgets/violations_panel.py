@@ -55,8 +55,12 @@ class ViolationsPanel(QtWidgets.QWidget):
         else:
             self.offending = self.doc.offending_patches()
             n = sum(len(ids) for _, _, ids in self.offending)
+            # The solution's own penalty (optimize/judge.py ``penalty``), the number the
+            # results table and the report show: the sum of weight x off-by^power below.
+            # A broken geometric rule has no light to judge: no finite penalty.
+            pen = f", penalty P = {sol.penalty:.3g}" if np.isfinite(sol.penalty) else ""
             self.summary.setText(
-                f"Not feasible: {len(sol.violations)} violated"
+                f"Not feasible: {len(sol.violations)} violated{pen}"
                 + (f"; {n:,} patches out of bounds (red in the view)" if n else "")
             )
             self.table.setRowCount(len(sol.violations))

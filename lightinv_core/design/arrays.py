@@ -10,6 +10,10 @@ luminous opening, its length along the C0 plane, so a rotation of 90 degrees swa
 the two. The spacing-to-height ratio (SHR) is the spacing between neighbouring
 luminaires over their mounting height above the work plane; only directions with
 more than one luminaire have a spacing.
+
+Spacing rules are on by default: an array that no ``shr`` rule names is held to
+``DEFAULT_SHR`` (its own column, labelled "(default)"). An explicit ``shr`` rule
+replaces it, e.g. with the SHR max of the product's data sheet.
 """
 
 from __future__ import annotations
@@ -24,6 +28,14 @@ from lightinv_core.kinds import RuleKind
 from lightinv_core.scene.zone_outline import outside_share
 
 MIN_FOOTPRINT = 0.01  # m: a point-like product still needs room to be mounted
+DEFAULT_SHR = 1.5
+"""Spacing-to-height ratio an array keeps when no ``shr`` rule names it. The spacing
+criterion (IES: "an estimated maximum ratio of the luminaire spacing to the luminaire
+mounting height above the work plane for a regular array ... such that the work plane
+illuminance will be acceptably uniform"; CIBSE TM5's SHR max) is a property of the
+product's photometry; 1.5 is the figure the lumen-method texts use for wide
+(Lambertian, batwing) ceiling luminaires. A narrow downlight needs less: give its data
+sheet's value as an ``shr`` rule."""
 OUTLINE_CHUNK = 1 << 20  # (candidate, luminaire, outline edge) triples checked at once
 
 
@@ -109,13 +121,30 @@ def _outside_outline(outline: np.ndarray, layout: ArrayLayout, g: ArrayGeometry,
     return out
 
 
+def default_shr_arrays(design: Design) -> list[str]:
+    """Names of the arrays no ``shr`` rule names: they keep ``DEFAULT_SHR``."""
+    named = {a for r in design.rules if r.kind == RuleKind.SHR for a in r.sources}
+    return [a.name for a in design.arrays if a.name not in named]
+
+
 def array_rule_names(design: Design) -> list[str]:
     """Labels of the array columns of ``rule_violations``, in order."""
     names = [f"array {a.name} in its zone" for a in design.arrays]
     for r in design.rules:
         if r.kind in ARRAY_RULES:
             names += [f"{r.kind} {a}" for a in r.sources]
+    names += [f"shr {a} (default {DEFAULT_SHR:g})" for a in default_shr_arrays(design)]
     return names
+
+
+def _shr_excess(layout: ArrayLayout, g: ArrayGeometry, shapes: ArrayShapes, j: int, most: float):
+    """(m,) relative excess of array ``j``'s spacing-to-height ratio over ``most``."""
+    s = np.maximum(
+        np.where(layout.columns[:, j] > 1, g.su[:, j], 0.0),
+        np.where(layout.rows[:, j] > 1, g.sv[:, j], 0.0),
+    )
+    ratio = s / max(float(shapes.mount_height[j]), 1e-9)
+    return np.maximum(0, ratio - most) / most
 
 
 def array_violations(design: Design, layout: ArrayLayout, shapes: ArrayShapes) -> np.ndarray:
@@ -142,13 +171,10 @@ def array_violations(design: Design, layout: ArrayLayout, shapes: ArrayShapes) -
         for a in r.sources:
             j = names.index(a)
             if r.kind == RuleKind.SHR:
-                s = np.maximum(
-                    np.where(layout.columns[:, j] > 1, g.su[:, j], 0.0),
-                    np.where(layout.rows[:, j] > 1, g.sv[:, j], 0.0),
-                )
-                ratio = s / max(float(shapes.mount_height[j]), 1e-9)
-                out.append(np.maximum(0, ratio - r.max) / r.max)
+                out.append(_shr_excess(layout, g, shapes, j, r.max))
             else:
                 need = max(r.min, 1e-3)
                 out.append(np.maximum(0, r.min - clear[:, j]) / need)
+    for a in default_shr_arrays(design):
+        out.append(_shr_excess(layout, g, shapes, names.index(a), DEFAULT_SHR))
     return np.column_stack(out)  # the first entry is (m, A): one column per array

@@ -1,12 +1,15 @@
 """EN 12464-1 lighting requirements for a few common activities, as grid intentions.
 
-Values from EN 12464-1:2011, "Light and lighting - Lighting of work places - Part 1:
-Indoor work places", the schedule of lighting requirements (table and reference number
-given per activity): maintained illuminance Em (lux) on the task area and its
-uniformity U0 = Emin / Em, and the least colour rendering index Ra (for the record: it
-is a property of the product, not of the layout). The 2021 edition keeps these as its
-"required" values and adds higher "modified" ones for some contexts; check the
-edition and the national annex in force for a real project.
+Values from EN 12464-1:2011 (``EDITION``), "Light and lighting - Lighting of work places
+- Part 1: Indoor work places", clause 5, the schedule of lighting requirements; each
+preset gives its table row's reference number (5.26.2: table 5.26 "Offices", row 2):
+maintained illuminance Em (lux) on the task area, its uniformity U0 = Emin / Em, and
+the least colour rendering index Ra (for the record: a property of the product, not of
+the layout). Every list and report names the edition with the row (``Requirement.label``).
+The 2021 edition (EN 12464-1:2021) renumbers the schedule, gives "required" and
+"modified" Em and changes some rows' values; it is not transcribed here (no copy of its
+tables was at hand to check them): for a project under the 2021 edition or a national
+annex, enter its values as an intention on the work plane.
 """
 
 from __future__ import annotations
@@ -15,6 +18,9 @@ from dataclasses import dataclass
 
 from lightinv_core.design.model import DesignError, Intention
 from lightinv_core.kinds import Scenario
+
+EDITION = "EN 12464-1:2011"
+"""The edition the presets' values and reference numbers come from."""
 
 
 @dataclass(frozen=True)
@@ -27,6 +33,13 @@ class Requirement:
     u0: float
     ra: int
     reference: str
+
+    @property
+    def label(self) -> str:
+        """The activity, its edition and table row, and its values, for lists."""
+        return (
+            f"{self.activity} ({EDITION} ref. {self.reference}): {self.em:g} lux, U0 {self.u0:.2f}"
+        )
 
 
 REQUIREMENTS = (

@@ -6,7 +6,11 @@ lighting columns as c minus the 0.1% tolerance (``FEASIBILITY_TOL``; with lumina
 arrays plus ``ARRAY_MARGIN``); a solution is judged on every patch at ``JUDGED_TOL``,
 each broken bound listed as a ``Violation``. The penalty (paper eq. 3) is
 P = sum W * max(0, G)^pow over the lighting columns, W the intention's weight
-(``EPSILON_WEIGHT`` for epsilon bounds), pow the design's penalty power.
+(``EPSILON_WEIGHT`` for epsilon bounds), pow the design's penalty power: one function,
+``penalty``. The search feeds it its columns (c less the tolerance, plus the arrays'
+margin); a solution's penalty, the number the window, the results table and the report
+show, feeds it the relative violations c of the bounds it breaks, so it can be checked
+from the solution's violations (``Violation.amount``): P = sum W * amount^pow.
 """
 
 from __future__ import annotations
@@ -39,6 +43,15 @@ ARRAY_MARGIN = 0.005
 lit from their lattice: the blend's error on the office benchmark's work plane is at most
 0.07% on Em and 0.15% on U0 over 60 random layouts off the nodes
 (bench/luminaire_arrays.py), well within it."""
+
+
+def penalty(columns: list, weights: list, power: int, m: int = 1) -> np.ndarray:
+    """P = sum_j W_j max(0, G_j)^power (paper eq. 3) of columns G_j (each (m,)),
+    weights W_j; the one penalty formula, for the search and for solutions."""
+    P = np.zeros(m)
+    for g, w in zip(columns, weights, strict=True):
+        P = P + w * np.maximum(0.0, g) ** power
+    return P
 
 
 @dataclass(frozen=True)
@@ -96,15 +109,8 @@ class Judge:
             yield kind, bound, c
 
     def penalty(self, lighting: list, n_intent: int, m: int) -> np.ndarray:
-        """P = sum W max(0, G)^pow over the lighting columns: intentions, then epsilon."""
-        pw, weights = self.design.penalty_power, self.weights
-        P = np.zeros(m)
-        for j in range(n_intent):
-            P += weights[j] * np.maximum(0.0, lighting[j]) ** pw
-        P_eps = 0.0
-        for j in range(n_intent, len(lighting)):
-            P_eps = P_eps + weights[j] * np.maximum(0.0, lighting[j]) ** pw
-        return P + P_eps
+        """P (m,) of the lighting columns (intentions, then epsilon): ``penalty``."""
+        return penalty(lighting, self.weights, self.design.penalty_power, m)
 
     def search_columns(self, lit: Lit, level: Level, goals: dict) -> tuple[list, int]:
         """The lighting columns of G the search reads (c - tolerance, each (m,)) and how
@@ -129,12 +135,13 @@ class Judge:
     def verdict(self, lit: Lit | None, level: Level, goals: dict) -> tuple[list, float]:
         """One candidate judged at ``JUDGED_TOL`` (``lit`` its light at ``level``, None
         without intentions; ``goals`` its values): its intention and epsilon violations
-        and its penalty, from one computation."""
+        and its penalty, from one computation: ``penalty`` of the broken bounds' relative
+        violations, so P = sum W * amount^pow over the violations listed."""
         viol: list[Violation] = []
         excess: list[np.ndarray] = []
         if self.design.intentions:
             checks = self.checks(lit, level)
-            excess += [chk.c - JUDGED_TOL for chk in checks]
+            excess += [np.where(chk.c > JUDGED_TOL, chk.c, 0.0) for chk in checks]
             for chk in checks:
                 if chk.c[0] > JUDGED_TOL:
                     units = "" if chk.bound == Bound.UNIFORMITY else chk.units
@@ -148,13 +155,12 @@ class Judge:
                             units,
                         )
                     )
-        n_intent = len(excess)
         for kind, bound, c in self.epsilon_terms(goals):
-            excess.append(c - JUDGED_TOL)
+            excess.append(np.where(c > JUDGED_TOL, c, 0.0))
             if c[0] > JUDGED_TOL:
                 value = float(goals[kind][0])
                 units = goal_spec(kind).unit
                 viol.append(
                     Violation(f"epsilon {kind}", "epsilon", float(c[0]), value, bound, units)
                 )
-        return viol, float(self.penalty(excess, n_intent, 1)[0])
+        return viol, float(penalty(excess, self.weights, self.design.penalty_power)[0])

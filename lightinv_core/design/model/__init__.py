@@ -26,8 +26,10 @@ from lightinv_core.design.model.array import (
     ARRAY_FIELDS,
     ARRAY_VARIABLES,
     MAX_ARRAY_SIDE,
+    NEW_ARRAY_FREE,
     ROTATIONS,
     LuminaireArray,
+    new_array,
 )
 from lightinv_core.design.model.daylight import (
     DAYLIGHT_FIELDS,
@@ -74,6 +76,7 @@ __all__ = [
     "MAX_FLUX",
     "MAX_PATCH_ID",
     "MAX_WATTS",
+    "NEW_ARRAY_FREE",
     "ROTATIONS",
     "RULE_FIELDS",
     "RULE_SOURCES",
@@ -91,5 +94,6 @@ __all__ = [
     "Rule",
     "Source",
     "Workplane",
+    "new_array",
     "source_kind",
 ]

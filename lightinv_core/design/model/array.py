@@ -167,3 +167,20 @@ class LuminaireArray:
 
 ARRAY_FIELDS = ObjectSpec.of(LuminaireArray, "array")
 """The luminaire array's fields, in the order a project file writes them."""
+
+NEW_ARRAY_FREE = ("rows", "columns")
+"""What the optimiser may change in a new array: how many luminaires, each at full
+output. Dimming is left out: a free dimming makes many dimmed luminaires cost the power
+of a few at full output (issue #29: 80 panels at 10% in a classroom), and it needs
+dimming controls; it is asked for by freeing ``dimming``."""
+
+
+def new_array(name: str, zone: str, product: str, size: tuple[float, float]) -> LuminaireArray:
+    """The array a new design proposes in a zone of ``size`` (w, h) m: ``product`` filling
+    the whole zone evenly, 2 x 2 to start, rows and columns free (``NEW_ARRAY_FREE``), at
+    full output; the spacing rule ``DEFAULT_SHR`` holds unless a rule says otherwise
+    (``design/arrays.py``)."""
+    w, h = size
+    return LuminaireArray(
+        name, zone, product, (0.0, 0.0, float(w), float(h)), rows=2, columns=2, free=NEW_ARRAY_FREE
+    )
