@@ -122,6 +122,7 @@ class MethodSpec:
     count_setting: tuple[str, str] | None = None
     progress_label: str | None = None
     refusal: Callable[[Design], str | None] = never_refused
+    run_goal: Callable[[Design, Any, int], str | None] | None = None
 
     def settings_from(self, source: Any) -> Any:
         """This method's settings read from ``source`` (e.g. a project's

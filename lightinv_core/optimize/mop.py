@@ -32,7 +32,13 @@ from lightinv_core.optimize.fronts import (
     front_pair,
     front_refusal,
 )
-from lightinv_core.optimize.method import MethodSpec, RunContext, always_front, context_of
+from lightinv_core.optimize.method import (
+    MethodSpec,
+    RunContext,
+    always_front,
+    context_of,
+    settings_as,
+)
 from lightinv_core.optimize.multilevel import DEFAULT_DIVISORS, multilevel
 from lightinv_core.optimize.problem import DesignProblem
 from lightinv_core.optimize.progress import ProgressFn
@@ -254,6 +260,20 @@ def _swept(
     return _front_result(front, cancelled, time.perf_counter() - t0, tally.evaluations)
 
 
+def epsilon_run_goal(design: Design, settings: Any, run: int) -> str:
+    """The goal sub-run ``run`` of an epsilon sweep minimises: with automatic bounds, the
+    first range run the bounded goal, every other run the swept one."""
+    pair = front_pair(design)
+    automatic = not settings_as(EpsilonSettings, settings).epsilons
+    return str(pair[1] if automatic and run == 0 else pair[0])
+
+
+def two_step_run_goal(design: Design, settings: Any, run: int) -> str:
+    """The goal sub-run ``run`` of the two-step process optimises: the skylights' light
+    power (lm) in a first step (even runs), electric power (W) in a second."""
+    return str(POWER if run % 2 else LIGHT)
+
+
 def _refuse(why: str | None) -> None:
     if why is not None:
         raise DesignError(why)
@@ -324,6 +344,7 @@ EPSILON = MethodSpec(
     EpsilonSettings,
     count_setting=("Front points", "epsilon_count"),
     refusal=epsilon_refusal,
+    run_goal=epsilon_run_goal,
     **_SWEEP,
 )
 """Epsilon-constraint sweep (paper eq. 10): the least of the design's first front goal
@@ -335,6 +356,7 @@ TWO_STEP = MethodSpec(
     TwoStepSettings,
     count_setting=("Two-step runs", "runs"),
     refusal=two_step_refusal,
+    run_goal=two_step_run_goal,
     **_SWEEP,
 )
 """Two-step process (paper 5.5): skylights first, then luminaires, ``runs`` seeds."""
