@@ -13,7 +13,6 @@ import re
 from dataclasses import replace
 from pathlib import Path
 
-import numpy as np
 import pytest
 from PySide6 import QtCore, QtWidgets
 from PySide6.QtTest import QTest
@@ -92,50 +91,6 @@ def demo(qtbot, window):
     return window
 
 
-def test_nsga2_trades_the_demos_annual_energy_for_glazing_area(qtbot, demo):
-    win, panel = demo, demo.run_panel
-    assert _choose(panel.method, "NSGA-II front")
-    assert win.doc.project.optimizer.method == "nsga2"
-    assert panel.trades.text() == "Front of annual lighting energy against glazing area"
-    _type(panel.runs, "12")  # the population
-    _type(panel.max_evals, "600")
-    assert win.doc.project.optimizer.population == 12
-    assert _run(qtbot, win) == "feasible"
-    title = panel.plot.goal_plot.getPlotItem().titleLabel.text
-    assert title.startswith("best front hypervolume")
-    # The reported evaluations are the live counter's.
-    reported, live = _numbers(panel.state.text()), _numbers(panel.counters.text())
-    assert reported == live and reported[0] >= 600
-    win.grab().save("/tmp/nsga_window.png")
-    _click_tab(win, "Solutions")
-    sp = win.solutions_panel
-    heads = [sp.table.horizontalHeaderItem(c).text() for c in range(sp.table.columnCount())]
-    assert heads[2:4] == ["glazing area (m²)", "annual energy (kWh)"]
-    front = win.doc.project.runs[-1].pareto
-    assert front.objectives == ("min_annual_energy", "min_glazing_area")
-    for r in range(sp.table.rowCount()):
-        cells = [sp.table.item(r, c).text() for c in (2, 3)]
-        assert "-" not in cells and all(float(c.replace(",", "")) > 0 for c in cells)
-    xy = sp.scatter.xy
-    assert len(xy) == sp.table.rowCount() >= 2 and np.isfinite(xy).all()
-    assert "on the nsga2 front" in sp.summary.text() and "front hypervolume" in sp.summary.text()
-    # Pin one result: one pinned.
-    QTest.mouseClick(
-        sp.table.viewport(),
-        QtCore.Qt.LeftButton,
-        pos=sp.table.visualRect(sp.table.model().index(0, 0)).center(),
-    )
-    QTest.mouseClick(_button(win, "Pin / unpin"), QtCore.Qt.LeftButton)
-    assert ", 1 pinned" in sp.summary.text()
-    sp.grab().save("/tmp/nsga_solutions.png")
-    # Another project: the plot's ranges are its own.
-    sp.scatter.setXRange(1000.0, 2000.0)
-    assert win.new_project("cornell", 0.5)
-    QtWidgets.QApplication.processEvents()
-    (_x0, x1), _ = sp.scatter.getViewBox().viewRange()
-    assert x1 <= 2.0 and len(sp.scatter.xy) == 0
-
-
 def test_the_method_list_follows_the_designs_goals(qtbot, demo):
     win, panel = demo, demo.run_panel
     row = panel.method.findData("nsga2")
@@ -150,19 +105,3 @@ def test_the_method_list_follows_the_designs_goals(qtbot, demo):
     assert not _choose(panel.method, "NSGA-II front")
     assert panel.method.model().item(panel.method.findData("cmaes")).isEnabled()
     panel.grab().save("/tmp/nsga_refused.png")
-
-
-def test_an_epsilon_sweeps_range_run_has_its_own_labelled_plot(qtbot, demo):
-    win, panel = demo, demo.run_panel
-    assert win.doc.project.optimizer.method == "epsilon"
-    _type(panel.runs, "2")  # front points
-    _type(panel.max_evals, "300")
-    assert _run(qtbot, win) == "feasible"
-    plots = panel.plot.goal_plots
-    assert set(plots) == {"annual energy (kWh)", "glazing area (m²)"}
-    for label, plot in plots.items():
-        assert plot.getPlotItem().titleLabel.text == f"best {label}"
-        assert plot.getPlotItem().getAxis("left").labelText == label
-    reported, live = _numbers(panel.state.text()), _numbers(panel.counters.text())
-    assert reported == live, (panel.state.text(), panel.counters.text())
-    panel.grab().save("/tmp/nsga_epsilon_plots.png")
