@@ -60,6 +60,8 @@ class SolutionScatter(pg.PlotWidget):
                 }
             )
         self.points.setData(spots)
+        if not spots:
+            self.reset_view()  # nothing to show: no range left from earlier results
         for line in self.front_lines:
             self.removeItem(line)
         self.front_lines = []
@@ -70,6 +72,13 @@ class SolutionScatter(pg.PlotWidget):
             front = front[np.argsort(front[:, 0])]
             self.front_lines.append(self.plot(front[:, 0], front[:, 1], pen=self.front_pen))
         self.set_chosen(chosen)
+
+    def reset_view(self) -> None:
+        """Forget the ranges panned or zoomed to: fit the next results (or 0 to 1 on
+        both axes while there are none)."""
+        if not np.isfinite(self.xy).all(axis=1).any():
+            self.setRange(xRange=(0.0, 1.0), yRange=(0.0, 1.0), padding=0.0)
+        self.enableAutoRange()
 
     def set_chosen(self, index: int | None) -> None:
         """Ring the result ``index`` (None: none)."""

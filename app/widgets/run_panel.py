@@ -5,6 +5,10 @@ Settings are the project's (``OptimizerSettings`` and the primary goal): editing
 writes it to the document at once, so a saved project runs the same from the command
 line. The number of seeds is the panel's own: several seeds run the same problem that
 many times (the paper's experiment 4) and are not saved.
+
+The method list follows the open design: a method that cannot run on it (NSGA-II on a
+design with one goal: ``MethodSpec.refusal``) is listed greyed out, its tooltip saying
+why. A front method names the two goals it trades, by their labels.
 """
 
 from __future__ import annotations
@@ -15,7 +19,8 @@ from app.document import Document
 from app.view.convergence_plot import ConvergencePlot
 from app.view.scatter_axes import goal_axis_label
 from lightinv_core.errors import LightInvError
-from lightinv_core.goals import goal_specs
+from lightinv_core.goals import goal_spec, goal_specs
+from lightinv_core.optimize.fronts import front_pair
 from lightinv_core.optimize.method import MethodSpec
 from lightinv_core.optimize.registry import get_method, methods
 
@@ -46,6 +51,9 @@ class RunPanel(QtWidgets.QWidget):
         form.addRow("Method", self.method)
         self.goal = QtWidgets.QComboBox()
         form.addRow("Goal", self.goal)
+        self.trades = QtWidgets.QLabel("")
+        self.trades.setWordWrap(True)
+        form.addRow(self.trades)
         self.max_evals = QtWidgets.QSpinBox(maximum=100_000_000, singleStep=1000)
         self.max_evals.setSpecialValueText("no limit")
         form.addRow("Evaluations (per run)", self.max_evals)
@@ -97,21 +105,46 @@ class RunPanel(QtWidgets.QWidget):
         widgets = (self.method, self.goal, self.max_evals, self.time_limit, self.seed, self.runs)
         for w in widgets:
             w.blockSignals(True)
+        design = self.doc.design
+        self._offer_methods(design)
         self.method.setCurrentIndex(self.method.findData(o.method))
         self.goal.clear()
-        design = self.doc.design
         # Every registered goal; one the design cannot take (a match without a target
         # lighting) is refused with the model's reason when chosen.
         for spec in goal_specs():
             self.goal.addItem(spec.short, str(spec.kind))
         self.goal.setCurrentIndex(self.goal.findData(str(design.goals[0].kind)))
         self.goal.setEnabled(not self._multi())
+        self._show_trade()
         self.max_evals.setValue(o.max_evals or 0)
         self.time_limit.setValue(o.time_limit or 0.0)
         self.seed.setValue(o.seed)
         self._show_runs()
         for w in widgets:
             w.blockSignals(False)
+
+    def _offer_methods(self, design) -> None:
+        """Grey out the methods that cannot run on ``design``, saying why (tooltip)."""
+        model = self.method.model()
+        for i in range(self.method.count()):
+            why = get_method(self.method.itemData(i)).refusal(design)
+            model.item(i).setEnabled(why is None)
+            self.method.setItemData(i, why or "", QtCore.Qt.ToolTipRole)
+
+    def refusal(self) -> str | None:
+        """Why the project's method cannot run on the open design (None: it can)."""
+        return get_method(self.doc.project.optimizer.method).refusal(self.doc.design)
+
+    def _show_trade(self) -> None:
+        """What the chosen method will do with the design's goals, in words."""
+        why = self.refusal()
+        if why is not None:
+            self.trades.setText(why)
+        elif self._multi():
+            a, b = (goal_spec(k).label.lower() for k in front_pair(self.doc.design))
+            self.trades.setText(f"Front of {a} against {b}")
+        else:
+            self.trades.setText("")
 
     def _multi(self) -> bool:
         return get_method(self.doc.project.optimizer.method).finds_front(self.doc.design)
@@ -167,11 +200,32 @@ class RunPanel(QtWidgets.QWidget):
         return [o.seed + i for i in range(n)]
 
     def goal_label(self) -> str:
-        """The plotted objective with its units."""
+        """The plotted objective with its units (a sweep's: that of its second sub-run,
+        the goal it minimises at each bound or its second step)."""
         if self._multi():
             method = get_method(self.doc.project.optimizer.method)
+            if method.run_goal is not None:
+                return self.run_goal_label(1)
             return method.progress_label or "objective of each sub-run"
         return goal_axis_label(self.doc.design.goals[0].kind)
+
+    def run_goal_label(self, run: int) -> str:
+        """The goal (with units) sub-run ``run`` of the project's method optimises."""
+        o = self.doc.project.optimizer
+        method = get_method(o.method)
+        if method.run_goal is None or not self._multi():
+            return self.goal_label()
+        return goal_axis_label(method.run_goal(self.doc.design, o, run))
+
+    def plot_labels(self):
+        """(label of the objective plot, run -> its goal's label) for the convergence
+        plot of a run starting now."""
+        o, design = self.doc.project.optimizer, self.doc.design
+        method = get_method(o.method)
+        if method.run_goal is not None and self._multi():
+            # The design and settings as the run starts (edits during it change nothing).
+            return self.goal_label(), lambda run: goal_axis_label(method.run_goal(design, o, run))
+        return self.goal_label(), None
 
     def set_running(self, running: bool) -> None:
         """Enable Cancel (and nothing else) while a run goes on."""

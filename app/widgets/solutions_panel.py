@@ -99,6 +99,7 @@ class SolutionsPanel(QtWidgets.QWidget):
         self.difference.toggled.connect(self.compareChanged)
         self.compare.currentIndexChanged.connect(self._compare_edited)
         doc.resultsChanged.connect(self.refresh)
+        doc.sceneChanged.connect(self._new_project)
 
     # -- document -> widgets ----------------------------------------------------------------
     def refresh(self) -> None:
@@ -144,6 +145,8 @@ class SolutionsPanel(QtWidgets.QWidget):
         self.scatter.set_results(sols, on_front, pinned, axes, chosen, groups)
         self._fill_compare()
         n_front = sum(on_front)
+        # A result listed twice (in its run and among the saved results) is one pin.
+        n_pinned = len({e.solution.x for e, p in zip(self.entries, pinned, strict=True) if p})
         front = self.doc.front()
         method = front.method if front is not None else ""
         q = self.doc.front_quality() if n_front else None
@@ -156,11 +159,17 @@ class SolutionsPanel(QtWidgets.QWidget):
         self.summary.setText(
             f"{len(sols)} results"
             + (f", {n_front} on {where}" if n_front else "")
-            + (f", {sum(pinned)} pinned" if any(pinned) else "")
+            + (f", {n_pinned} pinned" if n_pinned else "")
             + quality
             if sols
             else "No results yet: press Run."
         )
+
+    def _new_project(self) -> None:
+        """Another project (or scene): its front chooses the axes again, and the plot's
+        ranges are its own, not the previous project's."""
+        self._front_objectives = None
+        self.scatter.reset_view()
 
     def _front_axes(self) -> None:
         """Put the browsed front's two objectives on the axes when the front's

@@ -68,6 +68,10 @@ class RunController(QtCore.QObject):
         if d.operator is None or self.win.worker is not None:
             self._say("Wait for the radiosity operator (Compute > Precompute) first.")
             return False
+        why = self.panel.refusal()
+        if why is not None:
+            self._say(why)
+            return False
         try:
             problem = d.problem()
             if problem.vars.n == 0:
@@ -83,7 +87,7 @@ class RunController(QtCore.QObject):
         self.worker.succeeded.connect(self._succeeded)
         self.worker.failed.connect(self._failed)
         self.worker.finished.connect(self._ended)
-        self.panel.plot.reset(self.panel.goal_label())
+        self.panel.plot.reset(*self.panel.plot_labels())
         self.panel.set_running(True)
         self.panel.state.setText("Running...")
         self.win.act_run.setEnabled(False)

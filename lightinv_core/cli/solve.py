@@ -94,6 +94,7 @@ def cmd_solve(args) -> int:
     from dataclasses import replace
 
     from lightinv_core.optimize.quality import front_quality, front_scales
+    from lightinv_core.optimize.registry import check_applies
     from lightinv_core.project import load_project, save_project
     from lightinv_core.study import prepare, solve
 
@@ -104,6 +105,9 @@ def cmd_solve(args) -> int:
         project = replace(project, scene=replace(project.scene, resolution=args.resolution))
     if args.method is not None:
         project = replace(project, optimizer=replace(project.optimizer, method=args.method))
+    # A method that cannot run on this design (NSGA-II with one goal) is refused before
+    # the operator is computed, naming the methods that can.
+    check_applies(project.optimizer.method, project.design)
     prepared = prepare(
         project, progress=progress_printer("precompute"), warn=warn, scheduler=args.scheduler
     )
@@ -146,8 +150,10 @@ def cmd_solve(args) -> int:
             _solution_summary(s, project.design.daylight) for s in result.pareto.solutions
         ]
         summary["candidates"] = len(result.pareto.candidates)
-        scales = front_scales(project.design, prepared.light)
-        summary["front_quality"] = front_quality(result.pareto.solutions, scales).to_dict()
+        pair = result.pareto.objectives
+        scales = front_scales(project.design, prepared.light, pair)
+        quality = front_quality(result.pareto.solutions, scales, pair)
+        summary["front_quality"] = quality.to_dict()
     problem = ""
     if args.output:
         sols = (best,) if best is not None and result.pareto is None else ()

@@ -15,7 +15,7 @@ from lightinv_core.design.solution import ParetoFront, Solution
 from lightinv_core.editing import results as _results
 from lightinv_core.editing.state import DocumentState
 from lightinv_core.errors import DesignError, LightInvError
-from lightinv_core.optimize.mop import front_pair
+from lightinv_core.optimize.fronts import front_pair
 from lightinv_core.optimize.quality import FrontQuality, front_quality, front_scales
 from lightinv_core.project import OptimizerSettings
 from lightinv_core.project.results import RunRecord
@@ -143,17 +143,18 @@ class RunHistory(DocumentState):
     def front_quality(self) -> FrontQuality | None:
         """Hypervolume and spacing of the front browsed (None without a front or a light
         model, or when the design's goals no longer make that front: its scales are the
-        design's, power and light or annual energy and glazing area)."""
+        design's, e.g. power and light or annual energy and glazing area)."""
         front = self.front() if self._project is not None else None
         if front is None or not front.solutions or self.light is None:
             return None
-        if tuple(front.objectives) != tuple(map(str, front_pair(self.design))):
+        pair = tuple(map(str, front.objectives))
+        if pair != front_pair(self.design):
             return None
         try:
-            scales = front_scales(self._project.design, self.light)
+            scales = front_scales(self._project.design, self.light, pair)
         except LightInvError:  # the climate scales read the weather file
             return None
-        return front_quality(front.solutions, scales)
+        return front_quality(front.solutions, scales, pair)
 
     def on_front(self, solution: Solution) -> bool:
         """Whether ``solution`` is on one of the project's Pareto fronts."""

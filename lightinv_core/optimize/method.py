@@ -87,6 +87,11 @@ def settings_as(cls: type[S], source: Any) -> S:
     return cls(**given)
 
 
+def never_refused(design: Design) -> str | None:
+    """``refusal`` of a method that applies to every design."""
+    return None
+
+
 def one_layout(design: Design) -> bool:
     """``finds_front`` of a method returning one best layout."""
     return False
@@ -116,6 +121,8 @@ class MethodSpec:
     finds_front: Callable[[Design], bool] = one_layout
     count_setting: tuple[str, str] | None = None
     progress_label: str | None = None
+    refusal: Callable[[Design], str | None] = never_refused
+    run_goal: Callable[[Design, Any, int], str | None] | None = None
 
     def settings_from(self, source: Any) -> Any:
         """This method's settings read from ``source`` (e.g. a project's

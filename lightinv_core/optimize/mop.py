@@ -1,7 +1,11 @@
-"""Multi-objective drivers: the epsilon-constraint sweep (paper eq. 10) and the
-two-step process (paper 5.5), over artificial electric power (W, minimised) and total
-reflected light power (lm, maximised); the sweep also over a design's climate pair,
-annual energy (kWh, minimised) against glazing area (m², minimised)."""
+"""Multi-objective drivers: the epsilon-constraint sweep (paper eq. 10) over the
+design's two goals (``fronts.front_pair``: artificial electric power (W, minimised)
+against total reflected light power (lm, maximised) in the paper, annual energy (kWh)
+against glazing area (m²) on the climate demo, any other pair), and the two-step process
+(paper 5.5) over electric power and light power.
+
+Every sub-run's evaluations count towards the sweep's: the range runs and the
+two-step's first steps too, each level of a multilevel run (a ``_Tally``)."""
 
 from __future__ import annotations
 
@@ -14,6 +18,7 @@ import numpy as np
 
 from lightinv_core.design.model import Design, Goal
 from lightinv_core.design.solution import ParetoFront
+from lightinv_core.errors import DesignError
 from lightinv_core.goals import goal_spec
 from lightinv_core.light.model import LightModel
 from lightinv_core.optimize.fronts import (
@@ -22,10 +27,18 @@ from lightinv_core.optimize.fronts import (
     OBJECTIVES,
     POWER,
     design_goal,
+    design_pair,
     front_of,
     front_pair,
+    front_refusal,
 )
-from lightinv_core.optimize.method import MethodSpec, RunContext, always_front, context_of
+from lightinv_core.optimize.method import (
+    MethodSpec,
+    RunContext,
+    always_front,
+    context_of,
+    settings_as,
+)
 from lightinv_core.optimize.multilevel import DEFAULT_DIVISORS, multilevel
 from lightinv_core.optimize.problem import DesignProblem
 from lightinv_core.optimize.progress import ProgressFn
@@ -50,6 +63,13 @@ __all__ = [
 ]
 
 
+class _Tally:
+    """The light evaluations of a sweep's sub-runs so far (every level of each)."""
+
+    def __init__(self) -> None:
+        self.evaluations = 0
+
+
 def _solve(
     design: Design,
     light: LightModel,
@@ -59,12 +79,16 @@ def _solve(
     method: str = "",
     epsilon=(),
     info: dict | None = None,
+    tally: _Tally | None = None,
 ):
     """One (multilevel) VNS sub-run of a sweep, with the context's seed, stop rule, start
-    and hooks (its snapshots tagged as ``run``), and its solution judged on every patch."""
+    and hooks (its snapshots tagged as ``run``), and its solution judged on every patch;
+    its evaluations (every level's) are added to ``tally``."""
     problem = DesignProblem(design, light, epsilon=epsilon)
     sub = context.but(progress=_tagged(context.progress, *run))
     res, _ = multilevel(problem, sub, divisors)
+    if tally is not None:
+        tally.evaluations += res.evaluations
     sol = judged(problem, res, method, context.seed, **(info or {})).best
     # A sweep's points carry no convergence history (each is one of many runs).
     return res, replace(sol, info=sol.info.but(history=()))
@@ -84,6 +108,7 @@ def bounded_range(
     divisors=(1,),
     runs: int = 2,
     context: RunContext | None = None,
+    tally: _Tally | None = None,
     **given: Any,
 ) -> tuple[float, float, np.ndarray]:
     """(low, high) of the bounded objective ``pair[1]`` over the front: its value at the
@@ -93,10 +118,9 @@ def bounded_range(
     c = context_of(context or RunContext(stop=StopRule(max_evals=5000)), given)
     first, second = design_goal(design, pair[0]), design_goal(design, pair[1])
     own_goals, other_goals = (second, first), (first, second)
-    r_own, own = _solve(replace(design, goals=own_goals), light, c, divisors, (0, runs), "epsilon")
-    r_other, other = _solve(
-        replace(design, goals=other_goals), light, c, divisors, (1, runs), "epsilon"
-    )
+    own_design, other_design = replace(design, goals=own_goals), replace(design, goals=other_goals)
+    r_own, own = _solve(own_design, light, c, divisors, (0, runs), "epsilon", tally=tally)
+    r_other, other = _solve(other_design, light, c, divisors, (1, runs), "epsilon", tally=tally)
     a, b = own.objectives[pair[1]], other.objectives[pair[1]]
     return min(a, b), max(a, b), (r_own.x if a <= b else r_other.x)
 
@@ -108,12 +132,14 @@ def epsilon_constraint(
     count: int = 12,
     divisors=(1,),
     context: RunContext | None = None,
+    tally: _Tally | None = None,
     **given: Any,
 ) -> ParetoFront:
-    """Minimise electric power subject to light power >= epsilon for each epsilon (lm) —
-    or, for the climate pair (``front_pair``), annual energy subject to glazing area <=
-    epsilon (m²) — warm-starting each run from the previous best; returns the
-    non-dominated front.
+    """Minimise the design's first front goal subject to a bound epsilon on its second
+    (``front_pair``): electric power subject to light power >= epsilon (lm) in the
+    paper, annual energy subject to glazing area <= epsilon (m²) for the climate pair —
+    warm-starting each run from the previous best; returns the non-dominated front.
+    Every sub-run's evaluations are added to ``tally``.
 
     The context (or its fields ``given`` as keywords) gives the seed (run q uses seed +
     q), each run's stop rule, ``cancel``, ``on_solution`` (each point as it is found)
@@ -124,7 +150,7 @@ def epsilon_constraint(
     pair = front_pair(design)
     first, x = 0, None
     if epsilons is None:
-        lo, hi, x_lo = bounded_range(design, light, pair, divisors, count + 2, c)
+        lo, hi, x_lo = bounded_range(design, light, pair, divisors, count + 2, c, tally)
         epsilons = list(np.linspace(lo, hi, count))
         first = 2
         if not goal_spec(pair[1]).maximise:
@@ -145,6 +171,7 @@ def epsilon_constraint(
             "epsilon",
             epsilon=((pair[1], float(eps)),),
             info={"epsilon": float(eps)},
+            tally=tally,
         )
         solutions.append(sol)
         x = res.x
@@ -159,13 +186,15 @@ def two_step(
     runs: int = 10,
     divisors=(1,),
     context: RunContext | None = None,
+    tally: _Tally | None = None,
     **given: Any,
 ) -> ParetoFront:
     """Step 1: daylit sources alone, most natural light, under their geometric rules
     only. Step 2: those fixed, the electric sources minimise electric power under every
     rule and intention. Repeated with ``runs`` seeds (seed, seed + 1, ...: the context's,
     or its fields ``given`` as keywords, with its stop rule and hooks; each point goes
-    to ``on_solution``); returns the non-dominated front."""
+    to ``on_solution``); returns the non-dominated front. Both steps' evaluations are
+    added to ``tally``."""
     c = context_of(context, given)
     sky, lum = daylit(design.sources), electric(design.sources)
     sky_names = {s.name for s in sky}
@@ -182,7 +211,8 @@ def two_step(
         if c.cancel is not None and c.cancel():
             break
         seeded = c.but(seed=c.seed + r, x0=None)
-        _, first = _solve(step1, light, seeded, divisors, (2 * r, 2 * runs), "two_step")
+        step = (2 * r, 2 * runs)
+        _, first = _solve(step1, light, seeded, divisors, step, "two_step", tally=tally)
         fixed = tuple(replace(s, free=()) for s in first.sources)
         step2 = Design(
             (*fixed, *lum),
@@ -200,6 +230,7 @@ def two_step(
             (2 * r + 1, 2 * runs),
             "two_step",
             info={"step1_light_power": first.objectives[LIGHT]},
+            tally=tally,
         )
         solutions.append(sol)
         if c.on_solution is not None:
@@ -207,21 +238,64 @@ def two_step(
     return front_of(solutions, "two-step")
 
 
-def _front_result(front: ParetoFront, cancelled: bool, seconds: float) -> OptimizationResult:
-    """A sweep's outcome: its front, the first point as ``best``, evaluations summed."""
-    evals = sum(int(s.info.evaluations or 0) for s in front.candidates)
+def _front_result(
+    front: ParetoFront, cancelled: bool, seconds: float, evaluations: int
+) -> OptimizationResult:
+    """A sweep's outcome: its front, the first point as ``best``, and the evaluations of
+    every sub-run."""
     best = front.solutions[0] if front.solutions else None
     status = "cancelled" if cancelled else ("feasible" if best is not None else "infeasible")
-    return OptimizationResult(status, best, front, evals, seconds)
+    return OptimizationResult(status, best, front, evaluations, seconds)
 
 
-def _swept(context: RunContext, sweep: Callable[[RunContext], ParetoFront]) -> OptimizationResult:
+def _swept(
+    context: RunContext, sweep: Callable[[RunContext, _Tally], ParetoFront]
+) -> OptimizationResult:
     """A sweep run with the context's seed, stop rule and hooks: each point as it is
     found goes to ``on_solution``, every VNS snapshot to ``progress``."""
     t0 = time.perf_counter()
-    front = sweep(context.but(x0=None))
+    tally = _Tally()
+    front = sweep(context.but(x0=None), tally)
     cancelled = context.cancel is not None and context.cancel()
-    return _front_result(front, cancelled, time.perf_counter() - t0)
+    return _front_result(front, cancelled, time.perf_counter() - t0, tally.evaluations)
+
+
+def epsilon_run_goal(design: Design, settings: Any, run: int) -> str:
+    """The goal sub-run ``run`` of an epsilon sweep minimises: with automatic bounds, the
+    first range run the bounded goal, every other run the swept one."""
+    pair = front_pair(design)
+    automatic = not settings_as(EpsilonSettings, settings).epsilons
+    return str(pair[1] if automatic and run == 0 else pair[0])
+
+
+def two_step_run_goal(design: Design, settings: Any, run: int) -> str:
+    """The goal sub-run ``run`` of the two-step process optimises: the skylights' light
+    power (lm) in a first step (even runs), electric power (W) in a second."""
+    return str(POWER if run % 2 else LIGHT)
+
+
+def _refuse(why: str | None) -> None:
+    if why is not None:
+        raise DesignError(why)
+
+
+def epsilon_refusal(design: Design) -> str | None:
+    """Why the epsilon-constraint sweep cannot run on ``design`` (``front_refusal``)."""
+    return front_refusal(design, "The epsilon-constraint sweep")
+
+
+def two_step_refusal(design: Design) -> str | None:
+    """Why the two-step process cannot run on ``design``: it trades electric power
+    against light power, skylights first, then luminaires."""
+    what = "The two-step process"
+    if design_pair(design) != tuple(map(str, OBJECTIVES)):
+        return (
+            f"{what} trades electric power against reflected light power, and they are "
+            "not the design's goals: choose both (Design > Goals), or another method"
+        )
+    if not daylit(design.sources) or not electric(design.sources):
+        return f"{what} places skylights first, then luminaires: the design needs both"
+    return None
 
 
 @dataclass(frozen=True)
@@ -236,10 +310,13 @@ class EpsilonSettings:
 
 def run_epsilon(problem: DesignProblem, context: RunContext) -> OptimizationResult:
     """The epsilon-constraint sweep over ``epsilons`` or ``epsilon_count`` bounds."""
+    _refuse(epsilon_refusal(problem.design))
     s = context.options(EpsilonSettings)
     eps = list(s.epsilons) if s.epsilons else None
     d, light, levels = problem.design, problem.light, tuple(s.divisors)
-    return _swept(context, lambda c: epsilon_constraint(d, light, eps, s.epsilon_count, levels, c))
+    return _swept(
+        context, lambda c, t: epsilon_constraint(d, light, eps, s.epsilon_count, levels, c, t)
+    )
 
 
 @dataclass(frozen=True)
@@ -253,9 +330,10 @@ class TwoStepSettings:
 
 def run_two_step(problem: DesignProblem, context: RunContext) -> OptimizationResult:
     """``runs`` runs of the two steps."""
+    _refuse(two_step_refusal(problem.design))
     s = context.options(TwoStepSettings)
     d, light, levels = problem.design, problem.light, tuple(s.divisors)
-    return _swept(context, lambda c: two_step(d, light, s.runs, levels, c))
+    return _swept(context, lambda c, t: two_step(d, light, s.runs, levels, c, t))
 
 
 _SWEEP = {"finds_front": always_front, "progress_label": "objective of each sub-run"}
@@ -265,15 +343,20 @@ EPSILON = MethodSpec(
     run_epsilon,
     EpsilonSettings,
     count_setting=("Front points", "epsilon_count"),
+    refusal=epsilon_refusal,
+    run_goal=epsilon_run_goal,
     **_SWEEP,
 )
-"""Epsilon-constraint sweep (paper eq. 10): least power for each light-power bound."""
+"""Epsilon-constraint sweep (paper eq. 10): the least of the design's first front goal
+for each bound on the second (least power for each light-power bound)."""
 TWO_STEP = MethodSpec(
     "two_step",
     "Two-step front",
     run_two_step,
     TwoStepSettings,
     count_setting=("Two-step runs", "runs"),
+    refusal=two_step_refusal,
+    run_goal=two_step_run_goal,
     **_SWEEP,
 )
 """Two-step process (paper 5.5): skylights first, then luminaires, ``runs`` seeds."""

@@ -1,5 +1,9 @@
-"""NSGA-II (package ``pymoo``, Apache-2.0) for the front of electric power (W, minimised)
-against reflected light power (lm, maximised).
+"""NSGA-II (package ``pymoo``, Apache-2.0) for the front of the design's own two goals
+(``fronts.design_pair``): electric power (W) against reflected light power (lm), annual
+energy (kWh) against glazing area (m²), or any other pair (sDA, installed power,
+luminaire count, a registered goal), each minimised or maximised as its ``GoalSpec``
+says. A design with fewer than two goals, or a goal that cannot change, is refused with
+the reason (``fronts.front_refusal``).
 
 Constraints reach pymoo as G (every geometric rule, intention bound), not as a penalty:
 its constrained tournament and survival prefer feasible candidates, then smaller summed
@@ -24,12 +28,14 @@ import numpy as np
 from lightinv_core.design.model import Goal
 from lightinv_core.design.solution import SolutionInfo
 from lightinv_core.errors import DesignError
-from lightinv_core.optimize.fronts import LIGHT, POWER, design_goal, front_of
+from lightinv_core.goals import goal_spec
+from lightinv_core.kinds import GoalKind
+from lightinv_core.optimize.fronts import design_goal, design_pair, front_of, front_refusal
 from lightinv_core.optimize.method import MethodSpec, RunContext, SolutionFn, always_front
 from lightinv_core.optimize.pareto import hypervolume_2d, non_dominated
 from lightinv_core.optimize.problem import DesignProblem
 from lightinv_core.optimize.progress import Progress
-from lightinv_core.optimize.quality import REFERENCE, front_scales
+from lightinv_core.optimize.quality import front_scales
 from lightinv_core.optimize.result import OptimizationResult
 from lightinv_core.optimize.search import random_layouts
 
@@ -61,11 +67,19 @@ class NSGA2Run:
     closest: np.ndarray
 
 
-class _Archive:
-    """Feasible non-dominated (x, F) seen so far, F as minimised normalised objectives."""
+def reference_point(pair) -> tuple[float, float]:
+    """The hypervolume's reference in minimised normalised objectives: 1 for a
+    minimised goal (its scale), 0 for a maximised one (none of it, -0 minimised)."""
+    return tuple(-0.0 if goal_spec(k).maximise else 1.0 for k in pair)
 
-    def __init__(self, nvar: int):
+
+class _Archive:
+    """Feasible non-dominated (x, F) seen so far, F as minimised normalised objectives,
+    measured from the reference point ``ref``."""
+
+    def __init__(self, nvar: int, ref: tuple[float, float]):
         self.X, self.F = np.zeros((0, nvar)), np.zeros((0, 2))
+        self.ref = ref
 
     def add(self, X: np.ndarray, F: np.ndarray) -> None:
         X, F = np.vstack([self.X, X]), np.vstack([self.F, F])
@@ -76,14 +90,15 @@ class _Archive:
         self.X, self.F = X[keep], F[keep]
 
     def hypervolume(self) -> float:
-        return hypervolume_2d(self.F, (REFERENCE[0], -REFERENCE[1]))
+        return hypervolume_2d(self.F, self.ref)
 
 
 def nsga2(
     problem: DesignProblem, scales: tuple[float, float], population: int, context: RunContext
 ) -> NSGA2Run:
-    """Run NSGA-II on ``problem`` (objectives electric power, light power) with the
-    context's seed, stop rule, ``progress`` and ``cancel``."""
+    """Run NSGA-II on ``problem``'s two goals (``problem.objectives``, divided by
+    ``scales``, their units) with the context's seed, stop rule, ``progress`` and
+    ``cancel``."""
     from pymoo.algorithms.moo.nsga2 import NSGA2 as PymooNSGA2  # lazily: only front runs need pymoo
     from pymoo.core.problem import Problem
 
@@ -94,8 +109,8 @@ def nsga2(
         raise DesignError("nothing to optimise: no source has a free variable")
     lo, hi = problem.vars.lo, problem.vars.hi
     span = np.where(hi > lo, hi - lo, 1.0)
-    norm = np.array(scales)  # ev.F = (P, -L) -> (P/Pmax, -L/Lmax)
-    archive = _Archive(n)
+    norm = np.array(scales)  # ev.F, e.g. (P, -L) -> (P/Pmax, -L/Lmax)
+    archive = _Archive(n, reference_point(problem.objectives))
     count = {"evals": 0}
     ncon = len(problem.constraints)
 
@@ -167,7 +182,7 @@ def run_nsga2(problem: DesignProblem, context: RunContext) -> OptimizationResult
     ``context.on_solution`` once judged."""
     pop, c = context.options(NSGA2Settings).population, context
     mop = front_problem(problem)
-    scales = front_scales(mop.design, mop.light)
+    scales = front_scales(mop.design, mop.light, mop.objectives)
     run = nsga2(mop, scales, pop, c)
     return judged_front(mop, run, pop, NSGA2.name, c.seed, c.on_solution)
 
@@ -180,16 +195,25 @@ NSGA2 = MethodSpec(
     always_front,
     count_setting=("Population", "population"),
     progress_label="front hypervolume",
+    refusal=lambda design: front_refusal(design, "NSGA-II"),
 )
-"""NSGA-II front of electric power against light power (pymoo)."""
+"""NSGA-II front of the design's two goals (pymoo)."""
 
 
 def front_problem(problem: DesignProblem) -> DesignProblem:
-    """``problem``'s design with the front's two goals: electric power, light power."""
+    """``problem``'s design with its front's two goals (``design_pair``) in that order;
+    DesignError with the reason when it has no front (``front_refusal``)."""
     design = problem.design
-    return DesignProblem(
-        replace(design, goals=(Goal(POWER), design_goal(design, LIGHT))), problem.light
-    )
+    why = front_refusal(design, "NSGA-II")
+    if why is not None:
+        raise DesignError(why)
+    a, b = design_pair(design)
+    # Electric power as a plain goal, as before goals were the design's: same runs.
+    first = Goal(a) if a == GoalKind.MIN_ELECTRIC_POWER else design_goal(design, a)
+    goals = (first, design_goal(design, b))
+    if goals == tuple(design.goals):
+        return problem
+    return DesignProblem(replace(design, goals=goals), problem.light)
 
 
 def judged_front(
@@ -209,7 +233,7 @@ def judged_front(
     for sol in solutions:
         if on_solution is not None and sol.feasible:
             on_solution(sol)
-    front = front_of(solutions, method)
+    front = front_of(solutions, method, tuple(map(str, mop.objectives)))
     best = front.solutions[0] if front.solutions else None
     if run.status == "cancelled":
         status = "cancelled"

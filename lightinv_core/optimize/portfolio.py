@@ -2,9 +2,10 @@
 
 By the problem's shape (decided from bench/optimizers.py, table in docs/design.md):
 
-- a design with both power goals (least electric power and most light power) gets a
-  front: NSGA-II, which on experiment 5 reaches the sweeps' hypervolume with a sixth
-  of their evaluations;
+- a design with two goals NSGA-II can trade (``fronts.front_refusal``: both power goals,
+  annual energy and glazing area, or any other pair) gets a front of them: NSGA-II,
+  which on experiment 5 reaches the sweeps' hypervolume with a sixth of their
+  evaluations;
 - any other design gets one best layout: CMA-ES with IPOP restarts on every patch for
   up to ``CMA_SHARE`` of the evaluation and time budgets, then VNS from a random layout
   with what is left; the better of the two is the answer. CMA-ES is the fastest to a
@@ -22,7 +23,7 @@ from dataclasses import dataclass, replace
 
 from lightinv_core.design.model import Design
 from lightinv_core.optimize.cmaes import cmaes
-from lightinv_core.optimize.fronts import OBJECTIVES
+from lightinv_core.optimize.fronts import front_refusal
 from lightinv_core.optimize.method import MethodSpec, RunContext
 from lightinv_core.optimize.nsga2 import NSGA2
 from lightinv_core.optimize.problem import DesignProblem
@@ -33,12 +34,12 @@ from lightinv_core.optimize.vns import vns
 
 CMA_SHARE = 0.5
 """Part of the evaluation and time budgets CMA-ES may use before VNS takes over."""
-FRONT_GOALS = frozenset(OBJECTIVES)
 
 
 def wants_front(design: Design) -> bool:
-    """Whether ``auto`` finds a front for ``design``: it has both power goals."""
-    return {str(g.kind) for g in design.goals} >= FRONT_GOALS
+    """Whether ``auto`` finds a front for ``design``: NSGA-II can trade its goals (two
+    goals, or more with both power goals or the climate pair among them)."""
+    return front_refusal(design) is None
 
 
 def cma_then_vns(
@@ -128,4 +129,4 @@ AUTO = MethodSpec(
     count_setting=("Population", "population"),  # of its front (NSGA-II)
     progress_label="front hypervolume",  # shown only when it finds a front
 )
-"""The default: NSGA-II for a power/light front, else CMA-ES then VNS."""
+"""The default: NSGA-II for a front of the design's two goals, else CMA-ES then VNS."""

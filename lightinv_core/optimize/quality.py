@@ -11,9 +11,11 @@ point's L1 distance to its nearest neighbour in the same normalised plane: 0 for
 spread points; undefined (None) below two points.
 
 A climate front (annual energy E in kWh against glazing area A in m², both minimised;
-``mop.front_pair``) is measured the same way in (E/E_max, A/A_max) with reference point
-(1, 1): E_max the energy of every luminaire at full output all year, A_max the area of
-the skylights' zones.
+``fronts.front_pair``) is measured the same way in (E/E_max, A/A_max) with reference
+point (1, 1): E_max the energy of every luminaire at full output all year, A_max the
+area of the skylights' zones. Any other pair of goals likewise: each goal divided by
+the scale the optimiser gives it, the reference 1 for a minimised goal and 0 for a
+maximised one.
 """
 
 from __future__ import annotations
@@ -26,10 +28,12 @@ import numpy as np
 from lightinv_core.design.model import Design
 from lightinv_core.design.solution import Solution
 from lightinv_core.goals import goal_spec
+from lightinv_core.kinds import GoalKind
 from lightinv_core.light.arrays import resolve_product
 from lightinv_core.light.model import LightModel
 from lightinv_core.optimize.fronts import CLIMATE, OBJECTIVES, front_pair
 from lightinv_core.optimize.objectives import (
+    count_scale,
     electric_scale,
     energy_scale,
     glazing_scale,
@@ -71,16 +75,33 @@ class FrontQuality:
         }
 
 
-def front_scales(design: Design, light: LightModel) -> tuple[float, float]:
-    """The normalisation of a front of ``design``: (P_max in W, L_max in lm), or for a
-    climate front (E_max in kWh, A_max in m²)."""
+def front_scales(design: Design, light: LightModel, pair=None) -> tuple[float, float]:
+    """The normalisation of a front of ``design``'s goals ``pair`` (default: its
+    ``front_pair``): each goal's size, (P_max in W, L_max in lm) for power against light,
+    (E_max in kWh, A_max in m²) for the climate pair; a goal of another pair by the
+    scale the optimiser gives it."""
+    pair = tuple(map(str, pair or front_pair(design)))
     # The arrays' products count towards the scales, as the optimiser's own.
     products = [resolve_product(a.product, a.watts) for a in design.arrays]
-    if front_pair(design) == CLIMATE:
-        return energy_scale(design, light, products), glazing_scale(design, light)
-    kinds = light_power_kinds(design)
-    counted = [s for s in design.sources if s.kind in kinds]
-    return electric_scale(design, light, products), light.power_scale(counted, design.daylight)
+    builtin = {
+        POWER: lambda: electric_scale(design, light, products),
+        LIGHT: lambda: light.power_scale(
+            [s for s in design.sources if s.kind in light_power_kinds(design)], design.daylight
+        ),
+        str(GoalKind.MIN_ANNUAL_ENERGY): lambda: energy_scale(design, light, products),
+        str(GoalKind.MIN_GLAZING_AREA): lambda: glazing_scale(design, light),
+        str(GoalKind.MIN_INSTALLED_POWER): lambda: electric_scale(design, light, products),
+        str(GoalKind.MIN_LUMINAIRE_COUNT): lambda: count_scale(design),
+        str(GoalKind.MAX_SDA): lambda: 1.0,
+        str(GoalKind.MATCH): lambda: 1.0,
+    }
+    if all(k in builtin for k in pair):
+        return builtin[pair[0]](), builtin[pair[1]]()
+    # A registered goal's scale reads the problem (``GoalSpec.scale``).
+    from lightinv_core.optimize.problem import DesignProblem
+
+    scales = DesignProblem(design, light).scales
+    return tuple(builtin[k]() if k in builtin else float(scales[k]) for k in pair)
 
 
 def normalised(F: np.ndarray, scales: tuple[float, float], pair=OBJECTIVES) -> np.ndarray:
@@ -110,14 +131,19 @@ def spacing(F: np.ndarray, scales: tuple[float, float], pair=OBJECTIVES) -> floa
     return float(np.sqrt(np.sum((d - d.mean()) ** 2) / (len(d) - 1)))
 
 
-def front_quality(solutions: Sequence[Solution], scales: tuple[float, float]) -> FrontQuality:
-    """Hypervolume and spacing of a front's solutions: their P and L objectives, or the
-    climate pair when the solutions have no power and light objectives."""
-    climate = bool(solutions) and all(
-        POWER not in s.objectives and all(str(k) in s.objectives for k in CLIMATE)
-        for s in solutions
-    )
-    pair = tuple(map(str, CLIMATE if climate else OBJECTIVES))
+def front_quality(
+    solutions: Sequence[Solution], scales: tuple[float, float], pair=None
+) -> FrontQuality:
+    """Hypervolume and spacing of a front's solutions in its two objectives ``pair``
+    (default: power and light, or the climate pair when the solutions have no power and
+    light objectives), normalised by ``scales`` (``front_scales`` of the same pair)."""
+    if pair is None:
+        climate = bool(solutions) and all(
+            POWER not in s.objectives and all(str(k) in s.objectives for k in CLIMATE)
+            for s in solutions
+        )
+        pair = CLIMATE if climate else OBJECTIVES
+    pair = tuple(map(str, pair))
     F = np.array([[s.objectives[k] for k in pair] for s in solutions]).reshape(-1, 2)
     return FrontQuality(
         hypervolume(F, scales, pair), spacing(F, scales, pair), len(F), tuple(scales), pair

@@ -17,7 +17,16 @@ from lightinv_core.errors import DesignError
 from lightinv_core.optimize.catalogue import BUILT_IN, REGISTERED, method_names
 from lightinv_core.optimize.method import MethodSpec
 
-__all__ = ["finds_front", "get_method", "method_names", "methods", "register", "unregister"]
+__all__ = [
+    "check_applies",
+    "finds_front",
+    "get_method",
+    "method_names",
+    "methods",
+    "refusal",
+    "register",
+    "unregister",
+]
 
 
 def _built_in(name: str) -> MethodSpec:
@@ -60,3 +69,18 @@ def get_method(name: str) -> MethodSpec:
 def finds_front(name: str, design: Design) -> bool:
     """Whether method ``name`` run on ``design`` returns a Pareto front."""
     return get_method(name).finds_front(design)
+
+
+def refusal(name: str, design: Design) -> str | None:
+    """Why method ``name`` cannot run on ``design`` (its ``MethodSpec.refusal``), None
+    when it can."""
+    return get_method(name).refusal(design)
+
+
+def check_applies(name: str, design: Design) -> None:
+    """DesignError with the reason when method ``name`` cannot run on ``design``, naming
+    the methods that can."""
+    why = refusal(name, design)
+    if why is not None:
+        can = [m.name for m in methods() if m.refusal(design) is None]
+        raise DesignError(f"{why} (methods for this design: {', '.join(can)})")
