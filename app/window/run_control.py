@@ -76,7 +76,7 @@ class RunController(QtCore.QObject):
             problem = d.problem()
             if problem.vars.n == 0:
                 raise LightInvError(
-                    "nothing to optimise: add a source (Properties > Add source in zone) "
+                    "nothing to optimise: add a source (Properties > Source: Add source) "
                     "whose corners, flux or filter are free"
                 )
         except LightInvError as exc:
