@@ -40,29 +40,10 @@ from lightinv_core.report.views import luminaire_outlines, marker_legend, render
 from lightinv_core.scene.edits import ZoneEdit
 from lightinv_core.study import solution_light, solve
 from lightinv_core.value_text import fmt
+from tests.core.test_zone_on_cut_surface import ROOM  # the 10 x 7 x 3 m classroom
 
 pytestmark = pytest.mark.slow  # a room imported, optimised and reported
 
-ROOM = """\
-g floor
-v 0 0 0
-v 10 0 0
-v 10 7 0
-v 0 7 0
-f 1 2 3 4
-g ceiling
-v 0 0 3
-v 0 7 3
-v 10 7 3
-v 10 0 3
-f 5 6 7 8
-g walls
-f 1 5 8 2
-f 4 3 7 6
-f 1 4 6 5
-f 2 8 7 3
-"""
-"""A 10 x 7 x 3 m classroom, faces inwards."""
 PANEL = "Panel 600 x 600 3600 lm 30 W"
 
 
