@@ -2,8 +2,8 @@
 
 By the problem's shape (decided from bench/optimizers.py, table in docs/design.md):
 
-- a design with two goals NSGA-II can trade (``fronts.front_refusal``: both power goals,
-  annual energy and glazing area, or any other pair) gets a front of them: NSGA-II,
+- a design with both power goals, or with exactly two goals NSGA-II can trade
+  (``fronts.front_refusal``), gets a front of them: NSGA-II,
   which on experiment 5 reaches the sweeps' hypervolume with a sixth of their
   evaluations;
 - any other design gets one best layout: CMA-ES with IPOP restarts on every patch for
@@ -23,7 +23,7 @@ from dataclasses import dataclass, replace
 
 from lightinv_core.design.model import Design
 from lightinv_core.optimize.cmaes import cmaes
-from lightinv_core.optimize.fronts import front_refusal
+from lightinv_core.optimize.fronts import OBJECTIVES, front_refusal
 from lightinv_core.optimize.method import MethodSpec, RunContext
 from lightinv_core.optimize.nsga2 import NSGA2
 from lightinv_core.optimize.problem import DesignProblem
@@ -34,12 +34,16 @@ from lightinv_core.optimize.vns import vns
 
 CMA_SHARE = 0.5
 """Part of the evaluation and time budgets CMA-ES may use before VNS takes over."""
+FRONT_GOALS = frozenset(OBJECTIVES)
 
 
 def wants_front(design: Design) -> bool:
-    """Whether ``auto`` finds a front for ``design``: NSGA-II can trade its goals (two
-    goals, or more with both power goals or the climate pair among them)."""
-    return front_refusal(design) is None
+    """Whether ``auto`` finds a front for ``design``: it has both power goals, or exactly
+    two goals NSGA-II can trade. With three or more goals and not both power goals, the
+    first is the one to optimise (the Run panel's goal puts the user's choice first)."""
+    if {str(g.kind) for g in design.goals} >= FRONT_GOALS:
+        return True
+    return len(design.goals) == 2 and front_refusal(design) is None
 
 
 def cma_then_vns(
