@@ -2,8 +2,7 @@
 
 By the problem's shape (decided from bench/optimizers.py, table in docs/design.md):
 
-- a design with both power goals, or with exactly two goals NSGA-II can trade
-  (``fronts.front_refusal``), gets a front of them: NSGA-II,
+- a design with both power goals gets a front of them: NSGA-II,
   which on experiment 5 reaches the sweeps' hypervolume with a sixth of their
   evaluations;
 - any other design gets one best layout: CMA-ES with IPOP restarts on every patch for
@@ -23,7 +22,7 @@ from dataclasses import dataclass, replace
 
 from lightinv_core.design.model import Design
 from lightinv_core.optimize.cmaes import cmaes
-from lightinv_core.optimize.fronts import OBJECTIVES, front_refusal
+from lightinv_core.optimize.fronts import OBJECTIVES
 from lightinv_core.optimize.method import MethodSpec, RunContext
 from lightinv_core.optimize.nsga2 import NSGA2
 from lightinv_core.optimize.problem import DesignProblem
@@ -38,12 +37,10 @@ FRONT_GOALS = frozenset(OBJECTIVES)
 
 
 def wants_front(design: Design) -> bool:
-    """Whether ``auto`` finds a front for ``design``: it has both power goals, or exactly
-    two goals NSGA-II can trade. With three or more goals and not both power goals, the
-    first is the one to optimise (the Run panel's goal puts the user's choice first)."""
-    if {str(g.kind) for g in design.goals} >= FRONT_GOALS:
-        return True
-    return len(design.goals) == 2 and front_refusal(design) is None
+    """Whether ``auto`` finds a front for ``design``: it has both power goals. A design
+    with another pair gets one best layout of its first goal (the Run panel's goal is
+    the user's choice); its front comes from ``nsga2`` or ``epsilon``, chosen by name."""
+    return {str(g.kind) for g in design.goals} >= FRONT_GOALS
 
 
 def cma_then_vns(

@@ -36,8 +36,8 @@ OPTIMIZER = ObjectSpec(
             _method,
             "auto",
             "string",
-            "`auto` (default): NSGA-II when the design has both power goals or exactly two "
-            "goals it can trade, else CMA-ES then VNS (docs/design.md); `vns`: one VNS on all patches; `multilevel`: VNS on "
+            "`auto` (default): NSGA-II when the design has both power goals, else CMA-ES "
+            "then VNS (docs/design.md); `vns`: one VNS on all patches; `multilevel`: VNS on "
             "the `divisors` levels, each warm-started from the previous; `cmaes`: CMA-ES "
             "with IPOP restarts; `epsilon`: epsilon-constraint sweep; `two_step`: "
             "skylights first, then luminaires (paper 5.5); `nsga2`: NSGA-II front of the "
