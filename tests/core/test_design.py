@@ -231,7 +231,7 @@ def kinds_of(source: Source) -> None:
         (lambda: Rule("spacing", ("a", "a"), min=1), r"sources\[1\]: 'a' is listed twice"),
         (
             lambda: Goal("max_light_power", ("skylights",)),
-            r"kinds\[0\] must be one of 'luminaire', 'skylight', got string 'skylights'",
+            r"kinds\[0\] must be one of 'luminaire', 'skylight', 'window', got string 'skylights'",
         ),
         (lambda: Goal("match", ("skylight",)), "only a max_light_power goal takes source kinds"),
         (lambda: Rule("mirror", ("a", "b"), axis="u", min=1.0), "mirror rules do not take 'min'"),

@@ -114,7 +114,7 @@ def test_bad_scene_input_is_rejected():
     with pytest.raises(SceneError, match="no surface named"):
         Scene("s", (Surface("a", "g", 0.5, rect=r),), (EmitterZone("z", "skylight", "b"),))
     with pytest.raises(SceneError, match="kind"):
-        EmitterZone("z", "window", "a")
+        EmitterZone("z", "lamp", "a")
     with pytest.raises(SceneError, match="resolution"):
         Scene("s", (Surface("a", "g", 0.5, rect=r),), resolution=0)
     with pytest.raises(SceneError, match="no built-in scene 'atrium'"):
