@@ -26,6 +26,7 @@ from app.dialogs import ask
 from app.window.main_window import MainWindow
 from tests.app.conftest import wait_for_operator
 from tests.app.test_dialog_buttons import answer, button, click, menu_action
+from tests.app.test_laptop_screen import click_tab
 
 MODELS = Path(__file__).resolve().parents[2] / "resources" / "models"
 SHOTS = Path("/tmp/lightinv-docks")
@@ -38,17 +39,6 @@ def laptop(window) -> None:
     window.activateWindow()
     QTest.qWaitForWindowActive(window)
     QTest.qWait(100)
-
-
-def click_tab(window, text: str) -> None:
-    """Click the visible tab showing ``text`` (a dock's, or a page of Properties)."""
-    for bar in window.findChildren(QtWidgets.QTabBar):
-        for i in range(bar.count()):
-            if bar.tabText(i) == text and bar.isVisible():
-                QTest.mouseClick(bar, QtCore.Qt.LeftButton, pos=bar.tabRect(i).center())
-                QTest.qWait(50)
-                return
-    raise AssertionError(f"no tab {text!r}")
 
 
 def import_meeting_room(qtbot, window, monkeypatch, tmp_path) -> Path:

@@ -19,20 +19,11 @@ from PySide6.QtTest import QTest
 
 from lightinv_core.project import OperatorSettings, load_project
 from tests.app.conftest import wait_for_operator
+from tests.app.test_laptop_screen import click_tab
 
 pytestmark = pytest.mark.slow
 
 DEMO = Path(__file__).resolve().parents[2] / "resources" / "projects" / "office-integrated.json"
-
-
-def _click_tab(win, text: str) -> None:
-    for bar in win.findChildren(QtWidgets.QTabBar):
-        for i in range(bar.count()):
-            if bar.tabText(i) == text and bar.isVisible():
-                QTest.mouseClick(bar, QtCore.Qt.LeftButton, pos=bar.tabRect(i).center())
-                QTest.qWait(100)
-                return
-    raise AssertionError(f"no tab {text!r}")
 
 
 def _button(win, text: str) -> QtWidgets.QPushButton:
@@ -87,7 +78,7 @@ def demo(qtbot, window):
     )
     assert window.load_project(project)
     wait_for_operator(qtbot, window)
-    _click_tab(window, "Run")
+    click_tab(window, "Run")
     return window
 
 

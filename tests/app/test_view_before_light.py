@@ -14,7 +14,7 @@ from PySide6.QtTest import QTest
 from app.view.zone_drawing import snap_uv
 from tests.app.conftest import wait_for_operator
 from tests.app.test_dialog_buttons import answer, button, click
-from tests.app.test_docks_laptop import click_tab
+from tests.app.test_laptop_screen import click_tab
 from tests.app.test_main_window import send_mouse, to_qt
 from tests.app.test_zones_on_imported_room import draw_zone, import_room
 
