@@ -159,8 +159,8 @@ class Judge:
             excess.append(np.where(c > JUDGED_TOL, c, 0.0))
             if c[0] > JUDGED_TOL:
                 value = float(goals[kind][0])
-                units = goal_spec(kind).unit
-                viol.append(
-                    Violation(f"epsilon {kind}", "epsilon", float(c[0]), value, bound, units)
-                )
+                spec = goal_spec(kind)
+                # Named for people (the Violations tab, the report): the goal's label.
+                name = f"epsilon {spec.label.lower()}"
+                viol.append(Violation(name, "epsilon", float(c[0]), value, bound, spec.unit))
         return viol, float(penalty(excess, self.weights, self.design.penalty_power)[0])
