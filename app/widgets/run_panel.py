@@ -18,6 +18,7 @@ from PySide6 import QtCore, QtWidgets
 from app.document import Document
 from app.view.convergence_plot import ConvergencePlot
 from app.view.scatter_axes import goal_axis_label
+from app.widgets.elided_label import ElidedLabel
 from lightinv_core.errors import LightInvError
 from lightinv_core.goals import goal_spec, goal_specs
 from lightinv_core.optimize.fronts import front_pair
@@ -42,9 +43,13 @@ class RunPanel(QtWidgets.QWidget):
         self.doc = doc
         lay = QtWidgets.QHBoxLayout(self)
         left = QtWidgets.QWidget()
-        left.setMaximumWidth(340)
+        left.setMaximumWidth(360)
         form = QtWidgets.QFormLayout(left)
         form.setContentsMargins(0, 0, 0, 0)
+        form.setVerticalSpacing(4)
+        # What to run, Run and what it is doing first, the limits below: on a 1366 x 768
+        # laptop the dock is about 300 px high and Run sat under six rows of settings,
+        # reached by scrolling (issue #29).
         self.method = QtWidgets.QComboBox()
         for m in methods():
             self.method.addItem(m.label, m.name)
@@ -54,20 +59,6 @@ class RunPanel(QtWidgets.QWidget):
         self.trades = QtWidgets.QLabel("")
         self.trades.setWordWrap(True)
         form.addRow(self.trades)
-        self.max_evals = QtWidgets.QSpinBox(maximum=100_000_000, singleStep=1000)
-        self.max_evals.setSpecialValueText("no limit")
-        form.addRow("Evaluations (per run)", self.max_evals)
-        self.time_limit = QtWidgets.QDoubleSpinBox(maximum=86_400.0, decimals=1, suffix=" s")
-        self.time_limit.setSpecialValueText("no limit")
-        form.addRow("Time limit (per run)", self.time_limit)
-        self.seed = QtWidgets.QSpinBox(maximum=2**31 - 1)
-        form.addRow("Seed", self.seed)
-        self.runs = QtWidgets.QSpinBox(minimum=1, maximum=1000)
-        self.runs_label = QtWidgets.QLabel("Seeds")
-        form.addRow(self.runs_label, self.runs)
-        self.show_best = QtWidgets.QCheckBox("show the best so far in the view")
-        self.show_best.setChecked(True)
-        form.addRow(self.show_best)
         buttons = QtWidgets.QHBoxLayout()
         self.run_button = QtWidgets.QPushButton("Run")
         self.cancel_button = QtWidgets.QPushButton("Cancel")
@@ -77,9 +68,37 @@ class RunPanel(QtWidgets.QWidget):
         form.addRow(buttons)
         self.state = QtWidgets.QLabel("Ready")
         self.state.setWordWrap(True)
-        self.counters = QtWidgets.QLabel("")
         form.addRow(self.state)
+        # Two lines (evaluations and speed; sub-run, best and search penalty), elided to
+        # the column (whole on hover): cut mid-number at 1366 px before.
+        self.counters = ElidedLabel("")
         form.addRow(self.counters)
+        limits = QtWidgets.QGridLayout()
+        limits.setContentsMargins(0, 0, 0, 0)
+        self.max_evals = QtWidgets.QSpinBox(maximum=100_000_000, singleStep=1000)
+        self.max_evals.setSpecialValueText("no limit")
+        self.max_evals.setToolTip("Most light evaluations of each run (each seed or sub-run)")
+        self.time_limit = QtWidgets.QDoubleSpinBox(maximum=86_400.0, decimals=1, suffix=" s")
+        self.time_limit.setSpecialValueText("no limit")
+        self.time_limit.setToolTip("Longest time of each run")
+        self.seed = QtWidgets.QSpinBox(maximum=2**31 - 1)
+        self.runs = QtWidgets.QSpinBox(minimum=1, maximum=1000)
+        self.runs_label = QtWidgets.QLabel("Seeds")
+        cells = (
+            (QtWidgets.QLabel("Evaluations"), self.max_evals),
+            (QtWidgets.QLabel("Time limit"), self.time_limit),
+            (QtWidgets.QLabel("Seed"), self.seed),
+            (self.runs_label, self.runs),
+        )
+        for i, (label, box) in enumerate(cells):
+            limits.addWidget(label, i // 2, 2 * (i % 2))
+            limits.addWidget(box, i // 2, 2 * (i % 2) + 1)
+        limits.setColumnStretch(1, 1)
+        limits.setColumnStretch(3, 1)
+        form.addRow(limits)
+        self.show_best = QtWidgets.QCheckBox("show the best so far in the view")
+        self.show_best.setChecked(True)
+        form.addRow(self.show_best)
         lay.addWidget(left)
         self.plot = ConvergencePlot()
         lay.addWidget(self.plot, 1)
@@ -237,7 +256,8 @@ class RunPanel(QtWidgets.QWidget):
             self.goal.setEnabled(not self._multi())
 
     def show_progress(self, snap) -> None:
-        """Counters of a ``RunSnapshot``."""
+        """Counters of a ``RunSnapshot``: evaluations (all sub-runs, as the core counts
+        them), the sub-run, its best goal value and its search penalty."""
         p = snap.latest
         if p is None and snap.precompute is not None and snap.precompute < 1.0:
             self.counters.setText(
@@ -250,5 +270,18 @@ class RunPanel(QtWidgets.QWidget):
         if p is not None:
             run = f"run {p.run + 1} of {p.runs}, " if p.runs > 1 else ""
             level = f", level n/{p.level}" if p.level > 1 else ""
-            text += f"\n{run}best {p.best_goal:.6g}, P = {p.best_penalty:.3g}{level}"
+            # The search's own penalty: read at the level's representative patches, less
+            # the feasibility tolerance (plus the arrays' margin), from the arrays'
+            # lattice blend; the result's P is judged on every patch when it ends.
+            text += (
+                f"\n{run}best {self.progress_label(p.run)} {p.best_goal:.6g}, "
+                f"search P ≈ {p.best_penalty:.3g}{level}"
+            )
         self.counters.setText(text)
+
+    def progress_label(self, run: int) -> str:
+        """What ``Progress.best_goal`` of sub-run ``run`` is, with units."""
+        method = get_method(self.doc.project.optimizer.method)
+        if self._multi() and method.run_goal is None:
+            return method.progress_label or "objective"
+        return self.run_goal_label(run)

@@ -17,7 +17,7 @@ from app.document import Document
 from app.view.scatter_axes import axes, axis_label, axis_value, front_axes
 from app.view.solution_scatter import SolutionScatter
 from app.widgets.numbers import fmt
-from lightinv_core.editing.results import ALL, SAVED, browse, run_label
+from lightinv_core.editing.results import ALL, SAVED, browse, method_label, run_label
 from lightinv_core.errors import LightInvError
 from lightinv_core.kinds import GoalKind
 
@@ -148,7 +148,7 @@ class SolutionsPanel(QtWidgets.QWidget):
         # A result listed twice (in its run and among the saved results) is one pin.
         n_pinned = len({e.solution.x for e, p in zip(self.entries, pinned, strict=True) if p})
         front = self.doc.front()
-        method = front.method if front is not None else ""
+        method = method_label(front.method) if front is not None else ""  # NSGA-II, not nsga2
         q = self.doc.front_quality() if n_front else None
         quality = ""
         if q is not None:

@@ -17,8 +17,10 @@ import numpy as np
 from PySide6 import QtCore
 
 from app.dialogs import ask
+from app.view import luminaire_overlay
 from app.window.workers import RunWorker, stop_and_wait
 from lightinv_core.design.solution import ParetoFront, Solution, SolutionInfo
+from lightinv_core.editing.results import method_label
 from lightinv_core.errors import LightInvError
 from lightinv_core.goals import goal_spec
 from lightinv_core.optimize.problem import DesignProblem
@@ -51,6 +53,8 @@ class RunController(QtCore.QObject):
         self.status = ""
         self.run = None  # the RunRecord of the last run that ended
         self.preview_at = 0.0
+        self.preview_arrays: tuple = ()  # the luminaire arrays of the best drawn so far
+        self.method = ""  # the running method's label ("NSGA-II")
         self.timer = QtCore.QTimer(self)
         self.timer.setInterval(REDRAW_MS)
         self.timer.timeout.connect(self.tick)
@@ -89,7 +93,9 @@ class RunController(QtCore.QObject):
         self.worker.finished.connect(self._ended)
         self.panel.plot.reset(*self.panel.plot_labels())
         self.panel.set_running(True)
-        self.panel.state.setText("Running...")
+        self.method = method_label(d.project.optimizer.method)
+        self.preview_arrays = ()
+        self.panel.state.setText(f"Running {self.method}...")
         self.win.act_run.setEnabled(False)
         self.win.act_cancel_run.setEnabled(True)
         self.worker.start()
@@ -135,9 +141,35 @@ class RunController(QtCore.QObject):
                 status="running",
             )
             if self.panel.show_best.isChecked():
-                # The model lights the best layout (rules applied) without touching the
-                # design; that relights the view and redraws the outlines (_recolour).
-                self.doc.set_preview(self.problem.sources_at(np.array(p.best_x)))
+                self.preview(np.array(p.best_x))
+
+    def preview(self, x: np.ndarray) -> None:
+        """Show layout ``x`` (the best so far) in the view without touching the design:
+        its sources lit and outlined, its luminaire arrays drawn where they are."""
+        # The model lights the sources (rules applied); that relights the view and
+        # redraws the outlines and the design's luminaires (ViewColouring.recolour).
+        self.doc.set_preview(self.problem.sources_at(x))
+        if not self.problem.design.arrays:
+            return
+        # Then the best's luminaires over the design's: the layout a user watches change.
+        # Their exact light takes about a second a layout (the search reads a lattice
+        # blend), so the colours stay those of the design's arrays until the run ends.
+        arrays = self.problem.arrays_at(x)
+        plotter = self.win.viewport.plotter
+        plotter.remove_actor("luminaires", render=False)
+        glyphs = luminaire_overlay.luminaire_glyphs(self.doc.patches, arrays)
+        if glyphs is not None:
+            plotter.add_mesh(
+                glyphs,
+                name="luminaires",
+                color=luminaire_overlay.GLYPH_COLOUR,
+                lighting=False,
+                render=False,
+            )
+        self.win.viewport.request_render()
+        self.preview_arrays = arrays
+        layout = ", ".join(f"{a.name} {a.rows} x {a.columns}" for a in arrays)
+        self.panel.state.setText(f"Running {self.method}... best layout so far: {layout}")
 
     def best_so_far(self) -> tuple[Solution, ...]:
         """The running optimisation's results so far, judged on all patches (autosave)."""
@@ -190,7 +222,7 @@ class RunController(QtCore.QObject):
         }[self.status]
         if front is not None:
             text += f"; {len(front.solutions)} on the front of {len(front.candidates)}"
-        self.panel.state.setText(f"{text} ({evals:,} evaluations, {seconds:.1f} s).")
+        self.panel.state.setText(f"{text} ({self.method}: {evals:,} evaluations, {seconds:.1f} s).")
         if chosen is None:
             self.panel.state.setText(f"{text}: no result to keep.")
         elif not chosen.feasible:

@@ -145,10 +145,11 @@ class ReportWorker(Worker):
 class RunSnapshot:
     """What the GUI draws of a running optimisation, taken at its redraw rate.
 
-    ``points`` are new (run, cumulative evaluations, best goal, best penalty) rows since
-    the last snapshot; ``latest`` the newest core ``Progress`` (None before the first);
-    ``solutions`` new points of a multi-objective sweep; ``evaluations`` counts all runs;
-    ``precompute`` the fraction done of the luminaire arrays' responses (None: none).
+        ``points`` are new (run, cumulative evaluations, best goal, best penalty) rows since
+        the last snapshot; ``latest`` the newest core ``Progress`` (None before the first);
+        ``solutions`` new points of a multi-objective sweep; ``evaluations`` counts all runs
+    (every sub-run and level; once the run has ended, the count the core reports);
+        ``precompute`` the fraction done of the luminaire arrays' responses (None: none).
     """
 
     latest: Progress | None
@@ -184,6 +185,7 @@ class RunWorker(Worker):
         self._last_key = None
         self._t0 = time.perf_counter()
         self._precompute: float | None = None
+        self._final: int | None = None  # the core's count of the run, once it ended
 
     def _precomputed(self, fraction: float) -> None:
         with self._lock:
@@ -212,11 +214,12 @@ class RunWorker(Worker):
         with self._lock:
             points, self._points = tuple(self._points), []
             sols, self._solutions = tuple(self._solutions), []
+            live = self._offset + self._last_evals
             return RunSnapshot(
                 self._latest,
                 points,
                 sols,
-                self._offset + self._last_evals,
+                live if self._final is None else self._final,
                 time.perf_counter() - self._t0,
                 self._precompute,
             )
@@ -227,7 +230,12 @@ class RunWorker(Worker):
         # One BLAS thread while the window shares the two cores: OpenBLAS's second thread
         # spins against the GUI thread and the run went 3x slower (bench/gui_run.py).
         with threadpool_limits(limits=1, user_api="blas"):
-            return self._solve()
+            results = self._solve()
+        # The last snapshot shows the core's count: a level's or sub-run's last
+        # evaluations come after its last progress report.
+        with self._lock:
+            self._final = sum(r.evaluations for r in results)
+        return results
 
     def _solve(self):
         from lightinv_core.study import solve, solve_seeds
