@@ -19,6 +19,7 @@ from app.dialogs import ask
 from app.dialogs.fields import integer_box, number_box, ok_cancel
 from lightinv_core.design.arrays import DEFAULT_SHR
 from lightinv_core.design.model import ARRAY_VARIABLES, LuminaireArray, new_array
+from lightinv_core.design.model.array import free_zone, overlapping
 from lightinv_core.errors import LightInvError
 from lightinv_core.light.arrays import resolve_product
 from lightinv_core.luminaires import builtin_catalogue
@@ -50,11 +51,15 @@ class ArrayDialog(QtWidgets.QDialog):
         base: LuminaireArray | None = None,
         name: str = "A1",
         parent: QtWidgets.QWidget | None = None,
+        others: tuple[LuminaireArray, ...] = (),
     ):
         super().__init__(parent)
         self.setWindowTitle("Luminaire array" if base is None else f"Edit array {base.name}")
         self.zones = zones
-        zone = base.zone if base is not None else next(iter(zones), "")
+        self.others = others  # the design's other arrays: a new one goes in a free zone
+        zone = (
+            base.zone if base is not None else (free_zone(zones, others) or next(iter(zones), ""))
+        )
         w, h = zones.get(zone, (1.0, 1.0))
         base = base or new_array(name, zone, builtin_catalogue()[0].name, (w, h))
         form = QtWidgets.QFormLayout(self)
@@ -179,7 +184,16 @@ class ArrayDialog(QtWidgets.QDialog):
         )
         # What changes the product's light (a tilt table not applied, a light output ratio
         # above 100%), as the panel, the status bar and the report say it.
-        for w in light_warnings([p.photometry]):
+        warnings = light_warnings([p.photometry])
+        # Every zone already has an array: say so rather than stack two in one place.
+        shared = overlapping(a, self.others)
+        if shared:
+            warnings.append(
+                f"overlaps array{'s' * (len(shared) > 1)} {', '.join(shared)} in zone "
+                f"{a.zone}: their luminaires would be mounted on the same ceiling area; "
+                "choose another zone or rectangle"
+            )
+        for w in warnings:
             text += f"<br><span style='color:#a05a00'>\u26a0 {html.escape(w)}</span>"
         self.summary.setText(text)
         if self.isVisible():  # room for the wrapped lines

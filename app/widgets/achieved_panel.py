@@ -20,7 +20,8 @@ from app.document import Document
 from app.widgets.numbers import distinct
 from lightinv_core.climate.weather import WeatherError
 from lightinv_core.errors import LightInvError
-from lightinv_core.kinds import Bound
+from lightinv_core.kinds import Bound, Scenario
+from lightinv_core.scenarios import is_scenario, scenario_spec
 
 COLUMNS = ("intention", "scenario", "bound", "required", "achieved", "units", "")
 OK, NOT_OK, UNKNOWN = "met", "not met", "cannot tell"
@@ -130,7 +131,8 @@ class AchievedPanel(QtWidgets.QWidget):
                     f"{unknown} intention{'s' * (unknown != 1)} cannot be judged (grey): {why}"
                     + (f"\nThe others miss {bad} of {judged} bounds (red)." if bad else "")
                 )
-            self.summary.setText(text)
+            self.summary.setText(text + self._scenario_note(rows))
+        self._name_columns(rows)
         self.table.setRowCount(len(rows))
         colours = {
             True: QtGui.QColor("#d9f2d9"),
@@ -153,3 +155,25 @@ class AchievedPanel(QtWidgets.QWidget):
                 item.setBackground(colours[row.met])
                 self.table.setItem(r, c, item)
         self.table.resizeColumnsToContents()
+
+    def _name_columns(self, rows: list[Row]) -> None:
+        """Head the achieved column with the scenario its values are in: the desk's
+        figures differ between tabs (the view's design scenario, the night an EN 12464-1
+        preset is judged in), and the column says which light it read."""
+        scenarios = {r.scenario for r in rows}
+        where = next(iter(scenarios)) if len(scenarios) == 1 else "its scenario"
+        achieved = f"achieved (in {where})"
+        self.table.setHorizontalHeaderLabels([achieved if c == "achieved" else c for c in COLUMNS])
+
+    def _scenario_note(self, rows: list[Row]) -> str:
+        """Why a figure here differs from the view's and the work-plane table's: they
+        show the design scenario, a row here its intention's."""
+        design = str(Scenario.DESIGN)
+        others = sorted({r.scenario for r in rows if is_scenario(r.scenario)} - {design})
+        if not others:
+            return ""
+        named = "; ".join(scenario_spec(s).label for s in others)
+        return (
+            f"\nJudged in each intention's scenario ({named}); the view and the work-plane "
+            f"table show the {design} scenario."
+        )

@@ -11,6 +11,9 @@ under the arrays and in the status bar's warnings.
 
 from __future__ import annotations
 
+import textwrap
+from pathlib import Path
+
 from PySide6 import QtCore, QtWidgets
 
 from app.dialogs import ask
@@ -21,13 +24,34 @@ from app.view.polar_plot import PolarPlot
 from app.widgets.elided_label import ElidedLabel
 from lightinv_core.design.en12464 import REQUIREMENTS, preset_intention
 from lightinv_core.errors import LightInvError
-from lightinv_core.light.arrays import resolve_product
+from lightinv_core.kinds import Scenario
+from lightinv_core.light.arrays import Product, resolve_product
 from lightinv_core.luminaires import builtin_catalogue
 from lightinv_core.luminaires.photometry import light_warnings
+from lightinv_core.scenarios import scenario_spec
 from lightinv_core.sources.types import source_type
 
 ARRAY_COLUMNS = ("array", "zone", "product", "layout", "spacing m", "C0", "dimming", "W")
 PLANE_COLUMNS = ("work plane", "height m", "points", "Em lux", "Emin lux", "Emax lux", "U0")
+
+
+def product_title(product: str, p: Product) -> tuple[str, str]:
+    """(what the arrays table shows, its tooltip) of an array's ``product`` resolved as
+    ``p``: a catalogue product's name (catalogue number); a photometric file's maker and
+    catalogue number (its file name without one). An IES file's [LUMINAIRE] is a
+    description ("FROSTED TRANSLUCENT PLASTIC DIFFUSER, ...") and goes in the tooltip."""
+    ph = p.photometry
+    number = " ".join(ph.catalogue_number.split())
+    path = Path(product)
+    if path.suffix.lower() in (".ies", ".ldt"):
+        maker = " ".join(ph.manufacturer.split())
+        title = " ".join(t for t in (maker, number) if t) or path.stem
+        about = (textwrap.fill(ph.name, 60), f"file {path.name}")  # a tooltip does not wrap
+    else:
+        title = f"{p.name} ({number})" if number else p.name
+        about = (ph.name if ph.name != p.name else "",)
+    rating = f"{p.lumens:,.0f} lm, {p.watts:g} W"
+    return title, "\n".join(t for t in (*about, rating) if t)
 
 
 class CompactTable(QtWidgets.QTableWidget):
@@ -103,7 +127,14 @@ class LuminairesPanel(QtWidgets.QWidget):
         self.add_plane_button = QtWidgets.QPushButton("Add work plane…")
         self.remove_plane_button = QtWidgets.QPushButton("Remove")
         self.preset = QtWidgets.QComboBox()
-        self.preset.addItem("EN 12464-1 intention…", None)
+        # A preset is judged in its own scenario (night: the luminaires alone), not in the
+        # design scenario of the table's Em: the list says which.
+        judged = scenario_spec(preset_intention(REQUIREMENTS[0].key, "-").scenario)
+        self.preset.addItem(f"EN 12464-1 intention ({judged.label})…", None)
+        self.preset.setToolTip(
+            f"Adds Em and U0 as an intention on the selected work plane, judged in the "
+            f"{judged.label} scenario (the Achieved tab)"
+        )
         for r in REQUIREMENTS:
             self.preset.addItem(f"{r.activity}: {r.em:g} lux, U0 {r.u0:.2f}", r.key)
         # The longest activity would widen the dock past a laptop's (1366 px) screen and
@@ -176,7 +207,9 @@ class LuminairesPanel(QtWidgets.QWidget):
         d = self.doc.design
         taken = {s.name for s in d.sources} | {a.name for a in d.arrays}
         if dialog is None:
-            dialog = ArrayDialog(zones, name=self._new_name("A", taken), parent=self)
+            dialog = ArrayDialog(
+                zones, name=self._new_name("A", taken), parent=self, others=d.arrays
+            )
             product = self.selected_product()
             if product:
                 dialog.product.setCurrentText(product)
@@ -202,7 +235,8 @@ class LuminairesPanel(QtWidgets.QWidget):
             return False
         arrays = self.doc.design.arrays
         if dialog is None:
-            dialog = ArrayDialog(self._luminaire_zones(), arrays[i], parent=self)
+            others = arrays[:i] + arrays[i + 1 :]
+            dialog = ArrayDialog(self._luminaire_zones(), arrays[i], parent=self, others=others)
             if not ask.accepted(dialog):
                 return False
         try:
@@ -287,10 +321,13 @@ class LuminairesPanel(QtWidgets.QWidget):
         for i, a in enumerate(arrays):
             try:
                 p = resolve_product(a.product, a.watts)
-                product, watts = p.name, f"{a.count * p.watts * a.dimming:,.1f}"
+                (product, about), watts = (
+                    product_title(a.product, p),
+                    f"{a.count * p.watts * a.dimming:,.1f}",
+                )
                 products.append(p)
             except LightInvError:
-                product, watts = a.product, "?"
+                product, about, watts = a.product, "", "?"
             su, sv = a.spacing
             cells = (
                 a.name,
@@ -303,8 +340,13 @@ class LuminairesPanel(QtWidgets.QWidget):
                 watts,
             )
             for j, text in enumerate(cells):
-                self.arrays.setItem(i, j, QtWidgets.QTableWidgetItem(text))
+                item = QtWidgets.QTableWidgetItem(text)
+                if j == ARRAY_COLUMNS.index("product"):
+                    item.setToolTip(about)
+                self.arrays.setItem(i, j, item)
         self.arrays.resizeColumnsToContents()
+        column = ARRAY_COLUMNS.index("product")  # a long catalogue number is elided
+        self.arrays.setColumnWidth(column, min(self.arrays.columnWidth(column), 240))
         self._show_warnings(light_warnings(p.photometry for p in products))
         planes = design.workplanes if design is not None else ()
         stats = d.grid_stats() if design is not None else {}
@@ -325,15 +367,17 @@ class LuminairesPanel(QtWidgets.QWidget):
             for j, text in enumerate(cells):
                 self.planes.setItem(i, j, QtWidgets.QTableWidgetItem(text))
         self.planes.resizeColumnsToContents()
+        lines = []
         if design is not None and planes and not stats:
-            self.status.setText("Values appear once the radiosity operator is ready.")
-        elif design is not None and arrays:
+            lines.append("Values appear once the radiosity operator is ready.")
+        elif planes:
+            # The view's light, not a preset's (judged at night, the Achieved tab).
+            light = scenario_spec(Scenario.DESIGN).describe(design.daylight)
+            lines.append(f"Em, Emin, Emax, U0 in the {Scenario.DESIGN} scenario: {light}")
+        if design is not None and arrays:
             total, n = sum(a.count for a in arrays), len(arrays)
-            self.status.setText(
-                f"{total} luminaire{'s' * (total != 1)} in {n} array{'s' * (n != 1)}."
-            )
-        else:
-            self.status.setText("")
+            lines.append(f"{total} luminaire{'s' * (total != 1)} in {n} array{'s' * (n != 1)}.")
+        self.status.setText("\n".join(lines))
 
     def _show_warnings(self, warnings: list[str]) -> None:
         """The arrays' photometry warnings under the arrays and in the main window's

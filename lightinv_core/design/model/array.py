@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+from collections.abc import Iterable
 from dataclasses import dataclass, field
 
 from lightinv_core.design.model.source import free_variables
@@ -184,3 +185,30 @@ def new_array(name: str, zone: str, product: str, size: tuple[float, float]) -> 
     return LuminaireArray(
         name, zone, product, (0.0, 0.0, float(w), float(h)), rows=2, columns=2, free=NEW_ARRAY_FREE
     )
+
+
+def overlapping(array: LuminaireArray, others: Iterable[LuminaireArray]) -> tuple[str, ...]:
+    """Names of the arrays of ``others`` in ``array``'s zone whose rectangles overlap its
+    own (sharing an edge is not overlapping; a one-luminaire array's point overlaps a
+    rectangle it lies inside)."""
+
+    def spans(a: LuminaireArray) -> tuple[tuple[float, float], tuple[float, float]]:
+        u0, v0, u1, v1 = a.rect
+        return (min(u0, u1), max(u0, u1)), (min(v0, v1), max(v0, v1))
+
+    mine = spans(array)
+    out = []
+    for other in others:
+        if other.zone != array.zone or other.name == array.name:
+            continue
+        theirs = spans(other)
+        if all(a[0] < b[1] and b[0] < a[1] for a, b in zip(mine, theirs, strict=True)):
+            out.append(other.name)
+    return tuple(out)
+
+
+def free_zone(zones: Iterable[str], arrays: Iterable[LuminaireArray]) -> str | None:
+    """The first of ``zones`` that no array of ``arrays`` is mounted in (where a new
+    array goes by default); None when every zone has one."""
+    used = {a.zone for a in arrays}
+    return next((z for z in zones if z not in used), None)
