@@ -203,7 +203,7 @@ def test_the_run_panel_offers_every_method_and_runs_an_nsga2_front(qtbot, experi
     q = win.doc.front_quality()
     assert f"front hypervolume {q.hypervolume:.4f}" in summary
     assert "on the NSGA-II front" in summary  # the method's label, not its id
-    assert "NSGA-II: " in panel.state.text() and "nsga2" not in panel.state.text()
+    assert "(NSGA-II front: " in panel.state.text() and "nsga2" not in panel.state.text()
     win.grab().save(str(tmp_path / "nsga2-window.png"))
     win.tabs.setCurrentWidget(panel)
     panel.grab().save(str(tmp_path / "nsga2-run-panel.png"))
