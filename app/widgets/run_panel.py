@@ -265,8 +265,13 @@ class RunPanel(QtWidgets.QWidget):
                 f"({snap.elapsed:.0f} s); the search starts after it"
             )
             return
-        rate = snap.evaluations / snap.elapsed if snap.elapsed > 0 else 0.0
-        text = f"{snap.evaluations:,} evaluations, {snap.elapsed:.1f} s, {rate:,.0f} /s"
+        # The search's time and rate, as the core reports them when the run ends; the
+        # arrays' precompute apart (it made "53 s, 47 /s" of a 1 s search).
+        searched = snap.elapsed - snap.precompute_seconds
+        rate = snap.evaluations / searched if searched > 0 else 0.0
+        text = f"{snap.evaluations:,} evaluations, {searched:.1f} s, {rate:,.0f} /s"
+        if snap.precompute_seconds >= 0.5:
+            text += f" (after {snap.precompute_seconds:.0f} s precomputing the arrays)"
         if p is not None:
             run = f"run {p.run + 1} of {p.runs}, " if p.runs > 1 else ""
             level = f", level n/{p.level}" if p.level > 1 else ""

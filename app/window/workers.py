@@ -145,11 +145,13 @@ class ReportWorker(Worker):
 class RunSnapshot:
     """What the GUI draws of a running optimisation, taken at its redraw rate.
 
-        ``points`` are new (run, cumulative evaluations, best goal, best penalty) rows since
-        the last snapshot; ``latest`` the newest core ``Progress`` (None before the first);
-        ``solutions`` new points of a multi-objective sweep; ``evaluations`` counts all runs
-    (every sub-run and level; once the run has ended, the count the core reports);
-        ``precompute`` the fraction done of the luminaire arrays' responses (None: none).
+            ``points`` are new (run, cumulative evaluations, best goal, best penalty) rows since
+            the last snapshot; ``latest`` the newest core ``Progress`` (None before the first);
+            ``solutions`` new points of a multi-objective sweep; ``evaluations`` counts all runs
+        (every sub-run and level; once the run has ended, the count the core reports);
+            ``precompute`` the fraction done of the luminaire arrays' responses (None: none) and
+    ``precompute_seconds`` the time it took (s, part of ``elapsed``; known once the search
+    reports).
     """
 
     latest: Progress | None
@@ -158,6 +160,7 @@ class RunSnapshot:
     evaluations: int
     elapsed: float
     precompute: float | None = None
+    precompute_seconds: float = 0.0
 
 
 class RunWorker(Worker):
@@ -186,6 +189,8 @@ class RunWorker(Worker):
         self._t0 = time.perf_counter()
         self._precompute: float | None = None
         self._final: int | None = None  # the core's count of the run, once it ended
+        self._final_s = 0.0  # and its seconds (the search's, as the core reports them)
+        self._pre_s = 0.0  # seconds of the arrays' precompute before the search
 
     def _precomputed(self, fraction: float) -> None:
         with self._lock:
@@ -193,6 +198,9 @@ class RunWorker(Worker):
 
     def _progress(self, p: Progress) -> None:
         with self._lock:
+            if self._latest is None and self._precompute is not None:
+                # The search's clock starts after the precompute: the rest is the latter's.
+                self._pre_s = max(0.0, time.perf_counter() - self._t0 - p.elapsed)
             if p.evaluations < self._last_evals or (
                 self._latest is not None and p.run != self._latest.run
             ):
@@ -220,8 +228,11 @@ class RunWorker(Worker):
                 points,
                 sols,
                 live if self._final is None else self._final,
-                time.perf_counter() - self._t0,
+                time.perf_counter() - self._t0
+                if self._final is None
+                else self._final_s + self._pre_s,
                 self._precompute,
+                self._pre_s,
             )
 
     def work(self):
@@ -231,10 +242,11 @@ class RunWorker(Worker):
         # spins against the GUI thread and the run went 3x slower (bench/gui_run.py).
         with threadpool_limits(limits=1, user_api="blas"):
             results = self._solve()
-        # The last snapshot shows the core's count: a level's or sub-run's last
+        # The last snapshot shows the core's count and time: a level's or sub-run's last
         # evaluations come after its last progress report.
         with self._lock:
             self._final = sum(r.evaluations for r in results)
+            self._final_s = sum(r.seconds for r in results)
         return results
 
     def _solve(self):

@@ -148,6 +148,8 @@ def test_run_on_a_laptop_screen_shows_the_running_best_arrays_and_one_count(tmp_
     assert got["live"] == sorted(got["live"]) and got["live"][-1] == got["reported"], got
     assert max(got["live"]) <= got["reported"]
     assert _count(got["counters"]) == got["reported"] == _count(got["state"].split(":")[-1])
+    seconds = re.search(r"evaluations, ([\d.]+) s", got["counters"]).group(1)
+    assert f"evaluations, {seconds} s)" in got["state"]  # the search's time, the core's
     assert "search P ≈" in got["counters"] and "best electric power (W)" in got["counters"]
     assert got["counters_width"] <= got["column_width"]
 
