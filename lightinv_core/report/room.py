@@ -93,36 +93,55 @@ def _reflectance_source(project: Project, group: str) -> str:
     return "the model's material colours (or 0.5 when it has none)"
 
 
+MERGED = 3
+"""Groups of one IFC class (``IfcMember:Sparren-1``, ``-2``, ...) with one reflectance and
+its origin, at least this many, share a row of the surfaces table: the rafters of an IFC
+house filled four pages, a row each."""
+
+
 def surfaces_table(project: Project, prepared) -> Table:
     """Each surface group: its area, reflectance (area-weighted mean and range), its
-    surfaces (the model's names) and where the reflectance comes from."""
+    surfaces (the model's names) and where the reflectance comes from. ``MERGED`` or more
+    groups of one class (the text before ":") alike in both share a row."""
     p = prepared.patches
-    rows = []
+    buckets: dict[tuple, list[tuple[str, np.ndarray]]] = {}
     for gid, name in enumerate(p.group_names):
         idx = np.flatnonzero(p.group_id == gid)
         if not len(idx):
             continue
-        area = p.area[idx]
-        rho = p.rho[idx]
-        mean = float(rho @ area / area.sum())
-        spread = f" ({rho.min():.2f}–{rho.max():.2f})" if np.ptp(rho) > 0.005 else ""
-        # A drawn zone cuts a surface into pieces ("ceiling~2"): name the surface once.
-        names = sorted({p.surface_names[s].split("~")[0] for s in np.unique(p.surface_id[idx])})
-        shown = ", ".join(names[:3]) + (f" and {len(names) - 3} more" if len(names) > 3 else "")
-        rows.append(
-            (
-                name,
-                f"{area.sum():,.1f}",
-                f"{mean:.2f}{spread}",
-                shown,
-                _reflectance_source(project, name),
-            )
-        )
+        mean = float(p.rho[idx] @ p.area[idx] / p.area[idx].sum())
+        kind = name.split(":", 1)[0] if ":" in name else None
+        key = (kind, round(mean, 2), _reflectance_source(project, name))
+        buckets.setdefault(key if kind else (name,), []).append((name, idx))
+    rows = []
+    for key, members in buckets.items():
+        if len(members) < MERGED:
+            rows += [_surface_row(project, p, name, idx, name) for name, idx in members]
+            continue
+        idx = np.concatenate([i for _, i in members])
+        title = f"{key[0]}: {len(members)} groups"
+        rows.append(_surface_row(project, p, members[0][0], idx, title))
     return Table(
         "Surfaces and materials",
         ("surface group", "area m²", "reflectance ρ", "surfaces", "reflectance from"),
         tuple(rows),
         note="Surfaces are diffuse (Lambertian): ρ is the share of the light they reflect.",
+    )
+
+
+def _surface_row(project: Project, p: Patches, group: str, idx: np.ndarray, title: str) -> tuple:
+    area, rho = p.area[idx], p.rho[idx]
+    mean = float(rho @ area / area.sum())
+    spread = f" ({rho.min():.2f}–{rho.max():.2f})" if np.ptp(rho) > 0.005 else ""
+    # A drawn zone cuts a surface into pieces ("ceiling~2"): name the surface once.
+    names = sorted({p.surface_names[s].split("~")[0] for s in np.unique(p.surface_id[idx])})
+    shown = ", ".join(names[:3]) + (f" and {len(names) - 3} more" if len(names) > 3 else "")
+    return (
+        title,
+        f"{area.sum():,.1f}",
+        f"{mean:.2f}{spread}",
+        shown,
+        _reflectance_source(project, group),
     )
 
 
