@@ -16,7 +16,7 @@ import numpy as np
 
 from lightinv_core.design.model import Design, LuminaireArray
 from lightinv_core.project import Project
-from lightinv_core.report.tables import Table
+from lightinv_core.report.tables import Table, alike_groups
 from lightinv_core.scene.patches import Patches
 from lightinv_core.sources.types import source_type
 
@@ -93,34 +93,15 @@ def _reflectance_source(project: Project, group: str) -> str:
     return "the model's material colours (or 0.5 when it has none)"
 
 
-MERGED = 3
-"""Groups of one IFC class (``IfcMember:Sparren-1``, ``-2``, ...) with one reflectance and
-its origin, at least this many, share a row of the surfaces table: the rafters of an IFC
-house filled four pages, a row each."""
-
-
 def surfaces_table(project: Project, prepared) -> Table:
     """Each surface group: its area, reflectance (area-weighted mean and range), its
-    surfaces (the model's names) and where the reflectance comes from. ``MERGED`` or more
-    groups of one class (the text before ":") alike in both share a row."""
+    surfaces (the model's names) and where the reflectance comes from; alike groups of
+    one class share a row (``tables.alike_groups``)."""
     p = prepared.patches
-    buckets: dict[tuple, list[tuple[str, np.ndarray]]] = {}
-    for gid, name in enumerate(p.group_names):
-        idx = np.flatnonzero(p.group_id == gid)
-        if not len(idx):
-            continue
-        mean = float(p.rho[idx] @ p.area[idx] / p.area[idx].sum())
-        kind = name.split(":", 1)[0] if ":" in name else None
-        key = (kind, round(mean, 2), _reflectance_source(project, name))
-        buckets.setdefault(key if kind else (name,), []).append((name, idx))
     rows = []
-    for key, members in buckets.items():
-        if len(members) < MERGED:
-            rows += [_surface_row(project, p, name, idx, name) for name, idx in members]
-            continue
-        idx = np.concatenate([i for _, i in members])
-        title = f"{key[0]}: {len(members)} groups"
-        rows.append(_surface_row(project, p, members[0][0], idx, title))
+    for title, gids in alike_groups(p, lambda name: _reflectance_source(project, name)):
+        idx = np.flatnonzero(np.isin(p.group_id, gids))
+        rows.append(_surface_row(project, p, p.group_names[gids[0]], idx, title))
     return Table(
         "Surfaces and materials",
         ("surface group", "area m²", "reflectance ρ", "surfaces", "reflectance from"),
