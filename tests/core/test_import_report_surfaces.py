@@ -1,5 +1,5 @@
 """The report's per-group tables on an imported IFC model (found in the first-day
-walkthrough, docs/walkthrough-first-day.md): AC20-FZK-Haus's 72 groups, 40 of them
+walkthrough, docs/walkthrough-first-day.md): AC20-FZK-Haus's 72 groups, 34 of them
 rafters (``IfcMember:Sparren-1`` ...) with one reflectance, took four pages of surfaces
 and three of illuminances, a row each. Groups of one IFC class alike in reflectance (and
 its origin) now share a row."""
