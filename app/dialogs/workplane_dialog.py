@@ -3,12 +3,42 @@ where the EN 12464-1 values are read."""
 
 from __future__ import annotations
 
+import numpy as np
 from PySide6 import QtWidgets
 
 from app.dialogs import ask
 from app.dialogs.fields import number_box, ok_cancel
 from lightinv_core.design.model import Workplane
 from lightinv_core.errors import LightInvError
+from lightinv_core.scene.patches import Patches
+
+FLOOR_SHARE = 0.5
+"""A group is a floor candidate when its upward-facing area is at least this share of the
+largest one's (a stair's treads or a sill are not a floor)."""
+
+
+def floor_default(groups: list[str], patches: Patches | None = None) -> str:
+    """The floor group a new work plane is proposed over: "floor" (built-in scenes, OBJ
+    rooms named so); else, with the patches, the lowest of the groups with the most
+    upward-facing area (``FLOOR_SHARE``): an IFC house's ground slab or footing; else
+    the first group with "floor" in its name, else the first group."""
+    if "floor" in groups:
+        return "floor"
+    # An IFC house proposed its first group, a spiral stair, as the floor.
+    if patches is not None:
+        up = patches.normal[:, 2] > 0.9
+        area = np.bincount(patches.group_id[up], patches.area[up], len(patches.group_names))
+        if area.max() > 0:
+            height = np.bincount(
+                patches.group_id[up],
+                patches.area[up] * patches.centroid[up, 2],
+                len(patches.group_names),
+            ) / np.maximum(area, 1e-12)
+            floors = np.flatnonzero(area >= FLOOR_SHARE * area.max())
+            best = patches.group_names[min(floors, key=lambda k: height[k])]
+            if best in groups:
+                return best
+    return next((g for g in groups if "floor" in g.lower()), groups[0])
 
 
 class WorkplaneDialog(QtWidgets.QDialog):
@@ -20,10 +50,14 @@ class WorkplaneDialog(QtWidgets.QDialog):
         base: Workplane | None = None,
         name: str = "wp",
         parent: QtWidgets.QWidget | None = None,
+        patches: Patches | None = None,
     ):
         super().__init__(parent)
         self.setWindowTitle("Work plane")
-        base = base or Workplane(name, group="floor" if "floor" in groups else groups[0])
+        if patches is None:  # the Luminaires panel's document, when it is the parent
+            doc = getattr(parent, "doc", None)
+            patches = getattr(doc, "patches", None)
+        base = base or Workplane(name, group=floor_default(groups, patches))
         form = QtWidgets.QFormLayout(self)
         self.name = QtWidgets.QLineEdit(base.name)
         form.addRow("Name", self.name)

@@ -45,6 +45,9 @@ class DesignTree(QtWidgets.QTreeWidget):
         self.doc = doc
         self.setHeaderLabels(["item", "details"])
         self.setColumnWidth(0, 170)
+        # Imported names differ at their end (IfcWallStandardCase:Wand-Ext-ERDG-1, -2,
+        # ...): cut in the middle, every row of an IFC house read "IfcWallStandardCa...".
+        self.setTextElideMode(QtCore.Qt.ElideMiddle)
         for sig in (doc.sceneChanged, doc.designChanged, doc.operatorChanged):
             sig.connect(self.refresh)
         self.itemClicked.connect(self._clicked)

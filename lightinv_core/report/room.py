@@ -16,7 +16,7 @@ import numpy as np
 
 from lightinv_core.design.model import Design, LuminaireArray
 from lightinv_core.project import Project
-from lightinv_core.report.tables import Table
+from lightinv_core.report.tables import Table, alike_groups
 from lightinv_core.scene.patches import Patches
 from lightinv_core.sources.types import source_type
 
@@ -95,34 +95,34 @@ def _reflectance_source(project: Project, group: str) -> str:
 
 def surfaces_table(project: Project, prepared) -> Table:
     """Each surface group: its area, reflectance (area-weighted mean and range), its
-    surfaces (the model's names) and where the reflectance comes from."""
+    surfaces (the model's names) and where the reflectance comes from; alike groups of
+    one class share a row (``tables.alike_groups``)."""
     p = prepared.patches
     rows = []
-    for gid, name in enumerate(p.group_names):
-        idx = np.flatnonzero(p.group_id == gid)
-        if not len(idx):
-            continue
-        area = p.area[idx]
-        rho = p.rho[idx]
-        mean = float(rho @ area / area.sum())
-        spread = f" ({rho.min():.2f}–{rho.max():.2f})" if np.ptp(rho) > 0.005 else ""
-        # A drawn zone cuts a surface into pieces ("ceiling~2"): name the surface once.
-        names = sorted({p.surface_names[s].split("~")[0] for s in np.unique(p.surface_id[idx])})
-        shown = ", ".join(names[:3]) + (f" and {len(names) - 3} more" if len(names) > 3 else "")
-        rows.append(
-            (
-                name,
-                f"{area.sum():,.1f}",
-                f"{mean:.2f}{spread}",
-                shown,
-                _reflectance_source(project, name),
-            )
-        )
+    for title, gids in alike_groups(p, lambda name: _reflectance_source(project, name)):
+        idx = np.flatnonzero(np.isin(p.group_id, gids))
+        rows.append(_surface_row(project, p, p.group_names[gids[0]], idx, title))
     return Table(
         "Surfaces and materials",
         ("surface group", "area m²", "reflectance ρ", "surfaces", "reflectance from"),
         tuple(rows),
         note="Surfaces are diffuse (Lambertian): ρ is the share of the light they reflect.",
+    )
+
+
+def _surface_row(project: Project, p: Patches, group: str, idx: np.ndarray, title: str) -> tuple:
+    area, rho = p.area[idx], p.rho[idx]
+    mean = float(rho @ area / area.sum())
+    spread = f" ({rho.min():.2f}–{rho.max():.2f})" if np.ptp(rho) > 0.005 else ""
+    # A drawn zone cuts a surface into pieces ("ceiling~2"): name the surface once.
+    names = sorted({p.surface_names[s].split("~")[0] for s in np.unique(p.surface_id[idx])})
+    shown = ", ".join(names[:3]) + (f" and {len(names) - 3} more" if len(names) > 3 else "")
+    return (
+        title,
+        f"{area.sum():,.1f}",
+        f"{mean:.2f}{spread}",
+        shown,
+        _reflectance_source(project, group),
     )
 
 

@@ -331,25 +331,56 @@ def _measured(
     return where, stats, out
 
 
+MERGED = 3
+"""Groups of one IFC class (``IfcMember:Sparren-1``, ``-2``, ...) alike in reflectance,
+at least this many, share a row of the per-group tables: the rafters of an IFC house
+filled four pages of surfaces and three of illuminances, a row each."""
+
+
+def alike_groups(patches: Patches, key=lambda name: None) -> list[tuple[str, list[int]]]:
+    """(row title, group ids) for a per-group table, in the scene's order, empty groups
+    left out: ``MERGED`` or more groups of one class (the name's text before ":") with one
+    area-weighted reflectance (2 decimals) and one ``key(name)`` share a row titled
+    "CLASS: N groups"; every other group has its own."""
+    buckets: dict[tuple, list[int]] = {}
+    for gid, name in enumerate(patches.group_names):
+        idx = patches.group_id == gid
+        if not idx.any():
+            continue
+        rho = float(patches.rho[idx] @ patches.area[idx] / patches.area[idx].sum())
+        kind = name.split(":", 1)[0] if ":" in name else None
+        buckets.setdefault((kind, round(rho, 2), key(name)) if kind else (name,), []).append(gid)
+    out: list[tuple[str, list[int]]] = []
+    for k, gids in buckets.items():
+        if len(gids) >= MERGED:
+            out.append((f"{k[0]}: {len(gids)} groups", gids))
+        else:
+            out += [(patches.group_names[g], [g]) for g in gids]
+    return out
+
+
 def group_table(field: LightField) -> Table:
-    """Illuminance (lux) per lighting group: area, min, area-weighted average, max, U0."""
+    """Illuminance (lux) per lighting group: area, min, area-weighted average, max, U0
+    (alike groups of one class in one row, ``alike_groups``)."""
     rows = []
     patches = field.patches
-    for gid, name in enumerate(patches.group_names):
-        idx = np.flatnonzero(patches.group_id == gid)
-        if len(idx) == 0:
-            continue
-        st = field.group_stats(name)
-        avg = float(st.average[0])
+    for title, gids in alike_groups(patches):
+        idx = np.flatnonzero(np.isin(patches.group_id, gids))
+        stats = [field.group_stats(patches.group_names[g]) for g in gids]
+        areas = np.array([patches.area[patches.group_id == g].sum() for g in gids])
+        lo = min(float(st.min[0]) for st in stats)
+        hi = max(float(st.max[0]) for st in stats)
+        avg = float(np.array([float(st.average[0]) for st in stats]) @ areas / areas.sum())
+        u0 = float(stats[0].uniformity[0]) if len(stats) == 1 else lo / avg if avg > 0 else 0.0
         rows.append(
             (
-                name,
+                title,
                 str(len(idx)),
                 f"{patches.area[idx].sum():.1f}",
-                fmt(st.min[0]),
+                fmt(lo),
                 fmt(avg),
-                fmt(st.max[0]),
-                fmt(st.uniformity[0], 3) if avg > 0 else "—",
+                fmt(hi),
+                fmt(u0, 3) if avg > 0 else "—",
             )
         )
     return Table(
