@@ -16,6 +16,18 @@ from PySide6.QtTest import QTest
 LEFT = QtCore.Qt.LeftButton
 
 
+def wait_for(condition: Callable[[], bool], timeout_ms: int) -> bool:
+    """Process events until ``condition()`` holds or ``timeout_ms`` pass; whether it
+    held (PySide6's QTest has no qWaitFor)."""
+    timer = QtCore.QElapsedTimer()
+    timer.start()
+    while not condition():
+        if timer.elapsed() > timeout_ms:
+            return False
+        QTest.qWait(20)
+    return True
+
+
 def plain(text: str) -> str:
     """``text`` as shown: the mnemonic "&" dropped, "…" and "..." alike."""
     return text.replace("&", "").replace("…", "...").strip()
@@ -106,12 +118,14 @@ def label(parent: QtWidgets.QWidget, starts: str) -> QtWidgets.QLabel:
 
 
 def field(dialog: QtWidgets.QWidget, text: str) -> QtWidgets.QWidget:
-    """The first input of the form row labelled ``text`` in ``dialog``."""
+    """The input of the form row labelled ``text`` on screen in ``dialog``."""
     for form in dialog.findChildren(QtWidgets.QFormLayout):
         for row in range(form.rowCount()):
             item = form.itemAt(row, QtWidgets.QFormLayout.LabelRole)
             lab = item.widget() if item is not None else None
             if not isinstance(lab, QtWidgets.QLabel) or plain(lab.text()) != plain(text):
+                continue
+            if not shown(lab):  # a row of a page or tab not on screen
                 continue
             cell = form.itemAt(row, QtWidgets.QFormLayout.FieldRole)
             return cell.widget() or cell.layout().itemAt(0).widget()
@@ -203,6 +217,18 @@ def tree_item(tree: QtWidgets.QTreeWidget, text: str) -> QtWidgets.QTreeWidgetIt
     return found[0]
 
 
+def click_tree(tree: QtWidgets.QTreeWidget, text: str) -> None:
+    """Click the tree's item ``text`` (its branch expanded first, as a user would)."""
+    item = tree_item(tree, text)
+    parent = item.parent()
+    while parent is not None:
+        parent.setExpanded(True)
+        parent = parent.parent()
+    tree.scrollToItem(item)
+    click(tree.viewport(), tree.visualItemRect(item).center())
+    QTest.qWait(100)
+
+
 def tree_texts(tree: QtWidgets.QTreeWidget, branch: str) -> dict[str, str]:
     """{name: details} of the items under the tree's top-level item ``branch``."""
     top = tree_item(tree, branch)
@@ -212,40 +238,48 @@ def tree_texts(tree: QtWidgets.QTreeWidget, branch: str) -> dict[str, str]:
 # -- modal dialogs ------------------------------------------------------------------------
 def answer(open_it: Callable[[], object], *responses: Callable) -> list[str]:
     """Do ``open_it`` (it shows modal dialogs and waits), and answer the dialogs shown,
-    in turn, with ``responses`` (each takes the dialog, with the mouse and keyboard). A
-    dialog still open after its answer is rejected, so a failing test cannot hang.
-    Returns the titles of the dialogs answered, as the user saw them."""
+    in turn, with ``responses`` (each takes the dialog, with the mouse and keyboard).
+
+    A failing test cannot hang: a dialog still open after its answer, or one whose
+    answer failed, is rejected, and so is every dialog shown after a failure; the
+    failure is raised once ``open_it`` returns. Returns the titles of the dialogs
+    answered, as the user saw them."""
     seen: list = []
     titles: list[str] = []
     todo = list(responses)
     done: list[bool] = []
+    failed: list[BaseException] = []
 
     def poll() -> None:
         if done:
             return
         dialog = QtWidgets.QApplication.activeModalWidget()
-        if dialog is None or (seen and dialog is seen[-1]) or not todo:
-            QtCore.QTimer.singleShot(40, poll)
-            return
-        seen.append(dialog)
-        titles.append(dialog.windowTitle())
-        QTest.qWaitForWindowExposed(dialog)
-        respond = todo.pop(0)
-        try:
-            respond(dialog)
-        finally:
-            QTest.qWait(50)
-            if dialog.isVisible() and QtWidgets.QApplication.activeModalWidget() is dialog:
-                dialog.reject()
-                titles.append("left open")
-        if todo:
-            QtCore.QTimer.singleShot(40, poll)
+        if dialog is not None and failed:
+            dialog.reject()  # after a failure: close whatever else opens
+        elif dialog is not None and not (seen and dialog is seen[-1]) and todo:
+            seen.append(dialog)
+            titles.append(dialog.windowTitle())
+            respond = todo.pop(0)
+            try:
+                QTest.qWaitForWindowExposed(dialog)
+                respond(dialog)
+                QTest.qWait(50)
+                if dialog.isVisible() and QtWidgets.QApplication.activeModalWidget() is dialog:
+                    titles.append("left open")
+                    dialog.reject()
+            except BaseException as exc:  # re-raised below, outside the Qt event loop
+                failed.append(exc)
+                if dialog.isVisible():
+                    dialog.reject()
+        QtCore.QTimer.singleShot(40, poll)
 
     QtCore.QTimer.singleShot(0, poll)
     try:
         open_it()
     finally:
         done.append(True)
+    if failed:
+        raise AssertionError(f"answering {titles[-1]!r} failed: {failed[0]!r}") from failed[0]
     assert "left open" not in titles, f"a dialog was left open: {titles}"
     assert not todo, f"{len(todo)} dialog(s) never shown; seen {titles}"
     return titles
@@ -286,7 +320,7 @@ def file_name(path: Path) -> Callable[[QtWidgets.QWidget], None]:
             typed.append(box.text())
             # Its Open / Save button, not Enter: Enter may go to the completer's list.
             click(accept[0])
-            if QTest.qWaitFor(lambda: not dialog.isVisible(), 1000):
+            if wait_for(lambda: not dialog.isVisible(), 1000):
                 return
         raise AssertionError(f"the file dialog took none of {typed}")
 
@@ -338,6 +372,14 @@ def view_click(viewport, world, double: bool = False) -> None:
     if double:
         _mouse(iw, QtCore.QEvent.Type.MouseButtonDblClick, at)
         _mouse(iw, QtCore.QEvent.Type.MouseButtonRelease, at)
+
+
+def drawn_centre(viewport, layer: str) -> tuple[float, float, float]:
+    """The centre (m) of what the 3D view draws as ``layer`` ("current": the current
+    source's green outline)."""
+    actor = viewport.plotter.actors[layer]
+    x0, x1, y0, y1, z0, z1 = actor.GetBounds()
+    return ((x0 + x1) / 2, (y0 + y1) / 2, (z0 + z1) / 2)
 
 
 def view_key(viewport, key) -> None:
