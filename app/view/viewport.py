@@ -44,6 +44,11 @@ CAMERAS = {
     "iso": ((1.0, -1.3, 1.2), (0, 0, 1)),
     "top": ((0.0, 0.0, 1.0), (0, 1, 0)),
     "front": ((0.0, -1.0, 0.25), (0, 0, 1)),
+    # From the other side, to see (and draw on) the inside of the wall Front view looks
+    # through: a room's faces face into it, so the near wall is culled in each view.
+    "back": ((0.0, 1.0, 0.25), (0, 0, 1)),
+    "left": ((-1.0, 0.0, 0.25), (0, 0, 1)),
+    "right": ((1.0, 0.0, 0.25), (0, 0, 1)),
 }
 
 
@@ -363,7 +368,8 @@ class Viewport(QtWidgets.QWidget):
         self.request_render()
 
     def camera(self, preset: str) -> None:
-        """Camera presets: iso, top (roof culled), front."""
+        """Camera presets: iso, top (roof culled), front, back, left, right (the near wall
+        culled)."""
         direction, up = CAMERAS[preset]
         if self.mesh is None:
             return

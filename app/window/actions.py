@@ -24,7 +24,9 @@ MODES = (
     ("zone", "Draw zone"),
     ("polygon", "Draw polygon zone"),
 )
-CAMERAS = ("iso", "top", "front")
+CAMERAS = ("iso", "top", "front", "back", "left", "right")
+TOOLBAR_CAMERAS = ("iso", "top", "front", "back")
+"""The cameras on the toolbar (all are in the View menu): what fits a 1366 px screen."""
 
 
 def action(
@@ -219,7 +221,7 @@ def main_toolbar(win) -> QtWidgets.QToolBar:
         (win.act_open, win.act_save, win.act_precompute, win.act_cancel),
         (win.act_run, win.act_cancel_run),
         (*win.mode_actions.values(), win.zone_kind_box, win.act_intention),
-        tuple(win.camera_actions.values()),
+        tuple(win.camera_actions[c] for c in TOOLBAR_CAMERAS),
     )
     # Short toolbar labels (the menus keep the full names), so the camera buttons still
     # fit a 1366 px wide screen.

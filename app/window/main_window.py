@@ -33,6 +33,7 @@ from app.widgets.view_options import ViewOptions
 from app.widgets.violations_panel import ViolationsPanel
 from app.widgets.zone_panel import ZonePanel
 from app.window import actions
+from app.window.collector import GarbageCollector
 from app.window.design_edits import DesignEdits, surface_frame_of
 from app.window.files import MAX_RECENT, ProjectFiles
 from app.window.folders import FolderMemory
@@ -65,6 +66,7 @@ class MainWindow(QtWidgets.QMainWindow):
         autosave_folder: Path | None = None,
     ):
         super().__init__()
+        GarbageCollector.install(self)  # cycles collected between events, never mid-render
         self._fitted = False  # fitted to the screen with its title bar (showEvent)
         self.settings = settings or QtCore.QSettings("LightInv", "LightInv")
         self.doc = Document(self)
@@ -440,4 +442,5 @@ class MainWindow(QtWidgets.QMainWindow):
         self.settings.setValue("geometry", self.saveGeometry())
         self.settings.setValue("windowState", self.saveState())
         self.viewport.close_plotter()
+        GarbageCollector.release(self)
         event.accept()

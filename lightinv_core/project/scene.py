@@ -50,12 +50,14 @@ GROUP_BY = ("node", "material")
 
 
 def resolve_path(p: str | None, base_dir: Path | None) -> str | None:
-    """``p`` made absolute against ``base_dir`` when it is relative (None stays None)."""
+    """``p`` made absolute against ``base_dir`` when it is relative (None stays None),
+    without "..": a file saved as "../models/room.obj" reads back as the path it was
+    saved from, not "/projects/../models/room.obj" (shown to the user as is)."""
     if p is None:
         return None
     q = Path(p).expanduser()
     if base_dir is not None and not q.is_absolute():
-        q = Path(base_dir) / q
+        q = Path(os.path.normpath(Path(base_dir) / q))
     return str(q)
 
 

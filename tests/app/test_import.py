@@ -85,7 +85,7 @@ def test_importing_an_ifc_through_the_window(qtbot, window, tmp_path):
     wait_for_operator(qtbot, window)
     scene = window.doc.scene
     assert {z.name: z.kind for z in scene.zones} == {
-        "IfcWindow:W1": "skylight",
+        "IfcWindow:W1": "window",
         "IfcWindow:S1": "skylight",
         "IfcCovering:Panel": "luminaire",
     }

@@ -48,7 +48,7 @@ def test_a_window_without_a_body_in_an_opening_becomes_a_glazing_zone(tmp_path, 
     scene = load_ifc(bodiless(tmp_path, unit), resolution=0.5)
     assert scene.info["ifc"]["zones"]["IfcWindow:N1"] == "wall window"
     zone = next(z for z in scene.zones if z.name == "IfcWindow:N1")
-    assert zone.kind == "skylight"  # as every imported window: glazing lit by the sky
+    assert zone.kind == "window"  # a wall window: a window (glazing) zone
     rect = scene.zone_rect("IfcWindow:N1")
     x0, x1, z0, z1 = NORTH
     assert sorted(rect.size) == pytest.approx(sorted([x1 - x0, z1 - z0]), abs=1e-6)

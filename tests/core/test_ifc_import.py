@@ -171,7 +171,7 @@ def test_windows_become_glazing_zones_and_the_ceiling_a_luminaire_zone(room):
     scene = load_ifc(room, resolution=0.5)
     zones = {z.name: z.kind for z in scene.zones}
     assert zones == {
-        "IfcWindow:W1": "skylight",
+        "IfcWindow:W1": "window",
         "IfcWindow:S1": "skylight",
         "IfcCovering:Panel": "luminaire",
     }

@@ -99,7 +99,7 @@ def test_open_house_windows_of_parts_become_window_zones(open_house, capsys):
     IfcPlate pane each. They were 25 plain groups and "emitter zones: none"."""
     scene = load_ifc(open_house)
     zones = {z.name: z.kind for z in scene.zones}
-    assert len(zones) == 5 and set(zones.values()) == {"skylight"}
+    assert len(zones) == 5 and set(zones.values()) == {"window"}
     assert set(scene.info["ifc"]["zones"].values()) == {"wall window"}
     for name in zones:
         rect = scene.zone_rect(name)

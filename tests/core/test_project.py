@@ -343,6 +343,7 @@ def test_relative_scene_paths_resolve_against_the_project_folder(tmp_path):
     assert saved["scene"]["materials"] == "../models/meeting_room-materials.json"
     q = load_project(tmp_path / "projects" / "copy.json")
     assert os.path.samefile(q.scene.obj, p.scene.obj)
+    assert q.scene.obj == p.scene.obj  # read back as saved from, no "projects/../"
 
 
 def test_builtin_scene_spec_loads():

@@ -440,7 +440,8 @@ def _faces(planes, elements, zones, scale, up, path: Path):
     fname = path.name
     names = _group_names(elements)
     zone_of = {id(rect): name for name, (rect, _) in zones.items()}
-    kinds = {"ceiling": "luminaire"}
+    # A window in a wall is a window (glazing) zone; one in a roof a skylight zone.
+    kinds = {"ceiling": "luminaire", "wall window": "window"}
     vertices, faces, starts, labels = [], [], [], []
     count = nv = 0
     for p in planes:
