@@ -18,6 +18,7 @@ from matplotlib.ticker import StrMethodFormatter
 from lightinv_core.design.solution import ParetoFront, Solution
 from lightinv_core.kinds import GoalKind
 from lightinv_core.optimize.quality import FrontQuality
+from lightinv_core.report.provenance import method_label
 from lightinv_core.report.tables import Table
 from lightinv_core.report.views import A4_LANDSCAPE
 from lightinv_core.value_text import goal_label
@@ -234,7 +235,7 @@ def pareto_figure(
         ax.xaxis.set_major_formatter(StrMethodFormatter("{x:,.0f}"))
     ax.set_xlabel(goal_label(kinds[0]))
     ax.set_ylabel(goal_label(kinds[1]))
-    method = f" ({front.method})" if front.method else ""
+    method = f" ({method_label(front.method)})" if front.method else ""
     title = (
         f"Pareto front{method}: {len(front.solutions)} non-dominated of "
         f"{max(len(front.candidates), len(front.solutions))} solutions"

@@ -18,7 +18,7 @@ from lightinv_core.design.model import Design, Source
 from lightinv_core.design.solution import Solution
 from lightinv_core.design.variables import array_layout
 from lightinv_core.errors import LightInvError
-from lightinv_core.goals import bounded_goal, goal_spec, is_goal
+from lightinv_core.goals import bounded_goal, goal_spec, goal_specs
 from lightinv_core.kinds import Bound, Scenario
 from lightinv_core.light.arrays import Product, array_shapes, resolve_product
 from lightinv_core.light.daylight import LayoutDaylight
@@ -153,6 +153,16 @@ def source_table(solution: Solution, design: Design) -> Table:
     )
 
 
+def _epsilon_maximised(name: str) -> bool:
+    """Whether the goal an epsilon bound named ``name`` is on is maximised: the judge
+    names it by the goal's label ("epsilon reflected light power"); files saved before
+    named it by the goal's kind ("epsilon max_light_power")."""
+    for g in goal_specs():
+        if name in (f"epsilon {g.label.lower()}", f"epsilon {g.kind}"):
+            return g.maximise
+    return False
+
+
 def rules_table(solution: Solution, design: Design, patches: Patches) -> Table | None:
     """Every checked geometric rule (and epsilon bound) with pass/fail; None when the
     design has no rule and the solution no epsilon bound."""
@@ -186,8 +196,7 @@ def rules_table(solution: Solution, design: Design, patches: Patches) -> Table |
                 flags.append("fail")
     for v in solution.violations:
         if v.constraint == "epsilon":
-            kind = v.name.removeprefix("epsilon ")
-            sign = "≥" if is_goal(kind) and goal_spec(kind).maximise else "≤"
+            sign = "≥" if _epsilon_maximised(v.name) else "≤"
             rows.append(
                 (
                     f"{v.name} {sign} {fmt(v.bound)} {v.units}",

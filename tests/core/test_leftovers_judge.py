@@ -9,6 +9,7 @@ from pathlib import Path
 from lightinv_core.goals import goal_spec
 from lightinv_core.optimize.problem import DesignProblem
 from lightinv_core.project import OperatorSettings, load_project
+from lightinv_core.report.tables import rules_table
 from lightinv_core.study import prepare
 
 PROJECTS = Path(__file__).resolve().parents[2] / "resources" / "projects"
@@ -30,3 +31,7 @@ def test_a_broken_epsilon_bound_is_named_by_its_goals_label():
     assert broken.name == f"epsilon {label}" == "epsilon reflected light power"
     assert "max_light_power" not in broken.name
     assert broken.bound == 1e12 and broken.value < 1e12 and broken.units == "lm"
+    # The report's rules table says which way the bound goes: at least, a maximised goal.
+    table = rules_table(sol, project.design, prepared.patches)
+    (row,) = [r for r in table.rows if r[1] == "epsilon"]
+    assert row[0].startswith("epsilon reflected light power ≥ "), row
