@@ -22,6 +22,7 @@ import numpy as np
 import pyvista as pv
 from PySide6 import QtCore, QtWidgets
 from pyvistaqt import QtInteractor
+from vtkmodules.vtkCommonDataModel import vtkPlane
 
 from app.view.picking import camera_ray, scene_cells_in
 from app.view.vtk_shapes import (
@@ -73,6 +74,7 @@ class Viewport(QtWidgets.QWidget):
         self.mesh: pv.PolyData | None = None
         self.has_values = False  # the patches show light (not their materials: no light yet)
         self.edges: pv.PolyData | None = None  # the surfaces' outlines, drawn with materials
+        self.cut: float | None = None  # m: the model above this height is hidden
         self.hint: str | None = None  # what to do next (set_hint), along the bottom
         self.keep_camera = False  # the next set_scene keeps the camera (the same room)
         self.busy_text: str | None = None
@@ -162,6 +164,7 @@ class Viewport(QtWidgets.QWidget):
                 "fmt": self.label_format,
             },
         )
+        self._apply_cut()
         self.set_caption(caption)
         self._draw_hint()
         self.set_zone_outlines()
@@ -232,6 +235,7 @@ class Viewport(QtWidgets.QWidget):
         (``vtk_shapes.show_materials``); ``on`` False: back to the light's colours."""
         self.has_values = not on
         show_materials(self.plotter, on, self.edges)
+        self._apply_cut()
 
     def set_hint(self, text: str | None) -> None:
         """What to do next on the design (a box along the bottom of the view); None
@@ -398,8 +402,35 @@ class Viewport(QtWidgets.QWidget):
         return self.pick_area(x, y, x, y)
 
     def ray(self, x: int, y: int) -> tuple[np.ndarray, np.ndarray]:
-        """World points on the camera ray through a display point (near, far)."""
-        return camera_ray(self.plotter.renderer, x, y)
+        """World points on the camera ray through a display point (near, far); with a
+        cut, the ray starts where it comes down through the cut, so what is hidden above
+        it is never crossed (a zone goes on the ceiling under the cut)."""
+        near, far = camera_ray(self.plotter.renderer, x, y)
+        if self.cut is not None and near[2] > self.cut > far[2]:
+            near = near + (far - near) * (near[2] - self.cut) / (near[2] - far[2])
+        return near, far
+
+    # -- the cut ---------------------------------------------------------------------------
+    def set_cut(self, height: float | None) -> None:
+        """Hide the model above ``height`` m (None: show all of it), for drawing and
+        picking too: clipped triangles are not drawn, so hardware picking skips them."""
+        self.cut = height
+        self._apply_cut()
+        self.request_render()
+
+    def _apply_cut(self) -> None:
+        """The cut on the scene and its surfaces' outlines (both remade now and then)."""
+        for name in ("scene", "edges"):
+            actor = self.plotter.actors.get(name)
+            if actor is None:
+                continue
+            mapper = actor.GetMapper()
+            mapper.RemoveAllClippingPlanes()
+            if self.cut is not None:
+                plane = vtkPlane()
+                plane.SetOrigin(0.0, 0.0, self.cut)
+                plane.SetNormal(0.0, 0.0, -1.0)  # keeps what is below the cut
+                mapper.AddClippingPlane(plane)
 
     def zone_point(self, zone: str, x: int, y: int) -> tuple[float, float] | None:
         """Zone coordinates under a display point."""

@@ -53,7 +53,34 @@ class ViewOptions(QtWidgets.QGroupBox):
             "Where the corners u0 v0 u1 v1 in Properties are measured from, and along"
         )
         form.addRow("Show", self.zone_axes)
+        # A storey of a building: what is above the cut is neither drawn nor picked, and
+        # zones are drawn on the ceiling under it (a roof hid the ground floor's ceiling).
+        self.cut_on = QtWidgets.QCheckBox("cut above")
+        self.cut_on.setToolTip(
+            "Hide the model above this height, to see and draw on a lower storey "
+            "(set it just above the storey's ceiling)"
+        )
+        self.cut_height = QtWidgets.QDoubleSpinBox(decimals=2, singleStep=0.1, suffix=" m")
+        self.cut_height.setRange(-1e4, 1e4)
+        self.cut_height.setKeyboardTracking(False)
+        self.cut_height.setEnabled(False)
+        row = QtWidgets.QHBoxLayout()
+        row.addWidget(self.cut_on)
+        row.addWidget(self.cut_height, 1)
+        form.addRow("Model", row)
         self.auto_range.toggled.connect(lambda on: self.range_max.setEnabled(not on))
+        self.cut_on.toggled.connect(self.cut_height.setEnabled)
+
+    def cut(self) -> float | None:
+        """The height (m) above which the model is hidden (None: all of it shown)."""
+        return self.cut_height.value() if self.cut_on.isChecked() else None
+
+    def model_heights(self, low: float, high: float) -> None:
+        """A new model from ``low`` to ``high`` m: the cut offered within it (untouched
+        while it is on)."""
+        if not self.cut_on.isChecked():
+            self.cut_height.setRange(low, high)
+            self.cut_height.setValue(high)
 
     def clim(self) -> tuple[float, float] | None:
         """The colour range set (None: automatic)."""

@@ -281,6 +281,8 @@ class MainWindow(QtWidgets.QMainWindow):
         # picture, veiled, until the new light model is ready; it used to go blank.
         keep = d.rebuilt and self.viewport.has_values
         self.viewport.set_scene(d.patches, [z.name for z in d.scene.zones], keep_picture=keep)
+        low, high = self.viewport.mesh.bounds[4:6]
+        self.view_options.model_heights(low, high)
         if not keep:
             self.viewport.set_values(None)
         self.status_patches.setText(f"{d.patches.n:,} patches")

@@ -43,6 +43,8 @@ class ViewColouring(QtCore.QObject):
         o.auto_range.toggled.connect(self.recolour)
         o.range_max.valueChanged.connect(self.recolour)
         o.zone_axes.toggled.connect(self._zone_axes_toggled)
+        o.cut_on.toggled.connect(self._cut_changed)
+        o.cut_height.valueChanged.connect(self._cut_changed)
         # The next-step hint follows every change that can complete a step.
         for signal in (self.doc.sceneChanged, self.doc.designChanged, self.doc.resultsChanged):
             signal.connect(self.update_hint)
@@ -180,6 +182,9 @@ class ViewColouring(QtCore.QObject):
         box.blockSignals(True)
         box.setChecked(self.options.colour_by.currentData() == "hour")
         box.blockSignals(False)
+
+    def _cut_changed(self, _=None) -> None:
+        self.viewport.set_cut(self.options.cut())
 
     def _zone_axes_toggled(self, on: bool) -> None:
         self.viewport.show_zone_axes = on
