@@ -256,6 +256,12 @@ def answer(open_it: Callable[[], object], *responses: Callable) -> list[str]:
         dialog = QtWidgets.QApplication.activeModalWidget()
         if dialog is not None and failed:
             dialog.reject()  # after a failure: close whatever else opens
+        elif dialog is not None and not todo and not (seen and dialog is seen[-1]):
+            # A dialog nobody expected (an error message): the test fails, not hangs.
+            titles.append(dialog.windowTitle())
+            text = getattr(dialog, "text", lambda: "")()
+            failed.append(AssertionError(f"unexpected dialog {titles[-1]!r}: {text}"))
+            dialog.reject()
         elif dialog is not None and not (seen and dialog is seen[-1]) and todo:
             seen.append(dialog)
             titles.append(dialog.windowTitle())
