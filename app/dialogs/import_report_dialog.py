@@ -29,7 +29,7 @@ def attention_lines(report: ImportReport) -> list[str]:
     dropped = [it for it in report.dropped if not it.reason.startswith("not a surface")]
     if dropped:
         kinds = sorted({it.kind for it in dropped})
-        out.append(f"{len(dropped)} dropped ({', '.join(kinds)}): nothing of them is in the scene")
+        out.append(f"{len(dropped)} dropped ({', '.join(kinds)}): none of them is in the scene")
     if report.not_zoned:
         out.append(f"{len(report.not_zoned)} window(s) or ceiling(s) are plain surfaces, no zones")
     if report.skipped:

@@ -57,7 +57,7 @@ def test_an_import_that_drops_something_shows_its_report(qtbot, window, tmp_path
     assert not report.isModal()
     assert report.summary.text() == "open.ifc: 12 elements: 2 zones, 3 groups, 7 dropped"
     assert report.attention.text() == (
-        "3 dropped (IfcWall, IfcWindow): nothing of them is in the scene"
+        "3 dropped (IfcWall, IfcWindow): none of them is in the scene"
     )
     assert window.statusBar().currentMessage() == (
         "Imported open.ifc: 12 elements: 2 zones, 3 groups, 7 dropped; see the import report"
