@@ -47,10 +47,10 @@ def click_tab(window, text: str) -> None:
     raise AssertionError(f"no tab {text!r}")
 
 
-def report(out: Path) -> None:
-    """Open the window on the office, click through its panels, write what is where."""
+def open_window():
+    """(the application, a main window shown with settings of its own) in a process
+    started on its own screen (``XVFB``)."""
     from PySide6 import QtCore, QtWidgets
-    from PySide6.QtTest import QTest
 
     from app.window.main_window import MainWindow
 
@@ -60,6 +60,15 @@ def report(out: Path) -> None:
     win = MainWindow(settings)
     win.ask_before_discard = False
     win.show()
+    return app, win
+
+
+def report(out: Path) -> None:
+    """Open the window on the office, click through its panels, write what is where."""
+    from PySide6 import QtWidgets
+    from PySide6.QtTest import QTest
+
+    app, win = open_window()
     assert win.new_project("office", 0.5)
     QTest.qWait(500)
     avail, frame = win.screen().availableGeometry(), win.frameGeometry()

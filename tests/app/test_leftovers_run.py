@@ -14,7 +14,6 @@ import re
 import shutil
 import subprocess
 import sys
-import tempfile
 from dataclasses import replace
 from pathlib import Path
 
@@ -36,16 +35,10 @@ def report(out: Path) -> None:
     from PySide6 import QtCore, QtWidgets
     from PySide6.QtTest import QTest
 
-    from app.window.main_window import MainWindow
     from lightinv_core.project import OperatorSettings, load_project
-    from tests.app.test_laptop_screen import click_tab
+    from tests.app.test_laptop_screen import click_tab, open_window
 
-    app = QtWidgets.QApplication.instance() or QtWidgets.QApplication(sys.argv[:1])
-    folder = Path(tempfile.mkdtemp())
-    settings = QtCore.QSettings(str(folder / "settings.ini"), QtCore.QSettings.IniFormat)
-    win = MainWindow(settings)
-    win.ask_before_discard = False
-    win.show()
+    app, win = open_window()
     project = load_project(ROOT / "resources" / "projects" / "office-arrays.json")
     project = replace(
         project,

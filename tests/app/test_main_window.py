@@ -10,6 +10,7 @@ from PySide6 import QtCore, QtGui, QtWidgets
 from app.dialogs.intention_dialog import IntentionDialog
 from lightinv_core.project import load_project
 from tests.app.conftest import wait_for_operator
+from tests.app.user import view_pixel
 
 
 def send_mouse(
@@ -20,14 +21,8 @@ def send_mouse(
     QtWidgets.QApplication.sendEvent(widget, event)
 
 
-def to_qt(viewport, world) -> QtCore.QPointF:
-    """Widget coordinates of a world point."""
-    ren = viewport.plotter.renderer
-    ren.SetWorldPoint(*world, 1.0)
-    ren.WorldToDisplay()
-    x, y, _ = ren.GetDisplayPoint()
-    h = viewport.plotter.interactor.height()
-    return QtCore.QPointF(x, h - 1 - y)
+to_qt = view_pixel
+"""Widget coordinates of a world point (tests/app/user.py's ``view_pixel``)."""
 
 
 def image(win) -> np.ndarray:

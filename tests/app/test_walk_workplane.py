@@ -17,7 +17,8 @@ from app.dialogs import ask
 from app.dialogs.workplane_dialog import floor_default
 from app.widgets.design_tree import DesignTree
 from tests.app.conftest import wait_for_operator
-from tests.app.test_dialog_buttons import answer, button, field, menu_action, ok_and_cancel
+from tests.app.test_dialog_buttons import answer, button, menu_action, ok_and_cancel
+from tests.app.test_zones_on_imported_room import half_metre_patches
 
 HOUSE = Path(__file__).resolve().parents[1] / "data" / "ifc" / "IfcOpenHouse_IFC4.ifc.gz"
 
@@ -27,12 +28,6 @@ def import_house(qtbot, window, monkeypatch, tmp_path) -> None:
     path = tmp_path / "IfcOpenHouse_IFC4.ifc"
     path.write_bytes(gzip.decompress(HOUSE.read_bytes()))
     monkeypatch.setattr(ask, "open_file", lambda *a, **k: str(path))
-
-    def half_metre_patches(dialog):
-        size = field(dialog, "Patch size")
-        QTest.keyClick(size, QtCore.Qt.Key_A, QtCore.Qt.ControlModifier)
-        QTest.keyClicks(size, "0.5")
-        QTest.mouseClick(button(dialog, "OK"), QtCore.Qt.LeftButton)
 
     answer(menu_action(window, "File/Import model...").trigger, half_metre_patches)
     wait_for_operator(qtbot, window, timeout=180_000)

@@ -17,16 +17,18 @@ from tests.app.test_window_work import drag
 from tests.core.test_zone_on_cut_surface import write_room
 
 
+def half_metre_patches(dialog) -> None:
+    """The import dialog answered: 0.5 m typed in Patch size, OK clicked."""
+    size = field(dialog, "Patch size")
+    QTest.keyClick(size, QtCore.Qt.Key_A, QtCore.Qt.ControlModifier)
+    QTest.keyClicks(size, "0.5")
+    QTest.mouseClick(button(dialog, "OK"), QtCore.Qt.LeftButton)
+
+
 def import_room(qtbot, window, monkeypatch, tmp_path) -> None:
     """File > Import model..., the room chosen, its patch size typed, OK clicked."""
     path = write_room(tmp_path)
     monkeypatch.setattr(ask, "open_file", lambda *a, **k: str(path))
-
-    def half_metre_patches(dialog):
-        size = field(dialog, "Patch size")
-        QTest.keyClick(size, QtCore.Qt.Key_A, QtCore.Qt.ControlModifier)
-        QTest.keyClicks(size, "0.5")
-        QTest.mouseClick(button(dialog, "OK"), QtCore.Qt.LeftButton)
 
     seen = answer(menu_action(window, "File/Import model...").trigger, half_metre_patches)
     assert seen["dialog"] == "ImportDialog"
