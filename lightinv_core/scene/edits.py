@@ -240,8 +240,10 @@ def _apply_one(scene: Scene, edit: ZoneEdit, base: Surface, used: set[str]) -> S
         if s.group != base.group or s.reflectance != base.reflectance:
             raise SceneError(
                 f"{where}: the rectangle runs onto surface {s.name!r} of group {s.group!r} "
-                f"(reflectance {s.reflectance:g}); a zone must lie on surfaces of group "
-                f"{base.group!r} with reflectance {base.reflectance:g}"
+                f"(reflectance {s.reflectance:g}) at ({_fmt(box[0])}, {_fmt(box[1])})-"
+                f"({_fmt(box[2])}, {_fmt(box[3])}) m on the surface; a zone must lie on "
+                f"surfaces of group {base.group!r} with reflectance {base.reflectance:g}: "
+                "draw it beside that one (between rafters, beams or panels)"
             )
         covered += (box[2] - box[0]) * (box[3] - box[1])
         hits.append((i, s, box))

@@ -158,6 +158,8 @@ def test_zones_may_not_cross_other_groups_or_fixed_grids():
     # North wall coordinates: u = x, v = z; panel1 covers u 6.5..9.5, v 1..2.5.
     edit = ZoneEdit("W", "luminaire", "north", (6, 0.5, 7, 1.5))
     _refused(scene, [edit], "runs onto surface 'panel1' of group 'panels'")
+    # Where it is, in the surface's metres, so the zone can be drawn beside it.
+    _refused(scene, [edit], r"\(reflectance 0.7\) at \(6.5, 1\)-\(7, 1.5\) m on the surface")
     gridded = Surface("g", "roof", 0.5, rect=room_faces(0, 0, 0, 2, 2, 2)["floor"], grid=(2, 2))
     _refused(
         Scene("g", (gridded,)), [ZoneEdit("Z", "skylight", "g", (0, 0, 1, 1))], "fixed 2 x 2 grid"
