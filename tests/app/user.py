@@ -324,6 +324,9 @@ def file_name(path: Path) -> Callable[[QtWidgets.QWidget], None]:
         for _ in range(3):
             type_text(box, str(path))
             typed.append(box.text())
+            # The button is enabled once the dialog has taken the name in (later on a
+            # busy machine), as a user waits to see it enabled.
+            assert wait_for(accept[0].isEnabled, 10_000), f"{typed[-1]!r}: button disabled"
             # Its Open / Save button, not Enter: Enter may go to the completer's list.
             click(accept[0])
             if wait_for(lambda: not dialog.isVisible(), 1000):
