@@ -286,22 +286,15 @@ def daylight_blocks(ctx: Context) -> list[Block]:
     if section.energy is not None:
         blocks.append(table_block(dl.energy_table(section), "energy"))
         blocks.append(drawing(3.2, lambda sf: dl.monthly_chart(section, sf), "energy"))
-    for plane in section.planes:
+    plans = [(p, dl.df_plan, "df-plan") for p in section.planes]
+    plans += [(p, dl.da_plan, "da-plan") for p in section.planes if p.da is not None]
+    for plane, plan, kind in plans:
         aspect = (np.ptp(plane.points[:, 1]) + 1) / (np.ptp(plane.points[:, 0]) + 1)
         blocks.append(
             drawing(
                 _plot_height(aspect),
-                lambda sf, plane=plane: dl.df_plan(section, plane, outlines, fig=sf),
-                "df-plan",
-            )
-        )
-    for plane in (p for p in section.planes if p.da is not None):
-        aspect = (np.ptp(plane.points[:, 1]) + 1) / (np.ptp(plane.points[:, 0]) + 1)
-        blocks.append(
-            drawing(
-                _plot_height(aspect),
-                lambda sf, plane=plane: dl.da_plan(section, plane, outlines, fig=sf),
-                "da-plan",
+                lambda sf, plane=plane, plan=plan: plan(section, plane, outlines, fig=sf),
+                kind,
             )
         )
     return blocks
