@@ -1,0 +1,151 @@
+"""Daylight coefficients of clear glazing: receivers' light per unit of sky and sun.
+
+Light is linear in the sky's luminance, so a receiver's illuminance under any sky is
+sum_k D_k L_k over sky patches k (and the ground), plus the sun's part per lux of direct
+normal illuminance. Each coefficient has two parts:
+
+- **direct**: the receiver's own view of the sky through the glass (``clear_glazing``'s
+  receiver rays, area-sampled over the panes);
+- **inter-reflected**: the sky's light first landing on the room's patches (the room
+  rays) is the emission rho x H of a radiosity solve, one right-hand side per sky patch
+  (and per sun position), read at the receivers through their traced form factors.
+
+The sun: its direct light at the receivers is traced hour by hour exactly
+(``sun_on_points``); its inter-reflected light is solved for a basis of sun positions
+(the hours' suns binned on a fine sky subdivision) and each hour takes its bin's.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from dataclasses import dataclass, field
+
+import numpy as np
+import scipy.linalg as la
+import scipy.sparse as sp
+
+from lightinv_core.scene.patches import Patches
+from lightinv_core.transport.clear_glazing import (
+    Glass,
+    SkyRays,
+    receiver_sky_rays,
+    room_sky_rays,
+    sun_on_points,
+    sun_on_room,
+)
+from lightinv_core.transport.raycast import RayCaster
+from lightinv_core.transport.solver import DENSE_LIMIT
+
+Bins = Callable[[np.ndarray], np.ndarray]
+"""Scene directions (m, 3) -> bin index (m,) in [0, bins)."""
+
+
+def bounce(F: sp.spmatrix, rho: np.ndarray, H: np.ndarray) -> np.ndarray:
+    """Radiosity B (n, c) of the room whose patches first receive irradiance ``H``
+    (n, c) lux: (I - rho F) B = rho H, every column at once (LU up to
+    ``DENSE_LIMIT`` patches, Jacobi sweeps above)."""
+    n = F.shape[0]
+    E = rho[:, None] * H
+    if n <= DENSE_LIMIT:
+        Fd = F.toarray() if sp.issparse(F) else np.asarray(F)
+        return la.lu_solve(la.lu_factor(np.eye(n) - rho[:, None] * Fd), E)
+    F = sp.csr_matrix(F)
+    B = E.copy()
+    scale = max(float(np.abs(E).max()), 1e-300)
+    for _ in range(10_000):
+        B_new = E + rho[:, None] * (F @ B)
+        if float(np.abs(B_new - B).max()) <= 1e-10 * scale:
+            return B_new
+        B = B_new
+    return B
+
+
+def _binned(rays: SkyRays, groups: int, bins: Bins, nbins: int) -> np.ndarray:
+    """(G, targets, nbins) sums of the rays' weights by group, target and bin."""
+    out = np.zeros(groups * rays.targets * nbins)
+    if len(rays.weight):
+        b = np.asarray(bins(rays.direction))
+        key = (rays.group * rays.targets + rays.target) * nbins + b
+        out += np.bincount(key, rays.weight, minlength=len(out))
+    return out.reshape(groups, rays.targets, nbins)
+
+
+def _weighted(rays: SkyRays, groups: int, luminance: Callable) -> np.ndarray:
+    """(G, targets) sums of the rays' weights times the luminance in their direction."""
+    out = np.zeros(groups * rays.targets)
+    if len(rays.weight):
+        L = np.asarray(luminance(rays.direction), dtype=float)
+        out += np.bincount(rays.group * rays.targets + rays.target, rays.weight * L, len(out))
+    return out.reshape(groups, rays.targets)
+
+
+@dataclass
+class ClearDaylight:
+    """Clear glazing ``glass`` in a room (``lit``: the patches, glazing black inside;
+    ``F`` their form factors; ``caster``), read at receivers ``points``/``normals``
+    through ``factors`` (q, n): the rays are traced once, on first use."""
+
+    lit: Patches
+    F: sp.spmatrix
+    caster: RayCaster
+    glass: Glass
+    points: np.ndarray
+    normals: np.ndarray
+    factors: sp.spmatrix
+    per_side: int = 6
+    room_rays: int = 256
+    seed: int = 0
+    _cache: dict = field(default_factory=dict, repr=False)
+
+    @property
+    def groups(self) -> int:
+        """Number of clear glazing groups G."""
+        return len(self.glass.groups)
+
+    def _rays(self) -> tuple[SkyRays, SkyRays]:
+        if "rays" not in self._cache:
+            direct = receiver_sky_rays(
+                self.points, self.normals, self.lit, self.glass, self.caster,
+                self.per_side, self.seed,
+            )  # fmt: skip
+            room = room_sky_rays(self.lit, self.glass, self.caster, self.room_rays, self.seed)
+            self._cache["rays"] = (direct, room)
+        return self._cache["rays"]
+
+    def _reflected(self, H: np.ndarray) -> np.ndarray:
+        """(G, q, c) light at the receivers from first-hit irradiance H (G, n, c)."""
+        G, n, c = H.shape
+        flat = np.moveaxis(H, 0, 1).reshape(n, G * c)
+        B = bounce(self.F, self.lit.rho, flat)
+        return np.moveaxis((self.factors @ B).reshape(-1, G, c), 1, 0)
+
+    def sky(self, bins: Bins, nbins: int) -> np.ndarray:
+        """Daylight coefficients (G, q, nbins): lux at each receiver per cd/m² of the sky
+        (or ground) in each bin of directions."""
+        direct, room = self._rays()
+        G = self.groups
+        return _binned(direct, G, bins, nbins) + self._reflected(_binned(room, G, bins, nbins))
+
+    def under(self, luminance: Callable[[np.ndarray], np.ndarray]) -> np.ndarray:
+        """Illuminance (G, q) under one sky, ``luminance(scene directions) -> cd/m²``
+        (below the horizon: the ground's), each ray weighted by its own direction's."""
+        direct, room = self._rays()
+        G = self.groups
+        return (
+            _weighted(direct, G, luminance)
+            + self._reflected(_weighted(room, G, luminance)[..., None])[..., 0]
+        )
+
+    def sun_direct(self, sun: np.ndarray) -> np.ndarray:
+        """(G, q, T) direct sun per lux of direct normal illuminance, suns (T, 3)."""
+        return sun_on_points(self.points, self.normals, self.lit, self.glass, self.caster, sun)
+
+    def sun_reflected(self, sun: np.ndarray) -> np.ndarray:
+        """(G, q, S) inter-reflected sun per lux of direct normal illuminance, suns (S, 3)."""
+        H = sun_on_room(self.lit, self.glass, self.caster, sun, self.per_side, self.seed)
+        return self._reflected(H)
+
+    def sun(self, sun: np.ndarray) -> np.ndarray:
+        """(G, q, T) the sun's light (direct and reflected) per lux of direct normal
+        illuminance, each sun direction solved exactly: for a few hours."""
+        return self.sun_direct(sun) + self.sun_reflected(sun)
