@@ -52,6 +52,13 @@ def remove_source_kind(name: str) -> None:
         _SOURCE_KINDS.remove(name)
 
 
+class GlazingKind(Kind):
+    """How glazing passes daylight (docs/daylight.md): as a glow, or with its direction."""
+
+    DIFFUSING = "diffusing"  # the outside light on its plane x T leaves as a Lambertian exitance
+    CLEAR = "clear"  # the sky and sun seen through it, T by incidence (Radiance's glass)
+
+
 class RuleKind(Kind):
     """Geometric rules on source rectangles (checked before any light is computed)."""
 

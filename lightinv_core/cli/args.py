@@ -94,18 +94,108 @@ def hours(text: str) -> tuple[float, float]:
     return a, b
 
 
-def group_transmittance(text: str) -> tuple[str, float]:
-    """``GROUP=TRANSMITTANCE`` -> (group, 0-1)."""
+def group_transmittance(text: str) -> tuple[str, float, str]:
+    """``GROUP=TRANSMITTANCE[:KIND]`` -> (group, 0-1, kind): the kind of glazing
+    (``kinds.GlazingKind``: diffusing, the default, or clear)."""
+    from lightinv_core.kinds import GlazingKind
+
     group, sep, value = text.partition("=")
+    value, _, kind = value.partition(":")
+    kinds = [str(k) for k in GlazingKind]
     try:
         t = float(value)
-        if not sep or not group or not 0 <= t <= 1:
+        if not sep or not group or not 0 <= t <= 1 or (kind and kind not in kinds):
             raise ValueError
     except ValueError:
         raise argparse.ArgumentTypeError(
-            f"expected GROUP=TRANSMITTANCE with a transmittance from 0 to 1, got {text!r}"
+            f"expected GROUP=TRANSMITTANCE[:KIND] with a transmittance from 0 to 1 and a kind "
+            f"{' or '.join(kinds)}, got {text!r}"
         ) from None
-    return group, t
+    return group, t, kind or str(GlazingKind.DIFFUSING)
+
+
+def sun_position(text: str) -> tuple[float, float]:
+    """``ALTITUDE,AZIMUTH`` degrees (compass azimuth, clockwise from north)."""
+    alt, sep, az = text.partition(",")
+    try:
+        a, z = float(alt), float(az)
+        if not sep or not 0 < a <= 90 or not -360 <= z <= 360:
+            raise ValueError
+    except ValueError:
+        raise argparse.ArgumentTypeError(
+            f"expected ALTITUDE,AZIMUTH in degrees (altitude above 0 up to 90, azimuth "
+            f"clockwise from north), got {text!r}"
+        ) from None
+    return a, z % 360.0
+
+
+def vector6(text: str) -> tuple[float, ...]:
+    """``X,Y,Z,DX,DY,DZ``: a point (m) and a direction."""
+    try:
+        v = tuple(float(x) for x in text.split(","))
+        if len(v) != 6 or not all(map(math.isfinite, v)) or not any(v[3:]):
+            raise ValueError
+    except ValueError:
+        raise argparse.ArgumentTypeError(
+            f"expected X,Y,Z,DX,DY,DZ (a point in m and a view direction), got {text!r}"
+        ) from None
+    return v
+
+
+def group_rect(text: str) -> tuple[str, tuple[float, float, float, float]]:
+    """``GROUP=X0,Y0,X1,Y1``: a control group's sensor rectangle in plan (m)."""
+    group, sep, value = text.partition("=")
+    try:
+        v = tuple(float(x) for x in value.split(","))
+        if not sep or not group or len(v) != 4 or not all(map(math.isfinite, v)):
+            raise ValueError
+        if v[0] == v[2] or v[1] == v[3]:
+            raise ValueError
+    except ValueError:
+        raise argparse.ArgumentTypeError(
+            f"expected GROUP=X0,Y0,X1,Y1 (a rectangle in plan, m, of non-zero size), got {text!r}"
+        ) from None
+    return group, v
+
+
+def point3(text: str) -> tuple[float, float, float]:
+    """``X,Y,Z`` metres."""
+    try:
+        v = tuple(float(x) for x in text.split(","))
+        if len(v) != 3 or not all(map(math.isfinite, v)):
+            raise ValueError
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"expected X,Y,Z in metres, got {text!r}") from None
+    return v
+
+
+def month_day(text: str) -> tuple[int, int]:
+    """``MM-DD``: a day of the year."""
+    m, sep, d = text.partition("-")
+    try:
+        month, day = int(m), int(d)
+        if not sep:
+            raise ValueError
+        import datetime
+
+        datetime.date(2001, month, day)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"expected a date MM-DD, got {text!r}") from None
+    return month, day
+
+
+def hour_of_year(text: str) -> int:
+    """An hour of the weather file, 0 to 8783 (0: the hour ending 01:00 on 1 January)."""
+    try:
+        h = int(text)
+        if not 0 <= h < 8784:
+            raise ValueError
+    except ValueError:
+        raise argparse.ArgumentTypeError(
+            f"expected an hour of the weather file from 0 (the hour ending 01:00 on 1 "
+            f"January) to 8759, got {text!r}"
+        ) from None
+    return h
 
 
 def scheduler(text: str) -> str:

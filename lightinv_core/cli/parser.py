@@ -75,8 +75,27 @@ def build_parser() -> argparse.ArgumentParser:
     sim.add_argument("--grid-csv", metavar="FILE", help="work plane: write x,y,z,lux per point")
     sim.add_argument(
         "--sky",
-        choices=("cie-overcast",),
-        help="light the glazing groups with this sky (docs/daylight.md); adds df (%%) outputs",
+        choices=("cie-overcast", "cie-clear"),
+        help="light the glazing groups with this sky (docs/daylight.md); cie-overcast adds "
+        "df (%%) outputs, cie-clear needs --sun",
+    )
+    sim.add_argument(
+        "--sun",
+        type=types.sun_position,
+        metavar="ALTITUDE,AZIMUTH",
+        help="the CIE clear sky's sun: altitude and compass azimuth (deg, clockwise from north)",
+    )
+    sim.add_argument(
+        "--sun-lux",
+        type=types.lux,
+        default=80000.0,
+        help="the CIE clear sky's sun: direct normal illuminance (lux, default 80000)",
+    )
+    sim.add_argument(
+        "--hour",
+        type=types.hour_of_year,
+        help="light the glazing with one hour of the --weather file (0: the hour ending "
+        "01:00 on 1 January): its Perez sky and sun",
     )
     sim.add_argument(
         "--exterior-lux",
@@ -89,8 +108,9 @@ def build_parser() -> argparse.ArgumentParser:
         type=types.group_transmittance,
         action="append",
         default=[],
-        metavar="GROUP=TRANSMITTANCE",
-        help="a group of diffusing glazing and its visible transmittance (0 to 1)",
+        metavar="GROUP=TRANSMITTANCE[:clear]",
+        help="a glazing group, its visible transmittance (0 to 1) and kind: diffusing (the "
+        "default) or clear (the sky and sun seen through it, sun patches)",
     )
     sim.add_argument(
         "--weather",
@@ -110,6 +130,42 @@ def build_parser() -> argparse.ArgumentParser:
         default=(8.0, 18.0),
         metavar="START-END",
         help="occupied hours on weekdays, local time (default 8-18)",
+    )
+    sim.add_argument(
+        "--all-days",
+        action="store_true",
+        help="occupied on every day of the week, not only Monday to Friday",
+    )
+    sim.add_argument(
+        "--sensor",
+        type=types.group_rect,
+        action="append",
+        default=[],
+        metavar="GROUP=X0,Y0,X1,Y1",
+        help="dimming: the sensor region (a plan rectangle on the work plane, m) of a "
+        "control group of the luminaire schedule's control column; repeat per group",
+    )
+    sim.add_argument(
+        "--view",
+        type=types.vector6,
+        action="append",
+        default=[],
+        metavar="X,Y,Z,DX,DY,DZ",
+        help="a view point and direction for glare (simplified DGP from the vertical eye "
+        "illuminance, sun included) over the year; repeat for several",
+    )
+    sim.add_argument(
+        "--sunlight-point",
+        type=types.point3,
+        metavar="X,Y,Z",
+        help="EN 17037 sunlight exposure: the reference point (m) inside the window",
+    )
+    sim.add_argument(
+        "--sunlight-date",
+        type=types.month_day,
+        default=(3, 21),
+        metavar="MM-DD",
+        help="EN 17037 sunlight exposure: the day, 1 February to 21 March (default 03-21)",
     )
     sim.add_argument(
         "--target-lux",

@@ -33,8 +33,22 @@ def check_args(args) -> None:
             "--weather FILE) and --glazing GROUP=TRANSMITTANCE (the glazing's patches emit "
             "what they let in)"
         )
-    if args.weather is not None and args.workplane is None:
+    if args.weather is not None and args.workplane is None and args.hour is None:
         raise LightInvError("annual daylight is measured on a work plane: add --workplane 0.8")
+    if args.hour is not None and args.weather is None:
+        raise LightInvError("--hour is an hour of a weather file: give --weather FILE")
+    if args.sky == "cie-clear" and args.sun is None:
+        raise LightInvError("the CIE clear sky needs the sun: give --sun ALTITUDE,AZIMUTH")
+    if args.sun is not None and args.sky != "cie-clear":
+        raise LightInvError("--sun places the CIE clear sky's sun: give --sky cie-clear")
+    clear = [g for g, _, kind in args.glazing if kind == "clear"]
+    annual_only = (args.view or args.sunlight_point) and args.weather is None
+    if annual_only:
+        raise LightInvError("--view and --sunlight-point are studied over a year: give --weather")
+    if (args.view or args.sunlight_point) and not clear:
+        raise LightInvError(
+            "glare and sunlight exposure need clear glazing: give --glazing GROUP=TAU:clear"
+        )
     if args.workplane is None and (args.grid_csv or args.border is not None):
         raise LightInvError("--grid-csv and --border describe a work plane: add --workplane 0.8")
 
@@ -53,6 +67,7 @@ def spec_of(args) -> SimulationSpec:
             weather=args.weather,
             north_deg=args.north,
             occupancy=args.occupancy,
+            weekdays=not args.all_days,
             ground_reflectance=args.ground_reflectance,
             target_lux=args.target_lux,
             min_level=args.min_dimming,
@@ -62,8 +77,17 @@ def spec_of(args) -> SimulationSpec:
         scene,
         emit=dict(args.emit),
         luminaires=tuple(luminaires),
-        glazing=dict(args.glazing),
+        glazing={g: t for g, t, _ in args.glazing},
+        glazing_kinds={g: kind for g, _, kind in args.glazing},
         sky=args.sky,
+        sun=args.sun,
+        sun_lux=args.sun_lux,
+        hour=args.hour,
+        north_deg=args.north,
+        views=tuple(args.view),
+        sunlight_point=args.sunlight_point,
+        sunlight_date=args.sunlight_date,
+        sensors=dict(args.sensor),
         exterior_lux=args.exterior_lux,
         ground_reflectance=args.ground_reflectance,
         workplane=plane,

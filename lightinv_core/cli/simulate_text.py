@@ -94,6 +94,26 @@ def reference_payload(res: SimulationResult, spec: SimulationSpec) -> tuple[dict
     if res.annual is not None:
         payload["annual"] = annual_payload(res, spec)
         lines += annual_lines(payload["annual"])
+    if res.clear_annual is not None:
+        payload["annual"].update(res.clear_annual)
+        lines += clear_lines(res.clear_annual)
+    if res.control_groups is not None:
+        groups = [g.as_dict() for g in res.control_groups]
+        payload["annual"]["control_groups"] = {"groups": groups, "total": res.control_total}
+        lines += [
+            f"control group {g['name']}: {g['luminaires']} luminaire(s), {g['installed_w']:.0f} W, "
+            f"sensor {g['sensor_points']} points, mean level {g['mean_level']:.2f}, "
+            f"{g['energy_kwh']:.0f} kWh a year, LENI {g['leni']:.2f} kWh/m² a"
+            for g in groups
+        ]
+        t = res.control_total
+        lines.append(
+            f"control groups in total: {t['energy_kwh']:.0f} kWh a year, LENI "
+            f"{t['leni_kwh_m2']:.2f} kWh/m² a"
+        )
+    if res.sky_label is not None:
+        payload["moment_sky"] = res.sky_label
+        lines.append(f"sky: {res.sky_label}")
     if res.df_patches is not None:
         payload["sky"] = {
             "model": spec.sky,
@@ -151,7 +171,7 @@ def annual_payload(res: SimulationResult, spec: SimulationSpec) -> dict:
         "north_deg": daylight.north_deg,
         "panes": [
             {"group": q.group, "outward": q.outward.round(4).tolist(), "patches": len(q.idx)}
-            for q in panes(res.lit, dict(spec.glazing))
+            for q in panes(res.patches, dict(spec.glazing))
         ],
         **a.metrics.summary(),
         "metrics": {
@@ -186,7 +206,32 @@ def grid_columns(res: SimulationResult) -> dict[str, np.ndarray]:
             da300=m.da, udi_n=m.udi[:, 0], udi_s=m.udi[:, 1], udi_a=m.udi[:, 2], udi_x=m.udi[:, 3]
         )
         columns.update(res.annual.annual)
+    if res.clear_columns is not None:
+        columns.update(res.clear_columns)
     return columns
+
+
+def clear_lines(a: dict) -> list[str]:
+    """The figures only clear glazing gives: blinds, ASE, continuous DA, EN 17037, glare."""
+    lines = [
+        f"through clear glazing: ASE1000,250 {100 * a['ase1000_250']:.0f}% of the points; "
+        f"sDA300/50% {100 * a['sda300_50']:.0f}% with LM-83 blinds "
+        f"({100 * a['sda300_50_open']:.0f}% with them open); continuous DA300 mean "
+        f"{100 * a['cda300_mean']:.0f}%",
+        "blinds closed: " + ", ".join(f"{g} {h} h" for g, h in a["blinds_closed_hours"].items()),
+    ]
+    p = a.get("en17037_provision")
+    if p:
+        lines.append(f"EN 17037 daylight provision: {p['level']}")
+    s = a.get("en17037_sunlight")
+    if s:
+        lines.append(f"EN 17037 sunlight exposure: {s['hours']:.2f} h, {s['level']}")
+    for v in a.get("views", []):
+        lines.append(
+            f"view {v['view'][:3]}: DGPs max {v['dgp_max']:.2f}, above 0.40 in "
+            f"{100 * v['dgp_over_0.40']:.1f}% of occupied hours"
+        )
+    return lines
 
 
 def annual_lines(a: dict) -> list[str]:

@@ -2,13 +2,16 @@
 
 Columns (a header row names them; order free, extra columns ignored):
 
-``name,x,y,z,ies,aim_x,aim_y,aim_z,c0_x,c0_y,c0_z`` and optionally ``dimming``
+``name,x,y,z,ies,aim_x,aim_y,aim_z,c0_x,c0_y,c0_z`` and optionally ``dimming`` and
+``control``
 
 - x, y, z: the photometric centre in metres, in the scene's coordinates;
 - ies: the photometric file (IES LM-63 or EULUMDAT .ldt), relative to the CSV;
 - aim: direction of gamma = 0 (0,0,-1 for a downlight); c0: direction of the C = 0
   plane (along a linear luminaire); see ``transport.luminaires``;
-- dimming: 0 to 1 (default 1), scaling the file's intensities.
+- dimming: 0 to 1 (default 1), scaling the file's intensities;
+- control: the daylight-linked control group the luminaire belongs to (default: one
+  group for all; ``study.control_groups``).
 
 Each photometric file is read once however many rows use it. Every problem is a
 ``PhotometryError`` naming the file and line.
@@ -60,9 +63,9 @@ def read_luminaire_csv(path: str | os.PathLike) -> list[PlacedLuminaire]:
     if missing:
         raise PhotometryError(
             f"{where} line 1: missing column(s) {', '.join(missing)}; the header must name "
-            f"{','.join(REQUIRED)} (and optionally dimming)"
+            f"{','.join(REQUIRED)} (and optionally dimming, control)"
         )
-    col = {name: header.index(name) for name in (*REQUIRED, "dimming") if name in header}
+    col = {name: header.index(name) for name in (*REQUIRED, "dimming", "control") if name in header}
     files: dict[Path, Photometry] = {}
     out: list[PlacedLuminaire] = []
     names: set[str] = set()
@@ -112,6 +115,7 @@ def read_luminaire_csv(path: str | os.PathLike) -> list[PlacedLuminaire]:
                     aim=[number("aim_x"), number("aim_y"), number("aim_z")],
                     c0=[number("c0_x"), number("c0_y"), number("c0_z")],
                     dimming=dimming,
+                    control=(cell("control") if "control" in col else "") or "",
                 )
             )
         except LightInvError as exc:

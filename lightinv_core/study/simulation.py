@@ -13,10 +13,11 @@ from __future__ import annotations
 
 import time
 from collections.abc import Callable
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 
 import numpy as np
+import scipy.sparse as sp
 
 from lightinv_core.design.model import Daylight
 from lightinv_core.errors import LightInvError
@@ -27,7 +28,18 @@ from lightinv_core.operator.settings import OperatorSettings
 from lightinv_core.scene.model import Scene
 from lightinv_core.scene.patches import Patches, mesh_patches
 from lightinv_core.study.annual import GridYear, grid_year, with_dimming
+from lightinv_core.study.clear_light import (
+    clear_annual,
+    clear_moment,
+    moment_sky,
+    outside_lux,
+    split_glazing,
+)
+from lightinv_core.study.clear_metrics import blinds
+from lightinv_core.study.control_groups import DEFAULT_GROUP, group_dimming
 from lightinv_core.transport.annual import orientation_coefficients, orientations
+from lightinv_core.transport.clear_glazing import clear_glass
+from lightinv_core.transport.daylight_coefficients import ClearDaylight
 from lightinv_core.transport.escape import luminaire_escape_warnings
 from lightinv_core.transport.formfactors import (
     DEFAULT_RAYS,
@@ -36,7 +48,7 @@ from lightinv_core.transport.formfactors import (
     form_factor_matrix,
     lost_fraction,
 )
-from lightinv_core.transport.glazing import glazing_emission
+from lightinv_core.transport.glazing import black_inside, glazing_emission
 from lightinv_core.transport.luminaires import PlacedLuminaire
 from lightinv_core.transport.photometry import group_illuminance
 from lightinv_core.transport.raycast import RayCaster
@@ -71,8 +83,14 @@ class SimulationSpec:
 
     ``emit``: group -> luminous flux (lm) emitted uniformly over its area;
     ``luminaires``: photometric luminaires; ``glazing``: group -> visible transmittance
-    of diffusing glazing, lit by ``sky`` (``"cie-overcast"``: ``exterior_lux``
-    horizontal outside) and/or a weather year (``annual.weather``); ``workplane``: an
+    of glazing, diffusing unless ``glazing_kinds`` names it ``"clear"``, lit by ``sky``
+    (``"cie-overcast"``: ``exterior_lux`` horizontal outside; ``"cie-clear"``: the
+    sky's diffuse ``exterior_lux`` and the ``sun`` at (altitude, compass azimuth) deg
+    giving ``sun_lux`` at normal incidence) or by ``hour`` (0-based) of the weather
+    year, the scene's +y at compass ``north_deg``, and/or by the weather year
+    (``annual.weather``; through clear glazing with glare at ``views`` (x, y, z, dx,
+    dy, dz) and EN 17037 sunlight exposure at ``sunlight_point`` on
+    ``sunlight_date`` (month, day)); ``workplane``: an
     EN 12464-1 grid read-out; ``annual``: the weather file, north bearing, occupancy
     and ground reflectance of the year and the luminaires' daylight-linked dimming
     (target lux, lowest level, standby watts): a ``Daylight``. ``rays`` per patch and
@@ -86,6 +104,15 @@ class SimulationSpec:
     glazing: dict[str, float] = field(default_factory=dict)
     sky: str | None = None
     exterior_lux: float = 10000.0
+    glazing_kinds: dict[str, str] = field(default_factory=dict)
+    sun: tuple[float, float] | None = None
+    sun_lux: float = 80000.0
+    hour: int | None = None
+    north_deg: float = 0.0
+    views: tuple[tuple[float, ...], ...] = ()
+    sunlight_point: tuple[float, float, float] | None = None
+    sunlight_date: tuple[int, int] = (3, 21)
+    sensors: dict[str, tuple[float, float, float, float]] = field(default_factory=dict)
     ground_reflectance: float = 0.2
     workplane: WorkPlane | None = None
     annual: Daylight | None = None
@@ -102,9 +129,14 @@ class SimulationSpec:
         return not self.luminaires and self.workplane is None and not self.daylit
 
     @property
+    def daylit_now(self) -> bool:
+        """A moment's sky (``sky`` or ``hour``) lights the glazing in the static result."""
+        return bool(self.sky) or self.hour is not None
+
+    @property
     def daylit(self) -> bool:
         """A sky or a weather year lights the glazing."""
-        return bool(self.sky) or self.annual is not None
+        return bool(self.sky) or self.annual is not None or self.hour is not None
 
 
 @dataclass
@@ -116,7 +148,9 @@ class SimulationResult:
     min / average / max lux (and ``avg_df`` %, under a design sky); ``light``: the
     reference solve's flux budget (None with the operator); ``grid``, ``grid_lux`` and
     ``grid_stats`` the work plane's; ``df_grid`` and ``df_patches`` the daylight factor
-    (%) under a design sky; ``annual`` the weather year on the grid. ``warnings`` about
+    (%) under a design sky; ``annual`` the weather year on the grid (``clear_year``
+    its hours through clear glazing, ``study.clear_year``); ``sky_label`` names the
+    moment's sky. ``warnings`` about
     the result (light escaping), ``photometry_warnings`` about the luminaires' files,
     ``weather_notes`` about the weather file, ``timings`` in seconds;
     ``operator`` the low-rank operator's facts (method "lrr").
@@ -138,6 +172,12 @@ class SimulationResult:
     df_grid: np.ndarray | None = None
     df_patches: np.ndarray | None = None
     annual: GridYear | None = None
+    sky_label: str | None = None
+    clear_year: object = None
+    clear_annual: dict | None = None
+    clear_columns: dict | None = None
+    control_groups: list | None = None
+    control_total: dict | None = None
     warnings: list[str] = field(default_factory=list)
     photometry_warnings: list[str] = field(default_factory=list)
     weather_notes: list[str] = field(default_factory=list)
@@ -174,56 +214,82 @@ def simulate(
 def _simulate_reference(spec: SimulationSpec, p: Patches, E, progress) -> SimulationResult:
     check_formfactor_memory(p, spec.rays)
     luminaires = list(spec.luminaires)
+    diffusing, clear = split_glazing(dict(spec.glazing), dict(spec.glazing_kinds))
+    # The overcast sky of diffusing glazing alone is the closed-form one (transport.glazing).
+    plain = not clear and spec.sky in (None, "cie-overcast") and spec.hour is None
+    sky = None if plain else moment_sky(spec)
+    north = spec.annual.north_deg if spec.annual is not None else spec.north_deg
     t0 = time.perf_counter()
     caster = RayCaster(p)
     F = form_factor_matrix(p, spec.rays, seed=spec.seed, progress=progress, caster=caster)
     t1 = time.perf_counter()
     lit = p
-    if spec.glazing:  # black inside; it emits only under a design sky
-        outside = spec.exterior_lux if spec.sky else 0.0
-        glass, lit = glazing_emission(p, dict(spec.glazing), outside, spec.ground_reflectance)
+    if diffusing:  # black inside; it emits only under a moment's sky
+        overcast = spec.sky == "cie-overcast"
+        lux = spec.exterior_lux if overcast else 0.0
+        outside = None if overcast or sky is None else outside_lux(sky, north)
+        glass, lit = glazing_emission(p, diffusing, lux, spec.ground_reflectance, outside)
         E = E + glass
+    lit = black_inside(lit, clear)
     light = light_scene(lit, F, caster, E, luminaires, seed=spec.seed)
+    grid = factors = clear_light = None
+    if spec.workplane is not None:
+        grid = work_plane_grid(p, caster, spec.workplane)
+        factors = receiver_factors(grid.points, grid.normals, caster, p.n, spec.rays, spec.seed)
+    if clear:
+        pts = np.zeros((0, 3)) if grid is None else grid.points
+        nrm = np.zeros((0, 3)) if grid is None else grid.normals
+        fac = sp.csr_matrix((0, p.n)) if factors is None else factors
+        clear_light = ClearDaylight(lit, F, caster, clear_glass(lit, clear), pts, nrm, fac)
+    clear_points = None
+    if clear_light is not None and sky is not None:
+        room, clear_points = clear_moment(clear_light, sky, north)
+        light = replace(light, H=light.H + room, B=light.B + lit.rho * room)
     t2 = time.perf_counter()
     lost = lost_fraction(F, p)
     warnings = [w for w in [escape_warning(lost)] if w]
     warnings += luminaire_escape_warnings(luminaires, caster)
     # Daylight factor (%): illuminance over the unobstructed exterior horizontal one.
-    df = spec.sky is not None and spec.exterior_lux > 0
+    df = spec.sky == "cie-overcast" and spec.exterior_lux > 0
     result = SimulationResult(
         spec.scene, p, lit, "reference", E, light.B, light.H, group_illuminance(p, light.H)
     )
     result.light, result.lost_fraction, result.warnings = light, lost, warnings
+    result.sky_label = None if sky is None else sky.label
     result.timings = {"formfactor_seconds": t1 - t0, "solve_seconds": t2 - t1}
     if df:
         result.df_patches = 100.0 * light.H / spec.exterior_lux
         for s in result.groups:
             s["avg_df"] = 100.0 * s["avg_lux"] / spec.exterior_lux
-    if spec.workplane is not None:
-        _read_workplane(spec, result, F, caster, light, df)
+    if grid is not None:
+        moment = (grid, factors, clear_points, clear_light, diffusing)
+        _read_workplane(spec, result, F, caster, light, df, moment)
     result.photometry_warnings = list(light_warnings(x.photometry for x in luminaires))
     return result
 
 
-def _read_workplane(spec, result: SimulationResult, F, caster, light, df: bool) -> None:
-    """The work plane's grid, its light, daylight factor and annual year."""
-    p, lit, luminaires = result.patches, result.lit, list(spec.luminaires)
-    grid = work_plane_grid(p, caster, spec.workplane)
-    factors = receiver_factors(grid.points, grid.normals, caster, p.n, spec.rays, spec.seed)
+def _read_workplane(spec, result: SimulationResult, F, caster, light, df: bool, moment) -> None:
+    """The work plane's light, daylight factor and annual year."""
+    grid, factors, clear_points, clear_light, diffusing = moment
+    lit, luminaires = result.lit, list(spec.luminaires)
     grid_light = light_grid(grid, light, caster, luminaires, spec.rays, factors=factors)
-    result.grid, result.grid_lux = grid, grid_light.lux
-    result.grid_stats = grid_statistics(grid_light.lux)
+    lux = grid_light.lux if clear_points is None else grid_light.lux + clear_points
+    result.grid, result.grid_lux = grid, lux
+    result.grid_stats = grid_statistics(lux)
     if df:
-        result.df_grid = 100.0 * grid_light.lux / spec.exterior_lux
+        result.df_grid = 100.0 * lux / spec.exterior_lux
     if spec.annual is None:
         return
-    orients = orientations(lit, dict(spec.glazing))
+    orients = orientations(lit, diffusing)
     coefficients = orientation_coefficients(lit, F, caster, orients, grid, factors)
     year = grid_year(spec.annual, orients, coefficients)
     source = Path(year.year.source).name
     result.weather_notes = [f"weather {source}: {n}" for n in year.year.weather.get("notes", [])]
+    if clear_light is not None:
+        got = clear_annual(spec, clear_light, orients, year)
+        result.clear_year, result.clear_annual, result.clear_columns = got
     if luminaires:
-        if not spec.emit and not spec.sky:
+        if not spec.emit and not spec.daylit_now:
             electric = grid_light.lux  # the grid's light is the luminaires' alone
         else:
             alone = light_scene(lit, F, caster, np.zeros(lit.n), luminaires, seed=spec.seed)
@@ -231,7 +297,40 @@ def _read_workplane(spec, result: SimulationResult, F, caster, light, df: bool) 
         plane = spec.workplane
         floor = float(lit.area[lit.group_index(plane.group)].sum())
         year = with_dimming(year, electric, installed_watts(luminaires), floor, spec.annual)
+        groups = {x.control or DEFAULT_GROUP for x in luminaires}
+        if spec.sensors or len(groups) > 1:
+            _control_groups(spec, result, (lit, F, caster, grid, factors), year, floor)
     result.annual = year
+
+
+def _control_groups(spec, result: SimulationResult, scene, year: GridYear, floor: float) -> None:
+    """Each control group's dimming on its own sensor region (``study.control_groups``)."""
+    lit, F, caster, grid, factors = scene
+    by_group: dict[str, list] = {}
+    for x in spec.luminaires:
+        by_group.setdefault(x.control or DEFAULT_GROUP, []).append(x)
+    electric, watts, counts = {}, {}, {}
+    for name, members in by_group.items():
+        alone = light_scene(lit, F, caster, np.zeros(lit.n), members, seed=spec.seed)
+        electric[name] = light_grid(grid, alone, caster, members, spec.rays, factors=factors).lux
+        watts[name], counts[name] = installed_watts(members), len(members)
+    if result.clear_year is not None:
+        cy = result.clear_year
+        daylight = cy.total(blinds(cy))[:, cy.occupied]
+    else:
+        daylight = year.lux
+    groups, total = group_dimming(
+        daylight,
+        grid.points,
+        electric,
+        watts,
+        counts,
+        dict(spec.sensors),
+        spec.annual,
+        floor,
+        year.year.every.shape[1],
+    )
+    result.control_groups, result.control_total = groups, total
 
 
 def _simulate_lrr(spec: SimulationSpec, p: Patches, E, progress, warn) -> SimulationResult:

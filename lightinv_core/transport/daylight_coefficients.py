@@ -145,6 +145,20 @@ class ClearDaylight:
         H = sun_on_room(self.lit, self.glass, self.caster, sun, self.per_side, self.seed)
         return self._reflected(H)
 
+    def room_under(
+        self, luminance: Callable[[np.ndarray], np.ndarray], sun: np.ndarray | None, sun_lux: float
+    ) -> np.ndarray:
+        """Illuminance (lux, (n,)) of the room's patches under one sky and sun (a unit
+        scene vector or None; ``sun_lux`` its direct normal illuminance): the light
+        first landing through the glass plus its inter-reflections, every group."""
+        _, room = self._rays()
+        H = _weighted(room, self.groups, luminance).sum(axis=0)
+        if sun is not None and sun_lux > 0:
+            beam = sun_on_room(self.lit, self.glass, self.caster, sun, self.per_side, self.seed)
+            H = H + sun_lux * beam[..., 0].sum(axis=0)
+        B = bounce(self.F, self.lit.rho, H[:, None])[:, 0]
+        return H + self.F @ B
+
     def sun(self, sun: np.ndarray) -> np.ndarray:
         """(G, q, T) the sun's light (direct and reflected) per lux of direct normal
         illuminance, each sun direction solved exactly: for a few hours."""

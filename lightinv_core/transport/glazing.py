@@ -11,6 +11,7 @@ docs/daylight.md). The glazing is black inside: it emits, it reflects nothing ba
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import replace
 
 import numpy as np
@@ -25,19 +26,33 @@ def glazing_emission(
     glazing: dict[str, float],
     horizontal_lux: float,
     ground_reflectance: float,
+    outside: Callable[[np.ndarray], np.ndarray] | None = None,
 ) -> tuple[np.ndarray, Patches]:
     """Exitance (lm/m², n) of the ``glazing`` groups (name -> transmittance 0..1) under
-    the CIE overcast sky giving ``horizontal_lux`` outside, and the patches with the
-    glazing made black inside (reflectance 0)."""
+    the CIE overcast sky giving ``horizontal_lux`` outside (or, given ``outside``, the
+    lux that function gives on the outward normals (m, 3): another sky), and the
+    patches with the glazing made black inside (reflectance 0)."""
     E = np.zeros(patches.n)
     rho = patches.rho.copy()
     for group, t in glazing.items():
         if not 0.0 <= t <= 1.0:
             raise LightInvError(f"transmittance of glazing {group!r} must be from 0 to 1, got {t}")
         idx = patches.group_index(group)
-        outside = overcast_plane_illuminance(
-            -patches.normal[idx], horizontal_lux, ground_reflectance
-        )
-        E[idx] = t * outside
+        if outside is None:
+            lux = overcast_plane_illuminance(
+                -patches.normal[idx], horizontal_lux, ground_reflectance
+            )
+        else:
+            lux = outside(-patches.normal[idx])
+        E[idx] = t * lux
         rho[idx] = 0.0
     return E, replace(patches, rho=rho)
+
+
+def black_inside(patches: Patches, groups) -> Patches:
+    """``patches`` with the ``groups``' reflectance set to 0 (glazing: light from the
+    room reaching it leaves)."""
+    rho = patches.rho.copy()
+    for group in groups:
+        rho[patches.group_index(group)] = 0.0
+    return replace(patches, rho=rho)

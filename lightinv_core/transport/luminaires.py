@@ -65,6 +65,7 @@ class PlacedLuminaire:
     aim: np.ndarray = (0.0, 0.0, -1.0)
     c0: np.ndarray = (1.0, 0.0, 0.0)
     dimming: float = 1.0
+    control: str = ""  # its daylight-linked control group ("": the one default group)
 
     def __post_init__(self) -> None:
         where = f"luminaire {self.name!r}"

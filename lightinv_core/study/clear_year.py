@@ -1,0 +1,189 @@
+"""The weather year through clear glazing: hour by hour, sun and sky apart.
+
+Each clear glazing group's light at the work plane in hour t is
+
+    sum_k D_gk L_k(t)  +  S_g(t) E_dn(t)  +  R_g,b(t) E_dn(t)
+
+with D the daylight coefficients of the sky patches and the ground
+(``transport.daylight_coefficients``; the sky's patch luminances L_k(t) from the Perez
+all-weather model scaled to the file's diffuse horizontal illuminance, the ground's
+rho_g E_gh / pi), S the direct sun traced at the hour's own sun position, R the sun's
+inter-reflected light for the sun-position bin b(t) of a Reinhart MF:2 subdivision
+(577 patches, about 6 degrees) and E_dn the file's direct normal illuminance.
+
+Operable blinds (IES LM-83, per glazing group): a group's blinds are closed in the
+hours where its direct sun exceeds the rule (``climate.sun_metrics.blinds_closed``);
+the group then passes ``BLIND_TRANSMITTANCE`` of its light as a diffusing glow (the
+paper's diffusing glazing at that share of the glass's transmittance).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from lightinv_core.design.model import Daylight
+from lightinv_core.light.daylight_year import daylight_year, weather_path
+from lightinv_core.study.annual import glazing_groups
+from lightinv_core.transport.annual import orientation_coefficients, orientations
+from lightinv_core.transport.clear_glazing import to_geographic, to_scene
+from lightinv_core.transport.daylight_coefficients import ClearDaylight
+
+SUN_BASIS_MF = 2
+"""Reinhart subdivision of the sun positions whose inter-reflected light is solved."""
+
+BLIND_TRANSMITTANCE = 0.2
+"""Share of a clear group's transmittance its closed blinds pass, as a diffusing glow
+(LightInv's decision, docs/daylight.md: LM-83 leaves the blind's optics to the model)."""
+
+
+@dataclass(frozen=True)
+class ClearYear:
+    """The year at q receivers, every hour of the file (T): ``open`` (G, q, T) each
+    clear group's light with its blinds open, ``closed`` (G, q, T) with them closed,
+    ``direct_sun`` (G, q, T) its direct sun alone (no reflections), ``other`` (q, T)
+    the diffusing glazing's light, ``sun_up`` (T,) the hours the sun is above the
+    horizon with direct light; ``occupied`` (T,) the schedule's mask; ``year`` the
+    ``DaylightYear`` of the weather (times, site, notes)."""
+
+    groups: tuple[str, ...]
+    open: np.ndarray
+    closed: np.ndarray
+    direct_sun: np.ndarray
+    other: np.ndarray
+    sun_up: np.ndarray
+    occupied: np.ndarray
+    year: object
+    weather: object
+    north_deg: float
+
+    def total(self, blinds: np.ndarray | None = None) -> np.ndarray:
+        """(q, T) daylight with each group's blinds ``blinds`` (G, T) closed where True
+        (default: all open)."""
+        lux = self.other + self.open.sum(axis=0)
+        if blinds is not None:
+            swap = (self.closed - self.open) * blinds[:, None, :]
+            lux = lux + swap.sum(axis=0)
+        return lux
+
+
+def _sky_vectors(weather, sky, daylight: Daylight):
+    """(T, K) patch luminances of the Tregenza sky, (T,) ground luminance, the dome."""
+    from lightinv_core.climate.sky_luminance import hourly_sky_luminance
+    from lightinv_core.climate.skydome import tregenza
+
+    dome = tregenza()
+    L = hourly_sky_luminance(
+        dome, weather.dni, weather.dhi, weather.dh_lux, sky.zenith, sky.azimuth, sky.dni_extra
+    )
+    ground = daylight.ground_reflectance * np.asarray(weather.gh_lux, dtype=float) / math.pi
+    return np.asarray(L, dtype=float), ground, dome
+
+
+def _suns(sky, weather, north_deg: float):
+    """Scene sun directions (T, 3) and the mask of hours with sun to trace."""
+    zen, az = np.radians(sky.zenith), np.radians(sky.azimuth)
+    geo = np.stack([np.sin(zen) * np.sin(az), np.sin(zen) * np.cos(az), np.cos(zen)], axis=1)
+    up = (sky.zenith < 90.0) & (np.asarray(weather.dn_lux, dtype=float) > 0)
+    return to_scene(geo, north_deg), geo, up
+
+
+def _sun_basis(geo: np.ndarray, up: np.ndarray, north_deg: float):
+    """(S, 3) scene directions of the sun bins used, and each hour's bin (-1: none)."""
+    from lightinv_core.climate.skydome import reinhart
+
+    dome = reinhart(SUN_BASIS_MF)
+    b = np.full(len(geo), -1)
+    b[up] = dome.patch_of(geo[up])
+    used, inverse = np.unique(b[up], return_inverse=True)
+    mean = np.zeros((len(used), 3))
+    np.add.at(mean, inverse, geo[up])
+    mean /= np.linalg.norm(mean, axis=1)[:, None]
+    hour_bin = np.full(len(geo), -1)
+    hour_bin[up] = inverse
+    return to_scene(mean, north_deg), hour_bin
+
+
+def clear_year(
+    clear: ClearDaylight,
+    daylight: Daylight,
+    diffusing_lux: np.ndarray | None = None,
+    blind_transmittance: float = BLIND_TRANSMITTANCE,
+) -> ClearYear:
+    """The year of ``daylight``'s weather through the clear glazing of ``clear`` at its
+    receivers; ``diffusing_lux`` (q, T) the diffusing glazing's light each hour."""
+    from lightinv_core.climate.transposition import sun_and_sky
+    from lightinv_core.climate.weather import load_weather
+
+    weather = load_weather(weather_path(daylight))
+    sky = sun_and_sky(weather)
+    north = daylight.north_deg
+    L, ground, dome = _sky_vectors(weather, sky, daylight)
+    K = len(dome.solid_angles)
+
+    def bins(d):
+        k = dome.patch_of(to_geographic(d, north))
+        return np.where(k < 0, K, k)
+
+    D = clear.sky(bins, K + 1)  # (G, q, K + 1)
+    vec = np.concatenate([L, ground[:, None]], axis=1)  # (T, K + 1)
+    open_ = D @ vec.T  # (G, q, T)
+    suns, geo, up = _suns(sky, weather, north)
+    dn = np.where(up, np.asarray(weather.dn_lux, dtype=float), 0.0)
+    direct = np.zeros_like(open_)
+    hours = np.nonzero(up)[0]
+    direct[:, :, hours] = clear.sun_direct(suns[hours]) * dn[hours]
+    basis, hour_bin = _sun_basis(geo, up, north)
+    reflected = clear.sun_reflected(basis)  # (G, q, S)
+    open_[:, :, hours] += reflected[:, :, hour_bin[hours]] * dn[hours] + direct[:, :, hours]
+    closed = _closed(clear, daylight, blind_transmittance)
+    year_groups = glazing_groups(closed[1], daylight)
+    year = daylight_year(year_groups, daylight)
+    closed_lux = np.stack([c @ year.every for c in closed[0]]) if len(closed[0]) else open_ * 0
+    other = np.zeros(open_.shape[1:]) if diffusing_lux is None else diffusing_lux
+    return ClearYear(
+        clear.glass.groups,
+        open_,
+        closed_lux,
+        direct,
+        other,
+        up,
+        np.asarray(year.occupied),
+        year,
+        weather,
+        north,
+    )
+
+
+def _closed(clear: ClearDaylight, daylight: Daylight, share: float):
+    """Per clear group, (q, O) lux per exterior lux on each of the year's orientations
+    when its blinds are closed, and the orientations (all groups' panes, one list)."""
+
+    tau = dict(zip(clear.glass.groups, _group_tau(clear), strict=True))
+    orients = orientations(clear.lit, {g: share * t for g, t in tau.items()})
+    coefficients = []
+    for g in clear.glass.groups:
+        only = [type(o)(tuple(q for q in o.panes if q.group == g), o.outward) for o in orients]
+        c = np.zeros((len(clear.points), len(orients)))
+        live = [i for i, o in enumerate(only) if o.panes]
+        if live:
+            grid = Receivers(clear.points, clear.normals)
+            c[:, live] = orientation_coefficients(
+                clear.lit, clear.F, clear.caster, [only[i] for i in live], grid, clear.factors
+            )
+        coefficients.append(c)
+    return coefficients, orients
+
+
+def _group_tau(clear: ClearDaylight) -> list[float]:
+    g = clear.glass
+    return [float(g.transmittance[g.group == i].mean()) for i in range(len(g.groups))]
+
+
+class Receivers:
+    """Points and normals (m, 3) as ``orientation_coefficients`` reads a grid."""
+
+    def __init__(self, points: np.ndarray, normals: np.ndarray) -> None:
+        self.points, self.normals = points, normals

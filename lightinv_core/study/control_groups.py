@@ -1,0 +1,115 @@
+"""Several daylight-linked control groups, each dimmed by its own sensor region.
+
+Each luminaire belongs to a control group (the schedule's ``control`` column; one
+group for all by default). A group's sensor reads the work-plane points inside its
+region (a rectangle in plan, ``--sensor GROUP=X0,Y0,X1,Y1``; the whole grid when none
+is given). Each occupied hour the group dims, by the one rule of ``climate.metrics``,
+to the level that tops the region's mean daylight up to the target with the group's
+own luminaires' light on that region at full output (the light of the other groups
+is not counted: each sensor is calibrated with its own group alone, as a commissioning
+engineer does at night). Outside the schedule the luminaires are off; standby is
+counted once, in the total.
+
+Energy (kWh a year) per group and in total; LENI per group is the group's energy over
+the whole floor area, so the groups' LENIs add up to the total's.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from lightinv_core.climate.metrics import dimming_level, lighting_kwh
+from lightinv_core.errors import LightInvError
+
+DEFAULT_GROUP = "all"
+"""The control group of luminaires whose schedule names none."""
+
+
+@dataclass(frozen=True)
+class GroupDimming:
+    """One control group's year: its ``luminaires``, ``installed_w`` (W at the set
+    dimming), ``sensor_points`` read, ``electric_lux`` (its own light on the region at
+    full output), ``mean_level`` over the occupied hours, ``energy_kwh`` and ``leni``
+    (kWh/m² a over the whole floor)."""
+
+    name: str
+    luminaires: int
+    installed_w: float
+    sensor_points: int
+    electric_lux: float
+    mean_level: float
+    energy_kwh: float
+    leni: float
+
+    def as_dict(self) -> dict:
+        """JSON-ready."""
+        return dict(self.__dict__)
+
+
+def sensor_mask(points: np.ndarray, rect: tuple[float, float, float, float] | None) -> np.ndarray:
+    """The work-plane points (q, 3) within the plan rectangle (x0, y0, x1, y1), m."""
+    pts = np.asarray(points, dtype=float)
+    if rect is None:
+        return np.ones(len(pts), bool)
+    x0, y0, x1, y1 = rect
+    lo_x, hi_x, lo_y, hi_y = min(x0, x1), max(x0, x1), min(y0, y1), max(y0, y1)
+    return (pts[:, 0] >= lo_x) & (pts[:, 0] <= hi_x) & (pts[:, 1] >= lo_y) & (pts[:, 1] <= hi_y)
+
+
+def group_dimming(
+    daylight: np.ndarray,
+    points: np.ndarray,
+    electric: dict[str, np.ndarray],
+    watts: dict[str, float],
+    counts: dict[str, int],
+    sensors: dict[str, tuple[float, float, float, float]],
+    settings,
+    floor_m2: float,
+    hours_per_year: float,
+) -> tuple[list[GroupDimming], dict]:
+    """Each group's year and the total: ``daylight`` (q, T) lux per work-plane point
+    and occupied hour, ``electric[g]`` (q,) group g's lux at full output, ``watts[g]``
+    its power (W), ``counts[g]`` its luminaires, ``sensors[g]`` its region (or the
+    whole grid), ``settings`` a ``Daylight`` (target lux, minimum level, standby W)."""
+    unknown = sorted(set(sensors) - set(electric))
+    if unknown:
+        raise LightInvError(
+            f"--sensor names control group(s) {unknown} that no luminaire belongs to; the "
+            f"groups are {sorted(electric)}"
+        )
+    if not floor_m2 > 0:
+        raise LightInvError("LENI needs a floor area above 0 m²")
+    groups = []
+    for name in sorted(electric):
+        mask = sensor_mask(points, sensors.get(name))
+        if not mask.any():
+            raise LightInvError(
+                f"control group {name!r}: its sensor region holds no work-plane point; "
+                "draw it over the work plane"
+            )
+        full = float(electric[name][mask].mean())
+        if not full > 0:
+            raise LightInvError(
+                f"control group {name!r}: its luminaires give no light on its sensor region"
+            )
+        day = daylight[mask].mean(axis=0)
+        levels = dimming_level(day, full, settings.target_lux, settings.min_level)
+        kwh = float(lighting_kwh(watts[name], levels.sum(), 0.0, hours_per_year))
+        groups.append(
+            GroupDimming(
+                name,
+                counts[name],
+                float(watts[name]),
+                int(mask.sum()),
+                full,
+                float(levels.mean()),
+                kwh,
+                kwh / floor_m2,
+            )
+        )
+    standby = float(lighting_kwh(0.0, 0.0, settings.standby_w, hours_per_year))
+    energy = sum(g.energy_kwh for g in groups) + standby
+    total = {"energy_kwh": energy, "leni_kwh_m2": energy / floor_m2, "standby_kwh": standby}
+    return groups, total
