@@ -8,7 +8,7 @@ import numpy as np
 from lightinv_core.cli.output import peak_rss_mb
 from lightinv_core.quantities import quantity_spec
 from lightinv_core.study import SimulationResult, SimulationSpec
-from lightinv_core.study.simulation import luminaire_watts
+from lightinv_core.study.simulation import installed_watts, luminaire_watts
 from lightinv_core.transport.annual import panes
 
 
@@ -91,12 +91,12 @@ def reference_payload(res: SimulationResult, spec: SimulationSpec) -> tuple[dict
     if res.grid is not None:
         payload["grid"] = grid_payload(res, spec)
         lines += grid_lines(payload["grid"], spec)
-    if res.annual is not None:
+    if res.clear_year is not None:
+        payload["annual"] = clear_payload(res, spec)
+        lines += clear_lines(payload["annual"])
+    elif res.annual is not None:
         payload["annual"] = annual_payload(res, spec)
         lines += annual_lines(payload["annual"])
-    if res.clear_annual is not None:
-        payload["annual"].update(res.clear_annual)
-        lines += clear_lines(res.clear_annual)
     if res.control_groups is not None:
         groups = [g.as_dict() for g in res.control_groups]
         payload["annual"]["control_groups"] = {"groups": groups, "total": res.control_total}
@@ -180,20 +180,53 @@ def annual_payload(res: SimulationResult, spec: SimulationSpec) -> dict:
         },
     }
     if a.dimming is not None:
-        d, dim = a.dimming, spec.annual
-        out["dimming"] = {
-            "target_lux": dim.target_lux,
-            "electric_em_lux": a.electric_em,
-            "installed_w": a.installed_w,
-            "min_level": dim.min_level,
-            "standby_w": dim.standby_w,
-            "mean_level": float(d.levels.mean()),
-            "energy_kwh": d.energy_kwh,
-            "undimmed_kwh": d.full_power_kwh,
-            "leni_kwh_m2": d.leni,
-            "floor_m2": a.floor_m2,
-        }
+        out["dimming"] = dimming_payload(
+            a.dimming, spec.annual, a.electric_em, a.installed_w, a.floor_m2
+        )
     return out
+
+
+def dimming_payload(d, dim, electric_em: float, installed_w: float, floor_m2: float) -> dict:
+    """The dimming figures for JSON (``climate.metrics.Dimming`` ``d``, ``Daylight`` ``dim``)."""
+    return {
+        "target_lux": dim.target_lux,
+        "electric_em_lux": electric_em,
+        "installed_w": installed_w,
+        "min_level": dim.min_level,
+        "standby_w": dim.standby_w,
+        "mean_level": float(d.levels.mean()),
+        "energy_kwh": d.energy_kwh,
+        "undimmed_kwh": d.full_power_kwh,
+        "leni_kwh_m2": d.leni,
+        "floor_m2": floor_m2,
+    }
+
+
+def clear_payload(res: SimulationResult, spec: SimulationSpec) -> dict:
+    """The weather year through clear (and diffusing) glazing on the work plane."""
+    cy, daylight = res.clear_year, spec.annual
+    out = {
+        "weather": cy.year.weather,
+        "occupied_hours": int(cy.occupied.sum()),
+        "occupancy": list(daylight.occupancy),
+        "weekdays_only": daylight.weekdays,
+        "north_deg": daylight.north_deg,
+        "panes": [
+            {"group": q.group, "outward": q.outward.round(4).tolist(), "patches": len(q.idx)}
+            for q in panes(res.patches, dict(spec.glazing))
+        ],
+        "glazing_kinds": {g: spec.glazing_kinds.get(g, "diffusing") for g in spec.glazing},
+        **res.clear_annual,
+    }
+    if res.clear_dimming is not None:
+        d, em = res.clear_dimming
+        watts = installed_watts(spec.luminaires)
+        out["dimming"] = dimming_payload(d, daylight, em, watts, _floor(res, spec))
+    return out
+
+
+def _floor(res: SimulationResult, spec: SimulationSpec) -> float:
+    return float(res.patches.area[res.patches.group_index(spec.workplane.group)].sum())
 
 
 def grid_columns(res: SimulationResult) -> dict[str, np.ndarray]:
@@ -212,8 +245,17 @@ def grid_columns(res: SimulationResult) -> dict[str, np.ndarray]:
 
 
 def clear_lines(a: dict) -> list[str]:
-    """The figures only clear glazing gives: blinds, ASE, continuous DA, EN 17037, glare."""
+    """The year through clear glazing: weather, DA, UDI, blinds, ASE, continuous DA,
+    EN 17037, glare, dimming."""
+    w = a["weather"]
+    days = "weekdays" if a["weekdays_only"] else "every day"
     lines = [
+        f"weather: {w['format']}, {w['hours']} hours ({w['time_convention']}); "
+        f"illuminance {w['illuminance']}",
+        f"annual daylight ({w['site']}, {a['occupied_hours']} occupied hours, {days} "
+        f"{a['occupancy'][0]:g}-{a['occupancy'][1]:g} h): DA300 mean "
+        f"{100 * a['da300_mean']:.0f}%, UDI <100 {100 * a['udi_n']:.0f}%, 100-3000 "
+        f"{100 * a['udi_100_3000']:.0f}%, >3000 {100 * a['udi_x']:.0f}%",
         f"through clear glazing: ASE1000,250 {100 * a['ase1000_250']:.0f}% of the points; "
         f"sDA300/50% {100 * a['sda300_50']:.0f}% with LM-83 blinds "
         f"({100 * a['sda300_50_open']:.0f}% with them open); continuous DA300 mean "
@@ -230,6 +272,12 @@ def clear_lines(a: dict) -> list[str]:
         lines.append(
             f"view {v['view'][:3]}: DGPs max {v['dgp_max']:.2f}, above 0.40 in "
             f"{100 * v['dgp_over_0.40']:.1f}% of occupied hours"
+        )
+    if "dimming" in a:
+        d = a["dimming"]
+        lines.append(
+            f"daylight-linked dimming to {d['target_lux']:g} lux: {d['energy_kwh']:.0f} kWh a year "
+            f"(undimmed {d['undimmed_kwh']:.0f} kWh), LENI {d['leni_kwh_m2']:.2f} kWh/m² a"
         )
     return lines
 

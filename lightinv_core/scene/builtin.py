@@ -1,4 +1,5 @@
-"""Built-in parametric scenes: cornell, office, patio, corridor, building.
+"""Built-in parametric scenes: cornell, office, patio, corridor, building, and the two
+daylight rooms sidelit and toplit.
 
 Each takes ``resolution`` (target patch edge in metres; ``None`` for the
 scene's default) and returns a closed ``Scene`` with named groups and emitter
@@ -214,12 +215,52 @@ def corridor(resolution: float | None = None) -> Scene:
     )
 
 
+def _daylit_room(name: str, size, parts, about: str, resolution: float | None) -> Scene:
+    res = check_resolution(0.25 if resolution is None else resolution)
+    surfaces, zones = _room(room_faces(0, 0, 0, *size), parts)
+    return Scene(name, tuple(surfaces), tuple(zones), res, about)
+
+
+def sidelit(resolution: float | None = None) -> Scene:
+    """A deep room 6 x 8 x 3 m lit by one 4.8 x 1.6 m window (sill 0.9 m) in its south
+    wall (y = 0), group ``window``: the daylight rooms' side-lit case (~2,900 patches)."""
+    window = Insert("window", 0.9, 0.6, 2.5, 5.4, group="window", zone_kind="window")
+    parts = {
+        "floor": ("floor", FLOOR, []),
+        "ceiling": ("ceiling", CEILING, []),
+        "south": ("walls", WALL, [window]),
+        "north": ("walls", WALL, []),
+        "west": ("walls", WALL, []),
+        "east": ("walls", WALL, []),
+    }
+    about = "Room 6 x 8 x 3 m, a 4.8 x 1.6 m window (group window) in the south wall."
+    return _daylit_room("sidelit", (6, 8, 3), parts, about, resolution)
+
+
+def toplit(resolution: float | None = None) -> Scene:
+    """A room 8 x 8 x 4 m lit by one 2 x 2 m rooflight in the middle of its flat roof,
+    group ``rooflight``: the daylight rooms' top-lit case (~4,100 patches)."""
+    roof = Insert("rooflight", 3.0, 3.0, 5.0, 5.0, group="rooflight", zone_kind="skylight")
+    parts = {
+        "floor": ("floor", FLOOR, []),
+        "ceiling": ("ceiling", CEILING, [roof]),
+        "south": ("walls", WALL, []),
+        "north": ("walls", WALL, []),
+        "west": ("walls", WALL, []),
+        "east": ("walls", WALL, []),
+    }
+    about = "Room 8 x 8 x 4 m, a 2 x 2 m rooflight (group rooflight) in the middle of the roof."
+    return _daylit_room("toplit", (8, 8, 4), parts, about, resolution)
+
+
 BUILTIN_SCENES: dict[str, Callable[..., Scene]] = {
     "cornell": cornell,
     "office": office,
     "patio": patio,
     "corridor": corridor,
     "building": building,  # scene/building.py: 4 storeys, ~200,000 patches
+    "sidelit": sidelit,
+    "toplit": toplit,
 }
 
 

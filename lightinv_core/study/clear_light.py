@@ -110,7 +110,7 @@ def clear_annual(spec, clear, orients, year):
     from lightinv_core.transport.annual import orientation_coefficients
     from lightinv_core.transport.receivers import receiver_factors
 
-    every = year.coefficients @ year.year.every if orients else None
+    every = year.coefficients @ year.year.every if year is not None else None
     got = clear_year(clear, spec.annual, every)
     summary, columns = work_plane_metrics(got)
     if spec.views:
@@ -130,3 +130,24 @@ def clear_annual(spec, clear, orients, year):
     if spec.sunlight_point is not None:
         summary["en17037_sunlight"] = sunlight(spec.sunlight_point, clear, got, spec.sunlight_date)
     return got, summary, columns
+
+
+def clear_dimming(clear_year, electric: np.ndarray, watts: float, floor_m2: float, daylight):
+    """Daylight-linked dimming (``climate.metrics.Dimming``) of luminaires giving
+    ``electric`` (q,) lux at full output and drawing ``watts`` (W), on the mean daylight
+    of the clear year's work plane in each occupied hour with the LM-83 blinds."""
+    from lightinv_core.climate.metrics import dimming_energy
+    from lightinv_core.study.clear_metrics import blinds
+
+    cy = clear_year
+    day = cy.total(blinds(cy))[:, cy.occupied].mean(axis=0)
+    return dimming_energy(
+        day,
+        float(np.mean(electric)),
+        daylight.target_lux,
+        watts,
+        floor_m2,
+        daylight.min_level,
+        daylight.standby_w,
+        cy.open.shape[2],
+    )

@@ -30,6 +30,7 @@ from lightinv_core.scene.patches import Patches, mesh_patches
 from lightinv_core.study.annual import GridYear, grid_year, with_dimming
 from lightinv_core.study.clear_light import (
     clear_annual,
+    clear_dimming,
     clear_moment,
     moment_sky,
     outside_lux,
@@ -176,6 +177,7 @@ class SimulationResult:
     clear_year: object = None
     clear_annual: dict | None = None
     clear_columns: dict | None = None
+    clear_dimming: tuple | None = None  # (climate.metrics.Dimming, mean electric lux)
     control_groups: list | None = None
     control_total: dict | None = None
     warnings: list[str] = field(default_factory=list)
@@ -281,13 +283,16 @@ def _read_workplane(spec, result: SimulationResult, F, caster, light, df: bool, 
     if spec.annual is None:
         return
     orients = orientations(lit, diffusing)
-    coefficients = orientation_coefficients(lit, F, caster, orients, grid, factors)
-    year = grid_year(spec.annual, orients, coefficients)
-    source = Path(year.year.source).name
-    result.weather_notes = [f"weather {source}: {n}" for n in year.year.weather.get("notes", [])]
+    year = None
+    if orients or clear_light is None:
+        coefficients = orientation_coefficients(lit, F, caster, orients, grid, factors)
+        year = grid_year(spec.annual, orients, coefficients)
     if clear_light is not None:
         got = clear_annual(spec, clear_light, orients, year)
         result.clear_year, result.clear_annual, result.clear_columns = got
+    days = year.year if clear_light is None else result.clear_year.year
+    source = Path(days.source).name
+    result.weather_notes = [f"weather {source}: {n}" for n in days.weather.get("notes", [])]
     if luminaires:
         if not spec.emit and not spec.daylit_now:
             electric = grid_light.lux  # the grid's light is the luminaires' alone
@@ -296,15 +301,24 @@ def _read_workplane(spec, result: SimulationResult, F, caster, light, df: bool, 
             electric = light_grid(grid, alone, caster, luminaires, spec.rays, factors=factors).lux
         plane = spec.workplane
         floor = float(lit.area[lit.group_index(plane.group)].sum())
-        year = with_dimming(year, electric, installed_watts(luminaires), floor, spec.annual)
+        watts = installed_watts(luminaires)
+        if clear_light is None:
+            year = with_dimming(year, electric, watts, floor, spec.annual)
+        else:
+            result.clear_dimming = clear_dimming(
+                result.clear_year, electric, watts, floor, spec.annual
+            )
         groups = {x.control or DEFAULT_GROUP for x in luminaires}
         if spec.sensors or len(groups) > 1:
-            _control_groups(spec, result, (lit, F, caster, grid, factors), year, floor)
+            scene = (lit, F, caster, grid, factors)
+            _control_groups(spec, result, scene, year, days, floor)
     result.annual = year
 
 
-def _control_groups(spec, result: SimulationResult, scene, year: GridYear, floor: float) -> None:
-    """Each control group's dimming on its own sensor region (``study.control_groups``)."""
+def _control_groups(spec, result: SimulationResult, scene, year, days, floor: float) -> None:
+    """Each control group's dimming on its own sensor region (``study.control_groups``):
+    the daylight of the diffusing ``year`` (a ``GridYear``) or of the clear year, over
+    the hours of ``days`` (a ``DaylightYear``)."""
     lit, F, caster, grid, factors = scene
     by_group: dict[str, list] = {}
     for x in spec.luminaires:
@@ -328,7 +342,7 @@ def _control_groups(spec, result: SimulationResult, scene, year: GridYear, floor
         dict(spec.sensors),
         spec.annual,
         floor,
-        year.year.every.shape[1],
+        days.every.shape[1],
     )
     result.control_groups, result.control_total = groups, total
 
