@@ -118,6 +118,7 @@ def clear_annual(spec, clear, orients, year):
         pts, nrm = v[:, :3], v[:, 3:] / np.linalg.norm(v[:, 3:], axis=1)[:, None]
         fac = receiver_factors(pts, nrm, clear.caster, clear.lit.n, spec.rays, spec.seed)
         views = ClearDaylight(clear.lit, clear.F, clear.caster, clear.glass, pts, nrm, fac)
+        views.share_room(clear)
         other = None
         if orients:
             grid = Receivers(pts, nrm)

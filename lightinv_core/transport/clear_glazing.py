@@ -50,15 +50,24 @@ def transmissivity(transmittance: float) -> float:
     return min(tn, 1.0)
 
 
+def _transmissivities(t: np.ndarray) -> np.ndarray:
+    """``transmissivity`` of an array of transmittances (already in range)."""
+    safe = np.where(t > 0, t, 1.0)
+    tn = (np.sqrt(0.8402528435 + 0.0072522239 * safe * safe) - 0.9166530661) / 0.0036261119 / safe
+    return np.where(t > 0, np.minimum(tn, 1.0), 0.0)
+
+
 def glass_transmittance(transmittance, cos_incidence) -> np.ndarray:
     """Transmittance of clear glass of normal ``transmittance`` at incidence angles of
     cosine ``cos_incidence`` (either sign: the pane is symmetric); broadcasts."""
     t = np.asarray(transmittance, dtype=float)
-    tn = np.vectorize(transmissivity, otypes=[float])(t) if t.ndim else transmissivity(float(t))
+    if np.any((t < 0) | (t > 1)):
+        raise LightInvError(f"glass transmittance must be from 0 to 1, got {t.min()}..{t.max()}")
+    tn = _transmissivities(t)
     ci = np.clip(np.abs(np.asarray(cos_incidence, dtype=float)), 1e-9, 1.0)
     n = REFRACTIVE_INDEX
     ct = np.sqrt(1.0 - (1.0 - ci * ci) / (n * n))
-    path = np.power(np.maximum(tn, 1e-300), 1.0 / ct) * (np.asarray(tn) > 0)
+    path = np.power(np.maximum(tn, 1e-300), 1.0 / ct) * (tn > 0)
     total = 0.0
     for r in (
         ((ci - n * ct) / (ci + n * ct)) ** 2,  # s-polarised

@@ -40,15 +40,24 @@ Bins = Callable[[np.ndarray], np.ndarray]
 """Scene directions (m, 3) -> bin index (m,) in [0, bins)."""
 
 
-def bounce(F: sp.spmatrix, rho: np.ndarray, H: np.ndarray) -> np.ndarray:
+def factor(F: sp.spmatrix, rho: np.ndarray):
+    """The LU factors of I - rho F for ``bounce`` (None above ``DENSE_LIMIT`` patches)."""
+    n = F.shape[0]
+    if n > DENSE_LIMIT:
+        return None
+    Fd = F.toarray() if sp.issparse(F) else np.asarray(F)
+    return la.lu_factor(np.eye(n) - rho[:, None] * Fd)
+
+
+def bounce(F: sp.spmatrix, rho: np.ndarray, H: np.ndarray, lu=None) -> np.ndarray:
     """Radiosity B (n, c) of the room whose patches first receive irradiance ``H``
-    (n, c) lux: (I - rho F) B = rho H, every column at once (LU up to
-    ``DENSE_LIMIT`` patches, Jacobi sweeps above)."""
+    (n, c) lux: (I - rho F) B = rho H, every column at once (by the LU factors ``lu``
+    of ``factor``, made here when not given, up to ``DENSE_LIMIT`` patches; Jacobi
+    sweeps above)."""
     n = F.shape[0]
     E = rho[:, None] * H
     if n <= DENSE_LIMIT:
-        Fd = F.toarray() if sp.issparse(F) else np.asarray(F)
-        return la.lu_solve(la.lu_factor(np.eye(n) - rho[:, None] * Fd), E)
+        return la.lu_solve(factor(F, rho) if lu is None else lu, E)
     F = sp.csr_matrix(F)
     B = E.copy()
     scale = max(float(np.abs(E).max()), 1e-300)
@@ -112,11 +121,22 @@ class ClearDaylight:
             self._cache["rays"] = (direct, room)
         return self._cache["rays"]
 
+    def share_room(self, other: ClearDaylight) -> None:
+        """Reuse ``other``'s factors of the same room (its LU) for these receivers."""
+        if other.lit is self.lit and other.F is self.F:
+            self._cache["lu"] = other._lu()
+
+    def _lu(self):
+        """The room's LU factors, made once (``factor``)."""
+        if "lu" not in self._cache:
+            self._cache["lu"] = factor(self.F, self.lit.rho)
+        return self._cache["lu"]
+
     def _reflected(self, H: np.ndarray) -> np.ndarray:
         """(G, q, c) light at the receivers from first-hit irradiance H (G, n, c)."""
         G, n, c = H.shape
         flat = np.moveaxis(H, 0, 1).reshape(n, G * c)
-        B = bounce(self.F, self.lit.rho, flat)
+        B = bounce(self.F, self.lit.rho, flat, self._lu())
         return np.moveaxis((self.factors @ B).reshape(-1, G, c), 1, 0)
 
     def sky(self, bins: Bins, nbins: int) -> np.ndarray:
@@ -156,7 +176,7 @@ class ClearDaylight:
         if sun is not None and sun_lux > 0:
             beam = sun_on_room(self.lit, self.glass, self.caster, sun, self.per_side, self.seed)
             H = H + sun_lux * beam[..., 0].sum(axis=0)
-        B = bounce(self.F, self.lit.rho, H[:, None])[:, 0]
+        B = bounce(self.F, self.lit.rho, H[:, None], self._lu())[:, 0]
         return H + self.F @ B
 
     def sun(self, sun: np.ndarray) -> np.ndarray:
