@@ -135,9 +135,13 @@ def test_realistic_field_equals_the_daylight_factor_method(greensboro):
 
 
 def _declination(day: dt.date, longitude: float) -> float:
-    """The sun's declination (radians) at local solar noon: NOAA's solar calculator
-    equations (Meeus, Astronomical Algorithms, low precision, about 0.01 deg)."""
-    jd = day.toordinal() + 1721424.5 + 0.5 - longitude / 360.0  # Julian day, noon
+    """The sun's declination (radians) at local solar noon of ``day``."""
+    return _declination_jd(day.toordinal() + 1721424.5 + 0.5 - longitude / 360.0)
+
+
+def _declination_jd(jd: float) -> float:
+    """The sun's declination (radians) at Julian day ``jd``: NOAA's solar calculator
+    equations (Meeus, Astronomical Algorithms, chapter 25, low precision, ~0.01 deg)."""
     t = (jd - 2451545.0) / 36525.0
     l0 = (280.46646 + t * (36000.76983 + 0.0003032 * t)) % 360.0
     m = math.radians(357.52911 + t * (35999.05029 - 0.0001537 * t))
@@ -151,6 +155,12 @@ def _declination(day: dt.date, longitude: float) -> float:
     seconds = 21.448 - t * (46.815 + t * (0.00059 - t * 0.001813))
     eps = math.radians(23.0 + (26.0 + seconds / 60.0) / 60.0 + 0.00256 * math.cos(omega))
     return math.asin(math.sin(eps) * math.sin(lam))
+
+
+def test_reference_declination_reproduces_meeus_example_25a():
+    # Meeus, Astronomical Algorithms (2nd ed.), example 25.a: 1992 October 13.0 TD,
+    # apparent declination -7.78507 deg.
+    assert math.degrees(_declination_jd(2448908.5)) == pytest.approx(-7.78507, abs=2e-4)
 
 
 def _hour_angle_above(lat: float, dec: float, h_min: float) -> float:
