@@ -186,3 +186,20 @@ def test_exceedance_and_en17037_glare_levels_counted_by_hand():
     glare = glare_protection(ev)
     assert glare.level == ("high", "none", "medium")
     assert glare.exceedance.shape == (3, 3)
+
+
+def test_greedy_keeps_closing_when_one_group_alone_changes_nothing():
+    # Six groups each give 250 lux on the same 3% of the points: closing one or two
+    # leaves 1250 or 1000 lux (no fewer points in sun); three must close.
+    direct = np.zeros((6, 100, 1))
+    direct[:, :3, 0] = 250.0
+    for method in ("greedy", "exhaustive"):
+        closed = blinds_schedule(direct, method=method)
+        assert closed[:, 0].tolist() == [True, True, True, False, False, False], method
+
+
+def test_a_view_exactly_at_the_limit_does_not_exceed_it():
+    at = float(dgp_simplified(1000.0))
+    ev = np.array([[1000.0, 1000.0, 1000.1, 0.0]])
+    assert dgp_exceedance(ev, at).tolist() == [0.25]
+    assert dgp_exceedance(np.zeros((2, 3)), 0.184).tolist() == [0.0, 0.0]
