@@ -78,6 +78,7 @@ length = number_in(0.0, 1e4, "a length from 0 to 10,000 m")
 lux = number_in(0.0, 2e5, "from 0 to 200,000 lux", open_lo=True)
 fraction = number_in(0.0, 1.0, "a number from 0 to below 1", open_hi=True)
 angle = number_in(-360.0, 360.0, "an angle from -360 to 360 degrees")
+altitude = number_in(0.0, 90.0, "an altitude from 0 to 90 degrees")
 
 
 def hours(text: str) -> tuple[float, float]:

@@ -168,6 +168,13 @@ def build_parser() -> argparse.ArgumentParser:
         help="EN 17037 sunlight exposure: the day, 1 February to 21 March (default 03-21)",
     )
     sim.add_argument(
+        "--sunlight-min-altitude",
+        type=types.altitude,
+        metavar="DEG",
+        help="EN 17037 sunlight exposure: the sun counts above this altitude (deg; the "
+        "standard's value for the site, required with --sunlight-point)",
+    )
+    sim.add_argument(
         "--target-lux",
         type=types.lux,
         default=500.0,

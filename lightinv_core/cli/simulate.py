@@ -45,6 +45,11 @@ def check_args(args) -> None:
     annual_only = (args.view or args.sunlight_point) and args.weather is None
     if annual_only:
         raise LightInvError("--view and --sunlight-point are studied over a year: give --weather")
+    if args.sunlight_point and args.sunlight_min_altitude is None:
+        raise LightInvError(
+            "EN 17037 counts the sun above a minimum altitude set for the site (the "
+            "standard's national values): give --sunlight-min-altitude DEG"
+        )
     if (args.view or args.sunlight_point) and not clear:
         raise LightInvError(
             "glare and sunlight exposure need clear glazing: give --glazing GROUP=TAU:clear"
@@ -87,6 +92,7 @@ def spec_of(args) -> SimulationSpec:
         views=tuple(args.view),
         sunlight_point=args.sunlight_point,
         sunlight_date=args.sunlight_date,
+        sunlight_min_altitude=args.sunlight_min_altitude,
         sensors=dict(args.sensor),
         exterior_lux=args.exterior_lux,
         ground_reflectance=args.ground_reflectance,

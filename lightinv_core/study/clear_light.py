@@ -111,7 +111,8 @@ def clear_annual(spec, clear, orients, year):
     from lightinv_core.transport.receivers import receiver_factors
 
     every = year.coefficients @ year.year.every if year is not None else None
-    got = clear_year(clear, spec.annual, every)
+    tilts = tuple(float(np.degrees(np.arccos(np.clip(o.outward[2], -1, 1)))) for o in orients)
+    got = clear_year(clear, spec.annual, every, diffusing_tilts=tilts)
     summary, columns = work_plane_metrics(got)
     if spec.views:
         v = np.asarray(spec.views, dtype=float)
@@ -124,12 +125,14 @@ def clear_annual(spec, clear, orients, year):
             grid = Receivers(pts, nrm)
             c = orientation_coefficients(clear.lit, clear.F, clear.caster, orients, grid, fac)
             other = c @ year.year.every
-        rows = view_metrics(clear_year(views, spec.annual, other), got)
+        rows = view_metrics(clear_year(views, spec.annual, other, diffusing_tilts=tilts), got)
         for row, view in zip(rows, spec.views, strict=True):
             row["view"] = list(view)
         summary["views"] = rows
     if spec.sunlight_point is not None:
-        summary["en17037_sunlight"] = sunlight(spec.sunlight_point, clear, got, spec.sunlight_date)
+        summary["en17037_sunlight"] = sunlight(
+            spec.sunlight_point, clear, got, spec.sunlight_date, spec.sunlight_min_altitude
+        )
     return got, summary, columns
 
 

@@ -23,13 +23,15 @@ from lightinv_core.climate.metrics import daylight_metrics
 def blinds(year, occupied: np.ndarray | None = None) -> np.ndarray:
     """(G, T) whether each clear group's blinds are closed, every hour of the file (by
     the LM-83 rule on the ``occupied`` hours, default the schedule's; open outside)."""
-    from lightinv_core.climate.sun_metrics import blinds_closed
+    from lightinv_core.climate.sun_metrics import blinds_schedule
 
     if occupied is None:
         occupied = year.occupied
     closed = np.zeros((year.open.shape[0], year.open.shape[2]), bool)
-    for g in range(len(closed)):
-        closed[g, occupied] = blinds_closed(year.direct_sun[g][:, occupied])
+    if occupied.any():
+        # LM-83: the groups close in the fewest combination that leaves at most 2% of
+        # the points in direct sun, judged on every group's sun together.
+        closed[:, occupied] = blinds_schedule(year.direct_sun[:, :, occupied])
     return closed
 
 
@@ -54,9 +56,15 @@ def work_plane_metrics(year) -> tuple[dict, dict[str, np.ndarray]]:
         "ase_hours_mean": float(np.mean(a.hours)),
         "blinds_closed_hours": {g: int(closed[i, occ].sum()) for i, g in enumerate(year.groups)},
     }
-    mask = daylight_hours(year.weather)
-    provision = daylight_provision(year.total()[:, mask], horizontal_openings=False)
-    summary["en17037_provision"] = provision.as_dict()
+    mask = daylight_hours(year.weather.dh_lux)
+    horizontal = year.horizontal_openings
+    provision = daylight_provision(year.total()[:, mask], horizontal_openings=horizontal)
+    summary["en17037_provision"] = {
+        "level": provision.level,
+        "horizontal_openings": horizontal,
+        "daylight_hours": int(mask.sum()),
+        **{k: v for k, v in provision.summary().items() if k != "en17037_provision"},
+    }
     columns = {
         "da300": m.da,
         "cda300": cda,
@@ -72,24 +80,27 @@ def work_plane_metrics(year) -> tuple[dict, dict[str, np.ndarray]]:
 def view_metrics(views_year, work_plane_year) -> list[dict]:
     """Per view point: simplified DGP over the occupied hours (blinds as the work
     plane's rule sets them), its classes and the EN 17037 glare-protection level."""
-    from lightinv_core.climate.sun_metrics import dgp_exceedance, dgp_simplified
+    from lightinv_core.climate.sun_metrics import dgp_exceedance, dgp_simplified, glare_protection
 
     occ = views_year.occupied
     closed = blinds(work_plane_year, occ)
     ev = views_year.total(closed)[:, occ]
     dgp = dgp_simplified(ev)
+    levels = glare_protection(ev).level
     out = []
     for v in range(ev.shape[0]):
         row = {"dgp_max": float(dgp[v].max()), "ev_max_lux": float(ev[v].max())}
         for limit in (0.35, 0.40, 0.45):
             row[f"dgp_over_{limit:.2f}"] = float(dgp_exceedance(ev[v : v + 1], limit)[0])
+        row["en17037_glare"] = str(levels[v])
         out.append(row)
     return out
 
 
-def sunlight(point, clear, year, date: tuple[int, int]) -> dict:
+def sunlight(point, clear, year, date: tuple[int, int], min_altitude_deg: float) -> dict:
     """EN 17037 sunlight exposure at ``point`` (scene, m) through ``clear``'s glass on
-    ``date`` (month, day) of the weather's site."""
+    ``date`` (month, day) of the weather's site, counting the sun above
+    ``min_altitude_deg`` (the standard's value for the site)."""
     import datetime
 
     from lightinv_core.climate.en17037 import sunlight_exposure
@@ -106,5 +117,19 @@ def sunlight(point, clear, year, date: tuple[int, int]) -> dict:
         return j >= 0
 
     day = datetime.date(2001, *date)
-    got = sunlight_exposure(visible, w.latitude, w.longitude, day, utc_offset_h=w.utc_offset_h)
-    return got.as_dict()
+    got = sunlight_exposure(
+        visible,
+        w.latitude,
+        w.longitude,
+        day,
+        min_altitude_deg=min_altitude_deg,
+        utc_offset_h=w.utc_offset_h,
+    )
+    return {
+        "hours": float(got.hours),
+        "level": got.level,
+        "sun_hours": float(got.sun_hours),
+        "date": got.date.isoformat(),
+        "min_altitude_deg": got.min_altitude_deg,
+        "point": list(point),
+    }

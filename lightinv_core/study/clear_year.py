@@ -58,6 +58,7 @@ class ClearYear:
     year: object
     weather: object
     north_deg: float
+    horizontal_openings: bool
 
     def total(self, blinds: np.ndarray | None = None) -> np.ndarray:
         """(q, T) daylight with each group's blinds ``blinds`` (G, T) closed where True
@@ -106,14 +107,30 @@ def _sun_basis(geo: np.ndarray, up: np.ndarray, north_deg: float):
     return to_scene(mean, north_deg), hour_bin
 
 
+HORIZONTAL_TILT_DEG = 10.0
+"""Glazing whose outward normal is within this of the zenith is a horizontal opening
+(EN 17037's rooflights); steeper glazing is vertical or inclined."""
+
+
+def _horizontal(clear: ClearDaylight, diffusing_tilts) -> bool:
+    """Whether every pane (clear and diffusing) is a horizontal opening."""
+    normals = clear.lit.normal[clear.glass.idx]  # into the room: down for a rooflight
+    tilts = np.degrees(np.arccos(np.clip(-normals[:, 2], -1, 1)))
+    return bool(np.all(tilts < HORIZONTAL_TILT_DEG)) and all(
+        t < HORIZONTAL_TILT_DEG for t in diffusing_tilts
+    )
+
+
 def clear_year(
     clear: ClearDaylight,
     daylight: Daylight,
     diffusing_lux: np.ndarray | None = None,
     blind_transmittance: float = BLIND_TRANSMITTANCE,
+    diffusing_tilts: tuple[float, ...] = (),
 ) -> ClearYear:
     """The year of ``daylight``'s weather through the clear glazing of ``clear`` at its
-    receivers; ``diffusing_lux`` (q, T) the diffusing glazing's light each hour."""
+    receivers; ``diffusing_lux`` (q, T) the diffusing glazing's light each hour, from
+    panes tilted ``diffusing_tilts`` (deg from the zenith)."""
     from lightinv_core.climate.transposition import sun_and_sky
     from lightinv_core.climate.weather import load_weather
 
@@ -154,6 +171,7 @@ def clear_year(
         year,
         weather,
         north,
+        _horizontal(clear, diffusing_tilts),
     )
 
 
