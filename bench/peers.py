@@ -3,8 +3,9 @@
     python bench/peers.py [--weather tests/data/weather/chicago.epw.gz] [--resolution 0.5]
 
 On the two daylight rooms (the built-in ``sidelit``: a 4.8 x 1.6 m clear south window
-in a 6 x 8 x 3 m room; ``toplit``: a 2 x 2 m clear rooflight in an 8 x 8 x 4 m room;
-glass of visible transmittance 0.7), the same work-plane points (0.8 m, the EN 12464-1
+in a 6 x 8 x 3 m room; ``toplit``: a 2 x 2 m clear rooflight in an 8 x 8 x 4 m room)
+and the office (``office``: 12 x 8 x 3 m with eight desks and a 4 x 2 m rooflight), glass
+of visible transmittance 0.7, the same work-plane points (0.8 m, the EN 12464-1
 grid with a 0.5 m border) and the same weather year are computed by
 
 - **LightInv**: ``lightinv-cli simulate``'s year through clear glazing
@@ -45,7 +46,7 @@ from lightinv_core.scene.builtin import builtin_scene  # noqa: E402
 from lightinv_core.study import SimulationSpec, simulate  # noqa: E402
 from lightinv_core.transport.workplane import WorkPlane  # noqa: E402
 
-ROOMS = {"sidelit": "window", "toplit": "rooflight"}
+ROOMS = {"sidelit": "window", "toplit": "rooflight", "office": "roof"}
 TAU = 0.7
 
 

@@ -156,6 +156,12 @@ class ClearDaylight:
             + self._reflected(_weighted(room, G, luminance)[..., None])[..., 0]
         )
 
+    def direct_under(self, luminance: Callable[[np.ndarray], np.ndarray]) -> np.ndarray:
+        """(G, q) the receivers' own view of one sky through the glass (no reflections:
+        those reach them through the room's radiosity, ``room_under``)."""
+        direct, _ = self._rays()
+        return _weighted(direct, self.groups, luminance)
+
     def sun_direct(self, sun: np.ndarray) -> np.ndarray:
         """(G, q, T) direct sun per lux of direct normal illuminance, suns (T, 3)."""
         return sun_on_points(self.points, self.normals, self.lit, self.glass, self.caster, sun)
