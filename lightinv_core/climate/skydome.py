@@ -154,6 +154,7 @@ def reinhart(mf: int) -> SkyDome:
     centre_az = azimuth.mean(axis=1)
     centre_az[-1] = 0.0
     directions = unit_directions(centre_alt, centre_az)
+    directions[-1] = (0.0, 0.0, 1.0)  # exactly the zenith
     return SkyDome(directions, solid, altitude, azimuth, mf)
 
 
