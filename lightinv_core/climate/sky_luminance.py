@@ -273,7 +273,11 @@ def hourly_sky_luminance(
     is 0 when dh_lux <= 0 (or not finite) or the sun is more than 6 degrees below the
     horizon; between 0 and 6 degrees below, the sun is put on the horizon. An hour
     whose distribution integrates to nothing (a degenerate coefficient set) falls back
-    to the CIE overcast distribution, so the illuminance is always kept."""
+    to the CIE overcast distribution, so the illuminance is always kept.
+
+    ``per_side``: each patch is averaged over per_side**2 stratified subsamples
+    (``SkyDome.subsamples``); 0 takes the value at the patch centre, as Radiance's
+    gendaymtx does (which then agrees with gendaymtx patch by patch)."""
     zen = np.asarray(sun_zenith_deg, float)
     lux = np.nan_to_num(np.asarray(dh_lux, float), nan=0.0)
     active = np.flatnonzero((lux > 0.0) & (zen < _MAX_SUN_ZENITH) & np.isfinite(zen))
@@ -289,9 +293,9 @@ def hourly_sky_luminance(
         np.asarray(dni_extra, float)[active],
     )
     coef = perez_coefficients(z, eps, dl)
-    dirs, _ = dome.subsamples(per_side)  # equal weights within a patch
+    dirs = _patch_samples(dome, per_side)
     flat = dirs.reshape(-1, 3)
-    s = per_side * per_side
+    s = dirs.shape[1]
     proj = dome.horizontal_solid_angles
     overcast = _patch_average(cie_overcast(flat), dome.count, s)
     chunk = max(1, 4_000_000 // flat.shape[0])
@@ -305,6 +309,14 @@ def hourly_sky_luminance(
         total[bad] = overcast @ proj
         out[active[sl]] = rel * (lux[active[sl]] / total)[:, None]
     return out
+
+
+def _patch_samples(dome: SkyDome, per_side: int) -> np.ndarray:
+    """(K, s, 3) equal-weight directions in each patch: the stratified subsamples, or
+    with per_side = 0 the patch centres alone (gendaymtx's sampling)."""
+    if per_side == 0:
+        return dome.directions[:, None, :]
+    return dome.subsamples(per_side)[0]
 
 
 def _patch_average(values: np.ndarray, count: int, s: int) -> np.ndarray:
@@ -323,9 +335,9 @@ def scaled_sky(
     patch luminances themselves. E.g. ``scaled_sky(dome, cie_overcast, 10_000)`` or
     ``scaled_sky(dome, lambda d: cie_clear(d, sun), 8_000)``."""
     if callable(relative):
-        dirs, _ = dome.subsamples(per_side)
+        dirs = _patch_samples(dome, per_side)
         rel = _patch_average(
-            np.asarray(relative(dirs.reshape(-1, 3)), float), dome.count, per_side**2
+            np.asarray(relative(dirs.reshape(-1, 3)), float), dome.count, dirs.shape[1]
         )
     else:
         rel = np.asarray(relative, float).reshape(dome.count)

@@ -84,10 +84,8 @@ def test_patch_of_centres_and_bounds(mf: int) -> None:
 def _rcalc(cal: str, mf: int, expr: str, directions: np.ndarray) -> np.ndarray:
     # reinhart.cal needs the constant MF before it loads; reinhartb.cal sets MF = 1
     # itself, to be overridden after it
-    if cal == "reinhart.cal":
-        load = ["-e", f"MF:{mf}", "-f", cal]
-    else:
-        load = ["-f", cal, "-e", f"MF={mf}"]
+    before = cal == "reinhart.cal"
+    load = ["-e", f"MF:{mf}", "-f", cal] if before else ["-f", cal, "-e", f"MF={mf}"]
     rows = "\n".join(f"{x:.10f} {y:.10f} {z:.10f}" for x, y, z in directions)
     out = subprocess.run(
         [RCALC, *load, "-e", "Dx=$1;Dy=$2;Dz=$3", "-e", f"$1={expr}"],
