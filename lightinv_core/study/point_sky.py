@@ -144,7 +144,7 @@ def weather_hour_sky(weather, sky, hour: int, ground_reflectance: float) -> Poin
     )
 
     def relative(d):
-        return perez_all_weather(d, sun, zen, float(np.ravel(eps)[0]), float(np.ravel(delta)[0]))
+        return perez_all_weather(d, sun[None], np.array([zen]), eps, delta)[0]
 
     dh = float(weather.dh_lux[hour])
     up = zen < 90.0

@@ -77,7 +77,7 @@ def test_one_hour_of_the_year_is_the_years_hour(chicago):
     lux = year.total()
     # A sunny winter noon (the sun deep in the room) and an overcast-ish hour.
     sunny = int(np.argmax(np.where(year.sun_up, year.direct_sun.sum(axis=(0, 1)), 0)))
-    for hour in (sunny, sunny + 24 * 30):
+    for hour in (sunny, (sunny + 24 * 30) % 8760):
         one = simulate(SimulationSpec(**base, hour=hour))
         direct = year.direct_sun[0][:, hour]
         assert one.grid_lux.mean() == pytest.approx(lux[:, hour].mean(), rel=0.03)
@@ -101,11 +101,12 @@ def test_cli_clear_glazing_year_and_options(tmp_path, capsys, chicago):
     assert a["blinds_closed_hours"]["window"] > 0
     header = (tmp_path / "g.csv").read_text().splitlines()[0].split(",")
     assert {"da300", "cda300", "ase_hours"} <= set(header)
-    # Every day of the week: 7/5 of the occupied hours (to within the year's odd days).
+    # Every day of the week: 365 days x 10 h. Weekdays only: 52 weeks of five days and
+    # up to four more (a typical year mixes the years of its months), 10 h each.
     assert cli.main([*argv, "--all-days", "--json"]) == 0
     every = json.loads(capsys.readouterr().out)["annual"]
     assert every["occupied_hours"] == 3650 and every["weekdays_only"] is False
-    assert a["occupied_hours"] == pytest.approx(3650 * 5 / 7, abs=30)
+    assert 2600 <= a["occupied_hours"] <= 2640 and a["occupied_hours"] % 10 == 0
     # The CIE clear sky with the sun, and its errors.
     moment = ["simulate", "sidelit", "--resolution", "0.5", "--glazing", "window=0.7:clear"]
     moment += ["--workplane", "--json", "--sky", "cie-clear", "--sun", "30,180"]
@@ -115,5 +116,5 @@ def test_cli_clear_glazing_year_and_options(tmp_path, capsys, chicago):
     assert cli.main(moment[:-2]) == 2
     assert "needs the sun" in capsys.readouterr().err
     with pytest.raises(SystemExit):
-        cli.main([*moment[:4], "window=0.7:frosted"])
+        cli.main([*moment[:5], "window=0.7:frosted"])
     assert "clear" in capsys.readouterr().err
