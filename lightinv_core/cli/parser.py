@@ -132,6 +132,15 @@ def build_parser() -> argparse.ArgumentParser:
         help="occupied hours on weekdays, local time (default 8-18)",
     )
     sim.add_argument(
+        "--sky-subdivision",
+        type=int,
+        choices=(1, 2, 4),
+        default=1,
+        metavar="MF",
+        help="clear glazing over a year: the sky in Reinhart MF patches (1: Tregenza's 145, "
+        "the default; 2: 577; 4: 2,305)",
+    )
+    sim.add_argument(
         "--all-days",
         action="store_true",
         help="occupied on every day of the week, not only Monday to Friday",

@@ -93,6 +93,7 @@ def spec_of(args) -> SimulationSpec:
         sunlight_point=args.sunlight_point,
         sunlight_date=args.sunlight_date,
         sunlight_min_altitude=args.sunlight_min_altitude,
+        sky_mf=args.sky_subdivision,
         sensors=dict(args.sensor),
         exterior_lux=args.exterior_lux,
         ground_reflectance=args.ground_reflectance,

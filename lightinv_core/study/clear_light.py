@@ -114,7 +114,7 @@ def clear_annual(spec, clear, orients, year):
 
     every = year.coefficients @ year.year.every if year is not None else None
     tilts = tuple(float(np.degrees(np.arccos(np.clip(o.outward[2], -1, 1)))) for o in orients)
-    got = clear_year(clear, spec.annual, every, diffusing_tilts=tilts)
+    got = clear_year(clear, spec.annual, every, diffusing_tilts=tilts, sky_mf=spec.sky_mf)
     summary, columns = work_plane_metrics(got)
     if spec.views:
         v = np.asarray(spec.views, dtype=float)
@@ -127,7 +127,8 @@ def clear_annual(spec, clear, orients, year):
             grid = Receivers(pts, nrm)
             c = orientation_coefficients(clear.lit, clear.F, clear.caster, orients, grid, fac)
             other = c @ year.year.every
-        rows = view_metrics(clear_year(views, spec.annual, other, diffusing_tilts=tilts), got)
+        view_year = clear_year(views, spec.annual, other, diffusing_tilts=tilts, sky_mf=spec.sky_mf)
+        rows = view_metrics(view_year, got)
         for row, view in zip(rows, spec.views, strict=True):
             row["view"] = list(view)
         summary["views"] = rows

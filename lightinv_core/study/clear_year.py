@@ -25,11 +25,15 @@ from dataclasses import dataclass
 import numpy as np
 
 from lightinv_core.design.model import Daylight
+from lightinv_core.errors import LightInvError
 from lightinv_core.light.daylight_year import daylight_year, weather_path
 from lightinv_core.study.annual import glazing_groups
 from lightinv_core.transport.annual import orientation_coefficients, orientations
 from lightinv_core.transport.clear_glazing import to_geographic, to_scene
 from lightinv_core.transport.daylight_coefficients import ClearDaylight
+
+SKY_SUBDIVISIONS = (1, 2, 4)
+"""Reinhart subdivisions of the sky a year may use (1: Tregenza)."""
 
 SUN_BASIS_MF = 2
 """Reinhart subdivision of the sun positions whose inter-reflected light is solved."""
@@ -70,12 +74,13 @@ class ClearYear:
         return lux
 
 
-def _sky_vectors(weather, sky, daylight: Daylight):
-    """(T, K) patch luminances of the Tregenza sky, (T,) ground luminance, the dome."""
+def _sky_vectors(weather, sky, daylight: Daylight, mf: int):
+    """(T, K) patch luminances of the Reinhart MF:``mf`` sky (1: Tregenza's 145
+    patches), (T,) ground luminance, the dome."""
     from lightinv_core.climate.sky_luminance import hourly_sky_luminance
-    from lightinv_core.climate.skydome import tregenza
+    from lightinv_core.climate.skydome import reinhart
 
-    dome = tregenza()
+    dome = reinhart(mf)
     L = hourly_sky_luminance(
         dome, weather.dni, weather.dhi, weather.dh_lux, sky.zenith, sky.azimuth, sky.dni_extra
     )
@@ -127,17 +132,23 @@ def clear_year(
     diffusing_lux: np.ndarray | None = None,
     blind_transmittance: float = BLIND_TRANSMITTANCE,
     diffusing_tilts: tuple[float, ...] = (),
+    sky_mf: int = 1,
 ) -> ClearYear:
     """The year of ``daylight``'s weather through the clear glazing of ``clear`` at its
     receivers; ``diffusing_lux`` (q, T) the diffusing glazing's light each hour, from
-    panes tilted ``diffusing_tilts`` (deg from the zenith)."""
+    panes tilted ``diffusing_tilts`` (deg from the zenith); the sky in Reinhart MF:``sky_mf``
+    patches (1: Tregenza's 145, 2: 577, 4: 2,305)."""
+    if sky_mf not in SKY_SUBDIVISIONS:
+        raise LightInvError(
+            f"sky subdivision must be one of {', '.join(map(str, SKY_SUBDIVISIONS))}, got {sky_mf}"
+        )
     from lightinv_core.climate.transposition import sun_and_sky
     from lightinv_core.climate.weather import load_weather
 
     weather = load_weather(weather_path(daylight))
     sky = sun_and_sky(weather)
     north = daylight.north_deg
-    L, ground, dome = _sky_vectors(weather, sky, daylight)
+    L, ground, dome = _sky_vectors(weather, sky, daylight, sky_mf)
     K = len(dome.solid_angles)
 
     def bins(d):

@@ -92,7 +92,7 @@ class SimulationSpec:
     (``annual.weather``; through clear glazing with glare at ``views`` (x, y, z, dx,
     dy, dz) and EN 17037 sunlight exposure at ``sunlight_point`` on
     ``sunlight_date`` (month, day), the sun counted above ``sunlight_min_altitude``
-    deg); ``workplane``: an
+    deg; the sky in Reinhart MF:``sky_mf`` patches); ``workplane``: an
     EN 12464-1 grid read-out; ``annual``: the weather file, north bearing, occupancy
     and ground reflectance of the year and the luminaires' daylight-linked dimming
     (target lux, lowest level, standby watts): a ``Daylight``. ``rays`` per patch and
@@ -115,6 +115,7 @@ class SimulationSpec:
     sunlight_point: tuple[float, float, float] | None = None
     sunlight_date: tuple[int, int] = (3, 21)
     sunlight_min_altitude: float | None = None
+    sky_mf: int = 1
     sensors: dict[str, tuple[float, float, float, float]] = field(default_factory=dict)
     ground_reflectance: float = 0.2
     workplane: WorkPlane | None = None
