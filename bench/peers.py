@@ -95,7 +95,9 @@ def radiance(patches, group: str, grid, weather: Path):
 
     t0 = cpu()
     lux = annual_lux(patches, {group: TAU}, grid.points, grid.normals, weather)
-    sun = annual_lux(patches, {group: TAU}, grid.points, grid.normals, weather, direct_sun_only=True)
+    sun = annual_lux(
+        patches, {group: TAU}, grid.points, grid.normals, weather, direct_sun_only=True
+    )
     return lux, sun, cpu() - t0
 
 
