@@ -279,6 +279,10 @@ def clear_lines(a: dict) -> list[str]:
             f"daylight-linked dimming to {d['target_lux']:g} lux: {d['energy_kwh']:.0f} kWh a year "
             f"(undimmed {d['undimmed_kwh']:.0f} kWh), LENI {d['leni_kwh_m2']:.2f} kWh/m² a"
         )
+    lines += [
+        f"{'PASS' if c['passed'] else 'FAIL'}  {c['text']}: {c['value']} (needs {c['required']})"
+        for c in a.get("criteria", [])
+    ]
     return lines
 
 
@@ -302,6 +306,10 @@ def annual_lines(a: dict) -> list[str]:
             f"daylight-linked dimming to {d['target_lux']:g} lux: {d['energy_kwh']:.0f} kWh a year "
             f"(undimmed {d['undimmed_kwh']:.0f} kWh), LENI {d['leni_kwh_m2']:.2f} kWh/m² a"
         )
+    lines += [
+        f"{'PASS' if c['passed'] else 'FAIL'}  {c['text']}: {c['value']} (needs {c['required']})"
+        for c in a.get("criteria", [])
+    ]
     return lines
 
 

@@ -109,6 +109,7 @@ def clear_annual(spec, clear, orients, year):
     sunlight exposure at ``spec.sunlight_point`` when given."""
     from lightinv_core.study.clear_metrics import sunlight, view_metrics, work_plane_metrics
     from lightinv_core.study.clear_year import Receivers, clear_year
+    from lightinv_core.study.daylight_criteria import judge
     from lightinv_core.transport.annual import orientation_coefficients
     from lightinv_core.transport.receivers import receiver_factors
 
@@ -136,6 +137,7 @@ def clear_annual(spec, clear, orients, year):
         summary["en17037_sunlight"] = sunlight(
             spec.sunlight_point, clear, got, spec.sunlight_date, spec.sunlight_min_altitude
         )
+    summary["criteria"] = [c.as_dict() for c in judge(summary)]
     return got, summary, columns
 
 
