@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import gzip
 import math
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -31,7 +32,7 @@ from tests.radiance import (
 
 UP = np.array([[0.0, 0.0, 1.0]])
 ORIGIN = np.zeros((1, 3))
-EPW = "tests/data/weather/chicago.epw.gz"
+EPW = Path(__file__).resolve().parents[1] / "data" / "weather" / "chicago.epw.gz"
 N_GLASS = 1.52
 
 
