@@ -194,7 +194,7 @@ def hour_of_year(text: str) -> int:
     except ValueError:
         raise argparse.ArgumentTypeError(
             f"expected an hour of the weather file from 0 (the hour ending 01:00 on 1 "
-            f"January) to 8759, got {text!r}"
+            f"January) to 8759 (8783 in a leap year), got {text!r}"
         ) from None
     return h
 

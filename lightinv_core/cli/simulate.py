@@ -45,6 +45,12 @@ def check_args(args) -> None:
     annual_only = (args.view or args.sunlight_point) and args.weather is None
     if annual_only:
         raise LightInvError("--view and --sunlight-point are studied over a year: give --weather")
+    if (args.view or args.sunlight_point) and args.hour is not None:
+        raise LightInvError(
+            "--view and --sunlight-point are studied over the whole year: leave out --hour"
+        )
+    if args.sensor and not args.luminaires:
+        raise LightInvError("--sensor dims a control group of luminaires: give --luminaires")
     if args.sunlight_point and args.sunlight_min_altitude is None:
         raise LightInvError(
             "EN 17037 counts the sun above a minimum altitude set for the site (the "

@@ -86,8 +86,9 @@ def outside_lux(sky: PointSky, north_deg: float):
 
 def clear_moment(
     clear: ClearDaylight, sky: PointSky, north_deg: float
-) -> tuple[np.ndarray, np.ndarray]:
-    """The clear glazing's light under ``sky``: (patches (n,), receivers (q,)) lux; the
+) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The clear glazing's light under ``sky``: (first-hit on the patches (n,), patches
+    (n,), receivers (q,)) lux; the
     receivers' part is their direct view of the sky and sun only: the room's reflected
     light reaches them through the radiosity (its B gains rho x the patches' lux)."""
 
@@ -95,11 +96,11 @@ def clear_moment(
         return sky.luminance(to_geographic(d, north_deg))
 
     sun = None if sky.sun is None else to_scene(sky.sun[None], north_deg)
-    room = clear.room_under(luminance, sun, sky.sun_lux)
+    first, room = clear.room_under(luminance, sun, sky.sun_lux)
     points = clear.direct_under(luminance).sum(axis=0)
     if sun is not None and sky.sun_lux > 0:
         points = points + sky.sun_lux * clear.sun_direct(sun)[..., 0].sum(axis=0)
-    return room, points
+    return first, room, points
 
 
 def clear_annual(spec, clear, orients, year):

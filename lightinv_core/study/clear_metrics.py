@@ -65,6 +65,7 @@ def work_plane_metrics(year) -> tuple[dict, dict[str, np.ndarray]]:
         "daylight_hours": int(mask.sum()),
         **{k: v for k, v in provision.summary().items() if k != "en17037_provision"},
     }
+    summary["lm83"] = lm83_figures(year)
     columns = {
         "da300": m.da,
         "cda300": cda,
@@ -75,6 +76,23 @@ def work_plane_metrics(year) -> tuple[dict, dict[str, np.ndarray]]:
         "ase_hours": np.asarray(a.hours, dtype=float),
     }
     return summary, columns
+
+
+LM83_HOURS = (8.0, 18.0)
+"""IES LM-83's analysis period: 8:00 to 18:00 local standard time, every day of the
+year, whatever the project's own occupancy."""
+
+
+def lm83_figures(year) -> dict:
+    """sDA300/50% (with the LM-83 blinds) and ASE1000,250 over LM-83's own period
+    (``LM83_HOURS``, every day): the figures LEED judges."""
+    from lightinv_core.climate.sun_metrics import ase
+
+    mask = np.asarray(year.weather.occupied(*LM83_HOURS, weekdays=False))
+    closed = blinds(year, mask)
+    m = daylight_metrics(year.total(closed)[:, mask])
+    a = ase(year.direct_sun.sum(axis=0)[:, mask])
+    return {"hours": int(mask.sum()), "sda300_50": m.sda, "ase1000_250": float(a.share)}
 
 
 def view_metrics(views_year, work_plane_year) -> list[dict]:

@@ -28,7 +28,7 @@ from lightinv_core.design.model import Daylight
 from lightinv_core.errors import LightInvError
 from lightinv_core.light.daylight_year import daylight_year, weather_path
 from lightinv_core.study.annual import glazing_groups
-from lightinv_core.transport.annual import orientation_coefficients, orientations
+from lightinv_core.transport.annual import orientations
 from lightinv_core.transport.clear_glazing import to_geographic, to_scene
 from lightinv_core.transport.daylight_coefficients import ClearDaylight
 
@@ -188,22 +188,18 @@ def clear_year(
 
 def _closed(clear: ClearDaylight, daylight: Daylight, share: float):
     """Per clear group, (q, O) lux per exterior lux on each of the year's orientations
-    when its blinds are closed, and the orientations (all groups' panes, one list)."""
-
+    when its blinds are closed (the group's panes of that orientation glowing as
+    diffusing glass of ``share`` x their transmittance), and the orientations."""
     tau = dict(zip(clear.glass.groups, _group_tau(clear), strict=True))
     orients = orientations(clear.lit, {g: share * t for g, t in tau.items()})
-    coefficients = []
-    for g in clear.glass.groups:
-        only = [type(o)(tuple(q for q in o.panes if q.group == g), o.outward) for o in orients]
-        c = np.zeros((len(clear.points), len(orients)))
-        live = [i for i, o in enumerate(only) if o.panes]
-        if live:
-            grid = Receivers(clear.points, clear.normals)
-            c[:, live] = orientation_coefficients(
-                clear.lit, clear.F, clear.caster, [only[i] for i in live], grid, clear.factors
-            )
-        coefficients.append(c)
-    return coefficients, orients
+    G, n_or = len(clear.glass.groups), len(orients)
+    E = np.zeros((clear.lit.n, G * n_or))
+    for o, orient in enumerate(orients):
+        for pane in orient.panes:
+            g = clear.glass.groups.index(pane.group)
+            E[pane.idx, g * n_or + o] = pane.transmittance  # lm/m² per lux outside
+    lux = clear.emitted(E).reshape(len(clear.points), G, n_or)
+    return [lux[:, g, :] for g in range(G)], orients
 
 
 def _group_tau(clear: ClearDaylight) -> list[float]:

@@ -49,13 +49,14 @@ class GroupDimming:
 
 
 def sensor_mask(points: np.ndarray, rect: tuple[float, float, float, float] | None) -> np.ndarray:
-    """The work-plane points (q, 3) within the plan rectangle (x0, y0, x1, y1), m."""
+    """The work-plane points (q, 3) within the plan rectangle (x0, y0, x1, y1), m: the
+    lower edges in, the upper edges out, so two regions sharing an edge share no point."""
     pts = np.asarray(points, dtype=float)
     if rect is None:
         return np.ones(len(pts), bool)
     x0, y0, x1, y1 = rect
     lo_x, hi_x, lo_y, hi_y = min(x0, x1), max(x0, x1), min(y0, y1), max(y0, y1)
-    return (pts[:, 0] >= lo_x) & (pts[:, 0] <= hi_x) & (pts[:, 1] >= lo_y) & (pts[:, 1] <= hi_y)
+    return (pts[:, 0] >= lo_x) & (pts[:, 0] < hi_x) & (pts[:, 1] >= lo_y) & (pts[:, 1] < hi_y)
 
 
 def group_dimming(

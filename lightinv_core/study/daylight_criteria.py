@@ -2,7 +2,9 @@
 
 - LEED v4 EQ credit Daylight, option 1 (simulation per IES LM-83): sDA300/50% of at
   least 55% of the regularly occupied floor (2 points; 75%: 3 points), and ASE1000,250
-  of no more than 10% (LM-83's own threshold for "unsatisfactory" sun);
+  of no more than 10% (LM-83's own threshold for "unsatisfactory" sun), both over
+  LM-83's period (8:00-18:00 every day: ``clear_metrics.lm83_figures``), whatever the
+  project's occupancy;
 - EN 17037: daylight provision at least at its minimum level; sunlight exposure at
   least 1.5 h (its minimum); glare protection at least at its minimum level at every
   view point.
@@ -41,11 +43,12 @@ def judge(summary: dict) -> list[Criterion]:
     """The criteria of a clear year's ``summary`` (``clear_metrics.work_plane_metrics``
     with the views and sunlight exposure added when measured)."""
     out = []
-    sda, ase = summary["sda300_50"], summary["ase1000_250"]
+    lm83 = summary["lm83"]
+    sda, ase = lm83["sda300_50"], lm83["ase1000_250"]
     out.append(
         Criterion(
             "leed_sda",
-            "LEED v4 EQ Daylight option 1: sDA300/50% (LM-83 blinds)",
+            "LEED v4 EQ Daylight option 1: sDA300/50% (LM-83 blinds, 8-18 h every day)",
             f"{100 * sda:.0f}%",
             ">= 55% (2 points), >= 75% (3 points)",
             sda >= 0.55,
@@ -54,7 +57,7 @@ def judge(summary: dict) -> list[Criterion]:
     out.append(
         Criterion(
             "leed_ase",
-            "LEED v4 EQ Daylight option 1: ASE1000,250",
+            "LEED v4 EQ Daylight option 1: ASE1000,250 (8-18 h every day)",
             f"{100 * ase:.0f}%",
             "<= 10%",
             ase <= 0.10,

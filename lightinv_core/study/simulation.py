@@ -39,7 +39,7 @@ from lightinv_core.study.clear_light import (
 from lightinv_core.study.clear_metrics import blinds
 from lightinv_core.study.control_groups import DEFAULT_GROUP, group_dimming
 from lightinv_core.transport.annual import orientation_coefficients, orientations
-from lightinv_core.transport.clear_glazing import clear_glass
+from lightinv_core.transport.clear_glazing import clear_glass, clear_glass_warnings
 from lightinv_core.transport.daylight_coefficients import ClearDaylight
 from lightinv_core.transport.escape import luminaire_escape_warnings
 from lightinv_core.transport.formfactors import (
@@ -248,11 +248,19 @@ def _simulate_reference(spec: SimulationSpec, p: Patches, E, progress) -> Simula
         clear_light = ClearDaylight(lit, F, caster, clear_glass(lit, clear), pts, nrm, fac)
     clear_points = None
     if clear_light is not None and sky is not None:
-        room, clear_points = clear_moment(clear_light, sky, north)
-        light = replace(light, H=light.H + room, B=light.B + lit.rho * room)
+        first, room, clear_points = clear_moment(clear_light, sky, north)
+        # The light through the clear glass enters the flux budget as emitted light.
+        light = replace(
+            light,
+            H=light.H + room,
+            B=light.B + lit.rho * room,
+            emitted_lm=light.emitted_lm + float(first @ lit.area),
+            absorbed_lm=light.absorbed_lm + float(((1.0 - lit.rho) * room) @ lit.area),
+        )
     t2 = time.perf_counter()
     lost = lost_fraction(F, p)
     warnings = [w for w in [escape_warning(lost)] if w]
+    warnings += clear_glass_warnings(clear)
     warnings += luminaire_escape_warnings(luminaires, caster)
     # Daylight factor (%): illuminance over the unobstructed exterior horizontal one.
     df = spec.sky == "cie-overcast" and spec.exterior_lux > 0
@@ -308,14 +316,15 @@ def _read_workplane(spec, result: SimulationResult, F, caster, light, df: bool, 
         if clear_light is None:
             year = with_dimming(year, electric, watts, floor, spec.annual)
         else:
-            result.clear_dimming = clear_dimming(
-                result.clear_year, electric, watts, floor, spec.annual
-            )
+            dim = clear_dimming(result.clear_year, electric, watts, floor, spec.annual)
+            result.clear_dimming = (dim, float(np.mean(electric)))
         groups = {x.control or DEFAULT_GROUP for x in luminaires}
         if spec.sensors or len(groups) > 1:
             scene = (lit, F, caster, grid, factors)
             _control_groups(spec, result, scene, year, days, floor)
-    result.annual = year
+    # With clear glazing the year's figures are the clear year's (diffusing groups
+    # included); the diffusing groups' own GridYear would tell only part of the light.
+    result.annual = year if clear_light is None else None
 
 
 def _control_groups(spec, result: SimulationResult, scene, year, days, floor: float) -> None:

@@ -34,6 +34,9 @@ REFRACTIVE_INDEX = 1.52
 OUTSIDE_M = 1e4
 """Metres; an obstruction farther from the glass than this is no obstruction."""
 
+SAMPLE_BUDGET = 4096
+"""Glass samples per receiver at most (memory: the rays are kept, 30 bytes each)."""
+
 _CHUNK = 2**18
 """Rays traced at a time (memory: a few tens of MB)."""
 
@@ -55,6 +58,21 @@ def _transmissivities(t: np.ndarray) -> np.ndarray:
     safe = np.where(t > 0, t, 1.0)
     tn = (np.sqrt(0.8402528435 + 0.0072522239 * safe * safe) - 0.9166530661) / 0.0036261119 / safe
     return np.where(t > 0, np.minimum(tn, 1.0), 0.0)
+
+
+MAX_CLEAR_TRANSMITTANCE = 0.9184
+"""The normal-incidence transmittance of lossless glass of n = 1.52, (1 - r) / (1 + r):
+clear glass cannot pass more (Radiance caps it alike)."""
+
+
+def clear_glass_warnings(glazing: dict[str, float]) -> list[str]:
+    """Warnings for clear glazing groups asked to pass more than glass can."""
+    return [
+        f"clear glazing {g!r}: glass passes at most {MAX_CLEAR_TRANSMITTANCE:.3f} at normal "
+        f"incidence; its {t:g} is taken as {MAX_CLEAR_TRANSMITTANCE:.3f}"
+        for g, t in glazing.items()
+        if t > MAX_CLEAR_TRANSMITTANCE
+    ]
 
 
 def glass_transmittance(transmittance, cos_incidence) -> np.ndarray:
@@ -156,7 +174,9 @@ def receiver_sky_rays(
 ) -> SkyRays:
     """Rays from receiver points (q, 3) facing ``normals`` to the sky through the glass.
 
-    The glass is sampled by area (``per_side``² stratified points per glass patch), so
+    The glass is sampled by area (``per_side``² stratified points per glass patch, fewer
+    when the glass has many patches: at most ``SAMPLE_BUDGET`` per receiver, at least
+    2 x 2 per patch), so
     a ray to a point x on pane j stands for the solid angle A_j cos(theta_j) / (s r²);
     its weight is that times the glass's transmittance at theta_j and the cosine at
     the receiver. A ray counts when nothing in the room hides x from the receiver
@@ -164,6 +184,7 @@ def receiver_sky_rays(
     pts = np.asarray(points, dtype=float).reshape(-1, 3)
     nrm = np.asarray(normals, dtype=float).reshape(-1, 3)
     nrm = nrm / np.linalg.norm(nrm, axis=1)[:, None]
+    per_side = max(2, min(per_side, math.isqrt(SAMPLE_BUDGET // max(glass.count, 1))))
     s = per_side * per_side
     if glass.count == 0 or len(pts) == 0:
         return SkyRays(np.zeros(0, int), np.zeros((0, 3)), np.zeros(0), np.zeros(0, int), len(pts))
@@ -199,10 +220,10 @@ def receiver_sky_rays(
         bi, ki, dd = bi[free], ki[free], dd[free]
         cg = cos_g[bi, ki]
         w = ja[ki] * cg / r[bi, ki] ** 2 * cos_r[bi, ki] * glass_transmittance(jt[ki], cg)
-        out_t.append(start + bi)
-        out_d.append(dd)
+        out_t.append((start + bi).astype(np.int32))
+        out_d.append(dd.astype(np.float32))
         out_w.append(w)
-        out_g.append(jg[ki])
+        out_g.append(jg[ki].astype(np.int16))
     return _rays(out_t, out_d, out_w, out_g, len(pts))
 
 

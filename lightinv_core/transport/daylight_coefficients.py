@@ -45,22 +45,22 @@ def factor(F: sp.spmatrix, rho: np.ndarray):
     n = F.shape[0]
     if n > DENSE_LIMIT:
         return None
-    Fd = F.toarray() if sp.issparse(F) else np.asarray(F)
-    return la.lu_factor(np.eye(n) - rho[:, None] * Fd)
+    # I - rho F built in place: one dense n x n array, factored where it lies.
+    A = F.toarray() if sp.issparse(F) else np.array(F, dtype=float)
+    A *= -rho[:, None]
+    A[np.diag_indices(n)] += 1.0
+    return la.lu_factor(A, overwrite_a=True, check_finite=False)
 
 
-def bounce(F: sp.spmatrix, rho: np.ndarray, H: np.ndarray, lu=None) -> np.ndarray:
-    """Radiosity B (n, c) of the room whose patches first receive irradiance ``H``
-    (n, c) lux: (I - rho F) B = rho H, every column at once (by the LU factors ``lu``
-    of ``factor``, made here when not given, up to ``DENSE_LIMIT`` patches; Jacobi
-    sweeps above)."""
+def radiosity(F: sp.spmatrix, rho: np.ndarray, E: np.ndarray, lu=None) -> np.ndarray:
+    """Radiosity B (n, c) of patches emitting ``E`` (n, c) lm/m²: (I - rho F) B = E,
+    every column at once (as ``bounce``)."""
     n = F.shape[0]
-    E = rho[:, None] * H
     if n <= DENSE_LIMIT:
         return la.lu_solve(factor(F, rho) if lu is None else lu, E)
     F = sp.csr_matrix(F)
-    B = E.copy()
-    scale = max(float(np.abs(E).max()), 1e-300)
+    B = np.array(E, dtype=float)
+    scale = max(float(np.abs(B).max()), 1e-300)
     for _ in range(10_000):
         B_new = E + rho[:, None] * (F @ B)
         if float(np.abs(B_new - B).max()) <= 1e-10 * scale:
@@ -69,12 +69,21 @@ def bounce(F: sp.spmatrix, rho: np.ndarray, H: np.ndarray, lu=None) -> np.ndarra
     return B
 
 
+def bounce(F: sp.spmatrix, rho: np.ndarray, H: np.ndarray, lu=None) -> np.ndarray:
+    """Radiosity B (n, c) of the room whose patches first receive irradiance ``H``
+    (n, c) lux: (I - rho F) B = rho H, every column at once (by the LU factors ``lu``
+    of ``factor``, made here when not given, up to ``DENSE_LIMIT`` patches; Jacobi
+    sweeps above)."""
+    return radiosity(F, rho, rho[:, None] * H, lu)
+
+
 def _binned(rays: SkyRays, groups: int, bins: Bins, nbins: int) -> np.ndarray:
     """(G, targets, nbins) sums of the rays' weights by group, target and bin."""
     out = np.zeros(groups * rays.targets * nbins)
     if len(rays.weight):
         b = np.asarray(bins(rays.direction))
-        key = (rays.group * rays.targets + rays.target) * nbins + b
+        g, t = rays.group.astype(np.int64), rays.target.astype(np.int64)
+        key = (g * rays.targets + t) * nbins + b
         out += np.bincount(key, rays.weight, minlength=len(out))
     return out.reshape(groups, rays.targets, nbins)
 
@@ -84,7 +93,8 @@ def _weighted(rays: SkyRays, groups: int, luminance: Callable) -> np.ndarray:
     out = np.zeros(groups * rays.targets)
     if len(rays.weight):
         L = np.asarray(luminance(rays.direction), dtype=float)
-        out += np.bincount(rays.group * rays.targets + rays.target, rays.weight * L, len(out))
+        key = rays.group.astype(np.int64) * rays.targets + rays.target.astype(np.int64)
+        out += np.bincount(key, rays.weight * L, len(out))
     return out.reshape(groups, rays.targets)
 
 
@@ -121,6 +131,11 @@ class ClearDaylight:
             self._cache["rays"] = (direct, room)
         return self._cache["rays"]
 
+    def emitted(self, E: np.ndarray) -> np.ndarray:
+        """(q, c) lux at the receivers when the room's patches emit ``E`` (n, c) lm/m²
+        (e.g. glazing glowing as diffusing glass), by the room's one LU."""
+        return self.factors @ radiosity(self.F, self.lit.rho, E, self._lu())
+
     def share_room(self, other: ClearDaylight) -> None:
         """Reuse ``other``'s factors of the same room (its LU) for these receivers."""
         if other.lit is self.lit and other.F is self.F:
@@ -135,6 +150,8 @@ class ClearDaylight:
     def _reflected(self, H: np.ndarray) -> np.ndarray:
         """(G, q, c) light at the receivers from first-hit irradiance H (G, n, c)."""
         G, n, c = H.shape
+        if c == 0:  # e.g. a year whose file has no direct sun at all
+            return np.zeros((G, self.factors.shape[0], 0))
         flat = np.moveaxis(H, 0, 1).reshape(n, G * c)
         B = bounce(self.F, self.lit.rho, flat, self._lu())
         return np.moveaxis((self.factors @ B).reshape(-1, G, c), 1, 0)
@@ -173,17 +190,18 @@ class ClearDaylight:
 
     def room_under(
         self, luminance: Callable[[np.ndarray], np.ndarray], sun: np.ndarray | None, sun_lux: float
-    ) -> np.ndarray:
-        """Illuminance (lux, (n,)) of the room's patches under one sky and sun (a unit
-        scene vector or None; ``sun_lux`` its direct normal illuminance): the light
-        first landing through the glass plus its inter-reflections, every group."""
+    ) -> tuple[np.ndarray, np.ndarray]:
+        """Illuminance (lux) of the room's patches under one sky and sun (a unit scene
+        vector or None; ``sun_lux`` its direct normal illuminance), every group: (the
+        light first landing through the glass (n,), that plus its inter-reflections
+        (n,))."""
         _, room = self._rays()
         H = _weighted(room, self.groups, luminance).sum(axis=0)
         if sun is not None and sun_lux > 0:
             beam = sun_on_room(self.lit, self.glass, self.caster, sun, self.per_side, self.seed)
             H = H + sun_lux * beam[..., 0].sum(axis=0)
         B = bounce(self.F, self.lit.rho, H[:, None], self._lu())[:, 0]
-        return H + self.F @ B
+        return H, H + self.F @ B
 
     def sun(self, sun: np.ndarray) -> np.ndarray:
         """(G, q, T) the sun's light (direct and reflected) per lux of direct normal

@@ -118,3 +118,38 @@ def test_cli_clear_glazing_year_and_options(tmp_path, capsys, chicago):
     with pytest.raises(SystemExit):
         cli.main([*moment[:5], "window=0.7:frosted"])
     assert "clear" in capsys.readouterr().err
+
+
+def test_clear_glazing_with_dimmed_luminaires_and_a_year_without_sun(tmp_path, capsys, chicago):
+    from lightinv_core.luminaires.analytic import downlight
+    from lightinv_core.luminaires.formats import write_photometry
+
+    write_photometry(downlight(2000.0, watts=20.0), tmp_path / "d.ldt")
+    rows = [(1.5, 2, "front"), (4.5, 2, "front"), (1.5, 6, "back"), (4.5, 6, "back")]
+    (tmp_path / "l.csv").write_text(
+        "name,x,y,z,ies,aim_x,aim_y,aim_z,c0_x,c0_y,c0_z,control\n"
+        + "".join(f"D{k},{x},{y},2.95,d.ldt,0,0,-1,1,0,0,{g}\n" for k, (x, y, g) in enumerate(rows))
+    )
+    argv = ["simulate", "sidelit", "--resolution", "0.5", "--glazing", "window=0.7:clear"]
+    argv += ["--workplane", "--luminaires", str(tmp_path / "l.csv"), "--json"]
+    argv += ["--sensor", "front=0,0,6,4", "--sensor", "back=0,4,6,8"]
+    assert cli.main([*argv, "--weather", str(chicago)]) == 0
+    a = json.loads(capsys.readouterr().out)["annual"]
+    d = a["dimming"]
+    assert d["installed_w"] == pytest.approx(80.0) and 0 < d["energy_kwh"] < d["undimmed_kwh"]
+    g = {x["name"]: x for x in a["control_groups"]["groups"]}
+    # The row by the window has more daylight, so it dims deeper than the back row.
+    assert g["front"]["mean_level"] < g["back"]["mean_level"]
+    # A file whose direct light is all zero: no sun to trace, no crash, no ASE.
+    lines = chicago.read_text().splitlines()
+    dark = []
+    for line in lines:
+        f = line.split(",")
+        if len(f) > 30 and f[0].strip().isdigit() and len(lines) - len(dark) <= 8760:
+            f[14], f[17] = "0", "0"  # direct normal irradiance and illuminance
+        dark.append(",".join(f))
+    (tmp_path / "dark.epw").write_text("\n".join(dark) + "\n")
+    assert cli.main([*argv, "--weather", str(tmp_path / "dark.epw")]) == 0
+    a = json.loads(capsys.readouterr().out)["annual"]
+    assert a["ase1000_250"] == 0 and a["blinds_closed_hours"]["window"] == 0
+    assert a["lm83"]["hours"] == 3650

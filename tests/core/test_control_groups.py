@@ -50,7 +50,7 @@ def test_control_groups_by_sensor_region(tmp_path, capsys, monkeypatch):
     two = _run(
         capsys,
         _schedule(tmp_path, groups),
-        ["--sensor", "south=0,0,12,3.99", "--sensor", "north=0,3.99,12,8"],
+        ["--sensor", "south=0,0,12,4", "--sensor", "north=0,4,12,8"],
     )
     g = two["control_groups"]
     by = {x["name"]: x for x in g["groups"]}
@@ -73,6 +73,8 @@ def test_control_groups_by_sensor_region(tmp_path, capsys, monkeypatch):
 def test_sensor_regions_and_their_errors(tmp_path, capsys, monkeypatch):
     pts = np.array([[0.5, 0.5, 0.8], [2.0, 3.0, 0.8], [5.0, 5.0, 0.8]])
     assert sensor_mask(pts, (3, 4, 0, 0)).tolist() == [True, True, False]
+    # Regions sharing an edge share no point: the upper edges are out.
+    assert sensor_mask(pts, (0, 0, 2, 3)).tolist() == [True, False, False]
     assert sensor_mask(pts, None).all()
     monkeypatch.setenv("LIGHTINV_CACHE_DIR", str(tmp_path / "cache"))
     schedule = _schedule(tmp_path, ["a"] * 6)

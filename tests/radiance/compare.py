@@ -35,9 +35,7 @@ def radiance_sky(case: str, sun) -> str:
     return sky_cie_clear(*sun, diffuse, rho_g, direct_normal_lux=direct)
 
 
-def compare(
-    room: str, case: str, every: int = 1, ab: int = 10, params: str = POINT_PARAMS
-) -> dict:
+def compare(room: str, case: str, every: int = 1, ab: int = 10, params: str = POINT_PARAMS) -> dict:
     """LightInv's work-plane lux and rtrace's at every ``every``-th point of ``room``
     under ``case``: both arrays, the relative errors and the sunlit points of each."""
     group, sun = ROOMS[room], SUN[room]
