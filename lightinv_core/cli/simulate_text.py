@@ -168,6 +168,7 @@ def annual_payload(res: SimulationResult, spec: SimulationSpec) -> dict:
         "weather": a.year.weather,
         "occupied_hours": a.year.hours,
         "occupancy": list(daylight.occupancy),
+        "weekdays_only": daylight.weekdays,
         "north_deg": daylight.north_deg,
         "panes": [
             {"group": q.group, "outward": q.outward.round(4).tolist(), "patches": len(q.idx)}
@@ -273,17 +274,23 @@ def clear_lines(a: dict) -> list[str]:
             f"view {v['view'][:3]}: DGPs max {v['dgp_max']:.2f}, above 0.40 in "
             f"{100 * v['dgp_over_0.40']:.1f}% of occupied hours"
         )
-    if "dimming" in a:
-        d = a["dimming"]
-        lines.append(
-            f"daylight-linked dimming to {d['target_lux']:g} lux: {d['energy_kwh']:.0f} kWh a year "
-            f"(undimmed {d['undimmed_kwh']:.0f} kWh), LENI {d['leni_kwh_m2']:.2f} kWh/m² a"
-        )
+    lines += dimming_lines(a)
     lines += [
         f"{'PASS' if c['passed'] else 'FAIL'}  {c['text']}: {c['value']} (needs {c['required']})"
         for c in a.get("criteria", [])
     ]
     return lines
+
+
+def dimming_lines(a: dict) -> list[str]:
+    """The dimming energy's line, when the year has luminaires to dim."""
+    if "dimming" not in a:
+        return []
+    d = a["dimming"]
+    return [
+        f"daylight-linked dimming to {d['target_lux']:g} lux: {d['energy_kwh']:.0f} kWh a year "
+        f"(undimmed {d['undimmed_kwh']:.0f} kWh), LENI {d['leni_kwh_m2']:.2f} kWh/m² a"
+    ]
 
 
 def annual_lines(a: dict) -> list[str]:
@@ -293,23 +300,15 @@ def annual_lines(a: dict) -> list[str]:
         f"weather: {w['format']}, {w['hours']} hours ({w['time_convention']}); "
         f"illuminance {w['illuminance']}",
         f"annual daylight ({w['site']}, {a['occupied_hours']} occupied hours, "
-        f"weekdays {a['occupancy'][0]:g}-{a['occupancy'][1]:g} h): DA300 mean "
+        f"{'weekdays' if a['weekdays_only'] else 'every day'} "
+        f"{a['occupancy'][0]:g}-{a['occupancy'][1]:g} h): DA300 mean "
         f"{100 * a['da300_mean']:.0f}%, sDA300/50% {100 * a['sda300_50']:.0f}%",
         f"UDI <100 {100 * a['udi_n']:.0f}%, 100-300 {100 * a['udi_s']:.0f}%, 300-3000 "
         f"{100 * a['udi_a']:.0f}%, >3000 {100 * a['udi_x']:.0f}% of occupied hours",
         "annual metrics (means over the grid): "
         + ", ".join(f"{m['label']} {m['mean']:.3f}" for m in a["metrics"].values()),
     ]
-    if "dimming" in a:
-        d = a["dimming"]
-        lines.append(
-            f"daylight-linked dimming to {d['target_lux']:g} lux: {d['energy_kwh']:.0f} kWh a year "
-            f"(undimmed {d['undimmed_kwh']:.0f} kWh), LENI {d['leni_kwh_m2']:.2f} kWh/m² a"
-        )
-    lines += [
-        f"{'PASS' if c['passed'] else 'FAIL'}  {c['text']}: {c['value']} (needs {c['required']})"
-        for c in a.get("criteria", [])
-    ]
+    lines += dimming_lines(a)
     return lines
 
 
