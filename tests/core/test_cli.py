@@ -45,7 +45,15 @@ def check_groups(stats: list[dict]) -> None:
 
 def test_scenes_lists_the_builtin_scenes(capsys):
     scenes = run_json(capsys, "scenes")["scenes"]
-    assert [s["name"] for s in scenes] == ["cornell", "office", "patio", "corridor", "building"]
+    assert [s["name"] for s in scenes] == [
+        "cornell",
+        "office",
+        "patio",
+        "corridor",
+        "building",
+        "sidelit",
+        "toplit",
+    ]
     for s in scenes:
         assert isinstance(s["patches"], int) and s["patches"] > 0
         assert s["resolution"] > 0 and s["description"]
