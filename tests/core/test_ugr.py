@@ -1,0 +1,200 @@
+"""UGR (CIE 117 at an observer, CIE 190 tables): against hand computations, CIE 117's
+position-index table, CIE 190's transfer factors and an independent implementation
+(eulumdat-ugr, MIT, a test-only extra) on real manufacturer files."""
+
+from __future__ import annotations
+
+import math
+from dataclasses import replace
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from lightinv_core.luminaires import lambertian_panel, read_photometry
+from lightinv_core.luminaires.ldt import format_ldt
+from lightinv_core.luminaires.ugr import (
+    NoLuminousArea,
+    background_luminance,
+    glare_terms,
+    in_field,
+    position_index,
+    projected_area,
+    ugr,
+)
+from lightinv_core.luminaires.ugr_table import (
+    REFLECTANCES,
+    ROOMS,
+    flux_fractions,
+    parallel_view_factor,
+    ugr_table,
+    wall_indirect_lux,
+)
+from lightinv_core.transport.luminaires import PlacedLuminaire
+
+DATA = Path(__file__).resolve().parents[1] / "data" / "photometry"
+REAL_FILES = ("ledvance-panel-600.ldt", "rab-square-1.ies", "rab-round-4.ies")
+
+# CIE 117:1995 Table 4.1, a few cells (T/R, H/R) -> p, as published (and as eulumdat-ugr
+# transcribes them).
+TABLE_4_1 = {
+    (0.0, 0.0): 1.00,
+    (0.0, 0.5): 2.86,
+    (0.0, 1.0): 7.00,
+    (0.0, 1.5): 13.15,
+    (0.5, 0.5): 2.91,
+    (1.0, 0.5): 3.91,
+    (1.0, 1.0): 7.00,
+    (2.0, 1.0): 8.90,
+    (3.0, 0.5): 6.60,
+    (3.0, 1.9): 16.00,
+}
+
+
+def test_guth_formula_matches_table_4_1_at_published_cells():
+    for (t_r, h_r), p_table in TABLE_4_1.items():
+        p = float(position_index(h_r, t_r))
+        # Guth's formula smooths the table: 7% low at T/R = 2, H/R = 1 (8.30 for 8.90).
+        assert p == pytest.approx(p_table, rel=0.07), (t_r, h_r, p)
+
+
+def test_guth_formula_against_the_whole_transcribed_table():
+    guth = pytest.importorskip("eulumdat_ugr.guth").GuthTable
+    tr, hr = np.meshgrid(guth._TR_AXIS, guth._HR_AXIS, indexing="ij")
+    table = guth._TABLE
+    ok = ~np.isnan(table)
+    rel = np.abs(position_index(hr, tr)[ok] / table[ok] - 1.0)
+    # Measured: median 4.5%, 90th percentile 7.2%, largest 10.6% (T/R = 3, H/R = 0). In
+    # UGR terms 16 log10(1 + rel): at most 0.7 for a luminaire alone, the table's sums of
+    # hundreds move far less (the cross-check below).
+    assert np.median(rel) < 0.05
+    assert rel.max() < 0.11
+    # The field limits are the table's defined cells.
+    defined = in_field(hr, tr)
+    assert np.array_equal(defined[ok], np.ones(ok.sum(), bool))
+
+
+def test_background_luminance_is_e_over_pi():
+    assert background_luminance(100.0) == pytest.approx(100.0 / math.pi)
+
+
+def test_transfer_factors_reproduce_cie_190_table():
+    background = pytest.importorskip("eulumdat_ugr.background")
+    h, worst = 2.0, 0.0
+    for key in background.REFLECTANCES:
+        rho = tuple(int(v) / 100 for v in key.split("/"))
+        for i, (xh, yh) in enumerate(ROOMS):
+            x, y = xh * h, yh * h
+            aw = 2 * h * (x + y)
+            got = [
+                wall_indirect_lux(x, y, h, flux, rho)
+                for flux in ((aw, 0, 0), (0, aw, 0), (0, 0, aw))
+            ]
+            worst = max(worst, np.max(np.abs(np.array(got) - background._FT[key][i])))
+    assert worst < 0.0015  # the table prints three decimals
+
+
+def test_parallel_view_factor_unit_cube():
+    # Opposite faces of a cube: 0.19982 (Howell's catalogue, C-11).
+    assert parallel_view_factor(1.0, 1.0, 1.0) == pytest.approx(0.19982, abs=1e-5)
+
+
+def _panel(lumens: float = 3000.0, size=(0.6, 0.6, 0.0)):
+    return lambertian_panel(lumens, size_m=size)
+
+
+def _hand_ugr(i0: float, area: float, r: float, t: float, h: float, p: float, lb: float):
+    """One Lambertian flat opening: L = I0 cos g / (A cos g) = I0 / A, omega = A cos g / d²."""
+    d = math.sqrt(r * r + t * t + h * h)
+    cos_g = h / d
+    lum = i0 * cos_g / (area * cos_g)
+    omega = area * cos_g / d**2
+    return 8 * math.log10(0.25 / lb * lum**2 * omega / p**2)
+
+
+@pytest.mark.parametrize(("r", "t", "h", "p_table"), [(3.0, 0.0, 1.5, 2.86), (2.0, 2.0, 2.0, 7.00)])
+def test_one_lambertian_panel_by_hand(r, t, h, p_table):
+    ph = _panel()
+    eye = np.array([1.0, 2.0, 1.2])
+    lum = PlacedLuminaire("p", eye + np.array([r, -t, h]), ph)  # T is to the right of +x
+    lb = background_luminance(120.0)
+    got = ugr(eye, (1.0, 0.0, 0.0), [lum], lb)
+    i0 = 3000.0 / math.pi
+    hand = _hand_ugr(i0, 0.36, r, t, h, p_table, lb)  # p from CIE 117's table
+    assert got == pytest.approx(hand, abs=0.1)
+    # Dimmed to half: L halves, UGR drops by 8 log10(4).
+    half = ugr(eye, (1.0, 0.0, 0.0), [replace(lum, dimming=0.5)], lb)
+    assert got - half == pytest.approx(8 * math.log10(4.0), abs=1e-9)
+
+
+def test_out_of_view_luminaires_do_not_count():
+    ph = _panel()
+    eye = np.zeros(3)
+    behind = PlacedLuminaire("b", (-2.0, 0.0, 1.5), ph)
+    aside = PlacedLuminaire("a", (1.0, 3.5, 1.5), ph)  # T/R = 3.5
+    overhead = PlacedLuminaire("o", (0.5, 0.0, 2.0), ph)  # H/R = 4
+    terms = glare_terms(eye, (1, 0, 0), [behind, aside, overhead])
+    assert not terms.counts.any()
+    assert ugr(eye, (1, 0, 0), [behind, aside, overhead], 10.0) == -math.inf
+    ahead = PlacedLuminaire("f", (3.0, 0.0, 1.5), ph)
+    both = ugr(eye, (1, 0, 0), [behind, ahead], 10.0)
+    assert both == pytest.approx(ugr(eye, (1, 0, 0), [ahead], 10.0))
+
+
+def test_projected_area_of_a_box_and_a_disc():
+    box = (0.2, 1.2, 0.05)  # width along C90, length along C0, luminous height
+    assert projected_area(box, 0.0, 0.0) == pytest.approx(0.24)
+    # Seen horizontally along C0: the end face, width x height.
+    assert projected_area(box, 0.0, 90.0) == pytest.approx(0.2 * 0.05, abs=1e-12)
+    assert projected_area(box, 90.0, 90.0) == pytest.approx(1.2 * 0.05, abs=1e-12)
+    disc = (-0.4, -0.4, 0.0)
+    assert projected_area(disc, 30.0, 60.0) == pytest.approx(math.pi * 0.04 * 0.5)
+
+
+def test_no_luminous_area_is_an_error():
+    ph = _panel(size=(0.0, 0.0, 0.0))
+    with pytest.raises(NoLuminousArea, match="no luminous opening"):
+        ugr_table(ph)
+
+
+def test_flux_fractions_of_a_downlight():
+    ff = flux_fractions(_panel())
+    assert ff.down == pytest.approx(1.0) and ff.up == pytest.approx(0.0, abs=1e-12)
+    assert ff.floor + ff.walls == pytest.approx(ff.down)
+    assert 0.5 < ff.floor < 0.95
+
+
+def _as_relative_ldt(ph, tmp_path: Path) -> Path:
+    """The table as EULUMDAT for eulumdat-ugr: one lamp set of the table's own flux.
+    (eulumdat-ugr multiplies the flux of the set by its number of lamps, where
+    EULUMDAT's line 29 is already the set's total: a 192-LED file would come out
+    8 log10(192) = 18.3 too high, so the count is written as 1.)"""
+    path = tmp_path / (Path(ph.source).stem + ".ldt")
+    rel = replace(ph, lamp_lumens=ph.flux(), n_lamps=1)
+    path.write_text(format_ldt(rel), encoding="latin-1")
+    return path
+
+
+@pytest.mark.parametrize("name", REAL_FILES)
+def test_table_against_eulumdat_ugr(name, tmp_path):
+    pytest.importorskip("eulumdat_ugr")
+    from eulumdat_ugr import UgrCalculator
+    from pyldt import LdtReader
+
+    ph = read_photometry(DATA / name)
+    path = DATA / name if name.endswith(".ldt") else _as_relative_ldt(ph, tmp_path)
+    ref = UgrCalculator.compute(LdtReader.read(str(path))).values  # (19, 10)
+    table = ugr_table(ph)
+    ours = np.concatenate([table.values[:, :, 0], table.values[:, :, 1]], axis=1)
+    assert not np.isnan(ours).any() and not np.isnan(ref).any()
+    diff = np.abs(ours - ref)
+    assert diff.max() < 0.5, (name, diff.max())  # issue #31's target
+    assert table.at((4, 8), REFLECTANCES[0], "crosswise") == pytest.approx(ref[10, 0], abs=0.5)
+
+
+def test_the_panel_table_is_plausible():
+    table = ugr_table(read_photometry(DATA / "ledvance-panel-600.ldt"))
+    # Darker rooms glare more; the 4H x 8H value of a 4,400 lm 0.6 m panel is in the teens.
+    assert np.all(np.diff(table.values[:, [0, 2, 4], :], axis=1) > 0)
+    assert 15.0 < table.at() < 22.0
+    assert len(ROOMS) == 19
