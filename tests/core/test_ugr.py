@@ -4,6 +4,7 @@ position-index table, CIE 190's transfer factors and an independent implementati
 
 from __future__ import annotations
 
+import json
 import math
 from dataclasses import replace
 from pathlib import Path
@@ -198,3 +199,37 @@ def test_the_panel_table_is_plausible():
     assert np.all(np.diff(table.values[:, [0, 2, 4], :], axis=1) > 0)
     assert 15.0 < table.at() < 22.0
     assert len(ROOMS) == 19
+
+
+def test_cli_photometry_json_and_table(capsys):
+    from lightinv_core import cli
+
+    panel = DATA / "ledvance-panel-600.ldt"
+    assert cli.main(["photometry", str(panel), "--json"]) == 0
+    got = json.loads(capsys.readouterr().out)
+    table = ugr_table(read_photometry(panel))
+    assert got["manufacturer"] == "LEDVANCE GmbH" and got["catalogue_number"] == "4058075724549"
+    assert got["lumens"] == pytest.approx(4400.0, rel=1e-3) and got["watts"] == 40.0
+    assert got["luminous_area"]["area_m2"] == pytest.approx(0.553**2)
+    assert got["ugr"]["crosswise"] == pytest.approx(table.at(), abs=0.005)
+    assert got["ugr"]["endwise"] == pytest.approx(table.at(orientation="endwise"), abs=0.005)
+    assert np.array(got["ugr_table"]["values"]).shape == (19, 5, 2)
+    assert cli.main(["photometry", str(panel), "--table"]) == 0
+    text = capsys.readouterr().out
+    row = next(line for line in text.splitlines() if line.startswith("4H 8H"))
+    assert f"{table.at():5.1f}" in row and "crosswise" in text and "endwise" in text
+
+
+def test_cli_photometry_errors(capsys, tmp_path):
+    from lightinv_core import cli
+    from lightinv_core.luminaires import write_photometry
+
+    bad = tmp_path / "bad.ies"
+    bad.write_text("IESNA:LM-63-2002\nTILT=NONE\n1 2 3\n")
+    assert cli.main(["photometry", str(bad)]) == 2
+    err = capsys.readouterr().err
+    assert err.startswith("lightinv-cli: error:") and err.count("\n") == 1
+    point = tmp_path / "point.ies"
+    write_photometry(_panel(size=(0.0, 0.0, 0.0)), point)
+    assert cli.main(["photometry", str(point)]) == 0
+    assert "UGR: not computed" in capsys.readouterr().out
