@@ -13,7 +13,8 @@ vertical illuminance at the eye), ``L_i`` a luminaire's luminance towards the ey
   gives a luminous height, the sides ``h (w |cos C| + l |sin C|) sin(gamma)`` (a disc's
   side: ``h D sin(gamma)``). A file without a luminous opening (width and length 0) has
   no luminance: ``NoLuminousArea`` says so, nothing is guessed.
-- **Position index**: Guth's formula as CIE 117 gives it (angles in degrees),
+- **Position index**: Guth's formula (Luckiesh and Guth's data as fitted by Guth; the form
+  Radiance's evalglare uses; CIE 117 tabulates the index in its Table 4.1), degrees,
 
       ln p = (35.2 - 0.31889 tau - 1.22 exp(-2 tau / 9)) 1e-3 sigma
              + (21 + 0.26667 tau - 0.002963 tau²) 1e-5 sigma²,
