@@ -248,3 +248,44 @@ def test_cli_photometry_errors(capsys, tmp_path):
     write_photometry(_panel(size=(0.0, 0.0, 0.0)), point)
     assert cli.main(["photometry", str(point)]) == 0
     assert "UGR: not computed" in capsys.readouterr().out
+
+
+def test_where_the_dn150_differs_from_eulumdat_ugr():
+    """The two method differences behind the DN150's offset (docs/photometry.md)."""
+    pytest.importorskip("eulumdat_ugr")
+    from eulumdat_luminance import LuminanceCalculator
+    from eulumdat_ugr.background import BackgroundLuminance
+    from eulumdat_ugr.geometry import UgrGrid
+    from eulumdat_ugr.guth import GuthTable
+    from eulumdat_ugr.photometry import UgrPhotometry
+    from pyldt import LdtReader
+
+    from lightinv_core.luminaires import ugr as u
+    from lightinv_core.luminaires import ugr_table as ut
+
+    path = DATA / "ledvance-downlight-dn150.ldt"
+    ph, ldt = read_photometry(path), LdtReader.read(str(path))
+    theirs = LuminanceCalculator.compute(ldt, full=True)
+    c, g = np.array([0.0, 20.0, 45.0, 90.0]), np.array([30.0, 55.0, 65.0, 75.0])
+    # Luminance and projected area: the same model, the same numbers.
+    assert np.allclose(u.luminance(ph, c, g), theirs.at(c_deg=c, g_deg=g), rtol=1e-9)
+    assert np.allclose(u.projected_area(ph.opening, c, g), theirs.projected_area(c, g))
+    for i, lb_ratio, sum_ratio in (
+        (0, (1.07, 1.09), (0.92, 0.94)),
+        (10, (1.02, 1.04), (0.92, 0.94)),
+    ):
+        xh, yh = ut.ROOMS[i]
+        grid = UgrGrid(xh, yh)
+        lb_ref = BackgroundLuminance.compute(ldt, grid.n_total, 8.0 * (xh + yh), i)["70/50/20"]
+        r, t, cc, gg, dist = grid.angles("crosswise")
+        lum, omega = UgrPhotometry.compute(theirs, cc, gg, dist)
+        p = GuthTable.p_vec(ut.H / r, t / r)
+        ok = ~np.isnan(p)
+        sum_ref = np.sum(lum[ok] ** 2 * omega[ok] / p[ok] ** 2)
+        n = grid.n_total
+        down, total = ph.flux(90.0), ph.flux()
+        floor = n * down * ut.floor_share(ph, xh, yh)
+        flux = (floor, n * down - floor, n * (total - down))
+        lb = ut.wall_indirect_lux(xh * ut.H, yh * ut.H, ut.H, flux, REFLECTANCES[0]) / math.pi
+        assert lb_ratio[0] < lb / lb_ref < lb_ratio[1]
+        assert sum_ratio[0] < ut.glare_sum(ph, xh, yh, "crosswise") / sum_ref < sum_ratio[1]
