@@ -289,3 +289,11 @@ def test_where_the_dn150_differs_from_eulumdat_ugr():
         lb = ut.wall_indirect_lux(xh * ut.H, yh * ut.H, ut.H, flux, REFLECTANCES[0]) / math.pi
         assert lb_ratio[0] < lb / lb_ref < lb_ratio[1]
         assert sum_ratio[0] < ut.glare_sum(ph, xh, yh, "crosswise") / sum_ref < sum_ratio[1]
+
+
+def test_catalogue_ugr_is_the_tables_4h8h_cell():
+    from lightinv_core.luminaires.ugr_table import catalogue_ugr
+
+    ph = read_photometry(DATA / "rab-round-4.ies")
+    table = ugr_table(ph)
+    assert catalogue_ugr(ph) == (table.at(), table.at(orientation="endwise"))
