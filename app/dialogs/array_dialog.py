@@ -5,13 +5,17 @@ a luminaire zone: rows and columns at the centres of equal cells of a rectangle,
 rotation of 0 or 90 degrees, a dimming level, and which of these the optimiser may
 change: by default the rows and columns, every luminaire at full output (a dimmed
 answer needs dimming controls; tick "dimming" to allow it). The dialog shows the
-spacing and the array's power as they are typed, and the product's photometry warnings
-(what changes its light) once it is chosen.
+spacing and the array's power as they are typed, the product's photometry warnings
+(what changes its light) once it is chosen, and its CIE 190 glare rating (UGR in the
+4H x 8H room at 70/50/20, crosswise / endwise; docs/photometry.md), which the
+luminaires panel's catalogue shows too.
 """
 
 from __future__ import annotations
 
+import functools
 import html
+from pathlib import Path
 
 from PySide6 import QtWidgets
 
@@ -24,6 +28,35 @@ from lightinv_core.errors import LightInvError
 from lightinv_core.light.arrays import resolve_product
 from lightinv_core.luminaires import builtin_catalogue
 from lightinv_core.luminaires.photometry import light_warnings
+from lightinv_core.luminaires.ugr_table import catalogue_ugr
+
+UGR_TIP = (
+    "Unified glare rating (CIE 190 table): 4H x 8H room, reflectances 70/50/20 "
+    "(ceiling/walls/floor), viewed crosswise / endwise"
+)
+
+
+@functools.lru_cache(maxsize=64)
+def _ugr_of(product: str, stamp: float) -> tuple[float, float] | str:
+    try:
+        return catalogue_ugr(resolve_product(product).photometry)
+    except LightInvError as exc:
+        return str(exc)
+
+
+def product_ugr(product: str) -> tuple[str, str]:
+    """(what to show, its tooltip) for the CIE 190 UGR of ``product`` (a catalogue name
+    or a photometric file): "18.1 / 18.3" (crosswise / endwise), or "-" and why not."""
+    path = Path(product)
+    try:
+        stamp = path.stat().st_mtime if path.suffix.lower() in (".ies", ".ldt") else 0.0
+    except OSError:
+        stamp = -1.0
+    got = _ugr_of(product, stamp)
+    if isinstance(got, str):
+        return "-", f"UGR not computed: {got}"
+    return f"{got[0]:.1f} / {got[1]:.1f}", UGR_TIP
+
 
 FREE_LABELS = {
     "u0": "u0",
@@ -131,6 +164,9 @@ class ArrayDialog(QtWidgets.QDialog):
             line.addWidget(QtWidgets.QLabel("to"))
             line.addWidget(pair[1])
             form.addRow(label, line)
+        self.glare = QtWidgets.QLabel()
+        self.glare.setToolTip(UGR_TIP)
+        form.addRow("Glare (UGR, CIE 190)", self.glare)
         self.summary = QtWidgets.QLabel()
         self.summary.setWordWrap(True)  # a warning is a long line
         form.addRow(self.summary)
@@ -174,7 +210,12 @@ class ArrayDialog(QtWidgets.QDialog):
             p = resolve_product(a.product, a.watts)
         except LightInvError as exc:
             self.summary.setText(f"<span style='color:#b00'>{exc}</span>")
+            self.glare.setText("-")
             return
+        shown, tip = product_ugr(a.product)
+        self.glare.setText(
+            f"{shown} crosswise / endwise (4H x 8H room, 70/50/20)" if shown != "-" else tip
+        )
         su, sv = a.spacing
         text = (
             f"{a.count} luminaires, spacing {su:.2f} x {sv:.2f} m; "

@@ -17,7 +17,7 @@ from pathlib import Path
 from PySide6 import QtCore, QtWidgets
 
 from app.dialogs import ask
-from app.dialogs.array_dialog import ArrayDialog
+from app.dialogs.array_dialog import UGR_TIP, ArrayDialog, product_ugr
 from app.dialogs.workplane_dialog import WorkplaneDialog
 from app.document import Document
 from app.view.polar_plot import PolarPlot
@@ -87,7 +87,8 @@ class LuminairesPanel(QtWidgets.QWidget):
         lay = QtWidgets.QVBoxLayout(self)
         cat_box = QtWidgets.QGroupBox("Catalogue")
         cat = QtWidgets.QVBoxLayout(cat_box)
-        self.catalogue = _table(("product", "lm", "W", "lm/W"))
+        self.catalogue = _table(("product", "lm", "W", "lm/W", "UGR"))
+        self.catalogue.horizontalHeaderItem(4).setToolTip(UGR_TIP)
         self.catalogue.horizontalHeader().setStretchLastSection(True)
         self.catalogue.setMaximumHeight(130)
         cat.addWidget(self.catalogue)
@@ -164,10 +165,12 @@ class LuminairesPanel(QtWidgets.QWidget):
         entries = builtin_catalogue()
         self.catalogue.setRowCount(len(entries))
         for i, e in enumerate(entries):
+            glare, tip = product_ugr(e.name)
             for j, text in enumerate(
-                (e.name, f"{e.lumens:,.0f}", f"{e.watts:g}", f"{e.efficacy:.0f}")
+                (e.name, f"{e.lumens:,.0f}", f"{e.watts:g}", f"{e.efficacy:.0f}", glare)
             ):
                 self.catalogue.setItem(i, j, QtWidgets.QTableWidgetItem(text))
+            self.catalogue.item(i, 4).setToolTip(tip)
         self.catalogue.resizeColumnsToContents()
 
     def _show_product(self) -> None:

@@ -6,6 +6,7 @@ from __future__ import annotations
 import argparse
 
 from lightinv_core.cli import args as types
+from lightinv_core.cli.photometry import add_photometry_args, cmd_photometry
 from lightinv_core.cli.precompute import cmd_precompute
 from lightinv_core.cli.report import cmd_report
 from lightinv_core.cli.scenes import add_scene_args, cmd_scene_info, cmd_scenes
@@ -234,6 +235,9 @@ def build_parser() -> argparse.ArgumentParser:
     rep.add_argument("project", help="project file holding results (lightinv-cli solve ... -o)")
     rep.add_argument("-o", "--output", required=True, help="PDF file to write")
     rep.add_argument("--png-dir", help="also save every page as a PNG in this folder")
+    add_photometry_args(
+        add("photometry", cmd_photometry, "a photometric file: its data, flux and UGR table")
+    )
     pre = add("precompute", cmd_precompute, "build or load the radiosity operator of a scene")
     add_scene_args(pre)
     for p in (sim, pre):
