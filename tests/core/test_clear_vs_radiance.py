@@ -16,11 +16,13 @@ import pytest
 from tests.radiance.compare import CASES, ROOMS, compare
 from tests.radiance.run import POINT_PARAMS
 
-ALLOWED = {"sun": 0.05, "sky": 0.03, "sky+sun+ground": 0.05}
+ALLOWED = {"sun": 0.05, "sky": 0.03}
+"""The sun and the sky apart in each room; ``bench/peers.py`` also runs them together
+with the ground."""
 LIGHT = POINT_PARAMS.replace("-ad 16384", "-ad 4096")
 
 
-@pytest.mark.parametrize("case", CASES)
+@pytest.mark.parametrize("case", ALLOWED)
 @pytest.mark.parametrize("room", ROOMS)
 def test_work_plane_light_against_rtrace(room, case):
     got = compare(room, case, every=6, params=LIGHT)

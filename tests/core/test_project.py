@@ -596,7 +596,7 @@ ERRORS = [
     (
         _set("scene.builtin", "coridor"),
         "scene.builtin: expected one of 'cornell', 'office', 'patio', 'corridor', 'building', "
-        "got string 'coridor'",
+        "'sidelit', 'toplit', got string 'coridor'",
     ),
     (
         _set("scene", {"obj": "room.3ds"}),
