@@ -161,12 +161,13 @@ def grid_lines(g: dict, spec: SimulationSpec) -> list[str]:
     return lines
 
 
-def annual_payload(res: SimulationResult, spec: SimulationSpec) -> dict:
-    """The weather year on the work plane: metrics, panes and dimming."""
-    a, daylight = res.annual, spec.annual
-    out = {
-        "weather": a.year.weather,
-        "occupied_hours": a.year.hours,
+def year_header(res: SimulationResult, spec: SimulationSpec, weather: dict, hours: int) -> dict:
+    """What both years' JSON opens with: the weather, the occupied hours, the schedule,
+    the north bearing and the glazing's panes."""
+    daylight = spec.annual
+    return {
+        "weather": weather,
+        "occupied_hours": hours,
         "occupancy": list(daylight.occupancy),
         "weekdays_only": daylight.weekdays,
         "north_deg": daylight.north_deg,
@@ -174,6 +175,14 @@ def annual_payload(res: SimulationResult, spec: SimulationSpec) -> dict:
             {"group": q.group, "outward": q.outward.round(4).tolist(), "patches": len(q.idx)}
             for q in panes(res.patches, dict(spec.glazing))
         ],
+    }
+
+
+def annual_payload(res: SimulationResult, spec: SimulationSpec) -> dict:
+    """The weather year on the work plane: metrics, panes and dimming."""
+    a = res.annual
+    out = {
+        **year_header(res, spec, a.year.weather, a.year.hours),
         **a.metrics.summary(),
         "metrics": {
             name: {"label": quantity_spec(name).metric, "mean": float(values.mean())}
@@ -207,15 +216,7 @@ def clear_payload(res: SimulationResult, spec: SimulationSpec) -> dict:
     """The weather year through clear (and diffusing) glazing on the work plane."""
     cy, daylight = res.clear_year, spec.annual
     out = {
-        "weather": cy.year.weather,
-        "occupied_hours": int(cy.occupied.sum()),
-        "occupancy": list(daylight.occupancy),
-        "weekdays_only": daylight.weekdays,
-        "north_deg": daylight.north_deg,
-        "panes": [
-            {"group": q.group, "outward": q.outward.round(4).tolist(), "patches": len(q.idx)}
-            for q in panes(res.patches, dict(spec.glazing))
-        ],
+        **year_header(res, spec, cy.year.weather, int(cy.occupied.sum())),
         "glazing_kinds": {g: spec.glazing_kinds.get(g, "diffusing") for g in spec.glazing},
         **res.clear_annual,
     }
