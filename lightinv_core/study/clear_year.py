@@ -32,6 +32,9 @@ from lightinv_core.transport.annual import orientations
 from lightinv_core.transport.clear_glazing import to_geographic, to_scene
 from lightinv_core.transport.daylight_coefficients import ClearDaylight
 
+_SKIES: dict = {}
+"""The last weather's sun and sky patches (``clear_year``)."""
+
 SKY_SUBDIVISIONS = (1, 2, 4)
 """Reinhart subdivisions of the sky a year may use (1: Tregenza)."""
 
@@ -146,9 +149,16 @@ def clear_year(
     from lightinv_core.climate.weather import load_weather
 
     weather = load_weather(weather_path(daylight))
-    sky = sun_and_sky(weather)
+    # The sun and the sky's patches are the weather's alone: a study's work plane and
+    # view points read the same ones (the weather is one object while its file is
+    # unchanged, so it keys them).
+    key = (weather, sky_mf, daylight.ground_reflectance)
+    if key not in _SKIES:
+        sky = sun_and_sky(weather)
+        _SKIES.clear()
+        _SKIES[key] = (sky, _sky_vectors(weather, sky, daylight, sky_mf))
+    sky, (L, ground, dome) = _SKIES[key]
     north = daylight.north_deg
-    L, ground, dome = _sky_vectors(weather, sky, daylight, sky_mf)
     K = len(dome.solid_angles)
 
     def bins(d):
