@@ -5,7 +5,6 @@ same EULUMDAT file read directly, and clear errors for broken files."""
 
 from __future__ import annotations
 
-import io
 import json
 import zipfile
 from pathlib import Path
@@ -22,6 +21,7 @@ from lightinv_core.luminaires.catalogue import file_entries
 from lightinv_core.luminaires.formats import file_filter, is_photometry_reference
 from lightinv_core.luminaires.gldf import read_gldf
 from lightinv_core.luminaires.ldt import parse_ldt
+from tests.core.gldf_variants import with_second_variant
 
 DATA = Path(__file__).resolve().parents[1] / "data" / "gldf"
 ZUMTOBEL = DATA / "zumtobel-p-evo-r100l.gldf"
@@ -193,20 +193,7 @@ def test_clear_errors(tmp_path):
 
 def test_cli_prints_each_variant(capsys, tmp_path):
     # A second variant added to the Zumtobel file: the CLI describes both.
-    def two(name, data):
-        if name != "product.xml":
-            return data
-        root = ET.fromstring(data)
-        variants = root.find("ProductDefinitions/Variants")
-        copy = ET.fromstring(ET.tostring(variants[0]))
-        copy.set("id", "variant2")
-        copy.find("Name/Locale").text = "wide"
-        variants.append(copy)
-        buf = io.BytesIO()
-        ET.ElementTree(root).write(buf, encoding="utf-8", xml_declaration=True)
-        return buf.getvalue()
-
-    path = _rezip(ZUMTOBEL, tmp_path, two)
+    path = with_second_variant(ZUMTOBEL, tmp_path / "two.gldf")
     assert cli_main(["photometry", str(path)]) == 0
     text = capsys.readouterr().out
     assert "2 products" in text and text.count("flux 2,401 lm, 18 W") == 2
