@@ -20,6 +20,7 @@ from lightinv_core.luminaires import read_photometry
 from lightinv_core.luminaires.catalogue import file_entries
 from lightinv_core.luminaires.formats import file_filter, is_photometry_reference
 from lightinv_core.luminaires.gldf import read_gldf
+from lightinv_core.luminaires.gldf_light import emitter_photometry
 from lightinv_core.luminaires.ldt import parse_ldt
 from tests.core.gldf_variants import with_second_variant
 
@@ -122,6 +123,35 @@ def test_two_emitters_on_together_are_summed_each_at_its_gldf_rating():
     assert ph.flux() == pytest.approx(want, rel=1e-5)
     assert len(ph.warnings) == 2 and "scaled by 4.875" in ph.warnings[0]
     assert ph.input_watts == 36.0  # 18 W per emitter, as product.xml says (not 99 W)
+
+
+@pytest.mark.parametrize("path", [TRILUX, GLDF_IO])
+def test_each_emitters_table_gives_the_cie_flux_code_the_maker_states(path):
+    """An independent check of the tables read through the GLDF: the CIE flux code
+    (N1-N3: downward flux within 41.4, 60, 75.5 deg of the nadir, % of the downward
+    flux; N4 the downward flux fraction; N5 the light output ratio) the maker's software
+    wrote into product.xml, against the same numbers integrated from our table."""
+    root = _xml(path)
+    codes = {
+        p.get("id"): p.findtext("DescriptivePhotometry/CIE-FluxCode")
+        for p in root.iter("Photometry")
+    }
+    photometry_of = {
+        e.get("id"): e.find("*/PhotometryReference").get("photometryId")
+        for e in root.iter("Emitter")
+    }
+    checked = 0
+    for v in read_gldf(path).variants:
+        for e in v.emitters:
+            stated = [float(x) for x in codes[photometry_of[e.emitter_id]].split()]
+            ph = emitter_photometry(path, e)
+            down, total = ph.flux(90.0), ph.flux()
+            zonal = [100 * ph.flux(g) / down if down > 0 else 0.0 for g in (41.4, 60.0, 75.5)]
+            lor = 100 * total / ph.lamp_lumens if ph.lamp_lumens else 100.0
+            ours = [*zonal, 100 * down / total, lor]
+            assert np.abs(np.array(ours) - stated).max() <= 0.6, (e.emitter_id, ours, stated)
+            checked += 1
+    assert checked == len(codes)
 
 
 def test_light_source_colour_and_maintenance():
