@@ -232,3 +232,33 @@ def test_cli_prints_each_variant(capsys, tmp_path):
     data = json.loads(capsys.readouterr().out)
     assert data["name"] == "P-EVO R100L LED2500-830 BC AL WH [STD] wide"
     assert data["stated"]["rated_lumens"] == 2400.0 and data["watts"] == 18.0
+
+
+def test_a_project_keeps_a_gldf_variant_relative_and_lights_with_it(tmp_path):
+    """An array of a GLDF variant: saved relative to the project, read back absolute,
+    and its luminaires placed with the variant's table and the GLDF's power."""
+    import shutil
+
+    from lightinv_core.design.model import Design, Goal, LuminaireArray, Workplane
+    from lightinv_core.project import Project, SceneSpec, load_project, save_project
+
+    folder = tmp_path / "luminaires"
+    folder.mkdir()
+    gldf = shutil.copy(ZUMTOBEL, folder / ZUMTOBEL.name)
+    array = LuminaireArray("A1", "lum_west", f"{gldf}#variant1", (0.0, 0.0, 2.0, 6.0), 2, 1)
+    design = Design(
+        sources=(),
+        goals=(Goal("min_electric_power"),),
+        arrays=(array,),
+        workplanes=(Workplane("wp"),),
+    )
+    path = tmp_path / "p.json"
+    save_project(Project("gldf", SceneSpec(builtin="office", resolution=0.5), design), path)
+    saved = json.loads(path.read_text())["arrays"][0]["product"]
+    assert saved == f"luminaires/{ZUMTOBEL.name}#variant1"
+    (back,) = load_project(path).design.arrays
+    assert back.product == f"{gldf}#variant1"
+    product = resolve_product(back.product)
+    assert product.watts == 18.0 and product.name == "P-EVO R100L LED2500-830 BC AL WH [STD]"
+    direct = _ldt(ZUMTOBEL, "60819021_(STD_LEO).LDT")
+    assert np.array_equal(product.photometry.candela, direct.candela)
