@@ -262,3 +262,32 @@ def test_a_project_keeps_a_gldf_variant_relative_and_lights_with_it(tmp_path):
     assert product.watts == 18.0 and product.name == "P-EVO R100L LED2500-830 BC AL WH [STD]"
     direct = _ldt(ZUMTOBEL, "60819021_(STD_LEO).LDT")
     assert np.array_equal(product.photometry.candela, direct.candela)
+
+
+def test_a_registered_format_is_read_everywhere(tmp_path):
+    """The registry, not the suffixes: a format added from here (gzipped EULUMDAT) is
+    read by read_photometry, named by arrays, listed in the file chooser's filter."""
+    import gzip
+
+    from lightinv_core.luminaires.formats import (
+        PhotometryFormat,
+        register_format,
+        unregister_format,
+    )
+
+    def read(path, variant):
+        return parse_ldt(gzip.decompress(Path(path).read_bytes()), str(path))
+
+    with zipfile.ZipFile(ZUMTOBEL) as z:
+        ldt = z.read("ldc/60819021_(STD_LEO).LDT")
+    packed = tmp_path / "p-evo.ldz"
+    packed.write_bytes(gzip.compress(ldt))
+    register_format(PhotometryFormat("EULUMDAT, gzipped", (".ldz",), read))
+    try:
+        assert "*.ldz" in file_filter() and is_photometry_reference(str(packed))
+        product = resolve_product(str(packed))
+        assert np.array_equal(product.photometry.candela, parse_ldt(ldt).candela)
+        assert [e.name for e in file_entries(packed)] == [product.name]
+    finally:
+        unregister_format("EULUMDAT, gzipped")
+    assert not is_photometry_reference(str(packed)) and "*.ldz" not in file_filter()
