@@ -43,6 +43,7 @@ from lightinv_core.luminaires.gldf_xml import (
     GldfEmitter,
     Index,
     Maintenance,
+    attribute,
     emitter_ids,
     locale,
     luminaire_maintenance,
@@ -214,7 +215,8 @@ def read_gldf(path: str | os.PathLike) -> GldfProduct:
         product = locale(meta, "Name") or p.stem
         number = locale(meta, "ProductNumber")
         elements = root.findall("ProductDefinitions/Variants/Variant")
-        elements.sort(key=lambda v: int(v.get("sortOrder") or 0))  # stable: file order ties
+        # Stable: variants without a sortOrder, or with the same one, keep the file's order.
+        elements.sort(key=lambda v: attribute(source, v, "sortOrder", 0.0))
         variants = []
         for v in elements:
             notes: list[str] = []

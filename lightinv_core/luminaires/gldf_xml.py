@@ -57,6 +57,7 @@ class GldfEmitter:
 
 
 def text(e: ET.Element | None, path: str = "") -> str:
+    """The text at ``path`` under ``e`` (``e``'s own without a path), whitespace joined."""
     if e is None:
         return ""
     node = e.find(path) if path else e
@@ -75,15 +76,24 @@ def locale(e: ET.Element | None, path: str) -> str:
 
 def number(source: str, e: ET.Element | None, path: str, signed: bool = False) -> float | None:
     """The number at ``path`` under ``e`` (None if absent); >= 0 unless ``signed``."""
-    shown = text(e, path)
+    return _checked(source, text(e, path), path or (e.tag if e is not None else ""), signed)
+
+
+def attribute(source: str, e: ET.Element, name: str, default: float | None = None) -> float | None:
+    """The number in attribute ``name`` of ``e`` (``default`` if absent), >= 0."""
+    value = _checked(source, (e.get(name) or "").strip(), f"{e.tag} {name}", False)
+    return default if value is None else value
+
+
+def _checked(source: str, shown: str, what: str, signed: bool) -> float | None:
     if not shown:
         return None
     try:
         value = float(shown.replace(",", "."))
     except ValueError:
-        raise fail(source, None, f"{path} is {shown[:24]!r}", "it must be a number") from None
+        raise fail(source, None, f"{what} is {shown[:24]!r}", "it must be a number") from None
     if not math.isfinite(value) or (value < 0 and not signed):
-        raise fail(source, None, f"{path} is {shown[:24]}", "it must be a finite number >= 0")
+        raise fail(source, None, f"{what} is {shown[:24]}", "it must be a finite number >= 0")
     return value
 
 
@@ -199,7 +209,7 @@ class Index:
                 ls_id = ls_ref.get("changeableLightSourceId", "") if ls_ref is not None else ""
                 if ls_id:
                     source = self.get(self.changeable, ls_id, "light source")
-                    count = float(ls_ref.get("lightSourceCount", "1"))  # type: ignore[union-attr]
+                    count = attribute(self.source, ls_ref, "lightSourceCount", 1.0)  # type: ignore[arg-type]
                     each = number(self.source, source, "RatedLuminousFlux")
                     lumens = None if each is None else each * count
         return GldfEmitter(
@@ -223,15 +233,15 @@ def lamp_maintenance(source: str, light_source: ET.Element | None) -> Maintenanc
         return Maintenance()
     rows = []
     for f in m.findall("CieLampMaintenanceFactors/CieLampMaintenanceFactor"):
-        hours = float(f.get("burningTime", "nan"))
+        hours = attribute(source, f, "burningTime", math.nan)
         llmf = number(source, f, "LampLumenMaintenanceFactor")
         lsf = number(source, f, "LampSurvivalFactor")
         rows.append((hours, llmf if llmf is not None else 1.0, lsf if lsf is not None else 1.0))
     for f in m.findall("LedMaintenanceFactor"):
         value = number(source, f, "")
-        rows.append((float(f.get("hours", "nan")), value if value is not None else 1.0, 1.0))
-    life = m.get("lifetime")
-    return Maintenance(lamp=tuple(rows), lifetime_h=float(life) if life else None)
+        hours = attribute(source, f, "hours", math.nan)
+        rows.append((hours, value if value is not None else 1.0, 1.0))
+    return Maintenance(lamp=tuple(rows), lifetime_h=attribute(source, m, "lifetime"))
 
 
 def luminaire_maintenance(source: str, meta: ET.Element | None, lamp: Maintenance) -> Maintenance:
@@ -241,7 +251,8 @@ def luminaire_maintenance(source: str, meta: ET.Element | None, lamp: Maintenanc
         for f in meta.findall("LuminaireMaintenance/CieLuminaireMaintenanceFactors/*"):
             value = number(source, f, "")
             if value is not None:
-                lmf.append((float(f.get("years", "nan")), f.get("roomCondition", ""), value))
+                years = attribute(source, f, "years", math.nan)
+                lmf.append((years, f.get("roomCondition", ""), value))
     lives = []
     for path in ("UsefulLifeTimes/UsefulLife", "MedianUsefulLifeTimes/MedianUsefulLife"):
         for tree in (meta,) if meta is not None else ():
