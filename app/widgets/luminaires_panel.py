@@ -195,7 +195,7 @@ class LuminairesPanel(QtWidgets.QWidget):
             for j, text in enumerate((e.name, f"{e.lumens:,.0f}", f"{e.watts:g}", efficacy, glare)):
                 self.catalogue.setItem(i, j, QtWidgets.QTableWidgetItem(text))
             self.catalogue.item(i, 0).setData(QtCore.Qt.UserRole, ref)
-            self.catalogue.item(i, 0).setToolTip(ref)
+            self.catalogue.item(i, 0).setToolTip("\n".join(t for t in (ref, e.description) if t))
             self.catalogue.item(i, 4).setToolTip(tip)
             if ref == selected:
                 self.catalogue.selectRow(i)

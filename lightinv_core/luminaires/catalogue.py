@@ -28,6 +28,7 @@ from lightinv_core.atomic import atomic_writer
 from lightinv_core.errors import LightInvError
 from lightinv_core.luminaires.analytic import batwing_linear, downlight, lambertian_panel
 from lightinv_core.luminaires.formats import (
+    file_facts,
     file_products,
     read_photometry,
     split_reference,
@@ -169,10 +170,13 @@ def read_catalogue(path: str | os.PathLike) -> list[CatalogueEntry]:
 def file_entries(path: str | os.PathLike) -> list[CatalogueEntry]:
     """Catalogue entries of the products in a photometric file: one for an IES or
     EULUMDAT file, one per variant for a GLDF (named product + variant), each with the
-    flux its table gives and the watts it states (0 where it states none)."""
+    flux its table gives, the watts it states (0 where it states none) and, as its
+    description, what the file states beyond the table (a GLDF's ratings, CCT, Ra,
+    size and maintenance)."""
     entries = []
     for ref, ph in file_products(path):
         file, variant = split_reference(ref) or (Path(ref), None)
+        _, stated = file_facts(ref)
         entries.append(
             CatalogueEntry(
                 name=ph.name or file.stem,
@@ -180,6 +184,7 @@ def file_entries(path: str | os.PathLike) -> list[CatalogueEntry]:
                 lumens=ph.flux(),
                 watts=ph.input_watts or 0.0,
                 size=ph.opening,  # type: ignore[arg-type]
+                description="\n".join(stated),
                 variant=variant or "",
             )
         )

@@ -59,6 +59,9 @@ def test_a_gldf_file_chosen_in_the_array_dialog_joins_the_catalogue(qtbot, windo
     cells = {h: catalogue.item(row, c).text() for c, h in enumerate(headers)}
     assert cells["lm"] == f"{read_photometry(second).flux():,.0f}" and cells["W"] == "18"
     assert cells["UGR"] == rating  # the copy's table is the first variant's
+    # What the GLDF states beyond the table, in the product's tooltip.
+    tip = catalogue.item(row, 0).toolTip()
+    assert "GLDF variant variant2: 2,400 lm, 18 W" in tip and tip.startswith(second)
     # Its polar curve, drawn from the variant's table (cd/klm in the C0 plane at nadir).
     curve = panel.polar.curves["C0"]
     nadir = curve[0]
