@@ -1,6 +1,7 @@
 """The dialog that adds or edits a luminaire array.
 
-An array is one product (from the catalogue, or an IES/EULUMDAT file) laid out evenly in
+An array is one product (from the catalogue, or an IES, EULUMDAT or GLDF file: File…
+lists a GLDF's variants in the product box, each ``FILE.gldf#VARIANT``) laid out evenly in
 a luminaire zone: rows and columns at the centres of equal cells of a rectangle, a
 rotation of 0 or 90 degrees, a dimming level, and which of these the optimiser may
 change: by default the rows and columns, every luminaire at full output (a dimmed
@@ -15,9 +16,8 @@ from __future__ import annotations
 
 import functools
 import html
-from pathlib import Path
 
-from PySide6 import QtWidgets
+from PySide6 import QtCore, QtWidgets
 
 from app.dialogs import ask
 from app.dialogs.fields import integer_box, number_box, ok_cancel
@@ -27,6 +27,8 @@ from lightinv_core.design.model.array import free_zone, overlapping
 from lightinv_core.errors import LightInvError
 from lightinv_core.light.arrays import resolve_product
 from lightinv_core.luminaires import builtin_catalogue
+from lightinv_core.luminaires.catalogue import file_entries
+from lightinv_core.luminaires.formats import file_filter, split_reference
 from lightinv_core.luminaires.photometry import light_warnings
 from lightinv_core.luminaires.ugr_table import catalogue_ugr
 
@@ -47,9 +49,9 @@ def _ugr_of(product: str, stamp: float) -> tuple[float, float] | str:
 def product_ugr(product: str) -> tuple[str, str]:
     """(what to show, its tooltip) for the CIE 190 UGR of ``product`` (a catalogue name
     or a photometric file): "18.1 / 18.3" (crosswise / endwise), or "-" and why not."""
-    path = Path(product)
+    ref = split_reference(product)
     try:
-        stamp = path.stat().st_mtime if path.suffix.lower() in (".ies", ".ldt") else 0.0
+        stamp = ref[0].stat().st_mtime if ref is not None else 0.0
     except OSError:
         stamp = -1.0
     got = _ugr_of(product, stamp)
@@ -195,9 +197,23 @@ class ArrayDialog(QtWidgets.QDialog):
         super().accept()
 
     def _browse(self) -> None:
-        path = ask.open_file(self, "Photometric file", "IES or EULUMDAT (*.ies *.ldt)")
-        if path:
-            self.product.setCurrentText(path)
+        path = ask.open_file(self, "Photometric file", file_filter())
+        if not path:
+            return
+        try:
+            entries = file_entries(path)
+        except LightInvError as exc:
+            ask.warn(self, str(exc))
+            return
+        # Each product of the file (a GLDF's variants) becomes a choice, the first chosen;
+        # its name shows in the tooltip and under the fields.
+        for e in entries:
+            if self.product.findText(e.reference) < 0:
+                self.product.addItem(e.reference)
+            self.product.setItemData(
+                self.product.findText(e.reference), e.name, QtCore.Qt.ToolTipRole
+            )
+        self.product.setCurrentText(entries[0].reference)
 
     def _zone_changed(self, zone: str) -> None:
         w, h = self.zones.get(zone, (1.0, 1.0))
@@ -217,7 +233,9 @@ class ArrayDialog(QtWidgets.QDialog):
             f"{shown} crosswise / endwise (4H x 8H room, 70/50/20)" if shown != "-" else tip
         )
         su, sv = a.spacing
-        text = (
+        named = split_reference(a.product) is not None and p.name != a.product
+        text = f"<b>{html.escape(p.name)}</b><br>" if named else ""  # a file's product
+        text += (
             f"{a.count} luminaires, spacing {su:.2f} x {sv:.2f} m; "
             f"{a.count * p.lumens * a.dimming:,.0f} lm, {a.count * p.watts * a.dimming:,.1f} W"
             f"<br>Spacing kept within {DEFAULT_SHR:g} x the mounting height above the work "

@@ -1,6 +1,11 @@
 """The luminaires panel: the catalogue with polar curves, the design's luminaire arrays
 and its work planes with their EN 12464-1 values, live.
 
+The catalogue lists the shipped products, then every product of the photometric files
+the design's arrays use (each variant of a GLDF on its own row, named product +
+variant), so a product brought in by the array dialog's File… shows its polar curve
+and glare rating like the others.
+
 Every edit goes through the editing model (``set_arrays``, ``set_workplanes``,
 ``add_intention``), so Edit > Undo takes it back, and the light shown (the arrays placed
 exactly, about a second for a room) follows; the work planes' Em, Emin, Emax and U0 come
@@ -27,6 +32,8 @@ from lightinv_core.errors import LightInvError
 from lightinv_core.kinds import Scenario
 from lightinv_core.light.arrays import Product, resolve_product
 from lightinv_core.luminaires import builtin_catalogue
+from lightinv_core.luminaires.catalogue import CatalogueEntry, file_entries
+from lightinv_core.luminaires.formats import is_photometry_reference, split_reference
 from lightinv_core.luminaires.photometry import light_warnings
 from lightinv_core.scenarios import scenario_spec
 from lightinv_core.sources.types import source_type
@@ -43,7 +50,7 @@ def product_title(product: str, p: Product) -> tuple[str, str]:
     ph = p.photometry
     number = " ".join(ph.catalogue_number.split())
     path = Path(product)
-    if path.suffix.lower() in (".ies", ".ldt"):
+    if is_photometry_reference(product):
         maker = " ".join(ph.manufacturer.split())
         title = " ".join(t for t in (maker, number) if t) or path.stem
         about = (textwrap.fill(ph.name, 60), f"file {path.name}")  # a tooltip does not wrap
@@ -60,6 +67,13 @@ class CompactTable(QtWidgets.QTableWidget):
     the catalogue box below its minimum, cutting the polar curve off (1366 x 768)."""
 
     ROWS = 3
+
+    def resizeEvent(self, event) -> None:
+        """Keep the chosen row in view when the panel's layout shrinks the table (it
+        shows one row at 1366 x 768 once the arrays and work planes fill in)."""
+        super().resizeEvent(event)
+        if self.currentItem() is not None:
+            self.scrollToItem(self.currentItem())
 
     def sizeHint(self) -> QtCore.QSize:
         rows = self.ROWS * self.verticalHeader().defaultSectionSize()
@@ -161,30 +175,63 @@ class LuminairesPanel(QtWidgets.QWidget):
         self.refresh()
 
     # -- catalogue ------------------------------------------------------------------------
-    def _fill_catalogue(self) -> None:
-        entries = builtin_catalogue()
+    def _fill_catalogue(self, files: tuple[Path, ...] = ()) -> None:
+        """The shipped products, then those of ``files`` (a file that cannot be read
+        any more is left out: its arrays say why)."""
+        self._files = files
+        # A shipped product is named by its name, a file's by its reference.
+        entries: list[tuple[CatalogueEntry, str]] = [(e, e.name) for e in builtin_catalogue()]
+        for f in files:
+            try:
+                entries += [(e, e.reference) for e in file_entries(f)]
+            except LightInvError:
+                continue
+        selected = self.selected_product() if self.catalogue.rowCount() else None
+        blocked = self.catalogue.blockSignals(True)  # one redraw of the curve, below
         self.catalogue.setRowCount(len(entries))
-        for i, e in enumerate(entries):
-            glare, tip = product_ugr(e.name)
-            for j, text in enumerate(
-                (e.name, f"{e.lumens:,.0f}", f"{e.watts:g}", f"{e.efficacy:.0f}", glare)
-            ):
+        for i, (e, ref) in enumerate(entries):
+            glare, tip = product_ugr(ref)
+            efficacy = f"{e.efficacy:.0f}" if e.watts > 0 else "-"
+            for j, text in enumerate((e.name, f"{e.lumens:,.0f}", f"{e.watts:g}", efficacy, glare)):
                 self.catalogue.setItem(i, j, QtWidgets.QTableWidgetItem(text))
+            self.catalogue.item(i, 0).setData(QtCore.Qt.UserRole, ref)
+            self.catalogue.item(i, 0).setToolTip("\n".join(t for t in (ref, e.description) if t))
             self.catalogue.item(i, 4).setToolTip(tip)
+            if ref == selected:
+                self.catalogue.selectRow(i)
+        self.catalogue.blockSignals(blocked)
         self.catalogue.resizeColumnsToContents()
+        if selected is not None:
+            self._show_product()
+
+    def _used_files(self) -> tuple[Path, ...]:
+        """The photometric files the design's arrays use, in order, once each."""
+        d = self.doc
+        files: list[Path] = []
+        for a in d.design.arrays if d.project is not None else ():
+            ref = split_reference(a.product)
+            if ref is not None and ref[0] not in files:
+                files.append(ref[0])
+        return tuple(files)
 
     def _show_product(self) -> None:
-        rows = self.catalogue.selectionModel().selectedRows()
-        if not rows:
+        product = self.selected_product()
+        if product is None:
             self.polar.show_product(None)
             return
-        name = self.catalogue.item(rows[0].row(), 0).text()
-        self.polar.show_product(resolve_product(name))
+        try:
+            self.polar.show_product(resolve_product(product))
+        except LightInvError:
+            self.polar.show_product(None)
 
     def selected_product(self) -> str | None:
-        """The catalogue product selected, by name."""
+        """The catalogue product selected: a shipped product's name, or a file's
+        reference (``FILE`` or ``FILE.gldf#VARIANT``)."""
         rows = self.catalogue.selectionModel().selectedRows()
-        return self.catalogue.item(rows[0].row(), 0).text() if rows else None
+        if not rows:
+            return None
+        item = self.catalogue.item(rows[0].row(), 0)
+        return item.data(QtCore.Qt.UserRole) or item.text()
 
     # -- arrays ---------------------------------------------------------------------------
     def _luminaire_zones(self) -> dict[str, tuple[float, float]]:
@@ -316,6 +363,9 @@ class LuminairesPanel(QtWidgets.QWidget):
 
     # -- refresh --------------------------------------------------------------------------
     def refresh(self) -> None:
+        files = self._used_files()
+        if files != self._files:
+            self._fill_catalogue(files)
         d = self.doc
         design = d.design if d.project is not None else None
         arrays = design.arrays if design is not None else ()

@@ -1,5 +1,6 @@
 """``photometry FILE``: what a photometric file says, where its flux goes and its CIE 190
-UGR table (docs/photometry.md, "Glare: UGR")."""
+UGR table (docs/photometry.md, "Glare: UGR"). A file of several products (a GLDF with
+variants) is described product by product; ``FILE.gldf#VARIANT`` picks one."""
 
 from __future__ import annotations
 
@@ -8,7 +9,12 @@ import argparse
 import numpy as np
 
 from lightinv_core.cli.output import out
-from lightinv_core.luminaires.formats import read_photometry
+from lightinv_core.luminaires.formats import (
+    file_facts,
+    file_products,
+    read_photometry,
+    split_reference,
+)
 from lightinv_core.luminaires.ugr import NoLuminousArea, luminous_area
 from lightinv_core.luminaires.ugr_table import (
     ORIENTATIONS,
@@ -21,7 +27,9 @@ from lightinv_core.luminaires.ugr_table import (
 
 def add_photometry_args(p: argparse.ArgumentParser) -> None:
     """The file and ``--table``."""
-    p.add_argument("file", help="photometric file (.ies or .ldt)")
+    p.add_argument(
+        "file", help="photometric file (.ies, .ldt, .gldf; FILE.gldf#VARIANT for one variant)"
+    )
     p.add_argument(
         "--table", action="store_true", help="print the whole UGR table (19 rooms x 5 x 2)"
     )
@@ -46,14 +54,32 @@ def _table_text(values: np.ndarray) -> list[str]:
 
 
 def cmd_photometry(args) -> int:
-    """Print a photometric file's data, flux fractions and UGR (4H 8H, or the table)."""
-    ph = read_photometry(args.file)
+    """Print a photometric file's data, flux fractions and UGR (4H 8H, or the table),
+    for each product it holds (every variant of a GLDF)."""
+    ref = split_reference(args.file)
+    if ref is not None and ref[1] is None:
+        products = file_products(args.file)  # all of them: one, or a GLDF's variants
+    else:
+        products = [(args.file, read_photometry(args.file))]
+    described = [_describe(name, ph, args.table) for name, ph in products]
+    if len(described) == 1:
+        out(args, described[0][0], described[0][1])
+    else:
+        payload = {"file": str(args.file), "products": [d[0] for d in described]}
+        text = f"{args.file}: {len(described)} products\n\n" + "\n\n".join(d[1] for d in described)
+        out(args, payload, text)
+    return 0
+
+
+def _describe(name: str, ph, full_table: bool) -> tuple[dict, str]:
+    """(JSON data, text) of one product's table."""
     flux = ph.flux()
     w, length, height = ph.opening
     area = luminous_area(ph.opening)
     ff = flux_fractions(ph)
+    facts, fact_lines = file_facts(name)
     result: dict = {
-        "file": str(args.file),
+        "file": str(name),
         "manufacturer": ph.manufacturer,
         "catalogue_number": ph.catalogue_number,
         "name": ph.name,
@@ -81,7 +107,7 @@ def cmd_photometry(args) -> int:
         else f"{abs(w):.3f} x {abs(length):.3f} m"
     )
     lines = [
-        f"{args.file}: {ph.manufacturer or '?'} {ph.catalogue_number or ''}".rstrip(),
+        f"{name}: {ph.manufacturer or '?'} {ph.catalogue_number or ''}".rstrip(),
         f"  {ph.name}" if ph.name else "",
         f"flux {flux:,.0f} lm{watts}",
         f"luminous area: {shape} {size}, {area:.4f} m², height {abs(height):.3f} m"
@@ -109,8 +135,10 @@ def cmd_photometry(args) -> int:
             "values": np.round(table.values, 2).tolist(),
         }
         lines.append(f"UGR (CIE 190, 4H 8H, 70/50/20): crosswise {cross:.1f}, endwise {end:.1f}")
-        if args.table:
+        if full_table:
             lines += _table_text(table.values)
+    if facts:
+        result["stated"] = facts
+        lines[2:2] = fact_lines  # after the name: the maker's ratings, then the table's
     lines += [f"warning: {w}" for w in ph.warnings]
-    out(args, result, "\n".join(line for line in lines if line))
-    return 0
+    return result, "\n".join(line for line in lines if line)

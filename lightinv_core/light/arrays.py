@@ -31,6 +31,7 @@ from lightinv_core.design.model import LuminaireArray, Workplane
 from lightinv_core.design.variables import ArrayLayout
 from lightinv_core.errors import DesignError, LightInvError
 from lightinv_core.luminaires import Photometry, builtin_catalogue, read_photometry
+from lightinv_core.luminaires.formats import is_photometry_reference, split_reference
 from lightinv_core.operator.luminaire_basis import luminaire_responses
 from lightinv_core.operator.radiosity import RadiosityOperator
 from lightinv_core.scene.patches import Patches
@@ -88,20 +89,22 @@ class Product:
 
 
 def resolve_product(name: str, watts: float | None = None) -> Product:
-    """The catalogue product called ``name``, or the IES/EULUMDAT file at path ``name``
-    (its input watts, else ``watts``). ``watts`` overrides the rated power."""
+    """The catalogue product called ``name``, or the photometric file at path ``name``
+    (IES, EULUMDAT, or ``FILE.gldf#VARIANT``; its input watts, else ``watts``).
+    ``watts`` overrides the rated power."""
     for entry in builtin_catalogue():
         if entry.name == name:
             return Product(name, entry.photometry(), float(watts or entry.watts))
-    path = Path(name)
-    if path.suffix.lower() not in (".ies", ".ldt"):
+    path, _ = split_reference(name) or (Path(name), None)
+    if not is_photometry_reference(name):
         known = "; ".join(e.name for e in builtin_catalogue())
         raise DesignError(
-            f"product {name!r} is neither a catalogue luminaire ({known}) nor an .ies/.ldt file"
+            f"product {name!r} is neither a catalogue luminaire ({known}) nor an "
+            ".ies/.ldt/.gldf file"
         )
     if not path.is_file():
         raise DesignError(f"product {name!r}: no such photometric file")
-    phot = read_photometry(path)
+    phot = read_photometry(name)
     power = watts if watts is not None else phot.input_watts
     if not power:
         raise DesignError(

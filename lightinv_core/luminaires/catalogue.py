@@ -6,7 +6,8 @@
      "luminaires": [{"name": "...", "file": "x.ldt", "lumens": 2000, "watts": 20,
                      "size_m": [0.15, 0.15, 0.0], "description": "..."}]}
 
-``file`` is relative to the catalogue's folder; ``size_m`` is the luminous opening
+``file`` is relative to the catalogue's folder (one variant of a GLDF file is
+``x.gldf#VARIANT``); ``size_m`` is the luminous opening
 (width across C90-C270, length along C0-C180, height), metres. The shipped files are
 made by ``generate_builtin`` from analytic distributions; regenerate them with
 
@@ -26,7 +27,13 @@ from pathlib import Path
 from lightinv_core.atomic import atomic_writer
 from lightinv_core.errors import LightInvError
 from lightinv_core.luminaires.analytic import batwing_linear, downlight, lambertian_panel
-from lightinv_core.luminaires.formats import read_photometry, write_photometry
+from lightinv_core.luminaires.formats import (
+    file_facts,
+    file_products,
+    read_photometry,
+    split_reference,
+    write_photometry,
+)
 from lightinv_core.luminaires.photometry import Photometry, fail
 from lightinv_core.luminaires.textfile import read_bytes
 
@@ -49,6 +56,12 @@ class CatalogueEntry:
     watts: float
     size: tuple[float, float, float]
     description: str = ""
+    variant: str = ""
+
+    @property
+    def reference(self) -> str:
+        """How a project names it: the file, or ``FILE#VARIANT`` for a GLDF variant."""
+        return f"{self.path}#{self.variant}" if self.variant else str(self.path)
 
     @property
     def efficacy(self) -> float:
@@ -57,7 +70,7 @@ class CatalogueEntry:
 
     def photometry(self) -> Photometry:
         """The entry's photometric table, read from its file."""
-        return read_photometry(self.path)
+        return read_photometry(self.reference)
 
 
 def _line_of(text: str, needle: str, start: int) -> tuple[int | None, int]:
@@ -132,7 +145,7 @@ def read_catalogue(path: str | os.PathLike) -> list[CatalogueEntry]:
         description = item.get("description", "")
         if not isinstance(description, str):
             raise fail(source, line, f"{label}: description is not text", "write a string")
-        target = folder / file
+        target, variant = split_reference(folder / file) or (folder / file, None)
         if not target.is_file():
             raise fail(
                 source,
@@ -148,6 +161,31 @@ def read_catalogue(path: str | os.PathLike) -> list[CatalogueEntry]:
                 watts=values["watts"],
                 size=(sizes[0], sizes[1], sizes[2]),  # type: ignore[arg-type]
                 description=description,
+                variant=variant or "",
+            )
+        )
+    return entries
+
+
+def file_entries(path: str | os.PathLike) -> list[CatalogueEntry]:
+    """Catalogue entries of the products in a photometric file: one for an IES or
+    EULUMDAT file, one per variant for a GLDF (named product + variant), each with the
+    flux its table gives, the watts it states (0 where it states none) and, as its
+    description, what the file states beyond the table (a GLDF's ratings, CCT, Ra,
+    size and maintenance)."""
+    entries = []
+    for ref, ph in file_products(path):
+        file, variant = split_reference(ref) or (Path(ref), None)
+        _, stated = file_facts(ref)
+        entries.append(
+            CatalogueEntry(
+                name=ph.name or file.stem,
+                path=file,
+                lumens=ph.flux(),
+                watts=ph.input_watts or 0.0,
+                size=ph.opening,  # type: ignore[arg-type]
+                description="\n".join(stated),
+                variant=variant or "",
             )
         )
     return entries

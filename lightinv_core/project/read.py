@@ -13,6 +13,7 @@ from pathlib import Path
 from typing import Any
 
 from lightinv_core.fields import _describe, _fail
+from lightinv_core.luminaires.formats import is_photometry_reference
 from lightinv_core.project.model import SCHEMA, TOP, Project, project_from_values, resolve_path
 
 # -- JSON parsing ---------------------------------------------------------------------------
@@ -73,4 +74,4 @@ def read_project(data: Any, base_dir: Path | None) -> Project:
 
 def is_product_file(product: str) -> bool:
     """Whether an array's ``product`` names a photometric file (not a catalogue entry)."""
-    return Path(product).suffix.lower() in (".ies", ".ldt")
+    return is_photometry_reference(product)

@@ -22,6 +22,7 @@ import numpy as np
 from lightinv_core.atomic import atomic_writer
 from lightinv_core.design.solution import Solution
 from lightinv_core.fields import ProjectError, _fail, _is_int, _is_number, _join
+from lightinv_core.luminaires.formats import is_photometry_reference
 from lightinv_core.project.model import TOP, Project, project_values
 from lightinv_core.project.results import SOLUTION, Info
 
@@ -75,7 +76,7 @@ def project_dict(p: Project, base_dir: Path | None) -> dict:
         if key in scene:
             scene[key] = _relative(scene[key], base_dir)
     for a in d.get("arrays", ()):
-        if Path(a["product"]).suffix.lower() in (".ies", ".ldt"):
+        if is_photometry_reference(a["product"]):
             a["product"] = _relative(a["product"], base_dir)
     dl = d.get("daylight", {})
     if dl.get("weather", "builtin") != "builtin":

@@ -1428,7 +1428,7 @@ def _(d):
     'a luminaire array of a product the catalogue lacks (`"product": "Downlite"`)',
     DesignError,
     "product 'Downlite' is neither a catalogue luminaire",
-    "nor an .ies/.ldt file",
+    "nor an .ies/.ldt/.gldf file",
 )
 def _(d):
     return problem_error(d, with_array(product="Downlite"))
