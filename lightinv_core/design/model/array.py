@@ -64,7 +64,8 @@ class LuminaireArray:
     product: str = field(
         metadata=declare(
             String(),
-            "a catalogue luminaire's name, or an `.ies`/`.ldt` file (relative to the project file)",
+            "a catalogue luminaire's name, or an `.ies`/`.ldt`/`.gldf` file (relative to the "
+            "project file; `FILE.gldf#VARIANT` for one variant of a GLDF)",
         )
     )
     rect: tuple[float, float, float, float] = field(
