@@ -36,6 +36,14 @@ def fmt(value: float | None, digits: int = 4) -> str:
     return f"{v:.{digits}g}"
 
 
+def u0_text(value: float | None) -> str:
+    """A uniformity U0 = Emin / Em: three decimals everywhere (a 0.712 against a bound of
+    0.7 reads apart; "—" when missing or undefined)."""
+    if value is None or not math.isfinite(float(value)):
+        return "—"
+    return f"{float(value):.3f}"
+
+
 # -- goals ------------------------------------------------------------------------------------
 
 
@@ -77,7 +85,7 @@ def quantity_value(quantity: str, value: float | None, digits: int = 4) -> str:
 
 def bound_value(bound: str, quantity: str, value: float | None) -> str:
     """A value of one bound: in the quantity's unit, U0 (a ratio) without one."""
-    return fmt(value) if bound == Bound.UNIFORMITY else quantity_value(quantity, value)
+    return u0_text(value) if bound == Bound.UNIFORMITY else quantity_value(quantity, value)
 
 
 def bound_text(bound: str, quantity: str, limit: float) -> str:

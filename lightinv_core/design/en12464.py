@@ -28,8 +28,9 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from lightinv_core.design.model import DesignError, Intention
+from lightinv_core.design.model import Design, DesignError, Intention
 from lightinv_core.kinds import Edition, Scenario
+from lightinv_core.luminaires.rendering import product_ra
 
 EDITION_2011 = Edition.EN12464_2011
 EDITION_2021 = Edition.EN12464_2021
@@ -179,6 +180,20 @@ def preset_intention(
     )
 
 
+def preset_of(it: Intention, edition: str | None = None) -> Requirement | None:
+    """The EN 12464-1 preset of ``edition`` (default 2011) an intention was made from
+    (its name is the preset's key, perhaps with a "-2" suffix, and its Em, required or
+    modified, and U0 are the preset's), else None."""
+    key = it.name.split("-")[0]
+    try:
+        r = requirement(key, edition) if edition is not None else requirement(key)
+    except DesignError:
+        return None
+    if it.grid is None or it.average not in (r.em, r.em_mod) or it.uniformity != r.u0:
+        return None
+    return r
+
+
 def ra_check(required: int, stated: list[float | None]) -> tuple[str, bool | None]:
     """The products' Ra against a preset's ``required`` Ra: (text, verdict). The verdict
     is None when a product states no Ra ("not stated"), False when one is below."""
@@ -192,3 +207,35 @@ def ra_check(required: int, stated: list[float | None]) -> tuple[str, bool | Non
         return "not stated", None
     low = min(known)
     return f"Ra {low:g}", bool(low >= required)
+
+
+def plane_presets(design: Design) -> list[tuple[str, Requirement]]:
+    """(work plane, preset) of every intention made from a preset of its plane's
+    edition, in the intentions' order."""
+    planes = {w.name: w for w in design.workplanes}
+    return [
+        (it.grid, r)
+        for it in design.intentions
+        if it.grid in planes and (r := preset_of(it, planes[it.grid].edition)) is not None
+    ]
+
+
+def ra_warnings(design: Design) -> list[str]:
+    """One line per array product whose stated Ra is below the highest Ra the design's
+    presets ask, or that states none."""
+    presets = plane_presets(design)
+    if not presets or not design.arrays:
+        return []
+    need = max((r for _, r in presets), key=lambda r: r.ra)
+    out = []
+    for product in dict.fromkeys(a.product for a in design.arrays):
+        ra = product_ra(product)
+        short = product.replace("\\", "/").rsplit("/", 1)[-1]
+        if ra is None:
+            out.append(f"{short} states no Ra: {need.activity} asks Ra ≥ {need.ra}")
+        elif ra < need.ra:
+            out.append(
+                f"{short}: Ra {ra:g} is below the Ra {need.ra} that {need.activity} asks "
+                f"({need.edition})"
+            )
+    return out
