@@ -34,11 +34,11 @@ from lightinv_core.kinds import Edition
 from lightinv_core.light.arrays import arrays_field, caster_for
 from lightinv_core.light.model import LightModel
 from lightinv_core.operator.radiosity import BASIS_BYTES
+from lightinv_core.scene.patches import Patches
 from lightinv_core.sources.emission import source_stack
 from lightinv_core.transport.formfactors import DEFAULT_RAYS
-from lightinv_core.transport.receivers import receiver_factors
-from lightinv_core.scene.patches import Patches
 from lightinv_core.transport.raycast import RayCaster
+from lightinv_core.transport.receivers import receiver_factors
 from lightinv_core.transport.workplane import (
     BORDER_DIRECTIONS,
     UP,

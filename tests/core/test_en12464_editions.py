@@ -22,9 +22,9 @@ from lightinv_core.design.en12464 import (
 )
 from lightinv_core.design.model import DesignError, Workplane
 from lightinv_core.light.grids import edition_grid, grid_counts_2021
+from lightinv_core.scene.builders import room_faces
 from lightinv_core.scene.model import Scene, Surface
 from lightinv_core.scene.patches import mesh_patches
-from lightinv_core.scene.builders import room_faces
 from lightinv_core.transport.raycast import RayCaster
 from lightinv_core.transport.workplane import grid_counts
 
