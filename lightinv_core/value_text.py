@@ -89,14 +89,14 @@ def bound_value(bound: str, quantity: str, value: float | None) -> str:
 
 
 def bound_text(bound: str, quantity: str, limit: float) -> str:
-    """One bound of an intention: "min ≥ 300 lux", "max ≤ 2,000 lux", "U0 ≥ 0.6"."""
+    """One bound of an intention: "min ≥ 300 lux", "max ≤ 2,000 lux", "U0 ≥ 0.600"."""
     label = "U0" if bound == Bound.UNIFORMITY else str(bound)
     sign = "≤" if bound == Bound.MAX else "≥"
     return f"{label} {sign} {bound_value(bound, quantity, limit)}"
 
 
 def intention_target(intention: Intention) -> str:
-    """Every bound an intention sets, joined: "min ≥ 300 lux, U0 ≥ 0.6"."""
+    """Every bound an intention sets, joined: "min ≥ 300 lux, U0 ≥ 0.600"."""
     it = intention
     return ", ".join(bound_text(b, it.quantity, getattr(it, b)) for b in bounds_set(it))
 
