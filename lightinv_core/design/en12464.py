@@ -148,8 +148,8 @@ def check_edition(edition: str) -> str:
     return edition
 
 
-def requirements(edition: str = DEFAULT_EDITION) -> tuple[Requirement, ...]:
-    """The presets of ``edition``."""
+def requirements(edition: str = LEGACY_EDITION) -> tuple[Requirement, ...]:
+    """The presets of ``edition`` (2011 by default, like ``requirement``)."""
     return TABLE[check_edition(edition)]
 
 
