@@ -198,9 +198,10 @@ def test_work_plane_criteria_of_en_12464(classroom, report):
     assert line_with(text, "desks", "classroom", "Em (night)", f"≥ {r.em:.0f} lux")
     assert line_with(text, "desks", "classroom", "U0 (night)", f"≥ {r.u0:g}")
     assert line_with(text, "desks", "classroom", "UGR_L", "not calculated")
-    assert line_with(text, "desks", "classroom", "Ra", f"≥ {r.ra}", "product data")
+    # The catalogue panel's EULUMDAT file states no Ra: no verdict, "not stated".
+    assert line_with(text, "desks", "classroom", "Ra", f"≥ {r.ra}", "not stated")
     squashed = " ".join(text.split())
-    assert f"Classrooms, tutorial rooms (ref. {r.reference}" in squashed
+    assert f"EN 12464-1:2011, classrooms, tutorial rooms (ref. {r.reference})" in squashed
 
 
 def test_sources_table_lists_the_arrays(classroom, report):
