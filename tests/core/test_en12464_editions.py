@@ -128,6 +128,10 @@ def test_the_edition_is_saved_and_old_files_read_as_2011(tmp_path):
     assert planes and all("edition" not in wp for wp in planes)
     proj = load_project(base)
     assert all(wp.edition == EDITION_2011 for wp in proj.design.workplanes)
+    # Saved again unchanged, an old file stays as it was: no edition written.
+    same = tmp_path / "same.json"
+    save_project(proj, same)
+    assert "edition" not in json.loads(same.read_text())["workplanes"][0]
     wp = dataclasses.replace(proj.design.workplanes[0], edition=EDITION_2021)
     design = dataclasses.replace(proj.design, workplanes=(wp, *proj.design.workplanes[1:]))
     out = tmp_path / "p.json"
