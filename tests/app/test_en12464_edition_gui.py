@@ -14,7 +14,7 @@ from PySide6 import QtWidgets
 from lightinv_core.design.en12464 import EDITION_2011, EDITION_2021
 from lightinv_core.design.model import LuminaireArray
 from tests.app.conftest import wait_for_operator
-from tests.app.user import answer, button, choose, click, field, ok, screenshot
+from tests.app.user import answer, button, choose, click, field, ok, screenshot, tree_texts
 
 SHOTS = Path("/tmp/shots-en12464")
 pytestmark = pytest.mark.slow  # an office operator built, a dialog walked
@@ -72,6 +72,7 @@ def test_the_work_plane_dialog_names_the_edition_and_its_presets(qtbot, window):
     assert "EN 12464-1:2021), Writing, typing, reading, data processing: Em 500 lux" in status
     assert "UGR_L 19, Ra 80" in status
     assert not any("Ra" in w for w in window_warnings(panel))
+    assert tree_texts(window.tree, "Work planes")["wp"].endswith(", EN 12464-1:2021")
     # The panel's preset list follows the plane's edition.
     assert panel.preset.itemText(0).startswith(EDITION_2021)
     screenshot(window, SHOTS, "window-2021-office")
