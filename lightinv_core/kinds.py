@@ -146,3 +146,10 @@ class ArrayVariable(Kind):
     COLUMNS = "columns"  # luminaires along u
     ROTATION = "rotation"  # 0: the product's C0 plane along u; 90: along v
     DIMMING = "dimming"  # output fraction of every luminaire of the array, (0, 1]
+
+
+class Edition(Kind):
+    """The edition of EN 12464-1 a work plane follows: its grid rule and its presets."""
+
+    EN12464_2011 = "EN 12464-1:2011"  # points per side rounded up, each side on its own
+    EN12464_2021 = "EN 12464-1:2021"  # cell from the longer side, points per side rounded

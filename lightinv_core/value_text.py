@@ -36,6 +36,14 @@ def fmt(value: float | None, digits: int = 4) -> str:
     return f"{v:.{digits}g}"
 
 
+def u0_text(value: float | None) -> str:
+    """A uniformity U0 = Emin / Em: three decimals everywhere (a 0.712 against a bound of
+    0.7 reads apart; "—" when missing or undefined)."""
+    if value is None or not math.isfinite(float(value)):
+        return "—"
+    return f"{float(value):.3f}"
+
+
 # -- goals ------------------------------------------------------------------------------------
 
 
@@ -77,18 +85,18 @@ def quantity_value(quantity: str, value: float | None, digits: int = 4) -> str:
 
 def bound_value(bound: str, quantity: str, value: float | None) -> str:
     """A value of one bound: in the quantity's unit, U0 (a ratio) without one."""
-    return fmt(value) if bound == Bound.UNIFORMITY else quantity_value(quantity, value)
+    return u0_text(value) if bound == Bound.UNIFORMITY else quantity_value(quantity, value)
 
 
 def bound_text(bound: str, quantity: str, limit: float) -> str:
-    """One bound of an intention: "min ≥ 300 lux", "max ≤ 2,000 lux", "U0 ≥ 0.6"."""
+    """One bound of an intention: "min ≥ 300 lux", "max ≤ 2,000 lux", "U0 ≥ 0.600"."""
     label = "U0" if bound == Bound.UNIFORMITY else str(bound)
     sign = "≤" if bound == Bound.MAX else "≥"
     return f"{label} {sign} {bound_value(bound, quantity, limit)}"
 
 
 def intention_target(intention: Intention) -> str:
-    """Every bound an intention sets, joined: "min ≥ 300 lux, U0 ≥ 0.6"."""
+    """Every bound an intention sets, joined: "min ≥ 300 lux, U0 ≥ 0.600"."""
     it = intention
     return ", ".join(bound_text(b, it.quantity, getattr(it, b)) for b in bounds_set(it))
 

@@ -1,13 +1,16 @@
 """The dialog that adds a work plane: a grid of points at a height over a floor group,
-where the EN 12464-1 values are read."""
+where the EN 12464-1 values are read, the edition of EN 12464-1 it follows (its grid
+rule and presets; 2021 for a new one) and, optionally, a preset of that edition to ask
+of it (the list follows the edition)."""
 
 from __future__ import annotations
 
 import numpy as np
-from PySide6 import QtWidgets
+from PySide6 import QtCore, QtWidgets
 
 from app.dialogs import ask
 from app.dialogs.fields import number_box, ok_cancel
+from lightinv_core.design.en12464 import DEFAULT_EDITION, EDITIONS, requirements
 from lightinv_core.design.model import Workplane
 from lightinv_core.errors import LightInvError
 from lightinv_core.scene.patches import Patches
@@ -42,7 +45,8 @@ def floor_default(groups: list[str], patches: Patches | None = None) -> str:
 
 
 class WorkplaneDialog(QtWidgets.QDialog):
-    """Fields of one ``Workplane``: name, height, border, floor group."""
+    """Fields of one ``Workplane``: name, height, border, floor group, edition; and a
+    preset of the edition to add as its intention (``preset()``)."""
 
     def __init__(
         self,
@@ -57,7 +61,9 @@ class WorkplaneDialog(QtWidgets.QDialog):
         if patches is None:  # the Luminaires panel's document, when it is the parent
             doc = getattr(parent, "doc", None)
             patches = getattr(doc, "patches", None)
-        base = base or Workplane(name, group=floor_default(groups, patches))
+        base = base or Workplane(
+            name, group=floor_default(groups, patches), edition=DEFAULT_EDITION
+        )
         form = QtWidgets.QFormLayout(self)
         self.name = QtWidgets.QLineEdit(base.name)
         form.addRow("Name", self.name)
@@ -69,7 +75,43 @@ class WorkplaneDialog(QtWidgets.QDialog):
         self.group.addItems(groups)
         self.group.setCurrentText(base.group)
         form.addRow("Floor group", self.group)
+        self.edition = QtWidgets.QComboBox()
+        self.edition.addItems([str(e) for e in EDITIONS])
+        self.edition.setCurrentText(str(base.edition))
+        self.edition.setToolTip(
+            "The edition's grid rule (2011: points per side rounded up; 2021: the cell "
+            "from the longer side, points rounded) and its presets"
+        )
+        self.preset_box = QtWidgets.QComboBox()
+        # The longest activity would widen the dialog past a laptop's screen.
+        self.preset_box.setSizeAdjustPolicy(
+            QtWidgets.QComboBox.AdjustToMinimumContentsLengthWithIcon
+        )
+        self.preset_box.setMinimumContentsLength(28)
+        standard = QtWidgets.QHBoxLayout()
+        standard.addWidget(self.edition)
+        standard.addWidget(self.preset_box, 1)
+        form.addRow("EN 12464-1", standard)
+        self.edition.currentTextChanged.connect(self._fill_presets)
+        self._fill_presets(self.edition.currentText())
         form.addRow(ok_cancel(self))
+
+    def _fill_presets(self, edition: str) -> None:
+        """The preset list of ``edition``, keeping the chosen activity when it has one."""
+        key = self.preset_box.currentData()
+        self.preset_box.clear()
+        self.preset_box.addItem("no preset", None)
+        for r in requirements(edition):
+            mod = f" (modified {r.em_mod:g})" if r.em_mod is not None else ""
+            self.preset_box.addItem(f"{r.activity}: {r.em:g} lux{mod}, U0 {r.u0:.2f}", r.key)
+            self.preset_box.setItemData(
+                self.preset_box.count() - 1, f"{r.label}; {r.values}", QtCore.Qt.ToolTipRole
+            )
+        self.preset_box.setCurrentIndex(max(0, self.preset_box.findData(key)))
+
+    def preset(self) -> str | None:
+        """The key of the preset chosen to ask of the work plane (None: none)."""
+        return self.preset_box.currentData()
 
     def accept(self) -> None:
         """Close only on a work plane that can be built (OK or Enter); else say why."""
@@ -87,4 +129,5 @@ class WorkplaneDialog(QtWidgets.QDialog):
             self.height.value(),
             self.border.value(),
             self.group.currentText(),
+            self.edition.currentText(),
         )

@@ -102,9 +102,8 @@ class DesignTree(QtWidgets.QTreeWidget):
         if d.design.workplanes:
             planes = QtWidgets.QTreeWidgetItem(self, ["Work planes", str(len(d.design.workplanes))])
             for w in d.design.workplanes:
-                QtWidgets.QTreeWidgetItem(
-                    planes, [w.name, f"{w.height:g} m over {w.group}, border {w.border:g} m"]
-                )
+                about = f"{w.height:g} m over {w.group}, border {w.border:g} m, {w.edition}"
+                QtWidgets.QTreeWidgetItem(planes, [w.name, about])
         rules_item = QtWidgets.QTreeWidgetItem(self, ["Rules", str(len(d.design.rules))])
         for k, rule in enumerate(d.design.rules):
             what, bounds = rule_text(rule)

@@ -11,7 +11,10 @@ Every edit goes through the editing model (``set_arrays``, ``set_workplanes``,
 exactly, about a second for a room) follows; the work planes' Em, Emin, Emax and U0 come
 from the light shown. EN 12464-1 presets add an intention on a work plane. The arrays'
 photometry warnings (a tilt table not applied, a light output ratio above 100%) show
-under the arrays and in the status bar's warnings.
+under the arrays and in the status bar's warnings, with the Ra check: a product whose
+stated Ra is below a preset's (or that states none) is named there. Each work plane
+follows an edition of EN 12464-1 (its grid rule and presets): the preset list follows
+the selected plane's edition.
 """
 
 from __future__ import annotations
@@ -27,7 +30,13 @@ from app.dialogs.workplane_dialog import WorkplaneDialog
 from app.document import Document
 from app.view.polar_plot import PolarPlot
 from app.widgets.elided_label import ElidedLabel
-from lightinv_core.design.en12464 import REQUIREMENTS, preset_intention
+from lightinv_core.design.en12464 import (
+    DEFAULT_EDITION,
+    plane_presets,
+    preset_intention,
+    ra_warnings,
+    requirements,
+)
 from lightinv_core.errors import LightInvError
 from lightinv_core.kinds import Scenario
 from lightinv_core.light.arrays import Product, resolve_product
@@ -37,9 +46,19 @@ from lightinv_core.luminaires.formats import is_photometry_reference, split_refe
 from lightinv_core.luminaires.photometry import light_warnings
 from lightinv_core.scenarios import scenario_spec
 from lightinv_core.sources.types import source_type
+from lightinv_core.value_text import u0_text
 
 ARRAY_COLUMNS = ("array", "zone", "product", "layout", "spacing m", "C0", "dimming", "W")
-PLANE_COLUMNS = ("work plane", "height m", "points", "Em lux", "Emin lux", "Emax lux", "U0")
+PLANE_COLUMNS = (
+    "work plane",
+    "height m",
+    "points",
+    "Em lux",
+    "Emin lux",
+    "Emax lux",
+    "U0",
+    "EN 12464-1",
+)
 
 
 def product_title(product: str, p: Product) -> tuple[str, str]:
@@ -144,14 +163,12 @@ class LuminairesPanel(QtWidgets.QWidget):
         self.preset = QtWidgets.QComboBox()
         # A preset is judged in its own scenario (night: the luminaires alone), not in the
         # design scenario of the table's Em: the list says which.
-        judged = scenario_spec(preset_intention(REQUIREMENTS[0].key, "-").scenario)
-        self.preset.addItem(f"EN 12464-1 intention ({judged.label})…", None)
+        self._judged = scenario_spec(preset_intention("office", "-").scenario)
         self.preset.setToolTip(
-            f"Adds Em and U0 as an intention on the selected work plane, judged in the "
-            f"{judged.label} scenario (the Achieved tab)"
+            f"Adds Em and U0 of the selected work plane's EN 12464-1 edition as an "
+            f"intention on it, judged in the {self._judged.label} scenario (the Achieved tab)"
         )
-        for r in REQUIREMENTS:
-            self.preset.addItem(f"{r.activity}: {r.em:g} lux, U0 {r.u0:.2f}", r.key)
+        self._fill_presets(DEFAULT_EDITION)
         # The longest activity would widen the dock past a laptop's (1366 px) screen and
         # push the Remove buttons out of sight: the box shrinks, its list stays whole.
         self.preset.setSizeAdjustPolicy(QtWidgets.QComboBox.AdjustToMinimumContentsLengthWithIcon)
@@ -162,6 +179,7 @@ class LuminairesPanel(QtWidgets.QWidget):
         self.add_plane_button.clicked.connect(lambda: self.add_workplane())
         self.remove_plane_button.clicked.connect(self.remove_workplane)
         self.preset.activated.connect(self._preset)
+        self.planes.itemSelectionChanged.connect(lambda: self._fill_presets(self._edition()))
         self.status = ElidedLabel()  # never wider than the dock; whole on hover
         wp.addWidget(self.status)
         lay.addWidget(wp_box)
@@ -325,7 +343,8 @@ class LuminairesPanel(QtWidgets.QWidget):
         except LightInvError as exc:
             ask.warn(self, str(exc))
             return False
-        return True
+        key = dialog.preset()
+        return True if key is None else self.add_preset(key, wp.name)
 
     def remove_workplane(self) -> None:
         rows = self.planes.selectionModel().selectedRows()
@@ -341,21 +360,38 @@ class LuminairesPanel(QtWidgets.QWidget):
         if key is not None:
             self.add_preset(key)
 
-    def add_preset(self, key: str) -> bool:
-        """Add the EN 12464-1 preset ``key`` as an intention on the selected (or first)
-        work plane."""
+    def _edition(self) -> str:
+        """The edition of the selected (or first) work plane; 2021 without one."""
+        planes = self.doc.design.workplanes if self.doc.project is not None else ()
+        rows = self.planes.selectionModel().selectedRows()
+        i = rows[0].row() if rows else 0
+        return planes[i].edition if i < len(planes) else DEFAULT_EDITION
+
+    def _fill_presets(self, edition: str) -> None:
+        """The preset list of ``edition`` (the selected work plane's)."""
+        if self.preset.count() and self.preset.itemText(0).endswith(f"{edition})…"):
+            return
+        self.preset.clear()
+        self.preset.addItem(f"{edition} intention ({self._judged.label})…", None)
+        for r in requirements(edition):
+            self.preset.addItem(f"{r.activity}: {r.em:g} lux, U0 {r.u0:.2f}", r.key)
+
+    def add_preset(self, key: str, plane: str | None = None) -> bool:
+        """Add the EN 12464-1 preset ``key`` of the plane's edition as an intention on
+        work plane ``plane`` (default: the selected, or first, one)."""
         d = self.doc
         planes = d.design.workplanes
         if not planes:
             ask.warn(self, "Add a work plane first: EN 12464-1 values apply to its grid.")
             return False
         rows = self.planes.selectionModel().selectedRows()
-        plane = planes[rows[0].row() if rows else 0].name
+        chosen = planes[rows[0].row() if rows else 0]
+        wp = next((w for w in planes if w.name == plane), chosen)
         taken = {i.name for i in d.design.intentions}
-        it = preset_intention(key, plane)
+        it = preset_intention(key, wp.name, edition=wp.edition)
         name = it.name if it.name not in taken else self._new_name(f"{it.name}-", taken)
         try:
-            d.add_intention(preset_intention(key, plane, name))
+            d.add_intention(preset_intention(key, wp.name, name, edition=wp.edition))
         except LightInvError as exc:
             ask.warn(self, str(exc))
             return False
@@ -400,7 +436,9 @@ class LuminairesPanel(QtWidgets.QWidget):
         self.arrays.resizeColumnsToContents()
         column = ARRAY_COLUMNS.index("product")  # a long catalogue number is elided
         self.arrays.setColumnWidth(column, min(self.arrays.columnWidth(column), 240))
-        self._show_warnings(light_warnings(p.photometry for p in products))
+        presets = plane_presets(design) if design is not None else []
+        ra = ra_warnings(design) if design is not None else []
+        self._show_warnings(light_warnings(p.photometry for p in products) + ra)
         planes = design.workplanes if design is not None else ()
         stats = d.grid_stats() if design is not None else {}
         self.planes.setRowCount(len(planes))
@@ -415,8 +453,9 @@ class LuminairesPanel(QtWidgets.QWidget):
                     f"{st['Em']:.0f}",
                     f"{st['Emin']:.0f}",
                     f"{st['Emax']:.0f}",
-                    f"{st['U0']:.2f}",
+                    u0_text(st["U0"]),
                 ]
+            cells.append(str(w.edition).split(":")[-1])
             for j, text in enumerate(cells):
                 self.planes.setItem(i, j, QtWidgets.QTableWidgetItem(text))
         self.planes.resizeColumnsToContents()
@@ -427,6 +466,8 @@ class LuminairesPanel(QtWidgets.QWidget):
             # The view's light, not a preset's (judged at night, the Achieved tab).
             light = scenario_spec(Scenario.DESIGN).describe(design.daylight)
             lines.append(f"Em, Emin, Emax, U0 in the {Scenario.DESIGN} scenario: {light}")
+        for plane, r in presets:
+            lines.append(f"{plane} ({r.edition}), {r.activity}: {r.values}")
         if design is not None and arrays:
             total, n = sum(a.count for a in arrays), len(arrays)
             lines.append(f"{total} luminaire{'s' * (total != 1)} in {n} array{'s' * (n != 1)}.")

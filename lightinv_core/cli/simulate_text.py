@@ -10,6 +10,7 @@ from lightinv_core.quantities import quantity_spec
 from lightinv_core.study import SimulationResult, SimulationSpec
 from lightinv_core.study.simulation import installed_watts, luminaire_watts
 from lightinv_core.transport.annual import panes
+from lightinv_core.value_text import u0_text
 
 
 def group_lines(groups: list[dict]) -> list[str]:
@@ -150,7 +151,7 @@ def grid_lines(g: dict, spec: SimulationSpec) -> list[str]:
         f"{g['points']} points ({g['spacing_m'][0]:.2f} x {g['spacing_m'][1]:.2f} m; "
         f"EN 12464-1 p = {g['rule_spacing_m']:.2f} m)",
         f"Em {g['Em']:.1f} lux, Emin {g['Emin']:.1f} lux, Emax {g['Emax']:.1f} lux, "
-        f"U0 {g['U0']:.2f}",
+        f"U0 {u0_text(g['U0'])}",
     ]
     if "df" in g:
         d = g["df"]

@@ -3,7 +3,7 @@ daylight, violations and front."""
 
 from __future__ import annotations
 
-from lightinv_core.value_text import goal_value, source_line
+from lightinv_core.value_text import goal_value, source_line, u0_text
 
 
 def solve_text(out: dict) -> str:
@@ -25,7 +25,7 @@ def solve_text(out: dict) -> str:
     for name, g in out.get("workplanes", {}).items():
         lines.append(
             f"  work plane {name}: Em {g['Em']:.0f} lux, Emin {g['Emin']:.0f} lux, "
-            f"Emax {g['Emax']:.0f} lux, U0 {g['U0']:.2f} ({g['points']} points; luminaires "
+            f"Emax {g['Emax']:.0f} lux, U0 {u0_text(g['U0'])} ({g['points']} points; luminaires "
             "placed exactly; skylights at the design exterior lux)"
         )
     if "daylight" in out:

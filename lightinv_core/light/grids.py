@@ -9,26 +9,123 @@ light of zone emission e (lm/m² on the emitter-zone patches) at the points is
 so the zone basis at the points, Phi_p = F_p[:, zone] + F_p R Phi (q, nz), is
 precomputed once and a candidate costs O(q) per emitting zone patch, like a patch
 receiver. Phi's rows are made only where the points see patches, a block at a time.
+
+Each work plane's grid follows the rule of its EN 12464-1 edition (``GRID_RULES``): both
+take the largest cell p = 0.2 x 5^log10(d) m; EN 12464-1:2011 takes d from the longer
+side (the shorter when the longer is twice it or more) and rounds each side's
+side / p up on its own (``transport.workplane.grid_counts``); EN 12464-1:2021 takes d
+from the longer side and rounds side / p to the nearest whole number (F. Rudawski's
+Lighting Toolbox ``egrid``, mode "std", cites EN 12464-1:2021 for it; Fagerhult's
+EN 12464-1 pages: "d - is the longer length of the surface"). On an 8 x 6 m room with
+a 0.5 m border (7 x 5 m): p = 0.780 m, 2011 gives 9 x 7 points, 2021 9 x 6.
 """
 
 from __future__ import annotations
 
+import math
 import weakref
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 
 import numpy as np
 
 from lightinv_core.design.model import Daylight, LuminaireArray, Source, Workplane
+from lightinv_core.kinds import Edition
 from lightinv_core.light.arrays import arrays_field, caster_for
 from lightinv_core.light.model import LightModel
 from lightinv_core.operator.radiosity import BASIS_BYTES
+from lightinv_core.scene.patches import Patches
 from lightinv_core.sources.emission import source_stack
 from lightinv_core.transport.formfactors import DEFAULT_RAYS
+from lightinv_core.transport.raycast import RayCaster
 from lightinv_core.transport.receivers import receiver_factors
-from lightinv_core.transport.workplane import Grid, WorkPlane, grid_statistics, work_plane_grid
+from lightinv_core.transport.workplane import (
+    BORDER_DIRECTIONS,
+    UP,
+    Grid,
+    WorkPlane,
+    en12464_spacing,
+    grid_counts,
+    grid_statistics,
+    work_plane_grid,
+)
 
 GRID_SEED_OFFSET = 7  # the points' rays draw from a stream of their own
+
+
+def grid_counts_2021(width: float, depth: float) -> tuple[int, int, float]:
+    """EN 12464-1:2021's points along each side of a ``width`` x ``depth`` m area and its
+    largest cell p (m): p from the longer side, side / p rounded (halves up), at least 1."""
+    p = en12464_spacing(max(width, depth))
+    return (
+        max(1, math.floor(width / p + 0.5)),
+        max(1, math.floor(depth / p + 0.5)),
+        p,
+    )
+
+
+GRID_RULES: dict[str, Callable[[float, float], tuple[int, int, float]]] = {
+    Edition.EN12464_2011: grid_counts,
+    Edition.EN12464_2021: grid_counts_2021,
+}
+"""Each edition's grid rule: (width, depth) m -> (points along x, along y, p m)."""
+
+
+def edition_grid(patches: Patches, caster: RayCaster, wp: Workplane) -> Grid:
+    """The grid of work plane ``wp`` by its edition's rule. The 2011 grid is the
+    transport's (``work_plane_grid``, which also checks the plane); another rule lays
+    its counts over the same area and keeps the points by the same tests."""
+    g = work_plane_grid(patches, caster, WorkPlane(wp.height, wp.border, wp.group, wp.name))
+    w, d = (g.spacing[0] * g.counts[0], g.spacing[1] * g.counts[1])
+    nx, ny, p = GRID_RULES[wp.edition](w, d)
+    if (nx, ny) == g.counts:
+        return Grid(g.points, g.spacing, g.counts, p, g.dropped)
+    idx = patches.group_index(wp.group)
+    corners = np.concatenate(
+        [patches.origin[idx], patches.origin[idx] + patches.edge1[idx] + patches.edge2[idx]]
+    )
+    lo = corners[:, :2].min(axis=0) + wp.border
+    xs = lo[0] + (np.arange(nx) + 0.5) * w / nx
+    ys = lo[1] + (np.arange(ny) + 0.5) * d / ny
+    gx, gy = np.meshgrid(xs, ys, indexing="ij")
+    xy = np.column_stack([gx.ravel(), gy.ravel()])
+    z = float(g.points[0, 2])
+    keep = _kept(patches, caster, xy, z - wp.height, z, wp.border, idx)
+    if not keep.any():  # the 2011 grid had points: keep the plane usable
+        return g
+    pts = np.column_stack([xy, np.full(len(xy), z)])[keep]
+    return Grid(pts, (w / nx, d / ny), (nx, ny), p, int((~keep).sum()))
+
+
+def _kept(
+    patches: Patches,
+    caster: RayCaster,
+    xy: np.ndarray,
+    floor_z: float,
+    z: float,
+    border: float,
+    idx: np.ndarray,
+) -> np.ndarray:
+    """The tests ``work_plane_grid`` keeps its points by: the floor group straight below
+    each point and ``border`` away in 16 directions, and the point not inside a solid
+    (looking up meets the back of a face)."""
+    floor = np.zeros(patches.n, bool)
+    floor[idx] = True
+    z_probe = floor_z + 4 * caster.offset
+    down = np.broadcast_to(-UP, (len(xy), 3))
+
+    def below(at: np.ndarray) -> np.ndarray:
+        hit = caster.hit_patches(np.column_stack([at, np.full(len(at), z_probe)]), down)
+        return (hit >= 0) & floor[np.maximum(hit, 0)]
+
+    keep = below(xy)
+    if border > 0:
+        for t in np.arange(BORDER_DIRECTIONS) * 2 * np.pi / BORDER_DIRECTIONS:
+            keep &= below(xy + border * np.array([np.cos(t), np.sin(t)]))
+    pts = np.column_stack([xy, np.full(len(xy), z)])
+    up = np.broadcast_to(UP, pts.shape)
+    inside = caster.occluded(pts, up, np.full(len(pts), 1e6)) & (caster.hit_patches(pts, up) < 0)
+    return keep & ~inside
 
 
 @dataclass(frozen=True)
@@ -70,7 +167,7 @@ def _design_grids(light: LightModel, workplanes: Sequence[Workplane]) -> DesignG
     grids, spans, floor_z, chunks = {}, {}, {}, []
     start = 0
     for wp in workplanes:
-        g = work_plane_grid(patches, caster, WorkPlane(wp.height, wp.border, wp.group, wp.name))
+        g = edition_grid(patches, caster, wp)
         grids[wp.name] = g
         spans[wp.name] = slice(start, start + len(g.points))
         floor_z[wp.name] = float(g.points[0, 2] - wp.height)

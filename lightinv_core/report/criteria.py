@@ -1,8 +1,9 @@
 """The design's criteria, one row each: required, achieved and pass/fail.
 
-- ``workplane_criteria``: each work plane's EN 12464-1 criteria (Em, U0, Emin, Emax as
-  its intentions ask, each in its own scenario; UGR_L and Ra for an intention made
-  from a preset, stated as not calculated / product data: LightInv computes neither);
+- ``workplane_criteria``: each work plane's EN 12464-1 criteria under its edition (Em,
+  U0, Emin, Emax as its intentions ask, each in its own scenario; for an intention made
+  from a preset of the plane's edition, UGR_L (its limit, not calculated here) and Ra
+  against the Ra the chosen products state: pass, FAIL or "not stated");
 - ``status_table``: the title page's summary: every criterion of the work planes, every
   other intention's bounds and the geometric rules, each pass or FAIL with its value.
 
@@ -15,13 +16,14 @@ from __future__ import annotations
 
 import math
 
-from lightinv_core.design.en12464 import Requirement, requirement
-from lightinv_core.design.model import Design, Intention
+from lightinv_core.design.en12464 import Requirement, preset_of, ra_check
+from lightinv_core.design.model import Design, Intention, Workplane
 from lightinv_core.design.solution import Solution
 from lightinv_core.errors import LightInvError
 from lightinv_core.kinds import Bound, Scenario
 from lightinv_core.light.daylight import LayoutDaylight
 from lightinv_core.light.intentions import bounds_set
+from lightinv_core.luminaires.rendering import product_ra
 from lightinv_core.quantities import quantity_spec
 from lightinv_core.report.tables import FAIL, PASS, Table
 from lightinv_core.value_text import bound_value, fmt
@@ -30,17 +32,15 @@ EN_LABELS = {Bound.AVERAGE: "Em", Bound.MIN: "Emin", Bound.MAX: "Emax", Bound.UN
 NOT_CALCULATED = "not calculated"
 
 
-def preset_of(it: Intention) -> Requirement | None:
-    """The EN 12464-1 preset an intention was made from (its name is the preset's key,
-    perhaps with a "-2" suffix, and its Em and U0 are the preset's), else None."""
-    key = it.name.split("-")[0]
-    try:
-        r = requirement(key)
-    except LightInvError:
-        return None
-    if it.grid is None or it.average != r.em or it.uniformity != r.u0:
-        return None
-    return r
+def products_ra(design: Design) -> list[float | None]:
+    """The Ra each luminaire array's product states (None: not stated)."""
+    return [product_ra(a.product) for a in design.arrays]
+
+
+def ra_row(preset: Requirement, design: Design) -> tuple[str, str, str]:
+    """(required, achieved, result) of a preset's Ra against the products' stated Ra."""
+    text, ok = ra_check(preset.ra, products_ra(design))
+    return f"≥ {preset.ra}", text, "—" if ok is None else PASS if ok else FAIL
 
 
 def _criterion(it: Intention, bound: Bound) -> str:
@@ -95,22 +95,25 @@ def workplane_criteria(
     """EN 12464-1 criteria of every work plane with intentions; None without."""
     rows, flags = [], []
     for plane in design.workplanes:
+        where = _plane_title(plane)
         for it in (i for i in design.intentions if i.grid == plane.name):
             for crit, req, got, res in intention_rows(it, solution, daylight):
-                rows.append((plane.name, it.name, crit, req, got, res))
+                rows.append((where, it.name, crit, req, got, res))
                 flags.append(_flag(res))
-            preset = preset_of(it)
+            preset = preset_of(it, plane.edition)
             if preset is not None:
-                rows.append((plane.name, it.name, "UGR_L", "see note", NOT_CALCULATED, "—"))
-                rows.append((plane.name, it.name, "Ra", f"≥ {preset.ra}", "product data", "check"))
-                flags += ["", ""]
+                ugr = f"≤ {preset.ugr_l:g}" if preset.ugr_l is not None else "see note"
+                rows.append((where, it.name, "UGR_L", ugr, NOT_CALCULATED, "—"))
+                rows.append((where, it.name, "Ra", *ra_row(preset, design)))
+                flags += ["", _flag(rows[-1][-1])]
     if not rows:
         return None
     refs = sorted(
         {
-            f"{p.activity} (ref. {p.reference}: Em {p.em:.0f} lux, U0 {p.u0:g}, Ra {p.ra})"
+            f"{p.edition}, {p.activity[0].lower()}{p.activity[1:]} (ref. {p.reference}): {p.values}"
+            for plane in design.workplanes
             for it in design.intentions
-            if (p := preset_of(it)) is not None
+            if it.grid == plane.name and (p := preset_of(it, plane.edition)) is not None
         }
     )
     note = (
@@ -120,11 +123,12 @@ def workplane_criteria(
     )
     if refs:
         note += (
-            " EN 12464-1:2011 requirements: "
+            " Requirements: "
             + "; ".join(refs)
-            + ". UGR_L is not calculated by LightInv: check it with the luminaire "
-            "manufacturer's UGR table for the room (limit in the standard's schedule "
-            "for the activity). Ra is a property of the lamps: check the product's data."
+            + ". UGR_L is not calculated on the work plane: check it with the luminaire "
+            "manufacturer's UGR table for the room (the limit is the preset's). Ra is a "
+            "property of the lamps: checked against the Ra the products' data state "
+            '("not stated" when a product states none).'
         )
     return Table(
         "Work planes: EN 12464-1 criteria",
@@ -133,6 +137,11 @@ def workplane_criteria(
         tuple(flags),
         note=note,
     )
+
+
+def _plane_title(plane: Workplane) -> str:
+    """A work plane's name with the edition it follows, e.g. "desks (EN 12464-1:2021)"."""
+    return f"{plane.name} ({plane.edition})"
 
 
 def status_table(
@@ -144,8 +153,12 @@ def status_table(
     """Every criterion of the design with its verdict: the work planes' and the other
     intentions' bounds, and the geometric rules in one row."""
     rows, flags = [], []
+    planes = {p.name: p for p in design.workplanes}
     for it in design.intentions:
-        where = f"work plane {it.grid}" if it.grid is not None else it.name
+        plane = planes.get(it.grid) if it.grid is not None else None
+        where = f"work plane {_plane_title(plane)}" if plane is not None else it.name
+        if it.grid is not None and plane is None:
+            where = f"work plane {it.grid}"
         if it.grid is None and it.group is not None:
             where = f"{it.name} ({'every surface' if it.group == '*' else 'group ' + it.group})"
         if it.weight == 0:

@@ -26,7 +26,7 @@ from lightinv_core.quantities import quantity_spec
 from lightinv_core.report.figures import new_figure
 from lightinv_core.report.tables import FAIL, PASS, Table, product_title
 from lightinv_core.transport.workplane import grid_statistics
-from lightinv_core.value_text import fmt
+from lightinv_core.value_text import fmt, u0_text
 
 ISO_LEVELS = 8  # iso-lux lines per plan
 EN_LABELS = {Bound.AVERAGE: "Em", Bound.MIN: "Emin", Bound.MAX: "Emax", Bound.UNIFORMITY: "U0"}
@@ -159,7 +159,7 @@ def grid_table(
                 fmt(st["Em"]),
                 fmt(st["Emin"]),
                 fmt(st["Emax"]),
-                fmt(st["U0"], 3),
+                u0_text(st["U0"]),
                 ", ".join(required) or "—",
                 verdict if asks else "—",
             )
@@ -251,7 +251,7 @@ def isolux_plan(grids: DesignGrids, lux: np.ndarray, name: str, fig=None, outlin
     st = grid_statistics(val)
     title = (
         f"Work plane {name} at z = {pts[0, 2]:.2f} m: Em {st['Em']:.0f} lux, "
-        f"Emin {st['Emin']:.0f}, Emax {st['Emax']:.0f}, U0 {st['U0']:.2f}"
+        f"Emin {st['Emin']:.0f}, Emax {st['Emax']:.0f}, U0 {u0_text(st['U0'])}"
     )
     spacing = grids.grids[name].spacing
     return plan_figure(pts, val, spacing, title, "illuminance (lux)", fig=fig, outlines=outlines)

@@ -39,6 +39,7 @@ from lightinv_core.value_text import (
     bound_value,
     fmt,
     source_setting,
+    u0_text,
 )
 
 # Written in value_text, still importable from here (tests/core/test_extension_points.py).
@@ -273,7 +274,7 @@ def intention_table(
                     scenario,
                     bound_value(bound, it.quantity, chk.value[0]) if chk is not None else "—",
                     summary,
-                    fmt(u0, 3),
+                    u0_text(u0),
                     result,
                 )
             )
@@ -389,7 +390,7 @@ def group_table(field: LightField) -> Table:
                 fmt(lo),
                 fmt(avg),
                 fmt(hi),
-                fmt(u0, 3) if avg > 0 else "—",
+                u0_text(u0) if avg > 0 else "—",
             )
         )
     return Table(

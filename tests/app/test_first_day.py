@@ -192,8 +192,9 @@ def first_day(qtbot, win, path: Path, model: Model, out: Path) -> None:
     arrays = u.tree_texts(win.tree, "Luminaire arrays")
     assert arrays["A1"].startswith("2 x 2 = 4 Panel 600") and "rab-square-1.ies" in arrays["A2"]
     assert set(u.tree_texts(win.tree, "Work planes")) == {"wp"}
+    # A new work plane follows EN 12464-1:2021, whose classrooms ask 500 lux.
     assert u.tree_texts(win.tree, "Lighting intentions")["classroom"].startswith(
-        "work plane wp: average 300"
+        "work plane wp: average 500"
     )
     u.screenshot(win, shot, "03-luminaires")
 

@@ -284,7 +284,7 @@ def test_en12464_presets_make_grid_intentions():
     it = preset_intention("office", "wp")
     assert (it.grid, it.average, it.uniformity) == ("wp", 500.0, 0.6)
     assert len({r.key for r in REQUIREMENTS}) == len(REQUIREMENTS)
-    with pytest.raises(DesignError, match="no EN 12464-1 preset 'gym'; presets: corridor"):
+    with pytest.raises(DesignError, match="no EN 12464-1:2011 preset 'gym'; presets: corridor"):
         preset_intention("gym", "wp")
 
 

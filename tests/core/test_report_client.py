@@ -39,7 +39,7 @@ from lightinv_core.report.tables import Table, rules_table, source_table
 from lightinv_core.report.views import luminaire_outlines, marker_legend, render_view
 from lightinv_core.scene.edits import ZoneEdit
 from lightinv_core.study import solution_light, solve
-from lightinv_core.value_text import fmt
+from lightinv_core.value_text import fmt, u0_text
 from tests.core.test_zone_on_cut_surface import ROOM  # the 10 x 7 x 3 m classroom
 
 pytestmark = pytest.mark.slow  # a room imported, optimised and reported
@@ -150,7 +150,7 @@ def test_title_page_gives_every_criterion_with_its_value_and_verdict(classroom, 
     u0 = checks[("classroom", "uniformity")]
     walls = checks[("bright walls", "min")]
     assert line_with(title, "work plane desks", "Em (night)", "≥ 300 lux", fmt(em.value[0]))
-    assert line_with(title, "work plane desks", "U0 (night)", "≥ 0.6", fmt(u0.value[0]))
+    assert line_with(title, "work plane desks", "U0 (night)", "≥ 0.6", u0_text(u0.value[0]))
     row = line_with(title, "bright walls", "min illuminance", "≥ 5,000 lux")
     assert row.rstrip().endswith("FAIL") and fmt(walls.value[0]) in row
     for check, words in ((em, "Em (night)"), (u0, "U0 (night)")):
@@ -198,9 +198,10 @@ def test_work_plane_criteria_of_en_12464(classroom, report):
     assert line_with(text, "desks", "classroom", "Em (night)", f"≥ {r.em:.0f} lux")
     assert line_with(text, "desks", "classroom", "U0 (night)", f"≥ {r.u0:g}")
     assert line_with(text, "desks", "classroom", "UGR_L", "not calculated")
-    assert line_with(text, "desks", "classroom", "Ra", f"≥ {r.ra}", "product data")
+    # The catalogue panel's EULUMDAT file states no Ra: no verdict, "not stated".
+    assert line_with(text, "desks", "classroom", "Ra", f"≥ {r.ra}", "not stated")
     squashed = " ".join(text.split())
-    assert f"Classrooms, tutorial rooms (ref. {r.reference}" in squashed
+    assert f"EN 12464-1:2011, classrooms, tutorial rooms (ref. {r.reference})" in squashed
 
 
 def test_sources_table_lists_the_arrays(classroom, report):

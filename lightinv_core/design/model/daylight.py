@@ -5,8 +5,16 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 
 from lightinv_core.errors import DesignError
-from lightinv_core.fields import Boolean, Number, Numbers, ObjectSpec, String, declare
-from lightinv_core.kinds import MAX_LUX
+from lightinv_core.fields import (
+    Boolean,
+    Choice,
+    Number,
+    Numbers,
+    ObjectSpec,
+    String,
+    declare,
+)
+from lightinv_core.kinds import MAX_LUX, Edition
 
 MAX_WATTS = 1e9
 """W: the largest electric power a project may name."""
@@ -16,8 +24,9 @@ MAX_WATTS = 1e9
 class Workplane:
     """An EN 12464-1 calculation grid: a horizontal plane ``height`` m above the floor
     group ``group``, ``border`` m left out along its edges, points spaced by the
-    standard's rule p = 0.2 x 5^log10(d) (docs/photometry.md). Grid points are
-    receivers only: they take no part in the light transport."""
+    standard's rule p = 0.2 x 5^log10(d) as its ``edition`` counts them
+    (docs/photometry.md); that edition's presets and criteria apply to it. Grid points
+    are receivers only: they take no part in the light transport."""
 
     name: str = field(metadata=declare(String(), "unique among the work planes"))
     height: float = field(
@@ -32,6 +41,17 @@ class Workplane:
     )
     group: str = field(
         default="floor", metadata=declare(String(), "the floor group it lies over", always=True)
+    )
+    edition: Edition = field(
+        default=Edition.EN12464_2011,
+        metadata=declare(
+            Choice(lambda: tuple(Edition), Edition),
+            "the EN 12464-1 edition it follows: its grid rule (2011: points per side "
+            "rounded up, each side on its own; 2021: the cell from the longer side, "
+            "points per side rounded) and its presets; absent in files saved before "
+            "editions were named, which read as 2011 (the window proposes 2021 for a "
+            "new work plane)",
+        ),
     )
 
     def __post_init__(self) -> None:
