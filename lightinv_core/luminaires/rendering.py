@@ -11,6 +11,8 @@ reads what the product's data states and compares it with the activity's least R
 - IES LM-63: no standard keyword holds it; a ``[_CRI]``/``[CRI]``/``[_RA]`` line
   (user keywords some makers add) is read, else the keywords' text is searched for
   "CRI" or "Ra" followed by a number.
+- GLDF (``FILE.gldf`` or ``FILE.gldf#VARIANT``): the variant's light source
+  ``ColorRenderingIndex`` (``luminaires.gldf``).
 - A catalogue product: its file's.
 """
 
@@ -21,6 +23,7 @@ from pathlib import Path
 
 from lightinv_core.errors import LightInvError
 from lightinv_core.luminaires.catalogue import builtin_catalogue
+from lightinv_core.luminaires.formats import split_reference
 from lightinv_core.textcodec import decode_text
 
 CIE_GROUPS = {"1A": 90.0, "1B": 80.0, "2A": 70.0, "2B": 60.0, "3": 40.0, "4": 20.0}
@@ -67,11 +70,24 @@ def stated_ra(path: str | Path) -> float | None:
     return float(m.group(1)) if m else None
 
 
+def _gldf_ra(path: Path, variant: str | None) -> float | None:
+    """The Ra a GLDF variant's light source states (None: not stated or unreadable)."""
+    from lightinv_core.luminaires.gldf import read_gldf
+
+    try:
+        return read_gldf(path).variant(variant).cri_ra
+    except (OSError, LightInvError):
+        return None
+
+
 def product_ra(product: str) -> float | None:
-    """The Ra product ``product`` states: a catalogue name's file, or the .ies/.ldt
-    file at that path; None when not stated."""
+    """The Ra product ``product`` states: a catalogue name's file, the .ies/.ldt file
+    at that path or a GLDF variant (``FILE.gldf#VARIANT``); None when not stated."""
     for entry in builtin_catalogue():
         if entry.name == product:
             return stated_ra(entry.path)
+    ref = split_reference(product)
+    if ref is not None and ref[0].suffix.lower() == ".gldf":
+        return _gldf_ra(ref[0], ref[1]) if ref[0].is_file() else None
     path = Path(product)
     return stated_ra(path) if path.is_file() else None

@@ -291,3 +291,16 @@ def test_a_registered_format_is_read_everywhere(tmp_path):
     finally:
         unregister_format("EULUMDAT, gzipped")
     assert not is_photometry_reference(str(packed)) and "*.ldz" not in file_filter()
+
+
+def test_the_ra_check_reads_a_gldf_variants_stated_ra():
+    from lightinv_core.luminaires.rendering import product_ra
+
+    # TRILUX's product.xml states <ColorRenderingIndex>80</...>; Zumtobel's states none.
+    xml = ET.fromstring(zipfile.ZipFile(TRILUX).read("product.xml"))
+    stated = [e.text for e in xml.iter() if e.tag.endswith("ColorRenderingIndex")]
+    assert stated == ["80"]
+    assert product_ra(f"{TRILUX}#variant1") == 80.0
+    assert product_ra(str(TRILUX)) == 80.0
+    assert product_ra(str(ZUMTOBEL)) is None
+    assert product_ra(str(DATA / "missing.gldf")) is None
