@@ -1,0 +1,380 @@
+"""IFC export of a design (ifcopenshell, the optional ``ifc`` extra, imported here
+only): the luminaires, the designed glazing and the work planes' results back into the
+building model (docs/export.md).
+
+When the project's scene is an imported IFC file, the design is added to a copy of it
+(written to the new path; the original is never touched), in the file's own length
+unit and spatial structure. Otherwise a new IFC4 file holds the scene: one
+``IfcBuildingElementProxy`` per lighting group with its patches as an
+``IfcPolygonalFaceSet``, in a site, building and storey.
+
+- every luminaire (of the arrays, where the light model places them, and every
+  rectangular luminaire source) is an ``IfcLightFixture`` placed with its local z
+  against its aim (gamma 0 along local -z) and C0 along local x, typed by one
+  ``IfcLightFixtureType`` per product: its name, ``Pset_LightFixtureTypeCommon``
+  (TotalWattage), an ``IfcDocumentReference`` to its IES/LDT file and, for a type C
+  table, an ``IfcLightSourceGoniometric`` (rated flux, the table as an
+  ``IfcLightIntensityDistribution`` in cd per lm) in its 'Lighting' representation;
+  its designed flux, power and dimming are in ``LightInv_Luminaire``;
+- every designed skylight or window is an ``IfcOpeningElement`` in its host with an
+  ``IfcWindow`` filling it (``LightInv_Glazing``: its transmittance and filter);
+- every work plane is an ``IfcAnnotation`` at its height with ``LightInv_WorkPlane``:
+  Em, Emin, Emax, U0, the standard and edition, the requirements.
+"""
+
+from __future__ import annotations
+
+import re
+from pathlib import Path
+
+import numpy as np
+
+from lightinv_core.errors import LightInvError
+from lightinv_core.export.design import ExportDesign, ExportedFile, Fixture, Panel, patch_triangles
+
+SUFFIXES = (".ifc",)
+MISSING = "IFC export needs the optional extra: pip install 'lightinv[ifc]'"
+OPENING_DEPTH = 0.3  # m: the opening's solid reaches this far across its surface
+PANE = 0.01  # m: the window's pane thickness
+COLOUR_TEMPERATURE = 4000.0  # K: the goniometric source's (the tables carry none)
+GLAZING_ZONE = re.compile(r"^(Ifc\w+):(.*?)(?: #(\d+))?$")
+
+
+def _libraries():
+    """ifcopenshell and its api modules, or LightInvError naming the extra."""
+    try:
+        import ifcopenshell
+        import ifcopenshell.api.aggregate
+        import ifcopenshell.api.context
+        import ifcopenshell.api.pset
+        import ifcopenshell.api.root
+        import ifcopenshell.api.spatial
+        import ifcopenshell.api.type
+        import ifcopenshell.api.unit
+        import ifcopenshell.guid
+        import ifcopenshell.util.unit
+    except ImportError:
+        raise LightInvError(MISSING) from None
+    return ifcopenshell
+
+
+class _Writer:
+    """One IFC file being written: its contexts, container and unit conversion."""
+
+    def __init__(self, ifc, ex: ExportDesign, model_path: Path | None):
+        self.ifc, self.ex = ifc, ex
+        api = ifc.api
+        if model_path is not None:
+            self.f = ifc.open(str(model_path))
+            self.unit = ifc.util.unit.calculate_unit_scale(self.f)  # m per file unit
+            self.angle = ifc.util.unit.calculate_unit_scale(self.f, "PLANEANGLEUNIT")
+            spec = ex.project.scene
+            self.scale, self.up = float(spec.scale or 1.0), spec.up or "z"
+            self.container = next(
+                iter(self.f.by_type("IfcBuildingStorey") or self.f.by_type("IfcBuilding")), None
+            )
+            contexts = self.f.by_type("IfcGeometricRepresentationContext")
+            sub = "IfcGeometricRepresentationSubContext"
+            model = next(
+                (c for c in contexts if c.ContextType == "Model" and not c.is_a(sub)), None
+            )
+            if model is None:
+                model = api.context.add_context(self.f, context_type="Model")
+        else:
+            self.f = ifc.file(schema="IFC4")
+            self.unit, self.angle, self.scale, self.up = 1.0, 1.0, 1.0, "z"
+            project = api.root.create_entity(self.f, "IfcProject", name=ex.name)
+            api.unit.assign_unit(self.f)
+            model = api.context.add_context(self.f, context_type="Model")
+            site = api.root.create_entity(self.f, "IfcSite", name="Site")
+            building = api.root.create_entity(self.f, "IfcBuilding", name=ex.name)
+            storey = api.root.create_entity(self.f, "IfcBuildingStorey", name="LightInv scene")
+            api.aggregate.assign_object(self.f, [site], project)
+            api.aggregate.assign_object(self.f, [building], site)
+            api.aggregate.assign_object(self.f, [storey], building)
+            for p in (site, building, storey):
+                p.ObjectPlacement = self.placement()
+            self.container = storey
+        self.body = api.context.add_context(
+            self.f, context_type="Model", context_identifier="Body", target_view="MODEL_VIEW",
+            parent=model,
+        )  # fmt: skip
+        self.lighting = api.context.add_context(
+            self.f, context_type="Model", context_identifier="Lighting", target_view="MODEL_VIEW",
+            parent=model,
+        )  # fmt: skip
+        self.placed: list = []
+
+    def point(self, p) -> list[float]:
+        """A scene point (m) in the file's world coordinates and length unit."""
+        x, y, z = (float(c) / self.scale for c in p)
+        if self.up == "y":  # the importer turned (x, y, z) into (x, -z, y)
+            x, y, z = x, z, -y
+        return [x / self.unit, y / self.unit, z / self.unit]
+
+    def direction(self, d) -> list[float]:
+        x, y, z = (float(c) for c in d)
+        return [x, z, -y] if self.up == "y" else [x, y, z]
+
+    def placement(self, origin=None, z=None, x=None):
+        """An absolute ``IfcLocalPlacement`` at scene point ``origin`` with local axes
+        ``z`` and ``x`` (scene directions); the identity without ``origin``."""
+        f = self.f
+        if origin is None:
+            return f.createIfcLocalPlacement(None, self.axes([0.0, 0.0, 0.0], None, None))
+        return f.createIfcLocalPlacement(None, self.axes(self.point(origin), z, x))
+
+    def axes(self, loc, z, x):
+        f = self.f
+        if z is None:
+            return f.createIfcAxis2Placement3D(f.createIfcCartesianPoint(loc), None, None)
+        zz = np.asarray(self.direction(z), float)
+        xx = np.asarray(self.direction(x), float)
+        xx = xx - (xx @ zz) * zz
+        return f.createIfcAxis2Placement3D(
+            f.createIfcCartesianPoint([float(c) for c in loc]),
+            f.createIfcDirection([float(c) for c in zz / np.linalg.norm(zz)]),
+            f.createIfcDirection([float(c) for c in xx / np.linalg.norm(xx)]),
+        )
+
+    def entity(self, cls: str, name: str, **attrs):
+        e = self.ifc.api.root.create_entity(self.f, cls, name=name)
+        for k, v in attrs.items():
+            setattr(e, k, v)
+        self.placed.append(e)
+        return e
+
+    def pset(self, product, name: str, values: dict) -> None:
+        api = self.ifc.api
+        pset = api.pset.add_pset(self.f, product=product, name=name)
+        api.pset.edit_pset(self.f, pset=pset, properties=values)
+
+    def shape(self, context, kind: str, rep_type: str, items):
+        return self.f.createIfcProductDefinitionShape(
+            None, None, [self.f.createIfcShapeRepresentation(context, kind, rep_type, items)]
+        )
+
+
+def _group_proxies(w: _Writer) -> dict[int, object]:
+    """One proxy per lighting group of a new file, its patches as a face set."""
+    patches, f, out = w.ex.patches, w.f, {}
+    for g, name in enumerate(patches.group_names):
+        idx = np.flatnonzero(patches.group_id == g)
+        if not len(idx):
+            continue
+        v, tri, _ = patch_triangles(patches, idx)
+        uniq, inv = np.unique(np.round(v, 6), axis=0, return_inverse=True)
+        coords = f.createIfcCartesianPointList3D([[float(c) for c in p] for p in uniq])
+        faces = [f.createIfcIndexedPolygonalFace([int(i) + 1 for i in inv[t]]) for t in tri]
+        body = f.createIfcPolygonalFaceSet(coords, False, faces, None)
+        rho = float(patches.rho[idx].mean())
+        proxy = w.entity(
+            "IfcBuildingElementProxy", name, ObjectPlacement=w.placement(),
+            Representation=w.shape(w.body, "Body", "Tessellation", [body]),
+        )  # fmt: skip
+        w.pset(proxy, "LightInv_Surface", {"Reflectance": rho, "Patches": len(idx)})
+        out[g] = proxy
+    return out
+
+
+def _distribution(w: _Writer, fx: Fixture):
+    """The type C table in cd per lm of rated flux, angles in the file's unit."""
+    ph, f = fx.photometry, w.f
+    per_lm = 1.0 / max(fx.rated_lumens, 1e-12)
+    gam = [float(np.radians(g) / w.angle) for g in ph.gamma_angles]
+    data = [
+        f.createIfcLightDistributionData(
+            float(np.radians(c) / w.angle), gam, [float(v * per_lm) for v in ph.candela[i]]
+        )
+        for i, c in enumerate(ph.c_angles)
+    ]
+    return f.createIfcLightIntensityDistribution("TYPE_C", data)
+
+
+def _fixture_type(w: _Writer, fx: Fixture | None, name: str, watts: float, lumens: float):
+    """An ``IfcLightFixtureType`` with its wattage, photometry file and source."""
+    f = w.f
+    t = w.ifc.api.root.create_entity(f, "IfcLightFixtureType", name=name)
+    t.PredefinedType = "DIRECTIONSOURCE" if fx is not None else "NOTDEFINED"
+    w.pset(t, "Pset_LightFixtureTypeCommon", {"TotalWattage": float(watts), "NumberOfSources": 1})
+    values = {"RatedLuminousFlux": float(lumens), "Distribution": "Lambertian panel"}
+    if fx is not None:
+        values["Distribution"] = "photometric table"
+        if fx.photometry_file:
+            values["PhotometryFile"] = Path(fx.photometry_file).name
+            ref = f.createIfcDocumentReference(
+                Path(fx.photometry_file).as_uri(), Path(fx.photometry_file).name,
+                f"photometry of {name}", None, None,
+            )  # fmt: skip
+            f.createIfcRelAssociatesDocument(w.ifc.guid.new(), None, "photometry", None, [t], ref)
+        if fx.photometry.kind == "C":
+            source = f.createIfcLightSourceGoniometric(
+                name, f.createIfcColourRgb(None, 1.0, 1.0, 1.0), None, None,
+                w.axes([0.0, 0.0, 0.0], None, None), None, COLOUR_TEMPERATURE,
+                float(lumens), "NOTDEFINED", _distribution(w, fx),
+            )  # fmt: skip
+            rep = f.createIfcShapeRepresentation(w.lighting, "Lighting", "LightSource", [source])
+            t.RepresentationMaps = [
+                f.createIfcRepresentationMap(w.axes([0.0, 0.0, 0.0], None, None), rep)
+            ]
+    w.pset(t, "LightInv_Product", values)
+    return t
+
+
+def _fixtures(w: _Writer) -> int:
+    """Every luminaire as an ``IfcLightFixture`` of its product's type."""
+    api, ex = w.ifc.api, w.ex
+    types: dict[str, object] = {}
+    count = 0
+    for fx in ex.fixtures:
+        if fx.product not in types:
+            types[fx.product] = _fixture_type(w, fx, fx.product, fx.rated_watts, fx.rated_lumens)
+        e = w.entity(
+            "IfcLightFixture", fx.name, ObjectPlacement=w.placement(fx.position, -fx.aim, fx.c0)
+        )
+        api.type.assign_type(w.f, related_objects=[e], relating_type=types[fx.product])
+        w.pset(e, "LightInv_Luminaire", {
+            "LuminousFlux": fx.lumens, "ElectricPower": fx.watts, "Dimming": fx.dimming,
+            "MaintenanceFactor": fx.maintenance, "Array": fx.group, "Product": fx.product,
+        })  # fmt: skip
+        count += 1
+    for p in ex.panels:
+        if not p.electric:
+            continue
+        t = _fixture_type(w, None, f"{p.name} (Lambertian panel)", p.watts, p.lumens)
+        edge = p.corners[1] - p.corners[0]
+        place = w.placement(p.centre, -p.normal, edge)
+        e = w.entity("IfcLightFixture", p.name, ObjectPlacement=place)
+        api.type.assign_type(w.f, related_objects=[e], relating_type=t)
+        width, length = p.size
+        w.pset(e, "LightInv_Luminaire", {
+            "LuminousFlux": p.lumens, "ElectricPower": p.watts, "Dimming": 1.0,
+            "Product": "Lambertian panel", "Width": width, "Length": length,
+        })  # fmt: skip
+        count += 1
+    return count
+
+
+def _box(w: _Writer, p: Panel, depth: float, offset: float):
+    """A solid over panel ``p``'s rectangle, ``depth`` m thick along its normal,
+    starting ``offset`` m along it: an extruded rectangle in the panel's frame."""
+    f = w.f
+    width, length = p.size
+    a = (p.corners[1] - p.corners[0]) / max(width, 1e-12)
+    corner = p.corners[0] + offset * p.normal
+    position = w.axes(w.point(corner), p.normal, a)
+    k = 1.0 / (w.unit * w.scale)  # scene metres to file units
+    centre = f.createIfcCartesianPoint([width / 2 * k, length / 2 * k])
+    profile = f.createIfcRectangleProfileDef(
+        "AREA", None, f.createIfcAxis2Placement2D(centre, None), width * k, length * k
+    )
+    solid = f.createIfcExtrudedAreaSolid(
+        profile, position, f.createIfcDirection([0.0, 0.0, 1.0]), depth / w.unit / w.scale
+    )
+    return w.shape(w.body, "Body", "SweptSolid", [solid])
+
+
+def _host(w: _Writer, p: Panel, proxies: dict[int, object]):
+    """The element a glazing panel's opening voids: in a new file the proxy of its
+    zone's group; in a copy the wall or roof holding the window its zone was made from;
+    else a proxy made for it."""
+    patches = w.ex.patches
+    zi = patches.zone_names.index(p.zone)
+    groups = np.unique(patches.group_id[patches.zone_id == zi])
+    if proxies and len(groups):
+        return proxies[int(groups[0])]
+    m = GLAZING_ZONE.match(p.zone)
+    if m is not None:
+        cls, label, eid = m.groups()
+        found = (
+            [w.f.by_id(int(eid))]
+            if eid
+            else [e for e in w.f.by_type(cls) if (e.Name or e.GlobalId) == label]
+        )
+        for e in found:
+            for fill in getattr(e, "FillsVoids", ()) or ():
+                for rel in fill.RelatingOpeningElement.VoidsElements or ():
+                    return rel.RelatingBuildingElement
+    host = w.entity(
+        "IfcBuildingElementProxy", f"{p.zone} (glazing host)", ObjectPlacement=w.placement()
+    )
+    return host
+
+
+def _glazing(w: _Writer, proxies: dict[int, object]) -> int:
+    """Every designed skylight or window: an opening in its host filled by a window."""
+    f, count = w.f, 0
+    for p in w.ex.panels:
+        if p.electric:
+            continue
+        host = _host(w, p, proxies)
+        opening = w.entity(
+            "IfcOpeningElement", f"{p.name} opening", ObjectPlacement=w.placement(),
+            Representation=_box(w, p, OPENING_DEPTH, -OPENING_DEPTH / 2), PredefinedType="OPENING",
+        )  # fmt: skip
+        w.placed.remove(opening)  # an opening is related through its host, not contained
+        f.createIfcRelVoidsElement(w.ifc.guid.new(), None, None, None, host, opening)
+        width, length = p.size
+        window = w.entity(
+            "IfcWindow", p.name, ObjectPlacement=w.placement(),
+            Representation=_box(w, p, PANE, -PANE / 2), OverallWidth=width / w.unit / w.scale,
+            OverallHeight=length / w.unit / w.scale,
+            PredefinedType="SKYLIGHT" if p.kind == "skylight" else "WINDOW",
+        )  # fmt: skip
+        f.createIfcRelFillsElement(w.ifc.guid.new(), None, None, None, opening, window)
+        w.pset(window, "LightInv_Glazing", {
+            "VisibleTransmittance": p.transmittance, "Kind": p.kind, "Diffusing": True,
+            "Zone": p.zone,
+        })  # fmt: skip
+        w.pset(window, "Pset_DoorWindowGlazingType", {"Translucency": p.transmittance})
+        count += 1
+    return count
+
+
+def _workplanes(w: _Writer) -> int:
+    """Every work plane as an annotation at its height with its results."""
+    for pl in w.ex.planes:
+        centre = pl.points.mean(axis=0)
+        a = w.entity(
+            "IfcAnnotation", f"work plane {pl.name}", ObjectPlacement=w.placement(centre),
+            ObjectType="LightInv work plane",
+        )  # fmt: skip
+        values = {
+            "Height": float(pl.height), "Points": len(pl.points), "Em": pl.em, "Emin": pl.emin,
+            "Emax": pl.emax, "U0": pl.u0, "Standard": pl.standard,
+            "Scenario": "design", "Maintained": True,
+        }  # fmt: skip
+        if pl.requirements:
+            values["Requirements"] = "; ".join(pl.requirements)
+        w.pset(a, "LightInv_WorkPlane", values)
+    return len(w.ex.planes)
+
+
+def write_ifc(ex: ExportDesign, path: str | Path) -> ExportedFile:
+    """Write the design ``ex`` as IFC to ``path`` (see the module): into a copy of the
+    project's IFC model when it has one, else a new IFC4 file of its scene."""
+    ifc = _libraries()
+    path = Path(path)
+    model = ex.model_file if ex.model_file and ex.model_file.suffix.lower() == ".ifc" else None
+    if model is not None and path.resolve() == model.resolve():
+        raise LightInvError(
+            f"{path.name} is the project's own model: export the design to another file "
+            "(the original is never overwritten)"
+        )
+    if model is not None and not model.is_file():
+        raise LightInvError(f"the project's model {model} is missing: cannot copy it")
+    w = _Writer(ifc, ex, model)
+    proxies = _group_proxies(w) if model is None else {}
+    counts = {"luminaires": _fixtures(w), "glazing": _glazing(w, proxies)}
+    counts["workplanes"] = _workplanes(w)
+    counts["surfaces"] = len(proxies)
+    if w.container is not None and w.placed:
+        ifc.api.spatial.assign_container(w.f, products=w.placed, relating_structure=w.container)
+    from lightinv_core.atomic import atomic_writer
+
+    with atomic_writer(path, "w", encoding="utf-8") as fh:
+        fh.write(w.f.to_string())
+    notes = [] if model is None else [f"added to a copy of {model.name}"]
+    if not any(fx.photometry_file for fx in ex.fixtures) and ex.fixtures:
+        notes.append("the luminaires' photometry is embedded (no file to reference)")
+    return ExportedFile(path, (path,), counts, tuple(notes))
