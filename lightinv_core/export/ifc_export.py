@@ -30,12 +30,13 @@ from pathlib import Path
 import numpy as np
 
 from lightinv_core.errors import LightInvError
-from lightinv_core.export.design import ExportDesign, ExportedFile, Fixture, Panel, patch_triangles
+from lightinv_core.export.design import ExportDesign, ExportedFile, Fixture, Panel
 
 SUFFIXES = (".ifc",)
 MISSING = "IFC export needs the optional extra: pip install 'lightinv[ifc]'"
 OPENING_DEPTH = 0.3  # m: the opening's solid reaches this far across its surface
 PANE = 0.01  # m: the window's pane thickness
+SURFACE_THICKNESS = 0.05  # m: a new file's surfaces are solids this thick behind them
 COLOUR_TEMPERATURE = 4000.0  # K: the goniometric source's (the tables carry none)
 GLAZING_ZONE = re.compile(r"^(Ifc\w+):(.*?)(?: #(\d+))?$")
 
@@ -84,7 +85,7 @@ class _Writer:
             self.f = ifc.file(schema="IFC4")
             self.unit, self.angle, self.scale, self.up = 1.0, 1.0, 1.0, "z"
             project = api.root.create_entity(self.f, "IfcProject", name=ex.name)
-            api.unit.assign_unit(self.f)
+            api.unit.assign_unit(self.f, length={"is_metric": True, "raw": "METERS"})
             model = api.context.add_context(self.f, context_type="Model")
             site = api.root.create_entity(self.f, "IfcSite", name="Site")
             building = api.root.create_entity(self.f, "IfcBuilding", name=ex.name)
@@ -155,18 +156,38 @@ class _Writer:
         )
 
 
+def _slabs(patches, idx: np.ndarray) -> tuple[np.ndarray, list[list[int]]]:
+    """The patches ``idx`` as closed thin solids (``SURFACE_THICKNESS`` m behind each
+    patch, away from the room): vertices (v, 3) and faces (1-based, outward)."""
+    verts, faces = [], []
+    for i in idx:
+        o, e1, e2, n = patches.origin[i], patches.edge1[i], patches.edge2[i], patches.normal[i]
+        ring = [o, o + e1, o + e2] if patches.is_triangle[i] else [o, o + e1, o + e1 + e2, o + e2]
+        if np.dot(np.cross(e1, e2), n) < 0:
+            ring = ring[::-1]  # counter-clockwise seen from the room
+        k, b = len(verts) + 1, len(ring)
+        verts += ring + [p - SURFACE_THICKNESS * n for p in ring]
+        faces.append([k + j for j in range(b)])  # the patch, facing the room
+        faces.append([k + b + j for j in reversed(range(b))])  # its back
+        for j in range(b):  # the sides
+            j1 = (j + 1) % b
+            faces.append([k + j, k + b + j, k + b + j1, k + j1])
+    return np.array(verts), faces
+
+
 def _group_proxies(w: _Writer) -> dict[int, object]:
-    """One proxy per lighting group of a new file, its patches as a face set."""
+    """One proxy per lighting group of a new file: its patches as thin closed solids
+    (an IFC importer, LightInv's too, reads building elements as solids)."""
     patches, f, out = w.ex.patches, w.f, {}
     for g, name in enumerate(patches.group_names):
         idx = np.flatnonzero(patches.group_id == g)
         if not len(idx):
             continue
-        v, tri, _ = patch_triangles(patches, idx)
-        uniq, inv = np.unique(np.round(v, 6), axis=0, return_inverse=True)
-        coords = f.createIfcCartesianPointList3D([[float(c) for c in p] for p in uniq])
-        faces = [f.createIfcIndexedPolygonalFace([int(i) + 1 for i in inv[t]]) for t in tri]
-        body = f.createIfcPolygonalFaceSet(coords, False, faces, None)
+        v, faces = _slabs(patches, idx)
+        coords = f.createIfcCartesianPointList3D([[float(c) for c in p] for p in v])
+        body = f.createIfcPolygonalFaceSet(
+            coords, True, [f.createIfcIndexedPolygonalFace(face) for face in faces], None
+        )
         rho = float(patches.rho[idx].mean())
         proxy = w.entity(
             "IfcBuildingElementProxy", name, ObjectPlacement=w.placement(),
@@ -203,8 +224,8 @@ def _fixture_type(w: _Writer, fx: Fixture | None, name: str, watts: float, lumen
         if fx.photometry_file:
             values["PhotometryFile"] = Path(fx.photometry_file).name
             ref = f.createIfcDocumentReference(
-                Path(fx.photometry_file).as_uri(), Path(fx.photometry_file).name,
-                f"photometry of {name}", None, None,
+                Path(fx.photometry_file).as_uri(), None, Path(fx.photometry_file).name,
+                f"photometry of {name}"[:255], None,
             )  # fmt: skip
             f.createIfcRelAssociatesDocument(w.ifc.guid.new(), None, "photometry", None, [t], ref)
         if fx.photometry.kind == "C":
@@ -295,10 +316,39 @@ def _host(w: _Writer, p: Panel, proxies: dict[int, object]):
             for fill in getattr(e, "FillsVoids", ()) or ():
                 for rel in fill.RelatingOpeningElement.VoidsElements or ():
                     return rel.RelatingBuildingElement
-    host = w.entity(
+    near = _opening_host(w, p)
+    if near is not None:
+        return near
+    return w.entity(
         "IfcBuildingElementProxy", f"{p.zone} (glazing host)", ObjectPlacement=w.placement()
     )
-    return host
+
+
+def _opening_host(w: _Writer, p: Panel):
+    """The element voided by the model's opening that holds the panel's centre (within
+    ``OPENING_DEPTH``), for windows that fill no void of their own (IfcOpenHouse)."""
+    import ifcopenshell.geom
+
+    settings = ifcopenshell.geom.settings()
+    settings.set("use-world-coords", True)
+    centre = np.array(w.point(p.centre)) * w.unit  # metres, world
+    pad = OPENING_DEPTH
+    for o in w.f.by_type("IfcOpeningElement"):
+        voids = o.VoidsElements
+        if not voids:
+            continue
+        try:
+            shape = ifcopenshell.geom.create_shape(settings, o)
+        except RuntimeError:  # an opening ifcopenshell cannot mesh: not this one
+            continue
+        v = np.asarray(shape.geometry.verts, float).reshape(-1, 3)
+        if (
+            len(v)
+            and np.all(centre >= v.min(axis=0) - pad)
+            and np.all(centre <= v.max(axis=0) + pad)
+        ):
+            return voids[0].RelatingBuildingElement
+    return None
 
 
 def _glazing(w: _Writer, proxies: dict[int, object]) -> int:
