@@ -24,7 +24,7 @@ class Exporter:
     name : its command-line name and option (``"ifc"`` -> ``--ifc``).
     suffixes : the file name endings it writes, lower case with the dot; the first is
         the default the window's save dialog offers.
-    label : its name for people and in the save dialog's filter ("IFC 4 (BIM)").
+    label : its name for people and in the save dialog's filter ("IFC4 building model").
     write : ``write(exported, path) -> ExportedFile``, ``exported`` an
         ``export.design.ExportDesign`` (the design, its solution, scene and light),
         raising ``LightInvError`` for a design it cannot write or a missing extra.
@@ -47,10 +47,14 @@ class Exporter:
                 f"exporter {self.name!r}: suffixes {self.suffixes!r} must be lower-case "
                 "file name endings with the dot, e.g. ('.ifc',)"
             )
+        if not self.label or "(" in self.label or ")" in self.label:
+            # Qt reads a filter's patterns from between parentheses: "IFC (BIM) (*.ifc)"
+            # left the save dialog's button disabled.
+            raise ValueError(f"exporter {self.name!r}: a label without parentheses, please")
 
     @property
     def filter(self) -> str:
-        """Its entry in a save dialog's filter: ``"IFC 4 (BIM) (*.ifc)"``."""
+        """Its entry in a save dialog's filter: ``"IFC4 building model (*.ifc)"``."""
         return f"{self.label} ({' '.join('*' + s for s in self.suffixes)})"
 
     def default_path(self, path: str | Path) -> Path:
@@ -99,9 +103,9 @@ def exporter_for(path: str | Path) -> Exporter | None:
 
 
 BUILTIN = (
-    Exporter("ifc", ifc_export.SUFFIXES, "IFC 4 (BIM)", ifc_export.write_ifc, needs="ifc"),
+    Exporter("ifc", ifc_export.SUFFIXES, "IFC4 building model", ifc_export.write_ifc, needs="ifc"),
     Exporter("radiance", radiance_scene.SUFFIXES, "Radiance scene", radiance_scene.write_radiance),
-    Exporter("gltf", gltf_export.SUFFIXES, "glTF binary, lit", gltf_export.write_gltf),
+    Exporter("gltf", gltf_export.SUFFIXES, "Lit glTF binary", gltf_export.write_gltf),
 )
 """The formats LightInv writes out of the box (docs/export.md), in the menu's order."""
 for _exporter in BUILTIN:
