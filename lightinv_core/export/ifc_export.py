@@ -31,129 +31,14 @@ import numpy as np
 
 from lightinv_core.errors import LightInvError
 from lightinv_core.export.design import ExportDesign, ExportedFile, Fixture, Panel
+from lightinv_core.export.ifc_writer import IfcWriter, libraries
 
 SUFFIXES = (".ifc",)
-MISSING = "IFC export needs the optional extra: pip install 'lightinv[ifc]'"
 OPENING_DEPTH = 0.3  # m: the opening's solid reaches this far across its surface
 PANE = 0.01  # m: the window's pane thickness
 SURFACE_THICKNESS = 0.05  # m: a new file's surfaces are solids this thick behind them
 COLOUR_TEMPERATURE = 4000.0  # K: the goniometric source's (the tables carry none)
 GLAZING_ZONE = re.compile(r"^(Ifc\w+):(.*?)(?: #(\d+))?$")
-
-
-def _libraries():
-    """ifcopenshell and its api modules, or LightInvError naming the extra."""
-    try:
-        import ifcopenshell
-        import ifcopenshell.api.aggregate
-        import ifcopenshell.api.context
-        import ifcopenshell.api.pset
-        import ifcopenshell.api.root
-        import ifcopenshell.api.spatial
-        import ifcopenshell.api.type
-        import ifcopenshell.api.unit
-        import ifcopenshell.guid
-        import ifcopenshell.util.unit
-    except ImportError:
-        raise LightInvError(MISSING) from None
-    return ifcopenshell
-
-
-class _Writer:
-    """One IFC file being written: its contexts, container and unit conversion."""
-
-    def __init__(self, ifc, ex: ExportDesign, model_path: Path | None):
-        self.ifc, self.ex = ifc, ex
-        api = ifc.api
-        if model_path is not None:
-            self.f = ifc.open(str(model_path))
-            self.unit = ifc.util.unit.calculate_unit_scale(self.f)  # m per file unit
-            self.angle = ifc.util.unit.calculate_unit_scale(self.f, "PLANEANGLEUNIT")
-            spec = ex.project.scene
-            self.scale, self.up = float(spec.scale or 1.0), spec.up or "z"
-            self.container = next(
-                iter(self.f.by_type("IfcBuildingStorey") or self.f.by_type("IfcBuilding")), None
-            )
-            contexts = self.f.by_type("IfcGeometricRepresentationContext")
-            sub = "IfcGeometricRepresentationSubContext"
-            model = next(
-                (c for c in contexts if c.ContextType == "Model" and not c.is_a(sub)), None
-            )
-            if model is None:
-                model = api.context.add_context(self.f, context_type="Model")
-        else:
-            self.f = ifc.file(schema="IFC4")
-            self.unit, self.angle, self.scale, self.up = 1.0, 1.0, 1.0, "z"
-            project = api.root.create_entity(self.f, "IfcProject", name=ex.name)
-            api.unit.assign_unit(self.f, length={"is_metric": True, "raw": "METERS"})
-            model = api.context.add_context(self.f, context_type="Model")
-            site = api.root.create_entity(self.f, "IfcSite", name="Site")
-            building = api.root.create_entity(self.f, "IfcBuilding", name=ex.name)
-            storey = api.root.create_entity(self.f, "IfcBuildingStorey", name="LightInv scene")
-            api.aggregate.assign_object(self.f, [site], project)
-            api.aggregate.assign_object(self.f, [building], site)
-            api.aggregate.assign_object(self.f, [storey], building)
-            for p in (site, building, storey):
-                p.ObjectPlacement = self.placement()
-            self.container = storey
-        self.body = api.context.add_context(
-            self.f, context_type="Model", context_identifier="Body", target_view="MODEL_VIEW",
-            parent=model,
-        )  # fmt: skip
-        self.lighting = api.context.add_context(
-            self.f, context_type="Model", context_identifier="Lighting", target_view="MODEL_VIEW",
-            parent=model,
-        )  # fmt: skip
-        self.placed: list = []
-
-    def point(self, p) -> list[float]:
-        """A scene point (m) in the file's world coordinates and length unit."""
-        x, y, z = (float(c) / self.scale for c in p)
-        if self.up == "y":  # the importer turned (x, y, z) into (x, -z, y)
-            x, y, z = x, z, -y
-        return [x / self.unit, y / self.unit, z / self.unit]
-
-    def direction(self, d) -> list[float]:
-        x, y, z = (float(c) for c in d)
-        return [x, z, -y] if self.up == "y" else [x, y, z]
-
-    def placement(self, origin=None, z=None, x=None):
-        """An absolute ``IfcLocalPlacement`` at scene point ``origin`` with local axes
-        ``z`` and ``x`` (scene directions); the identity without ``origin``."""
-        f = self.f
-        if origin is None:
-            return f.createIfcLocalPlacement(None, self.axes([0.0, 0.0, 0.0], None, None))
-        return f.createIfcLocalPlacement(None, self.axes(self.point(origin), z, x))
-
-    def axes(self, loc, z, x):
-        f = self.f
-        if z is None:
-            return f.createIfcAxis2Placement3D(f.createIfcCartesianPoint(loc), None, None)
-        zz = np.asarray(self.direction(z), float)
-        xx = np.asarray(self.direction(x), float)
-        xx = xx - (xx @ zz) * zz
-        return f.createIfcAxis2Placement3D(
-            f.createIfcCartesianPoint([float(c) for c in loc]),
-            f.createIfcDirection([float(c) for c in zz / np.linalg.norm(zz)]),
-            f.createIfcDirection([float(c) for c in xx / np.linalg.norm(xx)]),
-        )
-
-    def entity(self, cls: str, name: str, **attrs):
-        e = self.ifc.api.root.create_entity(self.f, cls, name=name)
-        for k, v in attrs.items():
-            setattr(e, k, v)
-        self.placed.append(e)
-        return e
-
-    def pset(self, product, name: str, values: dict) -> None:
-        api = self.ifc.api
-        pset = api.pset.add_pset(self.f, product=product, name=name)
-        api.pset.edit_pset(self.f, pset=pset, properties=values)
-
-    def shape(self, context, kind: str, rep_type: str, items):
-        return self.f.createIfcProductDefinitionShape(
-            None, None, [self.f.createIfcShapeRepresentation(context, kind, rep_type, items)]
-        )
 
 
 def _slabs(patches, idx: np.ndarray) -> tuple[np.ndarray, list[list[int]]]:
@@ -175,7 +60,7 @@ def _slabs(patches, idx: np.ndarray) -> tuple[np.ndarray, list[list[int]]]:
     return np.array(verts), faces
 
 
-def _group_proxies(w: _Writer) -> dict[int, object]:
+def _group_proxies(w: IfcWriter) -> dict[int, object]:
     """One proxy per lighting group of a new file: its patches as thin closed solids
     (an IFC importer, LightInv's too, reads building elements as solids)."""
     patches, f, out = w.ex.patches, w.f, {}
@@ -198,7 +83,7 @@ def _group_proxies(w: _Writer) -> dict[int, object]:
     return out
 
 
-def _distribution(w: _Writer, fx: Fixture):
+def _distribution(w: IfcWriter, fx: Fixture):
     """The type C table in cd per lm of rated flux, angles in the file's unit."""
     ph, f = fx.photometry, w.f
     per_lm = 1.0 / max(fx.rated_lumens, 1e-12)
@@ -212,7 +97,7 @@ def _distribution(w: _Writer, fx: Fixture):
     return f.createIfcLightIntensityDistribution("TYPE_C", data)
 
 
-def _fixture_type(w: _Writer, fx: Fixture | None, name: str, watts: float, lumens: float):
+def _fixture_type(w: IfcWriter, fx: Fixture | None, name: str, watts: float, lumens: float):
     """An ``IfcLightFixtureType`` with its wattage, photometry file and source."""
     f = w.f
     t = w.ifc.api.root.create_entity(f, "IfcLightFixtureType", name=name)
@@ -242,7 +127,7 @@ def _fixture_type(w: _Writer, fx: Fixture | None, name: str, watts: float, lumen
     return t
 
 
-def _fixtures(w: _Writer) -> int:
+def _fixtures(w: IfcWriter) -> int:
     """Every luminaire as an ``IfcLightFixture`` of its product's type."""
     api, ex = w.ifc.api, w.ex
     types: dict[str, object] = {}
@@ -276,7 +161,7 @@ def _fixtures(w: _Writer) -> int:
     return count
 
 
-def _box(w: _Writer, p: Panel, depth: float, offset: float):
+def _box(w: IfcWriter, p: Panel, depth: float, offset: float):
     """A solid over panel ``p``'s rectangle, ``depth`` m thick along its normal,
     starting ``offset`` m along it: an extruded rectangle in the panel's frame."""
     f = w.f
@@ -295,7 +180,7 @@ def _box(w: _Writer, p: Panel, depth: float, offset: float):
     return w.shape(w.body, "Body", "SweptSolid", [solid])
 
 
-def _host(w: _Writer, p: Panel, proxies: dict[int, object]):
+def _host(w: IfcWriter, p: Panel, proxies: dict[int, object]):
     """The element a glazing panel's opening voids: in a new file the proxy of its
     zone's group; in a copy the wall or roof holding the window its zone was made from;
     else a proxy made for it."""
@@ -324,7 +209,7 @@ def _host(w: _Writer, p: Panel, proxies: dict[int, object]):
     )
 
 
-def _opening_host(w: _Writer, p: Panel):
+def _opening_host(w: IfcWriter, p: Panel):
     """The element voided by the model's opening that holds the panel's centre (within
     ``OPENING_DEPTH``), for windows that fill no void of their own (IfcOpenHouse)."""
     import ifcopenshell.geom
@@ -351,7 +236,7 @@ def _opening_host(w: _Writer, p: Panel):
     return None
 
 
-def _glazing(w: _Writer, proxies: dict[int, object]) -> int:
+def _glazing(w: IfcWriter, proxies: dict[int, object]) -> int:
     """Every designed skylight or window: an opening in its host filled by a window."""
     f, count = w.f, 0
     for p in w.ex.panels:
@@ -381,7 +266,7 @@ def _glazing(w: _Writer, proxies: dict[int, object]) -> int:
     return count
 
 
-def _workplanes(w: _Writer) -> int:
+def _workplanes(w: IfcWriter) -> int:
     """Every work plane as an annotation at its height with its results."""
     for pl in w.ex.planes:
         centre = pl.points.mean(axis=0)
@@ -403,7 +288,7 @@ def _workplanes(w: _Writer) -> int:
 def write_ifc(ex: ExportDesign, path: str | Path) -> ExportedFile:
     """Write the design ``ex`` as IFC to ``path`` (see the module): into a copy of the
     project's IFC model when it has one, else a new IFC4 file of its scene."""
-    ifc = _libraries()
+    ifc = libraries()
     path = Path(path)
     model = ex.model_file if ex.model_file and ex.model_file.suffix.lower() == ".ifc" else None
     if model is not None and path.resolve() == model.resolve():
@@ -413,7 +298,7 @@ def write_ifc(ex: ExportDesign, path: str | Path) -> ExportedFile:
         )
     if model is not None and not model.is_file():
         raise LightInvError(f"the project's model {model} is missing: cannot copy it")
-    w = _Writer(ifc, ex, model)
+    w = IfcWriter(ifc, ex, model)
     proxies = _group_proxies(w) if model is None else {}
     counts = {"luminaires": _fixtures(w), "glazing": _glazing(w, proxies)}
     counts["workplanes"] = _workplanes(w)

@@ -39,7 +39,10 @@ def test_export_design_from_the_file_menu(window, qtbot, tmp_path):
     u.press(win.menuBar(), QtCore.Qt.Key_Escape)
 
     for e in exporters():
-        target = tmp_path / f"design{e.suffixes[0]}"
+        # A folder each: typed into the dialog beside the files of the format before
+        # (design_lum.cal, ...), a name was now and then completed into another.
+        (tmp_path / e.name).mkdir()
+        target = tmp_path / e.name / f"design{e.suffixes[0]}"
         titles = u.answer(
             lambda e=e: u.menu(win, "File", "Export design", f"{e.label}..."), u.file_name(target)
         )
@@ -48,8 +51,8 @@ def test_export_design_from_the_file_menu(window, qtbot, tmp_path):
         assert "Design exported" in win.statusBar().currentMessage()
     u.screenshot(win, SHOTS, "after-export")
 
-    ifc = (tmp_path / "design.ifc").read_text()
+    ifc = (tmp_path / "ifc" / "design.ifc").read_text()
     assert ifc.count("IFCLIGHTFIXTURE(") == 4 and "IFCWINDOW(" in ifc
-    assert "lum_mult" in (tmp_path / "design.rad").read_text()
-    glb = trimesh.load(tmp_path / "design.glb", force="scene")
+    assert "lum_mult" in (tmp_path / "radiance" / "design.rad").read_text()
+    glb = trimesh.load(tmp_path / "gltf" / "design.glb", force="scene")
     assert len(glb.geometry) == 6

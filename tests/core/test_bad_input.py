@@ -1762,7 +1762,7 @@ def _(d):
     import builtins
     from unittest import mock
 
-    from lightinv_core.export import ifc_export
+    from lightinv_core.export import ifc_writer
 
     real = builtins.__import__
 
@@ -1772,7 +1772,7 @@ def _(d):
         return real(name, *args, **kwargs)
 
     with mock.patch.object(builtins, "__import__", no_ifc):
-        return raised(ifc_export._libraries)
+        return raised(ifc_writer.libraries)
 
 
 # --- values of the wrong type given to the model classes in code ------------------------
