@@ -53,12 +53,34 @@ def errors(got: np.ndarray, want: np.ndarray) -> dict:
     return {"points": len(want), "mean_rel": float(rel.mean()), "max_rel": float(rel.max())}
 
 
+def daylight(ab: int, ad: int) -> dict:
+    """The skylight alone (diffusing, filter 0.5, transmittance 0.6) under the CIE
+    overcast sky of the design's 10,000 lux, at 6 work-plane points, against the
+    design scenario LightInv reports."""
+    ex = exported(office_project(arrays=False, panel=False))
+    plane = ex.planes[0]
+    pick = np.linspace(0, len(plane.points) - 1, 6).astype(int)
+    with tempfile.TemporaryDirectory() as d:
+        write_radiance(ex, Path(d) / "scene.rad", sky="overcast")
+        got = rtrace(Path(d), plane.points[pick], ab, ad)
+    res = errors(got, plane.lux[pick])
+    res.update(
+        ab=ab, ad=ad, rtrace=got.round(1).tolist(), lightinv=plane.lux[pick].round(1).tolist()
+    )
+    return res
+
+
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--ab", type=int, default=6)
     ap.add_argument("--ad", type=int, default=2048)
+    ap.add_argument("--daylight-only", action="store_true", help="only the skylight part")
     a = ap.parse_args()
-    out: dict = {"formats": {}}
+    out: dict = {"daylight_overcast": daylight(a.ab, 8192)}
+    if a.daylight_only:
+        print(json.dumps(out, indent=2))
+        return
+    out["formats"] = {}
     ex = exported()
     with tempfile.TemporaryDirectory() as d:
         for e in exporters():
