@@ -43,6 +43,13 @@ class IfcWriter:
         api = ifc.api
         if model_path is not None:
             self.f = ifc.open(str(model_path))
+            if self.f.schema != "IFC4":
+                # IFC2X3 has no IfcLightFixture occurrence (a flow terminal typed as a
+                # light fixture), other window and document attributes: not written yet.
+                raise LightInvError(
+                    f"{model_path.name} is {self.f.schema}: the design can be added to IFC4 "
+                    "models only; export the model from its authoring tool as IFC4"
+                )
             self.unit = ifc.util.unit.calculate_unit_scale(self.f)  # m per file unit
             self.angle = ifc.util.unit.calculate_unit_scale(self.f, "PLANEANGLEUNIT")
             spec = ex.project.scene

@@ -174,3 +174,15 @@ def test_an_imported_ifc_gets_the_design_in_a_copy(house, tmp_path):
     check_round_trip(ex, load_ifc(out.path, resolution=0.5).info["ifc"]["light_fixtures"])
     with pytest.raises(LightInvError, match="never overwritten"):
         write_ifc(ex, house)
+
+
+def test_an_ifc2x3_model_is_refused_with_what_to_do(tmp_path):
+    """IFC2X3 models (Revit's default export) are not written into: one line says so
+    and what to do; nothing is written."""
+    old = tmp_path / "old.ifc"
+    ifcopenshell.file(schema="IFC2X3").write(str(old))
+    ex = exported()
+    ex.project = replace(ex.project, scene=replace(ex.project.scene, builtin=None, obj=str(old)))
+    with pytest.raises(LightInvError, match=r"old\.ifc is IFC2X3: the design can be added to IFC4"):
+        write_ifc(ex, tmp_path / "new.ifc")
+    assert not (tmp_path / "new.ifc").exists()
