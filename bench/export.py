@@ -16,6 +16,7 @@ from __future__ import annotations
 import argparse
 import json
 import os
+import re
 import subprocess
 import sys
 import tempfile
@@ -70,6 +71,43 @@ def daylight(ab: int, ad: int) -> dict:
     return res
 
 
+def rectangle_lux(corners: np.ndarray, exitance: float, points: np.ndarray, n: int = 80):
+    """Illuminance (lux) on upward-facing ``points`` from a Lambertian rectangle of
+    ``exitance`` (lm/m²) facing down: M/pi * sum cos cos / r² dA (n x n midpoints)."""
+    a, b = corners[1] - corners[0], corners[3] - corners[0]
+    t = (np.arange(n) + 0.5) / n
+    cells = corners[0] + t[:, None, None] * a + t[None, :, None] * b
+    area = np.linalg.norm(a) * np.linalg.norm(b) / n**2
+    out = []
+    for p in points:
+        v = cells - p
+        r2 = (v**2).sum(-1)
+        out.append(float((exitance / np.pi * (v[..., 2] ** 2 / r2) / r2 * area).sum()))
+    return np.array(out)
+
+
+def daylight_direct(ad: int) -> dict:
+    """The skylight's direct light alone: every surface black (-ab 2: a sample of the
+    transmitter, and the transmitter's of the sky), against the closed form of a
+    Lambertian rectangle of filter x transmittance x 10,000 lux."""
+    ex = exported(office_project(arrays=False, panel=False))
+    plane = ex.planes[0]
+    pick = np.linspace(0, len(plane.points) - 1, 6).astype(int)
+    sky = next(p for p in ex.panels if not p.electric)
+    exitance = sky.transmittance * ex.project.design.daylight.exterior_lux
+    black = re.compile(r"void plastic (\S+)\n0\n0\n5 [^\n]*")
+    with tempfile.TemporaryDirectory() as d:
+        folder = Path(d)
+        write_radiance(ex, folder / "scene.rad", sky="overcast")
+        for f in (folder / "scene.rad", folder / "scene_geometry.rad"):
+            f.write_text(black.sub(r"void plastic \1\n0\n0\n5 0 0 0 0 0", f.read_text()))
+        got = rtrace(folder, plane.points[pick], 2, ad)
+    want = rectangle_lux(sky.corners, exitance, plane.points[pick])
+    res = errors(got, want)
+    res.update(ab=2, ad=ad, rtrace=got.round(1).tolist(), closed_form=want.round(1).tolist())
+    return res
+
+
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--ab", type=int, default=6)
@@ -77,6 +115,7 @@ def main() -> None:
     ap.add_argument("--daylight-only", action="store_true", help="only the skylight part")
     a = ap.parse_args()
     out: dict = {"daylight_overcast": daylight(a.ab, 8192)}
+    out["daylight_direct_black_room"] = daylight_direct(16384)
     if a.daylight_only:
         print(json.dumps(out, indent=2))
         return
