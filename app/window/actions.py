@@ -13,6 +13,7 @@ from collections.abc import Callable
 from PySide6 import QtGui, QtWidgets
 
 from app.window import help_pages
+from lightinv_core.export import exporters
 from lightinv_core.goals import goal_spec, goal_specs
 from lightinv_core.scene.builtin import BUILTIN_SCENES
 from lightinv_core.sources.types import source_types
@@ -51,6 +52,13 @@ def create_actions(win) -> None:
     win.act_import = action(win, "&Import model...", lambda _=False: files.import_obj_dialog())
     win.act_png = action(win, "Export viewport &PNG...", files.export_png_dialog)
     win.act_report = action(win, "Export &report (PDF)...", files.export_report_dialog)
+    # One entry per registered export format (lightinv_core.export.registry).
+    win.export_actions = {
+        e.name: action(
+            win, f"{e.label}...", lambda _=False, n=e.name: files.export_design_dialog(n)
+        )
+        for e in exporters()
+    }
     win.act_quit = action(win, "&Quit", win.close, ks.Quit)
     win.act_precompute = action(win, "Precompute", win.start_precompute)
     win.act_cancel = action(win, "Cancel", win.cancel_precompute)
@@ -94,6 +102,9 @@ def file_menu(win, bar: QtWidgets.QMenuBar) -> None:
     file.addSeparator()
     for act in (win.act_save, win.act_save_as, win.act_png, win.act_report):
         file.addAction(act)
+    export = file.addMenu("Export &design")
+    for act in win.export_actions.values():
+        export.addAction(act)
     file.addSeparator()
     file.addAction(win.act_quit)
 

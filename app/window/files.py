@@ -243,6 +243,16 @@ class ProjectFiles(QtCore.QObject):
         if path:
             self.win.export_report(path)
 
+    def export_design_dialog(self, name: str) -> None:
+        """File > Export design > a format: its save dialog, then the export."""
+        from lightinv_core.export import exporter
+
+        e = exporter(name)
+        path = ask.save_file(self.win, f"Export design: {e.label}", e.filter, suffix=e.suffixes[0])
+        self.win.folders.chosen(path)
+        if path:
+            self.win.tasks.export_design(name, path)
+
     # -- recent files --------------------------------------------------------------------------
     def recent_files(self) -> list[str]:
         """The recently opened or saved project files, newest first."""

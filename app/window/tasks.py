@@ -13,7 +13,13 @@ from pathlib import Path
 from PySide6 import QtCore
 
 from app.dialogs import ask
-from app.window.workers import PrecomputeWorker, ReportWorker, Worker, stop_and_wait
+from app.window.workers import (
+    ExportWorker,
+    PrecomputeWorker,
+    ReportWorker,
+    Worker,
+    stop_and_wait,
+)
 from lightinv_core.errors import LightInvError
 
 
@@ -83,6 +89,26 @@ class BackgroundTasks(QtCore.QObject):
         )
         worker.failed.connect(lambda msg: ask.error(self.win, "report failed", msg))
         worker.cancelled.connect(lambda: self._say("Report cancelled; no file written", 6000))
+        self._start(worker)
+        return True
+
+    # -- design exports ------------------------------------------------------------------------
+    def export_design(self, name: str, path: str | Path) -> bool:
+        """Write the design on screen in the export format ``name`` (the registry's) in a
+        worker; needs the operator, as the report."""
+        d = self.doc
+        if d.operator is None or self.worker is not None:
+            ask.inform(self.win, "Wait for the radiosity operator first.")
+            return False
+        try:
+            solution = d.design_solution()
+        except LightInvError as exc:
+            ask.error(self.win, "cannot export", str(exc))
+            return False
+        worker = ExportWorker(d.project, d.prepared(), name, Path(path), solution, self)
+        worker.succeeded.connect(lambda out: self._say(f"Design exported: {out.path}", 8000))
+        worker.failed.connect(lambda msg: ask.error(self.win, "export failed", msg))
+        worker.cancelled.connect(lambda: self._say("Export cancelled", 6000))
         self._start(worker)
         return True
 

@@ -141,6 +141,24 @@ class ReportWorker(Worker):
         )
 
 
+class ExportWorker(Worker):
+    """Writes the design on screen (``solution``) in one export format off the GUI
+    thread (``lightinv_core.export``); succeeds with the ``ExportedFile``."""
+
+    def __init__(self, project, prepared, name, path, solution, parent=None):
+        super().__init__(parent)
+        self.project, self.prepared, self.name, self.path = project, prepared, name, path
+        self.solution = solution
+
+    def work(self):
+        from lightinv_core.export import export_design, exporter
+
+        ex = export_design(self.project, self.prepared, self.solution)
+        ex.label = "the design on screen"
+        self.progress.emit(0.5)
+        return exporter(self.name).write(ex, self.path)
+
+
 @dataclass(frozen=True)
 class RunSnapshot:
     """What the GUI draws of a running optimisation, taken at its redraw rate.

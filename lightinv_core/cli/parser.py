@@ -6,6 +6,7 @@ from __future__ import annotations
 import argparse
 
 from lightinv_core.cli import args as types
+from lightinv_core.cli.export import add_export_args, cmd_export
 from lightinv_core.cli.photometry import add_photometry_args, cmd_photometry
 from lightinv_core.cli.precompute import cmd_precompute
 from lightinv_core.cli.report import cmd_report
@@ -235,6 +236,9 @@ def build_parser() -> argparse.ArgumentParser:
     rep.add_argument("project", help="project file holding results (lightinv-cli solve ... -o)")
     rep.add_argument("-o", "--output", required=True, help="PDF file to write")
     rep.add_argument("--png-dir", help="also save every page as a PNG in this folder")
+    add_export_args(
+        add("export", cmd_export, "write a solved design as IFC, a Radiance scene or glTF")
+    )
     add_photometry_args(
         add("photometry", cmd_photometry, "a photometric file: its data, flux and UGR table")
     )

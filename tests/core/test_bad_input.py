@@ -1718,6 +1718,63 @@ def _(d):
     )
 
 
+def export_error(d: Path, *options: str) -> BaseException | None:
+    """``lightinv-cli export`` of the base project (which holds no results) with
+    ``options``, run as the command line does up to its first error."""
+    from lightinv_core.cli.parser import build_parser
+
+    args = build_parser().parse_args(["export", str(write_project(d)), *options])
+    return raised(lambda: args.func(args))
+
+
+@case(
+    "export-no-solution",
+    "export",
+    "`lightinv-cli export project.json --ifc out.ifc` on a project that was never solved",
+    LightInvError,
+    "holds no solution to export",
+    "lightinv-cli solve project.json -o RESULT.json",
+)
+def _(d):
+    return export_error(d, "--ifc", str(d / "out.ifc"))
+
+
+@case(
+    "export-wrong-suffix",
+    "export",
+    "`--gltf out.gltf` (the exporter writes binary glTF only)",
+    LightInvError,
+    "--gltf",
+    "must end with .glb",
+)
+def _(d):
+    return export_error(d, "--gltf", str(d / "out.gltf"))
+
+
+@case(
+    "export-ifc-missing-extra",
+    "export",
+    "`--ifc` where ifcopenshell is not installed",
+    LightInvError,
+    "IFC export needs the optional extra: pip install 'lightinv[ifc]'",
+)
+def _(d):
+    import builtins
+    from unittest import mock
+
+    from lightinv_core.export import ifc_writer
+
+    real = builtins.__import__
+
+    def no_ifc(name, *args, **kwargs):
+        if name.startswith("ifcopenshell"):
+            raise ImportError(name)
+        return real(name, *args, **kwargs)
+
+    with mock.patch.object(builtins, "__import__", no_ifc):
+        return raised(ifc_writer.libraries)
+
+
 # --- values of the wrong type given to the model classes in code ------------------------
 # Not in the docs table (no file can produce them: the readers check types first), but
 # each used to escape as a TypeError, ValueError or OverflowError instead of a

@@ -19,8 +19,9 @@ from pathlib import Path
 
 import numpy as np
 
+from lightinv_core.export.radiance_scene import write_patches as write_scene
+from lightinv_core.export.radiance_sky import RGB_TO_LUX
 from lightinv_core.scene.patches import Patches
-from tests.radiance.scene import RGB_TO_LUX, write_scene
 
 POINT_PARAMS = "-aa 0 -ad 16384 -as 0 -lw 1e-5 -lr -12 -dj 0 -ds 0 -dt 0 -dc 1 -dr 3 -st 0 -ss 0"
 """rtrace settings beside ``-ab``: a pure Monte-Carlo estimate (no ambient cache, -aa 0)

@@ -29,6 +29,7 @@ from lightinv_core.scene.facets import row_ids
 from lightinv_core.scene.importers.assembly import assemble_scene, check_options
 from lightinv_core.scene.importers.faces import LISTED, MAX_COORD, Face, FacePlaces, Polygons, clip
 from lightinv_core.scene.importers.geometry import z_up
+from lightinv_core.scene.importers.ifc_fixtures import light_fixtures
 from lightinv_core.scene.importers.ifc_geometry import (
     GRID,
     Element,
@@ -93,7 +94,8 @@ def load_ifc(
     role (floor, wall, ceiling by the face's direction; furniture; glazing). Each
     window's largest room-side rectangle becomes a skylight-kind emitter zone named
     after it, each ceiling covering's largest downward rectangle a luminaire zone.
-    ``info["ifc"]`` records the elements, spaces, zones and the area left out.
+    ``info["ifc"]`` records the elements, spaces, zones, the area left out and the
+    light fixtures (``ifc_fixtures.light_fixtures``).
 
     Raises ObjImportError for a missing extra, a file ifcopenshell cannot read, no
     building elements, bad options, or a file too large for the memory available
@@ -141,6 +143,7 @@ def load_ifc(
         "zones": {z: kind for z, (_, kind) in zones.items()},
         "contact_m2": contact,
         "exterior_m2": exterior,
+        "light_fixtures": light_fixtures(model, scale, up),
     }
     scene.info["ifc"] = info
     faces = report_of(scene)  # the faces assemble_scene dropped, if any

@@ -1,0 +1,163 @@
+"""Benchmark: the design exports of the export tests' office (tests/export/office.py:
+the built-in office at 1 m, an array of three real IES downlights, a 3,000 lm Lambertian
+panel, a diffusing skylight and a work plane). Prints JSON.
+
+    python bench/export.py [--ab 6] [--ad 2048]
+
+For each format: the time to write it and the files' size. Then the Radiance scene
+traced with ``rtrace`` at every work-plane point, beside LightInv's own illuminance:
+the luminaires' direct light alone (``-ab 0`` against LightInv's point-source sum)
+and, at night, the array and the panel with interreflections (``-ab`` given); the
+mean and largest relative difference per point.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import os
+import re
+import subprocess
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+import numpy as np
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+
+from lightinv_core.export import exporters
+from lightinv_core.export.radiance_scene import write_radiance
+from lightinv_core.export.radiance_sky import RGB_TO_LUX
+from lightinv_core.light.arrays import caster_for
+from lightinv_core.transport.luminaires import PlacedLuminaire
+from tests.export.office import exported, office_project
+from tests.radiance.run import radiance_env
+
+PARAMS = "-aa 0 -lw 1e-5 -dj 0 -ds 0 -dt 0 -dc 1 -dr 0 -st 0 -ss 0"
+
+
+def rtrace(folder: Path, points: np.ndarray, ab: int, ad: int) -> np.ndarray:
+    env = radiance_env()
+    with open(folder / "scene.oct", "wb") as fh:
+        subprocess.run(["oconv", "scene.rad"], cwd=folder, env=env, stdout=fh, check=True)
+    rays = "".join(f"{p[0]:.9g} {p[1]:.9g} {p[2]:.9g} 0 0 1\n" for p in points).encode()
+    args = ["rtrace", "-h", "-I+", "-ov", "-ab", str(ab), "-ad", str(ad), *PARAMS.split()]
+    args += ["-n", str(min(2, os.cpu_count() or 1)), "scene.oct"]
+    out = subprocess.run(args, input=rays, cwd=folder, env=env, capture_output=True, check=True)
+    return np.array(out.stdout.split(), float).reshape(-1, 3) @ RGB_TO_LUX
+
+
+def errors(got: np.ndarray, want: np.ndarray) -> dict:
+    rel = np.abs(got / want - 1)
+    return {"points": len(want), "mean_rel": float(rel.mean()), "max_rel": float(rel.max())}
+
+
+def daylight(ab: int, ad: int) -> dict:
+    """The skylight alone (diffusing, filter 0.5, transmittance 0.6) under the CIE
+    overcast sky of the design's 10,000 lux, at 6 work-plane points, against the
+    design scenario LightInv reports."""
+    ex = exported(office_project(arrays=False, panel=False))
+    plane = ex.planes[0]
+    pick = np.linspace(0, len(plane.points) - 1, 6).astype(int)
+    with tempfile.TemporaryDirectory() as d:
+        write_radiance(ex, Path(d) / "scene.rad", sky="overcast")
+        got = rtrace(Path(d), plane.points[pick], ab, ad)
+    res = errors(got, plane.lux[pick])
+    res.update(
+        ab=ab, ad=ad, rtrace=got.round(1).tolist(), lightinv=plane.lux[pick].round(1).tolist()
+    )
+    return res
+
+
+def rectangle_lux(corners: np.ndarray, exitance: float, points: np.ndarray, n: int = 80):
+    """Illuminance (lux) on upward-facing ``points`` from a Lambertian rectangle of
+    ``exitance`` (lm/m²) facing down: M/pi * sum cos cos / r² dA (n x n midpoints)."""
+    a, b = corners[1] - corners[0], corners[3] - corners[0]
+    t = (np.arange(n) + 0.5) / n
+    cells = corners[0] + t[:, None, None] * a + t[None, :, None] * b
+    area = np.linalg.norm(a) * np.linalg.norm(b) / n**2
+    out = []
+    for p in points:
+        v = cells - p
+        r2 = (v**2).sum(-1)
+        out.append(float((exitance / np.pi * (v[..., 2] ** 2 / r2) / r2 * area).sum()))
+    return np.array(out)
+
+
+def daylight_direct(ad: int) -> dict:
+    """The skylight's direct light alone: every surface black (-ab 2: a sample of the
+    transmitter, and the transmitter's of the sky), against the closed form of a
+    Lambertian rectangle of filter x transmittance x 10,000 lux."""
+    ex = exported(office_project(arrays=False, panel=False))
+    plane = ex.planes[0]
+    pick = np.linspace(0, len(plane.points) - 1, 6).astype(int)
+    sky = next(p for p in ex.panels if not p.electric)
+    exitance = sky.transmittance * ex.project.design.daylight.exterior_lux
+    black = re.compile(r"void plastic (\S+)\n0\n0\n5 [^\n]*")
+    with tempfile.TemporaryDirectory() as d:
+        folder = Path(d)
+        write_radiance(ex, folder / "scene.rad", sky="overcast")
+        for f in (folder / "scene.rad", folder / "scene_geometry.rad"):
+            f.write_text(black.sub(r"void plastic \1\n0\n0\n5 0 0 0 0 0", f.read_text()))
+        got = rtrace(folder, plane.points[pick], 2, ad)
+    want = rectangle_lux(sky.corners, exitance, plane.points[pick])
+    res = errors(got, want)
+    res.update(ab=2, ad=ad, rtrace=got.round(1).tolist(), closed_form=want.round(1).tolist())
+    return res
+
+
+def main() -> None:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--ab", type=int, default=6)
+    ap.add_argument("--ad", type=int, default=2048)
+    ap.add_argument("--daylight-only", action="store_true", help="only the skylight part")
+    a = ap.parse_args()
+    out: dict = {"daylight_overcast": daylight(a.ab, 8192)}
+    out["daylight_direct_black_room"] = daylight_direct(16384)
+    if a.daylight_only:
+        print(json.dumps(out, indent=2))
+        return
+    out["formats"] = {}
+    ex = exported()
+    with tempfile.TemporaryDirectory() as d:
+        for e in exporters():
+            t = time.perf_counter()
+            written = e.write(ex, Path(d) / f"design{e.suffixes[0]}")
+            out["formats"][e.name] = {
+                "seconds": time.perf_counter() - t,
+                "bytes": sum(f.stat().st_size for f in written.files),
+                "counts": written.counts,
+            }
+    night = exported(office_project(skylight=False))
+    plane = night.planes[0]
+    with tempfile.TemporaryDirectory() as d:
+        folder = Path(d)
+        t = time.perf_counter()
+        caster = caster_for(night.patches)
+        up = np.tile([0.0, 0.0, 1.0], (len(plane.points), 1))
+        own = sum(
+            f.maintenance
+            * PlacedLuminaire(f.name, f.position, f.photometry, f.aim, f.c0, f.dimming).illuminance(
+                plane.points, up, caster
+            )
+            for f in night.fixtures
+        )
+        panel = [p for p in night.panels if p.electric]
+        lit = own > 1.0  # the array's light (the panel's direct light is not in ``own``)
+        write_radiance(
+            exported(office_project(skylight=False, panel=False)), folder / "scene.rad", sky="none"
+        )
+        direct = rtrace(folder, plane.points, 0, 1)
+        out["direct_array"] = errors(direct[lit], own[lit])
+        write_radiance(night, folder / "scene.rad", sky="none")
+        total = rtrace(folder, plane.points, a.ab, a.ad)
+        out["night_interreflected"] = errors(total, plane.lux)
+        out["night_interreflected"].update(ab=a.ab, ad=a.ad, panels=len(panel))
+        out["rtrace_seconds"] = time.perf_counter() - t
+    print(json.dumps(out, indent=2))
+
+
+if __name__ == "__main__":
+    main()
