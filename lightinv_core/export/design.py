@@ -17,7 +17,7 @@ from pathlib import Path
 import numpy as np
 
 from lightinv_core.atomic import atomic_writer
-from lightinv_core.design.en12464 import EDITION
+from lightinv_core.design.en12464 import LEGACY_EDITION
 from lightinv_core.design.solution import Solution
 from lightinv_core.kinds import Bound
 from lightinv_core.light.arrays import array_luminaires, zone_frame
@@ -109,7 +109,7 @@ class PlaneResult:
     emin: float
     emax: float
     u0: float
-    standard: str = EDITION
+    standard: str = str(LEGACY_EDITION)
     requirements: tuple[str, ...] = field(default=())
 
 
@@ -189,6 +189,7 @@ class ExportDesign:
         if grids is None:
             return ()
         design = self.project.design
+        editions = {wp.name: str(wp.edition) for wp in design.workplanes}
         out = []
         for name, span in grids.spans.items():
             st = self.light.grid_stats[name]
@@ -202,7 +203,7 @@ class ExportDesign:
             out.append(
                 PlaneResult(
                     name, grids.plane_height(name), grids.points[span], lux[span],
-                    st["Em"], st["Emin"], st["Emax"], st["U0"], EDITION, reqs,
+                    st["Em"], st["Emin"], st["Emax"], st["U0"], editions[name], reqs,
                 )
             )  # fmt: skip
         return tuple(out)

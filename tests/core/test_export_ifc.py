@@ -110,6 +110,8 @@ def test_the_file_carries_products_photometry_glazing_and_results(office_ifc):
     assert wp["Em"] == pytest.approx(ex.planes[0].em)
     assert wp["U0"] == pytest.approx(ex.planes[0].u0)
     assert wp["Standard"].startswith("EN 12464-1")
+    # The edition is the work plane's own (a project without one reads as 2011).
+    assert wp["Standard"] == str(ex.project.design.workplanes[0].edition)
 
 
 @pytest.mark.slow  # the EXPRESS rules take 8 s
