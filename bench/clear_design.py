@@ -17,6 +17,13 @@ Reported: CPU seconds of the clear glazing's light (its first build, rays and
 inter-reflections), candidates per second of each (median of the rounds, measured in
 turn within each round), the ratio clear / diffusing of the time per batch (median of
 the rounds' ratios; the issue's target is within 3x), and the two layouts' figures.
+
+``--versus-study`` instead compares, on the daylight rooms ``sidelit`` and ``toplit``
+(glass 0.7, work plane 0.8 m, the weather of ``--weather``), a design with the room's
+glazing as one fixed clear source (``layout_daylight``) with the forward study of the
+same scene (``study.simulate``, checked against Radiance: docs/daylight.md): DA300,
+UDI 100-3000, sDA300/50% (LM-83 blinds), ASE1000,250 and the dimming energy of
+luminaires giving 300 lux at full output (100 W), and both sides' CPU seconds.
 """
 
 from __future__ import annotations
@@ -79,12 +86,85 @@ def figures(light, design) -> dict:
     return out
 
 
+def versus_study(scene_name: str, weather: str) -> dict:
+    """The design's figures and the study's on one daylight room (see the docstring)."""
+    from lightinv_core.design.model import Daylight, Design, Source, Workplane
+    from lightinv_core.light.model import LightModel
+    from lightinv_core.operator.build import build_operator
+    from lightinv_core.operator.settings import OperatorSettings
+    from lightinv_core.scene.builtin import builtin_scene
+    from lightinv_core.scene.patches import mesh_patches
+    from lightinv_core.study import SimulationSpec, simulate
+    from lightinv_core.study.clear_light import clear_dimming
+    from lightinv_core.study.clear_metrics import work_plane_metrics
+    from lightinv_core.transport.workplane import WorkPlane
+
+    group = {"sidelit": ("window", "window"), "toplit": ("rooflight", "skylight")}[scene_name]
+    scene = builtin_scene(scene_name)
+    patches = mesh_patches(scene)
+    light = LightModel(scene, patches, build_operator(patches, OperatorSettings(rays=512)))
+    daylight = Daylight(transmittance=0.7, weather=weather)
+    w = Source("G1", group[0], group[1], (0.0, 0.0, *light.zone_size(group[0])), glazing="clear")
+    design = Design(
+        sources=(w,),
+        goals=(Goal("min_electric_power"),),
+        workplanes=(Workplane("wp", 0.8, 0.5),),
+        daylight=daylight,
+    )
+    t0 = time.process_time()
+    got = layout_daylight(light, design)
+    ours_cpu = time.process_time() - t0
+    ours = {}
+    for q in ("da", "udi", "sda", "ase"):
+        it = Intention(q, grid="wp", quantity=q, max=1.0)
+        ours[q] = float(got.points.quantity(it)[:, 0].mean())
+    lit = replace(got, installed_w=100.0)
+    object.__setattr__(lit.points, "electric", np.full_like(lit.points.electric, 300.0))
+    ours["energy_kwh"] = lit.energy().energy_kwh
+    spec = SimulationSpec(
+        scene=scene,
+        glazing={group[0]: 0.7},
+        glazing_kinds={group[0]: "clear"},
+        workplane=WorkPlane(0.8, 0.5),
+        rays=512,
+        annual=daylight,
+    )
+    t0 = time.process_time()
+    year = simulate(spec).clear_year
+    study_cpu = time.process_time() - t0
+    m, _ = work_plane_metrics(year)
+    q = len(got.grids.points)
+    energy = clear_dimming(year, np.full(q, 300.0), 100.0, lit.floor_m2, daylight).energy_kwh
+    study = {
+        "da": m["da300_mean"],
+        "udi": m["udi_100_3000"],
+        "sda": m["sda300_50"],
+        "ase": m["ase1000_250"],
+        "energy_kwh": energy,
+    }
+    return {
+        "scene": scene_name,
+        "patches": patches.n,
+        "points": q,
+        "design": ours,
+        "study": study,
+        "design_cpu_s": ours_cpu,
+        "study_cpu_s": study_cpu,
+    }
+
+
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--batch", type=int, default=32)
     ap.add_argument("--repeats", type=int, default=30)
     ap.add_argument("--rounds", type=int, default=5)
+    ap.add_argument("--versus-study", action="store_true")
+    ap.add_argument("--weather", default="builtin")
     args = ap.parse_args()
+    if args.versus_study:
+        rows = [versus_study(name, args.weather) for name in ("sidelit", "toplit")]
+        print(json.dumps({"weather": args.weather, "rooms": rows}))
+        return
     project = load_project(PROJECT)
     prepared = prepare(project)
     light = prepared.light

@@ -23,7 +23,8 @@ import numpy as np
 from lightinv_core.climate.metrics import lighting_kwh
 from lightinv_core.design.model import Daylight, Design, DesignError, Intention
 from lightinv_core.kinds import Quantity
-from lightinv_core.light.clear_glazing import ClearLight, clear_light
+from lightinv_core.light.clear_build import clear_light
+from lightinv_core.light.clear_glazing import ClearLight
 from lightinv_core.light.daylight_year import (
     DaylightYear,
     SkyGroups,

@@ -41,7 +41,7 @@ from lightinv_core.design.variables import ArrayLayout, Variables
 from lightinv_core.goals import goal_names, goal_spec
 from lightinv_core.kinds import GoalKind, Scenario
 from lightinv_core.light.arrays import ArrayLight, array_light, array_shapes, resolve_product
-from lightinv_core.light.clear_glazing import clear_light
+from lightinv_core.light.clear_build import clear_light
 from lightinv_core.light.daylight_year import sky_groups
 from lightinv_core.light.grids import DesignGrids, design_grids
 from lightinv_core.light.intentions import FEASIBILITY_TOL, intention_patches
