@@ -38,7 +38,7 @@ from pathlib import Path
 import numpy as np
 
 from lightinv_core.design.model import Goal, Intention
-from lightinv_core.light.clear_glazing import clear_light
+from lightinv_core.light.clear_build import clear_light
 from lightinv_core.light.daylight import layout_daylight
 from lightinv_core.optimize.problem import DesignProblem
 from lightinv_core.optimize.search import random_start
