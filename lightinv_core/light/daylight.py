@@ -93,6 +93,21 @@ class ScenarioLight:
             out = out + ext * self.clear.overcast(idx)[:, None]
         return out
 
+    @property
+    def daylit(self) -> bool:
+        """Whether any daylight reaches the receivers (a sky group or clear glazing)."""
+        return bool(self.groups.count) or self.clear is not None
+
+    def hour_daylight(self, hour: int) -> np.ndarray:
+        """(R,) daylight (lux) of the first layout in hour ``hour`` of the weather file."""
+        y = self.year()
+        day = np.zeros(self.electric.shape[0])
+        if self.groups.count:
+            day = day + np.tensordot(y.every[:, hour], self.sky[:, :, 0], axes=1)
+        if self.clear is not None:
+            day = day + self.clear.lux(slice(None), [hour])[:, 0]
+        return day
+
     def clear_hours(self, idx=slice(None)) -> np.ndarray | None:
         """(R', T) the clear glazing's daylight (lux) in the occupied hours, or None."""
         if self.clear is None:
@@ -253,12 +268,8 @@ class LayoutDaylight:
         y = p.year()
         if not 0 <= hour < y.every.shape[1]:
             raise DesignError(f"hour {hour} is outside the year (0-{y.every.shape[1] - 1})")
-        E = y.every[:, hour]
-        day = np.tensordot(E, p.sky[:, :, 0], axes=1) if p.groups.count else 0.0
-        if p.clear is not None:
-            day = day + p.clear.lux(slice(None), [hour])[:, 0]
         level = self.level_at(hour)
-        return p.electric[:, 0] * level + day
+        return p.electric[:, 0] * level + p.hour_daylight(hour)
 
     def level_at(self, hour: int) -> float:
         """The luminaires' dimming level (0-1) in hour ``hour``: 0 when unoccupied."""

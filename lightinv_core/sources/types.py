@@ -186,8 +186,8 @@ class DiffusingGlazing:
 
 class WindowGlazing(DiffusingGlazing):
     """A window: diffusing glazing on any planar face, a wall's included. Its light is
-    the sky and ground on its own plane (the sky groups), as a skylight's is; clear
-    glass, which passes a view of the sky, is not modelled (docs/daylight.md)."""
+    the sky and ground on its own plane (the sky groups), as a skylight's is; with
+    ``glazing`` clear, the sky and sun by direction (``light.clear_glazing``)."""
 
     kind = SourceKind.WINDOW
     label = "Window (glazing)"
