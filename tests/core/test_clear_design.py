@@ -174,3 +174,23 @@ def test_solve_a_design_with_a_fixed_clear_rooflight(tmp_path, capsys):
     assert out["status"] in ("feasible", "infeasible")
     text = json.dumps(out)
     assert "min_annual_energy" in text
+
+
+def test_the_report_and_the_hour_read_the_clear_light(sidelit):
+    """The report's daylight section (UDI bands counted from the hourly light) and one
+    hour of the year (the window's slider) include the clear glazing's light."""
+    from lightinv_core.report.daylight import daylight_section
+
+    got = layout_daylight(sidelit, window_design(sidelit))
+    (plane,) = daylight_section(got).planes
+    udi = got.points.quantity(Intention("u", grid="wp", quantity="udi", max=1.0))[:, 0]
+    assert plane.udi.sum(axis=1) == pytest.approx(1.0)
+    assert plane.udi[:, 1] + plane.udi[:, 2] == pytest.approx(udi)
+    assert plane.udi[:, 0].mean() < 0.2  # not the dark room a skylight-less design is
+    occ = np.flatnonzero(got.points.year().occupied)
+    hour = int(occ[np.argmax(got.points.clear_hours().mean(axis=0))])
+    assert got.points.hour_daylight(hour) == pytest.approx(
+        got.points.clear.lux(slice(None), [hour])[:, 0]
+    )
+    assert got.points.hour_daylight(hour).mean() > 1000
+    assert got.hour_lux(hour).mean() > got.patches.electric[:, 0].mean()
