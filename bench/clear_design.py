@@ -23,7 +23,9 @@ the rounds' ratios; the issue's target is within 3x), and the two layouts' figur
 glazing as one fixed clear source (``layout_daylight``) with the forward study of the
 same scene (``study.simulate``, checked against Radiance: docs/daylight.md): DA300,
 UDI 100-3000, sDA300/50% (LM-83 blinds), ASE1000,250 and the dimming energy of
-luminaires giving 300 lux at full output (100 W), and both sides' CPU seconds.
+luminaires giving 300 lux at full output (100 W), both sides' CPU seconds, and the
+range over the points of the annual mean lux design / study and, for the study's own
+noise, study (seed 1) / study (seed 0).
 """
 
 from __future__ import annotations
@@ -96,7 +98,7 @@ def versus_study(scene_name: str, weather: str) -> dict:
     from lightinv_core.scene.patches import mesh_patches
     from lightinv_core.study import SimulationSpec, simulate
     from lightinv_core.study.clear_light import clear_dimming
-    from lightinv_core.study.clear_metrics import work_plane_metrics
+    from lightinv_core.study.clear_metrics import blinds, work_plane_metrics
     from lightinv_core.transport.workplane import WorkPlane
 
     group = {"sidelit": ("window", "window"), "toplit": ("rooflight", "skylight")}[scene_name]
@@ -134,6 +136,12 @@ def versus_study(scene_name: str, weather: str) -> dict:
     study_cpu = time.process_time() - t0
     m, _ = work_plane_metrics(year)
     q = len(got.grids.points)
+    # The study's own noise: its points' annual means under a second seed.
+    other = simulate(replace(spec, seed=1)).clear_year
+    occ = year.occupied
+    mine = got.points.clear_hours().mean(axis=1)
+    first = year.total(blinds(year))[:, occ].mean(axis=1)
+    second = other.total(blinds(other))[:, occ].mean(axis=1)
     energy = clear_dimming(year, np.full(q, 300.0), 100.0, lit.floor_m2, daylight).energy_kwh
     study = {
         "da": m["da300_mean"],
@@ -148,6 +156,10 @@ def versus_study(scene_name: str, weather: str) -> dict:
         "points": q,
         "design": ours,
         "study": study,
+        "point_mean_design_over_study": [float(x) for x in (min(mine / first), max(mine / first))],
+        "point_mean_study_seed1_over_seed0": [
+            float(x) for x in (min(second / first), max(second / first))
+        ],
         "design_cpu_s": ours_cpu,
         "study_cpu_s": study_cpu,
     }
