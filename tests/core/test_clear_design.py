@@ -174,6 +174,9 @@ def test_solve_a_design_with_a_fixed_clear_rooflight(tmp_path, capsys):
     assert out["status"] in ("feasible", "infeasible")
     text = json.dumps(out)
     assert "min_annual_energy" in text
+    assert 0 <= out["daylight"]["ase1000_250"] <= 1
+    assert cli.main(["solve", str(path)]) == 0
+    assert "ASE1000,250 " in capsys.readouterr().out
 
 
 def test_the_report_and_the_hour_read_the_clear_light(sidelit):
