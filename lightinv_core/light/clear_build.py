@@ -55,7 +55,6 @@ from lightinv_core.transport.clear_glazing import (
     to_geographic,
     to_scene,
 )
-from lightinv_core.transport.daylight_coefficients import _binned
 from lightinv_core.transport.formfactors import DEFAULT_RAYS
 from lightinv_core.transport.receivers import receiver_factors
 
@@ -127,6 +126,17 @@ def _weather(d: Daylight, dome):
     up = (sky.zenith < 90.0) & (dn > 0)
     every = np.concatenate([np.asarray(L, dtype=float).T, ground[None]], axis=0)
     return every, geo, np.where(up, dn, 0.0), up
+
+
+def _binned(rays, groups: int, bins, nbins: int) -> np.ndarray:
+    """(G, targets, nbins) the rays' weights (lux per cd/m²) summed by glazing group,
+    target and sky bin (``bins(directions) -> bin``)."""
+    out = np.zeros(groups * rays.targets * nbins)
+    if len(rays.weight):
+        key = rays.group.astype(np.int64) * rays.targets + rays.target.astype(np.int64)
+        key = key * nbins + np.asarray(bins(rays.direction))
+        out += np.bincount(key, rays.weight, minlength=len(out))
+    return out.reshape(groups, rays.targets, nbins)
 
 
 def _sun_bins(geo: np.ndarray, up: np.ndarray):
