@@ -197,3 +197,21 @@ def test_the_report_and_the_hour_read_the_clear_light(sidelit):
     )
     assert got.points.hour_daylight(hour).mean() > 1000
     assert got.hour_lux(hour).mean() > got.patches.electric[:, 0].mean()
+
+
+def test_clear_and_diffusing_glazing_in_one_design(sidelit):
+    """Half the window clear, half diffusing (free): the year is counted hour by hour
+    with both lights, in the layout and in the optimiser's batch alike."""
+    w, h = sidelit.zone_size("window")
+    clear = Source("W1", "window", "window", (0.0, 0.0, w, h / 2), glazing="clear")
+    glow = Source("W2", "window", "window", (0.0, h / 2, w, h), free=("v1",))
+    design = replace(window_design(sidelit), sources=(clear, glow), goals=(Goal("max_sda"),))
+    got = layout_daylight(sidelit, design).points
+    assert got.groups.count == 1 and got.clear is not None
+    year = got.year()
+    hourly = got.sky[0, :, 0][:, None] * year.exterior[0] + got.clear_hours()
+    da = got.quantity(Intention("d", grid="wp", quantity="da", max=1.0))[:, 0]
+    assert da == pytest.approx((hourly >= 300).mean(axis=1))
+    problem = DesignProblem(design, sidelit)
+    ev = problem.evaluate(problem.vars.initial()[None])
+    assert ev.goals["max_sda"][0] == pytest.approx(float((da >= 0.5).mean()))
