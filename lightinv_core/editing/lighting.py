@@ -20,6 +20,7 @@ from dataclasses import replace
 import numpy as np
 
 from lightinv_core.design.model import Design, LuminaireArray, Source
+from lightinv_core.errors import LightInvError
 from lightinv_core.light.arrays import arrays_field
 from lightinv_core.light.clear_build import clear_light
 from lightinv_core.light.field import LightField
@@ -84,8 +85,13 @@ class ShownLight:
     def _clear_light(self, design: Design) -> tuple | None:
         """The fixed clear glazing's light in the design scenario (the CIE overcast sky
         of ``exterior_lux`` horizontal) on the patches and at the grid points, or None
-        (``light.clear_build``: built once per clear glazing, a few seconds)."""
-        clear = clear_light(self.model, design)
+        (``light.clear_build``: built once per clear glazing, a few seconds). Without a
+        readable weather file (its sun is part of the build) the view goes without it:
+        the climate panel says why."""
+        try:
+            clear = clear_light(self.model, design)
+        except LightInvError:
+            return None
         if clear is None:
             return None
         ext = design.daylight.exterior_lux

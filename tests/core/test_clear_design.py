@@ -215,3 +215,18 @@ def test_clear_and_diffusing_glazing_in_one_design(sidelit):
     problem = DesignProblem(design, sidelit)
     ev = problem.evaluate(problem.vars.initial()[None])
     assert ev.goals["max_sda"][0] == pytest.approx(float((da >= 0.5).mean()))
+
+
+def test_the_editors_view_shows_the_clear_light_in_the_design_scenario(sidelit):
+    """The window's live view (``editing.lighting.ShownLight``) adds the clear glazing's
+    design-scenario light; without a readable weather file it goes without it."""
+    from lightinv_core.editing.lighting import ShownLight
+
+    design = window_design(sidelit)
+    shown = ShownLight(sidelit)
+    lit = shown.relight(design).illuminance
+    want = layout_daylight(sidelit, design).patches.lux("design")[:, 0]
+    assert lit == pytest.approx(want)
+    assert shown.grid_lux.mean() > 100  # the work plane sees the window's light
+    lost = replace(design, daylight=replace(design.daylight, weather="no-such.epw"))
+    assert float(np.abs(ShownLight(sidelit).relight(lost).illuminance).max()) == 0.0
