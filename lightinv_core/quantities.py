@@ -31,7 +31,10 @@ class HourBand:
     year: an hour counts at a point when ``lo`` <= its daylight <= ``hi`` (lux); the
     point's value is the share of hours that count (0-1), or, with ``point_share``, 1
     when at least that share counts and 0 otherwise (so the metric's average over a
-    grid is the share of its area: sDA300/50%).
+    grid is the share of its area: sDA300/50%). ``direct_sun``: the rule reads the
+    direct sun through clear glazing alone, blinds open (ASE); ``above``: an hour counts
+    when its light exceeds ``lo`` (not equals); ``point_hours``: a point's value is 1
+    when more than that many hours count (ASE1000,250: more than 250 hours above 1000 lux).
 
     The light model evaluates a band from its sky-group coefficients without the
     hour-by-hour illuminance (``light.daylight.ScenarioLight.band``); ``of_hours`` is
@@ -41,16 +44,22 @@ class HourBand:
     lo: float
     hi: float = math.inf
     point_share: float | None = None
+    direct_sun: bool = False
+    above: bool = False
+    point_hours: int | None = None
 
     def of_hours(self, lux: np.ndarray) -> np.ndarray:
         """The metric per point from hourly daylight ``lux`` (q, h) lux: (q,)."""
         lux = np.asarray(lux, dtype=float)
-        share = ((lux >= self.lo) & (lux <= self.hi)).mean(axis=1)
-        if self.point_share is None:
-            return share
+        low = lux > self.lo if self.above else lux >= self.lo
+        counted = (low & (lux <= self.hi)).sum(axis=1)
+        if self.point_hours is not None:
+            return (counted > self.point_hours).astype(float)
         hours = lux.shape[1]
+        if self.point_share is None:
+            return counted / max(hours, 1)
         need = math.ceil(self.point_share * hours - 1e-9)
-        return (np.rint(share * hours) >= need).astype(float)
+        return (counted >= need).astype(float)
 
 
 @dataclass(frozen=True)
@@ -229,6 +238,21 @@ for _spec in (
         metric="sDA300/50%",
         scenario=Scenario.ANNUAL,
         hours=HourBand(300.0, point_share=0.5),
+        uniformity=False,
+    ),
+    QuantitySpec(
+        Quantity.ASE,
+        "annual sunlight exposure",
+        "ASE1000,250: the average is the share of the area",
+        "",
+        "1 or 0 per point, its average a fraction",
+        *_FRACTION,
+        3,
+        (0.0, 1.0, 0.1, 0.3),
+        average_only=True,
+        metric="ASE1000,250",
+        scenario=Scenario.ANNUAL,
+        hours=HourBand(1000.0, direct_sun=True, above=True, point_hours=250),
         uniformity=False,
     ),
 ):

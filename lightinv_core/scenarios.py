@@ -94,7 +94,7 @@ def scenario_kind(name: str) -> Scenario | str:
 
 
 def _design(light, idx):
-    return light.electric[idx] + light.daylight.exterior_lux * light.sky[:, idx].sum(axis=0)
+    return light.electric[idx] + light.design_daylight(idx)
 
 
 def _overcast(light, idx):

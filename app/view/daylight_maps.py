@@ -87,7 +87,7 @@ def map_values(doc: Document, key: str, hour: int) -> MapResult:
 def _map(ld, doc: Document, key: str, hour: int, units: str, fmt: str) -> MapResult:
     p = ld.patches
     values = _on(p, ld, key, hour)
-    hint = "\nThe design has no skylights: no daylight." if not p.groups.count else ""
+    hint = "\nThe design has no skylights: no daylight." if not p.daylit else ""
     if is_scenario(key):
         light = _capital(scenario_spec(key).describe(doc.design.daylight))
         return MapResult(values, units, fmt, light + hint)
@@ -96,13 +96,19 @@ def _map(ld, doc: Document, key: str, hour: int, units: str, fmt: str) -> MapRes
         if q.hours is None:
             where = f"{_capital(q.noun)}, {scenario_spec(q.default_scenario).name} scenario"
             return MapResult(values, units, fmt, where + hint)
-        over = f" of {p.year().hours:,} occupied hours" if p.groups.count else ""
+        over = f" of {p.year().hours:,} occupied hours" if p.daylit else ""
         band = q.hours
         what = (
             f"with {band.lo:g} lux of daylight or more"
             if band.hi == np.inf
             else f"with {band.lo:g}-{band.hi:g} lux of daylight"
         )
+        if band.direct_sun:
+            over = " of the area" if p.daylit else ""
+            what = (
+                f"direct sun above {band.lo:g} lux in more than {band.point_hours} "
+                "occupied hours (clear glazing, blinds open)"
+            )
         caption = f"{q.metric}: share{over}\n{what}" + hint
         return MapResult(values, units, fmt, caption, (0.0, 100.0))
     state = hour_state(ld, _weather_or_none(doc), hour)
@@ -132,9 +138,7 @@ def _on(light, ld, key: str, hour: int) -> np.ndarray:
     if light is ld.patches:
         return ld.hour_lux(hour)
     # The same sum as ``LayoutDaylight.hour_lux``, at the work planes' points.
-    year = light.year()
-    day = np.tensordot(year.every[:, hour], light.sky[:, :, 0], axes=1) if light.groups.count else 0
-    return light.electric[:, 0] * ld.level_at(hour) + day
+    return light.electric[:, 0] * ld.level_at(hour) + light.hour_daylight(hour)
 
 
 def _weather_or_none(doc: Document):

@@ -289,7 +289,7 @@ class ClimatePanel(QtWidgets.QWidget):
             self.energy.clear()
             self._say(problems)
             return
-        if ld is not None and not ld.patches.groups.count:
+        if ld is not None and not ld.patches.daylit:
             problems.append(
                 "The design has no skylights: no daylight reaches the room (DF, DA and UDI "
                 "are 0; the luminaires dim only to the target)."

@@ -13,7 +13,11 @@ from app.document import Document
 from app.widgets.elided_label import ElidedLabel
 from lightinv_core.design.model import CORNERS
 from lightinv_core.errors import LightInvError
+from lightinv_core.kinds import GlazingKind
 from lightinv_core.sources.types import source_type
+
+GLAZING_TEXT = {GlazingKind.DIFFUSING: "diffusing (a glow)", GlazingKind.CLEAR: "clear (fixed)"}
+"""The glazing choice's entries for people."""
 
 STRENGTH_BOXES = {
     # Source field: (label, decimals, largest, step, suffix)
@@ -76,6 +80,18 @@ class SourcePanel(QtWidgets.QGroupBox):
         self.strength.valueChanged.connect(self._strength_edited)
         self.strength_label = QtWidgets.QLabel("flux")
         form.addRow(self.strength_label, self.strength)
+        # Glazing kinds (daylit sources whose type takes the field): clear glazing is
+        # fixed in this version, so choosing it frees nothing (docs/daylight.md).
+        self.glazing = QtWidgets.QComboBox()
+        for kind in GlazingKind:
+            self.glazing.addItem(GLAZING_TEXT[kind], str(kind))
+        self.glazing.setToolTip(
+            "Diffusing: the glass glows with the light on its outside. Clear: the sky and "
+            "the sun seen through it by direction (fixed: its shape is not optimised)"
+        )
+        self.glazing.currentIndexChanged.connect(self._glazing_edited)
+        self.glazing_label = QtWidgets.QLabel("Glazing")
+        form.addRow(self.glazing_label, self.glazing)
         # What the optimiser may change, and within what: without these a luminaire kept
         # its 3,000 lm and a least-power run could not reach the target.
         self.free_place = QtWidgets.QCheckBox("position and size")
@@ -146,6 +162,7 @@ class SourcePanel(QtWidgets.QGroupBox):
             self.flux_min,
             self.flux_max,
             self.efficacy,
+            self.glazing,
         ]
         for b in boxes:
             b.blockSignals(True)
@@ -217,6 +234,15 @@ class SourcePanel(QtWidgets.QGroupBox):
         self.flux_min.setValue(s.flux_range[0])
         self.flux_max.setValue(s.flux_range[1])
         self.efficacy.setValue(s.efficacy)
+        glazed = "glazing" in t.fields
+        for w in (self.glazing, self.glazing_label):
+            w.setVisible(glazed)
+        clear = glazed and s.glazing == GlazingKind.CLEAR
+        self.glazing.setEnabled(glazed and not tied)
+        self.glazing.setCurrentIndex(max(0, self.glazing.findData(str(s.glazing))))
+        if clear:  # fixed: nothing of it is optimised
+            for w in (self.free_place, self.free_strength):
+                w.setEnabled(False)
         ranged, rated = "flux_range" in t.fields, "efficacy" in t.fields
         for w in (self.flux_min, self.flux_max, self.range_label):
             w.setVisible(ranged)
@@ -235,6 +261,15 @@ class SourcePanel(QtWidgets.QGroupBox):
             (strength,) if self.free_strength.isChecked() else ()
         )
         self._apply(free=tuple(free))
+
+    def _glazing_edited(self) -> None:
+        name = self.doc.current_source
+        kind = self.glazing.currentData()
+        if name is None or kind is None or self.doc.design.source(name).glazing == kind:
+            return
+        # Clear glazing is fixed: it frees nothing (the optimiser keeps it as drawn).
+        free = () if kind == GlazingKind.CLEAR else self.doc.design.source(name).free
+        self._apply(glazing=kind, free=free)
 
     def _range_edited(self) -> None:
         self._apply(flux_range=(self.flux_min.value(), self.flux_max.value()))

@@ -86,6 +86,12 @@ def daylight_summary(light: LightModel, design: Design, sol: Solution) -> dict:
         leni_kwh_m2=energy.leni,
         monthly_kwh=list(energy.monthly_kwh),
     )
+    if lay.points.clear is not None:  # clear glazing lets the sun's beam in
+        from lightinv_core.kinds import Quantity
+        from lightinv_core.quantities import quantity_spec
+
+        ase = lay.points.band(quantity_spec(Quantity.ASE).hours, span)[:, 0]
+        out["ase1000_250"] = float(ase.mean())
     return out
 
 

@@ -37,9 +37,11 @@ def solve_text(out: dict) -> str:
         if "annual_error" in d:
             lines.append(f"  annual daylight not computed: {d['annual_error']}")
         else:
+            ase = f", ASE1000,250 {100 * d['ase1000_250']:.0f}%" if "ase1000_250" in d else ""
             lines.append(
                 f"  {d['site']}: DA300 mean {100 * d['da300_mean']:.0f}%, sDA300/50% "
-                f"{100 * d['sda300_50']:.0f}%, UDI 100-3000 {100 * d['udi_100_3000_mean']:.0f}%; "
+                f"{100 * d['sda300_50']:.0f}%, UDI 100-3000 {100 * d['udi_100_3000_mean']:.0f}%"
+                f"{ase}; "
                 f"dimmed lighting {d['energy_kwh']:.0f} kWh a year (full output "
                 f"{d['full_output_kwh']:.0f} kWh), LENI {d['leni_kwh_m2']:.2f} kWh/m² a"
             )

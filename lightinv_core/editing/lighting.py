@@ -5,6 +5,7 @@ layout (a running optimisation's best, without touching the design), and other s
 under the design's rules (a pinned result, for the difference view; its light is kept
 until its sources or the rules change, since the view asks on every edit).
 
+Fixed clear glazing adds its light in the design scenario (``light.clear_build``).
 Luminaire arrays add their light placed exactly (``light.arrays.arrays_field``: about
 a second for a room's arrays, so it is kept until the arrays change), and the design's
 work planes their grids: ``grid_lux`` and ``grid_stats`` are the values shown (EN
@@ -19,7 +20,9 @@ from dataclasses import replace
 import numpy as np
 
 from lightinv_core.design.model import Design, LuminaireArray, Source
+from lightinv_core.errors import LightInvError
 from lightinv_core.light.arrays import arrays_field
+from lightinv_core.light.clear_build import clear_light
 from lightinv_core.light.field import LightField
 from lightinv_core.light.grids import DesignGrids, design_grids
 from lightinv_core.light.model import LightModel
@@ -61,6 +64,11 @@ class ShownLight:
             self.field = replace(self.field, illuminance=self.field.illuminance + H)
             if self.grid_lux is not None:
                 self.grid_lux = self.grid_lux + at_points
+        clear = self._clear_light(design)
+        if clear is not None:
+            self.field = replace(self.field, illuminance=self.field.illuminance + clear[0])
+            if self.grid_lux is not None and clear[1] is not None:
+                self.grid_lux = self.grid_lux + clear[1]
         self.previewing = preview is not None
         self.last_eval_ms = 1e3 * (time.perf_counter() - t0)
         return self.field
@@ -73,6 +81,22 @@ class ShownLight:
             H, at_points = arrays_field(self.model.patches, self.model.op, arrays, points)
             self._arrays = (arrays, self.grids, H, at_points)
         return self._arrays[2], self._arrays[3]
+
+    def _clear_light(self, design: Design) -> tuple | None:
+        """The fixed clear glazing's light in the design scenario (the CIE overcast sky
+        of ``exterior_lux`` horizontal) on the patches and at the grid points, or None
+        (``light.clear_build``: built once per clear glazing, a few seconds). Without a
+        readable weather file (its sun is part of the build) the view goes without it:
+        the climate panel says why."""
+        try:
+            clear = clear_light(self.model, design)
+        except LightInvError:
+            return None
+        if clear is None:
+            return None
+        ext = design.daylight.exterior_lux
+        points = None if clear.points is None else ext * clear.points.overcast()
+        return ext * clear.patches.overcast(), points
 
     def grid_stats(self) -> dict[str, dict[str, float]]:
         """EN 12464-1 values (points, Em, Emin, Emax lux, U0) of each work plane shown."""
@@ -94,6 +118,9 @@ class ShownLight:
         if design.arrays:
             H, _ = self._arrays_light(design.arrays)
             field = replace(field, illuminance=field.illuminance + H)
+        clear = self._clear_light(design)
+        if clear is not None:
+            field = replace(field, illuminance=field.illuminance + clear[0])
         return field
 
     def of_sources(self, design: Design, sources) -> np.ndarray:

@@ -23,6 +23,8 @@ import numpy as np
 from lightinv_core.climate.metrics import lighting_kwh
 from lightinv_core.design.model import Daylight, Design, DesignError, Intention
 from lightinv_core.kinds import Quantity
+from lightinv_core.light.clear_build import clear_light
+from lightinv_core.light.clear_glazing import ClearLight
 from lightinv_core.light.daylight_year import (
     DaylightYear,
     SkyGroups,
@@ -39,7 +41,7 @@ from lightinv_core.light.intentions import (
 from lightinv_core.quantities import HourBand, quantity_spec
 from lightinv_core.scenarios import scenario_spec
 from lightinv_core.sources.emission import source_electric_power
-from lightinv_core.sources.types import daylit, source_type
+from lightinv_core.sources.types import diffusing, source_type
 
 SDA_SHARE = 0.5
 """A point counts towards sDA300/50% when its DA300 is at least this share."""
@@ -47,14 +49,17 @@ SDA_SHARE = 0.5
 
 @dataclass(frozen=True, eq=False)
 class ScenarioLight:
-    """Light of m layouts at R receivers: ``electric`` (R, m) lux from the luminaires and
-    ``sky`` (G, R, m) lux per exterior lux on each sky group's plane."""
+    """Light of m layouts at R receivers: ``electric`` (R, m) lux from the luminaires,
+    ``sky`` (G, R, m) lux per exterior lux on each sky group's plane (diffusing glazing)
+    and ``clear`` the fixed clear glazing's light there (``light.clear_glazing``; the
+    same for every layout), None without clear glazing."""
 
     daylight: Daylight
     groups: SkyGroups
     electric: np.ndarray
     sky: np.ndarray
     _year: list = field(default_factory=list, repr=False)
+    clear: ClearLight | None = None
 
     def year(self) -> DaylightYear:
         """The weather year of the sky groups (read once, see ``daylight_year``)."""
@@ -71,9 +76,43 @@ class ScenarioLight:
 
     def overcast_daylight(self, idx=slice(None)) -> np.ndarray:
         """Daylight per horizontal exterior lux under the CIE overcast sky (DF / 100)."""
-        if not self.groups.count:
-            return np.zeros_like(self.electric[idx])
-        return np.tensordot(self.groups.overcast, self.sky[:, idx], axes=1)
+        out = np.zeros(self.electric[idx].shape)
+        if self.groups.count:
+            out = out + np.tensordot(self.groups.overcast, self.sky[:, idx], axes=1)
+        if self.clear is not None:
+            out = out + self.clear.overcast(idx)[:, None]
+        return out
+
+    def design_daylight(self, idx=slice(None)) -> np.ndarray:
+        """(R', m) daylight (lux) of the ``design`` scenario: every diffusing skylight at
+        ``exterior_lux`` on its outside, clear glazing under the CIE overcast sky of
+        ``exterior_lux`` horizontal."""
+        ext = self.daylight.exterior_lux
+        out = ext * self.sky[:, idx].sum(axis=0)
+        if self.clear is not None:
+            out = out + ext * self.clear.overcast(idx)[:, None]
+        return out
+
+    @property
+    def daylit(self) -> bool:
+        """Whether any daylight reaches the receivers (a sky group or clear glazing)."""
+        return bool(self.groups.count) or self.clear is not None
+
+    def hour_daylight(self, hour: int) -> np.ndarray:
+        """(R,) daylight (lux) of the first layout in hour ``hour`` of the weather file."""
+        y = self.year()
+        day = np.zeros(self.electric.shape[0])
+        if self.groups.count:
+            day = day + np.tensordot(y.every[:, hour], self.sky[:, :, 0], axes=1)
+        if self.clear is not None:
+            day = day + self.clear.lux(slice(None), [hour])[:, 0]
+        return day
+
+    def clear_hours(self, idx=slice(None)) -> np.ndarray | None:
+        """(R', T) the clear glazing's daylight (lux) in the occupied hours, or None."""
+        if self.clear is None:
+            return None
+        return self.clear.hours(idx, np.asarray(self.year().occupied))
 
     def coefficients(self, idx=slice(None)) -> np.ndarray:
         """(R', m, G): daylight per exterior lux on each group, at receivers idx."""
@@ -82,9 +121,28 @@ class ScenarioLight:
     def band(self, band: HourBand, idx=slice(None)) -> np.ndarray:
         """An annual daylight metric's values (``quantities.HourBand``) at receivers idx,
         (R', m): the share of occupied hours in the band, or its 0/1 point mark."""
+        if self.clear is not None:
+            return self._clear_band(band, idx)
         if not self.groups.count:
-            return np.zeros_like(self.electric[idx])
+            return np.zeros(self.electric[idx].shape)
         return band_values(self.year(), self.coefficients(idx), band)
+
+    def _clear_band(self, band: HourBand, idx) -> np.ndarray:
+        """``band`` with the clear glazing's light: its own (the same for every layout)
+        when it is the only daylight or the band reads the direct sun, else hour by
+        hour with the diffusing groups' light added."""
+        year = self.year()
+        mask = np.asarray(year.occupied)
+        m = self.electric.shape[1]
+        if band.direct_sun or not self.groups.count:
+            own = self.clear.band(band, idx, mask)
+            return np.repeat(own[:, None], m, axis=1)
+        fixed = self.clear.hours(idx, mask)
+        a = self.coefficients(idx)  # (R', m, G)
+        out = np.empty(a.shape[:2])
+        for r in range(a.shape[0]):
+            out[r] = band.of_hours(a[r] @ year.exterior + fixed[r])
+        return out
 
     def da(self, idx=slice(None)) -> np.ndarray:
         """DA300 (share of occupied hours, 0-1) at receivers idx, (R', m)."""
@@ -133,7 +191,9 @@ def annual_energy(
     full = float(light.electric[grid_idx, 0].mean())
     # Without skylights there are no sky groups: b is empty and the daylight zero.
     b = light.sky[:, grid_idx, 0].mean(axis=1)
-    levels = dimming_levels(y, b, full, d.target_lux, d.min_level)
+    clear = light.clear_hours(grid_idx)
+    fixed = None if clear is None else clear.mean(axis=0)
+    levels = dimming_levels(y, b, full, d.target_lux, d.min_level, fixed)
     hours_year = y.every.shape[1]
     energy = lighting_kwh(installed_w, levels.sum(), d.standby_w, hours_year)
     full_kwh = lighting_kwh(installed_w, y.hours, d.standby_w, hours_year)
@@ -208,10 +268,8 @@ class LayoutDaylight:
         y = p.year()
         if not 0 <= hour < y.every.shape[1]:
             raise DesignError(f"hour {hour} is outside the year (0-{y.every.shape[1] - 1})")
-        E = y.every[:, hour]
-        day = np.tensordot(E, p.sky[:, :, 0], axes=1) if p.groups.count else 0.0
         level = self.level_at(hour)
-        return p.electric[:, 0] * level + day
+        return p.electric[:, 0] * level + p.hour_daylight(hour)
 
     def level_at(self, hour: int) -> float:
         """The luminaires' dimming level (0-1) in hour ``hour``: 0 when unoccupied."""
@@ -227,6 +285,8 @@ class LayoutDaylight:
         if self.points.groups.count:
             b = self.points.sky[:, span, 0].mean(axis=1)
             day = float(b @ y.every[:, hour])
+        if self.points.clear is not None:
+            day += float(self.points.clear.lux(span, [hour])[:, 0].mean())
         return float(np.clip((d.target_lux - day) / max(full, 1e-9), d.min_level, 1.0))
 
 
@@ -251,10 +311,17 @@ def layout_daylight(light, design: Design, sources=None, arrays=None) -> LayoutD
     sky = np.zeros((groups.count, light.n))
     per_group = []
     for g, zones in enumerate(groups.zones):
-        group = tuple(s for s in daylit(sources) if s.zone in zones)
+        group = tuple(s for s in diffusing(sources) if s.zone in zones)
         per_group.append(group)
         sky[g] = light.field(group, unit).illuminance
-    at_patches = ScenarioLight(design.daylight, groups, electric[:, None], sky[:, :, None])
+    clear = clear_light(light, design)
+    at_patches = ScenarioLight(
+        design.daylight,
+        groups,
+        electric[:, None],
+        sky[:, :, None],
+        clear=None if clear is None else clear.patches,
+    )
     at_points = None
     if grids is not None:
         e_pts = grid_light(light, grids, lum, arrays, design.daylight)
@@ -262,7 +329,12 @@ def layout_daylight(light, design: Design, sources=None, arrays=None) -> LayoutD
         for g, grp in enumerate(per_group):
             s_pts[g] = grid_light(light, grids, grp, (), unit)
         at_points = ScenarioLight(
-            design.daylight, groups, e_pts[:, None], s_pts[:, :, None], at_patches._year
+            design.daylight,
+            groups,
+            e_pts[:, None],
+            s_pts[:, :, None],
+            at_patches._year,
+            None if clear is None else clear.points,
         )
     watts = float(sum(source_electric_power(s) for s in lum))
     for a in arrays:

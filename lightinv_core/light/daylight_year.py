@@ -28,7 +28,7 @@ import numpy as np
 from lightinv_core.climate.metrics import dimming_level
 from lightinv_core.climate.sky import overcast_plane_illuminance
 from lightinv_core.design.model import Daylight, Design
-from lightinv_core.sources.types import daylit
+from lightinv_core.sources.types import diffusing
 
 MAX_CACHED_YEARS = 4
 
@@ -54,7 +54,7 @@ class SkyGroups:
 def sky_groups(light, design: Design) -> SkyGroups:
     """The sky groups of ``design``'s skylight sources on ``light``'s scene (a
     ``LightModel``)."""
-    zones = sorted({s.zone for s in daylit(design.sources)})
+    zones = sorted({s.zone for s in diffusing(design.sources)})
     keys: dict[tuple, list[str]] = {}
     normals: dict[tuple, np.ndarray] = {}
     for z in zones:
@@ -229,7 +229,12 @@ def band_values(year: DaylightYear, a: np.ndarray, band) -> np.ndarray:
     """An annual daylight metric (a ``quantities.HourBand``) at receivers of coefficients
     ``a`` (..., G): the share of occupied hours with ``band.lo`` <= daylight <=
     ``band.hi``, or, with ``band.point_share``, 1.0 where at least that share counts
-    and 0.0 elsewhere; shape a.shape[:-1]."""
+    and 0.0 elsewhere; shape a.shape[:-1]. Diffusing glazing lets no direct sun in, so a
+    ``direct_sun`` band (ASE) is 0, and a band of another kind is counted hour by hour."""
+    if band.direct_sun:
+        return np.zeros(np.shape(a)[:-1])
+    if band.above or band.point_hours is not None:
+        return _count_band(year, np.asarray(a, dtype=float), band)
     if band.point_share is not None and band.hi == np.inf:
         return reaches_share(year, a, band.lo, band.point_share).astype(float)
     if band.hi == np.inf:
@@ -241,19 +246,44 @@ def band_values(year: DaylightYear, a: np.ndarray, band) -> np.ndarray:
     return hours / year.hours
 
 
+def _count_band(year: DaylightYear, a: np.ndarray, band) -> np.ndarray:
+    """``band.of_hours`` of the daylight of coefficients ``a`` (..., G), hour by hour."""
+    flat = a.reshape(-1, a.shape[-1])
+    out = np.empty(len(flat))
+    for i in range(0, len(flat), 256):
+        out[i : i + 256] = band.of_hours(flat[i : i + 256] @ year.exterior)
+    return out.reshape(a.shape[:-1])
+
+
 def dimming_sum(
-    year: DaylightYear, b: np.ndarray, full: np.ndarray, target: float, min_level: float
+    year: DaylightYear,
+    b: np.ndarray,
+    full: np.ndarray,
+    target: float,
+    min_level: float,
+    fixed: np.ndarray | None = None,
 ) -> np.ndarray:
-    """Sum over the occupied hours of the dimming level clip((target - b.E(t)) / full,
-    min_level, 1) for m candidates: ``b`` (m, G) the control plane's mean daylight per
-    exterior lux, ``full`` (m,) its mean electric lux at full output (> 0)."""
+    """Sum over the occupied hours of the dimming level clip((target - b.E(t) -
+    fixed(t)) / full, min_level, 1) for m candidates: ``b`` (m, G) the control plane's
+    mean daylight per exterior lux, ``full`` (m,) its mean electric lux at full output
+    (> 0), ``fixed`` (T,) lux of daylight the same for every candidate (clear glazing)."""
     b = np.atleast_2d(np.asarray(b, dtype=float))
     A = np.maximum(np.asarray(full, dtype=float), 1e-9)
-    if year.sorted is None:
+    if fixed is not None and b.shape[1] == 0:
+        # Only fixed daylight: one sorted year, as for one sky group with b = 1.
+        s = np.sort(np.asarray(fixed, dtype=float))
+        S = np.concatenate([[0.0], np.cumsum(s)])
+        return _sorted_sum(s, S, len(s), np.ones(len(A)), A, target, min_level)
+    if year.sorted is None or fixed is not None:
         day = b @ year.exterior
+        if fixed is not None:
+            day = day + fixed
         return dimming_level(day, A[:, None], target, min_level).sum(axis=1)
-    s, S, T = year.sorted, year.prefix, year.hours
-    b0 = b[:, 0]
+    return _sorted_sum(year.sorted, year.prefix, year.hours, b[:, 0], A, target, min_level)
+
+
+def _sorted_sum(s, S, T, b0, A, target: float, min_level: float) -> np.ndarray:
+    """The dimming sum over T hours of exterior lux ``s`` sorted (prefix sums ``S``)."""
     # level 1 while E <= e1, min_level once E >= e2, (target - b E) / A between.
     flat = b0 <= 0
     safe = np.where(flat, 1.0, b0)
@@ -270,8 +300,16 @@ def dimming_sum(
 
 
 def dimming_levels(
-    year: DaylightYear, b: np.ndarray, full: float, target: float, min_level: float
+    year: DaylightYear,
+    b: np.ndarray,
+    full: float,
+    target: float,
+    min_level: float,
+    fixed: np.ndarray | None = None,
 ) -> np.ndarray:
-    """The dimming level (0-1) of one layout in each occupied hour: ``b`` (G,)."""
+    """The dimming level (0-1) of one layout in each occupied hour: ``b`` (G,), with
+    ``fixed`` (T,) lux of clear glazing's daylight."""
     day = np.asarray(b, dtype=float) @ year.exterior
+    if fixed is not None:
+        day = day + fixed
     return dimming_level(day, max(float(full), 1e-9), target, min_level)

@@ -20,6 +20,7 @@ from lightinv_core.design.model import Design
 from lightinv_core.design.variables import ArrayLayout, Variables
 from lightinv_core.kinds import Scenario
 from lightinv_core.light.arrays import ArrayLight, arrays_field
+from lightinv_core.light.clear_glazing import stacked
 from lightinv_core.light.daylight import ScenarioLight
 from lightinv_core.light.grids import DesignGrids
 from lightinv_core.light.model import LightModel
@@ -78,6 +79,7 @@ class CandidateLight:
     def __init__(self, problem: LightSource, year_box: list):
         self.problem = problem
         self._year_box = year_box  # the weather year, read at the first annual use
+        self._clear_at: dict = {}  # the clear glazing's light per level
         types = source_types()
         self._electric = tuple(str(t.kind) for t in types if t.electric)
         self._daylit = tuple(str(t.kind) for t in types if t.daylit)
@@ -176,8 +178,17 @@ class CandidateLight:
                 Vg = np.zeros_like(V_sky)
                 Vg[on] = V_sky[on]
             sky[g] = p.light.illuminance(Vg, level.receivers, on)
-        parts = ScenarioLight(d.daylight, p.sky, lux, sky, self._year_box)
+        parts = ScenarioLight(d.daylight, p.sky, lux, sky, self._year_box, self._clear(level))
         return Lit(V, by_kind, cols, parts.lux(Scenario.DESIGN), parts)
+
+    def _clear(self, level: Level):
+        """The fixed clear glazing's light at the level's receivers (None without)."""
+        clear = getattr(self.problem, "clear", None)
+        if clear is None:
+            return None
+        if level.divisor not in self._clear_at:
+            self._clear_at[level.divisor] = stacked(clear.patches, level.rows, clear.points)
+        return self._clear_at[level.divisor]
 
     def judged(self, x: np.ndarray, lv: Level) -> Lit:
         """The light of layout x at level ``lv``'s receivers, its arrays placed exactly

@@ -158,7 +158,9 @@ class DesignGoals:
         full = parts.electric[idx].mean(axis=0)
         # Without skylights there are no sky groups: b is (m, 0) and the daylight zero.
         b = parts.sky[:, idx].mean(axis=1).T
-        levels = dimming_sum(year, b, full, d.target_lux, d.min_level)
+        clear = parts.clear_hours(idx)  # fixed clear glazing's daylight, (points, T)
+        fixed = None if clear is None else clear.mean(axis=0)
+        levels = dimming_sum(year, b, full, d.target_lux, d.min_level, fixed)
         energy = lighting_kwh(watts, levels, d.standby_w, year.every.shape[1])
         sda = parts.sda_mark(idx).mean(axis=0)
         return energy, sda

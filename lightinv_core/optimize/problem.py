@@ -41,6 +41,7 @@ from lightinv_core.design.variables import ArrayLayout, Variables
 from lightinv_core.goals import goal_names, goal_spec
 from lightinv_core.kinds import GoalKind, Scenario
 from lightinv_core.light.arrays import ArrayLight, array_light, array_shapes, resolve_product
+from lightinv_core.light.clear_build import clear_light
 from lightinv_core.light.daylight_year import sky_groups
 from lightinv_core.light.grids import DesignGrids, design_grids
 from lightinv_core.light.intentions import FEASIBILITY_TOL, intention_patches
@@ -177,6 +178,9 @@ class DesignProblem:
         self.split = self.annual_goals or any(
             it.scenario != Scenario.DESIGN for it in design.intentions
         )
+        # Clear glazing is fixed: its light is computed once, added to every candidate's.
+        self.clear = clear_light(light, design)
+        self.split = self.split or self.clear is not None
         self.sky = sky_groups(light, design) if self.split else None
         plane = design.control_plane
         self.control = None if plane is None or self.grids is None else self.grids.spans[plane.name]

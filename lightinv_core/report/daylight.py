@@ -158,8 +158,14 @@ def daylight_section(lay: LayoutDaylight, skylights=()) -> DaylightSection:
             da = pts.da(span)[:, 0]
             a = pts.coefficients(span)[:, 0, :]
             lo, mid, hi = UDI_BANDS
-            at_lo, at_mid = hours_from(year, a, lo), hours_from(year, a, mid)
-            useful = hours_within(year, a, mid, hi)
+            clear = pts.clear_hours(span)
+            if clear is None:
+                at_lo, at_mid = hours_from(year, a, lo), hours_from(year, a, mid)
+                useful = hours_within(year, a, mid, hi)
+            else:  # clear glazing's light hour by hour (light/clear_glazing.py)
+                lux = a @ year.exterior + clear
+                at_lo, at_mid = (lux >= lo).sum(1), (lux >= mid).sum(1)
+                useful = ((lux >= mid) & (lux <= hi)).sum(1)
             counts = np.stack([year.hours - at_lo, at_lo - at_mid, useful, at_mid - useful], 1)
             udi = counts / year.hours
         planes.append(

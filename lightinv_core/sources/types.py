@@ -25,7 +25,7 @@ import numpy as np
 
 from lightinv_core.design.model import Daylight, Source
 from lightinv_core.errors import DesignError
-from lightinv_core.kinds import SourceKind, add_source_kind, remove_source_kind
+from lightinv_core.kinds import GlazingKind, SourceKind, add_source_kind, remove_source_kind
 
 CEILING = "ceiling"
 """A surface whose front faces down into the room: a ceiling, or a roof pitched up to
@@ -153,7 +153,8 @@ class ZoneLuminaire:
 
 class DiffusingGlazing:
     """A skylight: diffusing glazing passing filter x transmittance of the exterior
-    diffuse illuminance (lux) as a Lambertian exitance."""
+    diffuse illuminance (lux) as a Lambertian exitance. With ``glazing`` clear it emits
+    no exitance: its light is the sky and sun by direction (``light.clear_glazing``)."""
 
     kind = SourceKind.SKYLIGHT
     label = "Skylight"
@@ -162,10 +163,12 @@ class DiffusingGlazing:
     daylit = True
     strength = "filter"
     strength_label = "Filter"
-    fields = ("filter",)
+    fields = ("filter", "glazing")
     placement = OVERHEAD
 
     def exitance(self, s, rect, flux, filt, daylight):
+        if s.glazing == GlazingKind.CLEAR:
+            return np.zeros(len(rect))
         return filt * daylight.transmittance * daylight.exterior_lux
 
     def largest_exitance(self, s, zone, daylight):
@@ -183,8 +186,8 @@ class DiffusingGlazing:
 
 class WindowGlazing(DiffusingGlazing):
     """A window: diffusing glazing on any planar face, a wall's included. Its light is
-    the sky and ground on its own plane (the sky groups), as a skylight's is; clear
-    glass, which passes a view of the sky, is not modelled (docs/daylight.md)."""
+    the sky and ground on its own plane (the sky groups), as a skylight's is; with
+    ``glazing`` clear, the sky and sun by direction (``light.clear_glazing``)."""
 
     kind = SourceKind.WINDOW
     label = "Window (glazing)"
@@ -233,6 +236,11 @@ def source_types() -> tuple[SourceType, ...]:
 def daylit(sources) -> tuple:
     """The sources that let daylight in (skylights and other glazing), in order."""
     return tuple(s for s in sources if source_type(s.kind).daylit)
+
+
+def diffusing(sources) -> tuple:
+    """The daylit sources whose glazing glows (not clear: ``light.clear_glazing``)."""
+    return tuple(s for s in daylit(sources) if getattr(s, "glazing", None) != GlazingKind.CLEAR)
 
 
 def electric(sources) -> tuple:

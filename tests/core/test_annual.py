@@ -211,7 +211,7 @@ def test_cli_annual_daylight_and_dimming(tmp_path, capsys, monkeypatch):
     assert d["installed_w"] == pytest.approx(120.0) and 0 < d["energy_kwh"] < d["undimmed_kwh"]
     assert d["leni_kwh_m2"] == pytest.approx(d["energy_kwh"] / 96.0)
     header = (tmp_path / "g.csv").read_text().splitlines()[0]
-    assert header == "x,y,z,lux,da300,udi_n,udi_s,udi_a,udi_x,da,udi,sda"
+    assert header == "x,y,z,lux,da300,udi_n,udi_s,udi_a,udi_x,da,udi,sda,ase"
     grid = np.loadtxt(tmp_path / "g.csv", delimiter=",", skiprows=1)
     assert np.array_equal(grid[:, 4], grid[:, 9])  # DA300 by its band and by the registry
     assert np.allclose(grid[:, 10], grid[:, 6] + grid[:, 7])  # UDI 100-3000 = UDI-s + UDI-a

@@ -51,7 +51,7 @@ def test_the_fast_band_equals_the_hourly_definition(groups, band):
 
 def test_the_built_in_annual_metrics_and_their_shortcuts():
     names = [str(q.name) for q in annual_metrics()]
-    assert names == ["da", "udi", "sda"]
+    assert names == ["da", "udi", "sda", "ase"]
     light, hourly = _light(1)
     assert np.array_equal(light.da(), light.band(quantity_spec("da").hours))
     assert np.array_equal(light.udi(), light.band(quantity_spec("udi").hours))

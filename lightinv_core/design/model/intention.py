@@ -65,7 +65,8 @@ class Intention:
             "illuminance (lux) or reflected exitance C (lm/m²) in the scenario; or a "
             "daylight metric: daylight factor `df` (%), DA300 `da` and UDI 100-3000 `udi` "
             "(fractions of the occupied hours), `sda` (1 where DA300 >= 50%: its average "
-            "is sDA300/50%)",
+            "is sDA300/50%), `ase` (1 where clear glazing's direct sun exceeds 1000 lux "
+            "in more than 250 occupied hours: its average is ASE1000,250)",
             always=True,
         ),
     )

@@ -28,9 +28,11 @@ from lightinv_core.fields import (
     choice_of,
     declare,
 )
-from lightinv_core.kinds import MAX_LUX, SourceKind, VariableName, source_kind_names
+from lightinv_core.kinds import MAX_LUX, GlazingKind, SourceKind, VariableName, source_kind_names
 
 SOURCE_KINDS = tuple(str(k) for k in SourceKind)
+GLAZING_KINDS = tuple(str(k) for k in GlazingKind)
+"""How a daylit source's glazing passes daylight: ``diffusing`` (a glow) or ``clear``."""
 """The built-in source kinds as plain strings (``kinds.source_kind_names()`` adds the
 registered ones)."""
 VARIABLES = tuple(str(v) for v in VariableName)
@@ -106,6 +108,14 @@ class Source:
         default=1.0,
         metadata=declare(Number(lo=0.0, hi=1.0), "fraction of the glazed daylight let in"),
     )
+    glazing: GlazingKind = field(
+        default=GlazingKind.DIFFUSING,
+        metadata=declare(
+            Choice(lambda: GLAZING_KINDS, GlazingKind),
+            '`"diffusing"` (a Lambertian glow) or `"clear"` (the sky and sun by direction, '
+            "fixed: docs/daylight.md)",
+        ),
+    )
 
     def __post_init__(self) -> None:
         where = f"source {self.name!r}" if isinstance(self.name, str) else "a source"
@@ -117,6 +127,13 @@ class Source:
         lo, hi = self.flux_range
         if not lo < hi:
             raise DesignError(f"{where}: flux range must satisfy 0 <= min < max")
+        if self.glazing == GlazingKind.CLEAR and self.free:
+            # Its light is computed once per design (sky and sun by direction), so it
+            # must stay as drawn: the optimiser moves only luminaires and diffusing glazing.
+            raise DesignError(
+                f"{where}: clear glazing is fixed (its shape and filter are not optimised "
+                f"yet): free nothing, or make it diffusing (free: {', '.join(self.free)})"
+            )
 
     @property
     def u_range(self) -> tuple[float, float]:

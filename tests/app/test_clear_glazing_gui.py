@@ -1,0 +1,59 @@
+"""Clear glazing chosen in the window (issue #30, docs/daylight.md "Clear glazing in a
+project"), by clicks at 1366 x 768: the integrated office opened by File > Open
+project..., its skylight S1 picked in the design tree, Properties > Source > Glazing
+set to clear (which frees nothing: clear glazing is fixed), then Edit > Undo by its
+keys. The light it gives is checked in tests/core/test_clear_design.py."""
+
+from __future__ import annotations
+
+import shutil
+from pathlib import Path
+
+from PySide6 import QtCore, QtWidgets
+
+from app.dialogs import ask
+from tests.app import user as u
+from tests.app.conftest import wait_for_operator
+from tests.app.test_dialog_buttons import menu_action
+
+PROJECT = Path(__file__).resolve().parents[2] / "resources" / "projects" / "office-integrated.json"
+SHOTS = Path("/tmp/shots-cleardesign")
+
+
+def test_a_skylight_made_clear_by_clicks(qtbot, window, monkeypatch, tmp_path):
+    path = tmp_path / "office.json"
+    shutil.copy(PROJECT, path)
+    monkeypatch.setattr(ask, "open_file", lambda *a, **k: str(path))
+    menu_action(window, "File/Open project...").trigger()
+    wait_for_operator(qtbot, window, timeout=120_000)
+    window.resize(1366, 768)
+    window.activateWindow()
+    QtWidgets.QApplication.processEvents()
+    d = window.doc
+    assert d.design.source("S1").free  # the demo's skylight is free
+
+    u.click_tree(window.tree, "S1")
+    u.tab(window, "Properties")
+    u.tab(window, "Source")
+    props = window.findChild(QtWidgets.QDockWidget, "properties")
+    glazing = u.reveal(u.field(props, "Glazing"))
+    assert glazing.currentText().startswith("diffusing")
+    u.choose(glazing, "clear")
+    s = d.design.source("S1")
+    assert s.glazing == "clear" and s.free == ()
+    place = [b for b in props.findChildren(QtWidgets.QCheckBox) if b.text() == "position and size"]
+    assert place and not place[0].isEnabled() and not place[0].isChecked()
+    shot = u.screenshot(window, SHOTS, "source-panel-clear")
+    assert shot.exists()
+
+    # A luminaire has no glazing: the row is hidden for it.
+    u.click_tree(window.tree, "L1")
+    assert not u.shown(glazing)
+
+    # Edit > Undo (its keys): the skylight diffusing and free again.
+    u.click_tree(window.tree, "S1")
+    u.press(window, QtCore.Qt.Key_Z, QtCore.Qt.ControlModifier)
+    QtWidgets.QApplication.processEvents()
+    s = d.design.source("S1")
+    assert s.glazing == "diffusing" and s.free
+    assert glazing.currentText().startswith("diffusing")
