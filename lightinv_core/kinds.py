@@ -83,6 +83,7 @@ class Quantity(Kind):
     DA = "da"  # daylight autonomy DA300: share of occupied hours with >= 300 lux daylight
     UDI = "udi"  # useful daylight: share of occupied hours with 100-3000 lux daylight
     SDA = "sda"  # 1 where DA300 >= 50%, else 0: its average is sDA300/50%
+    UGR = "ugr"  # CIE 117 unified glare rating at the design's observers (luminaires only)
 
 
 MAX_LUX = 1e6

@@ -34,13 +34,15 @@ class Lit:
     ``by_kind`` its parts by source kind, ``cols`` the zone columns any candidate emits
     from; ``H`` (receivers, m) lux in the design scenario (None when no receiver is
     read) and, for designs judged in other scenarios, ``parts``: the electric sources'
-    light and each sky group's daylight per exterior lux (``light/daylight.py``)."""
+    light and each sky group's daylight per exterior lux (``light/daylight.py``);
+    ``layout`` the candidates' luminaire arrays (None without), for their glare."""
 
     V: np.ndarray
     by_kind: dict
     cols: np.ndarray
     H: np.ndarray | None
     parts: ScenarioLight | None = None
+    layout: ArrayLayout | None = None
 
 
 class LightSource(Protocol):
@@ -110,7 +112,7 @@ class CandidateLight:
         H = None
         if self.needs_field(level):
             H = self._receiver_light(V, cols, level, lay, arrays_H)
-        return Lit(V, by_kind, cols, H)
+        return Lit(V, by_kind, cols, H, layout=lay)
 
     def needs_field(self, level: Level) -> bool:
         """Whether anything reads the lux at the level's receivers."""
@@ -161,7 +163,7 @@ class CandidateLight:
         by_kind |= {k: ext * by_unit.get(k, V_sky) for k in daylit}
         cols = np.flatnonzero(np.any(V != 0, axis=1))
         if not self.needs_field(level):
-            return Lit(V, by_kind, cols, None)
+            return Lit(V, by_kind, cols, None, layout=lay)
         lum_cols = np.flatnonzero(np.any(V_lum != 0, axis=1))
         lux = self._receiver_light(V_lum, lum_cols, level, lay, arrays_H)
         if lux is None:
@@ -177,7 +179,7 @@ class CandidateLight:
                 Vg[on] = V_sky[on]
             sky[g] = p.light.illuminance(Vg, level.receivers, on)
         parts = ScenarioLight(d.daylight, p.sky, lux, sky, self._year_box)
-        return Lit(V, by_kind, cols, parts.lux(Scenario.DESIGN), parts)
+        return Lit(V, by_kind, cols, parts.lux(Scenario.DESIGN), parts, lay)
 
     def judged(self, x: np.ndarray, lv: Level) -> Lit:
         """The light of layout x at level ``lv``'s receivers, its arrays placed exactly
@@ -189,4 +191,5 @@ class CandidateLight:
         points = None if p.grids is None else p.grids.points
         Hp, Hq = arrays_field(p.patches, p.light.op, p.arrays_at(x), points)
         exact = np.concatenate([Hp[lv.rows], Hq])[:, None]
-        return self.of(rect, flux, filt, lv, None, arrays_H=exact)
+        lit = self.of(rect, flux, filt, lv, None, arrays_H=exact)
+        return replace(lit, layout=p.vars.decode_arrays(x[None]))
