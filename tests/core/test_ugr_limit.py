@@ -19,6 +19,7 @@ from types import SimpleNamespace
 import numpy as np
 import pytest
 
+from lightinv_core.cli.solve_text import solve_text
 from lightinv_core.design.model import (
     Design,
     DesignError,
@@ -55,6 +56,8 @@ from lightinv_core.optimize.settings import OptimizerSettings
 from lightinv_core.optimize.termination import StopRule
 from lightinv_core.project import project_from_dict, project_to_dict
 from lightinv_core.quantities import quantity_spec
+from lightinv_core.report.criteria import status_table
+from lightinv_core.report.tables import PASS
 from lightinv_core.scene.builtin import builtin_scene
 from lightinv_core.scene.patches import mesh_patches
 from lightinv_core.transport.receivers import receiver_factors
@@ -286,6 +289,25 @@ def test_the_optimiser_meets_a_ugr_bound_the_unbounded_optimum_breaks(problem, o
     values, _ = light.quantity(bounded_pb.design.intentions[1])
     assert np.allclose(values, [got["south"], got["west"]])
     assert bounded.objectives["min_electric_power"] >= free.objectives["min_electric_power"] - 1.0
+    table = status_table(bounded_pb.design, bounded, light, None)
+    rows = {r[0]: r for r in table.rows if r[1] == "UGR (CIE 117)"}
+    assert set(rows) == {"observer south (glare)", "observer west (glare)"}
+    for name in ("south", "west"):
+        row = rows[f"observer {name} (glare)"]
+        assert row[2:] == ("≤ 19", f"{got[name]:.1f}", PASS)
+
+
+def test_the_cli_text_prints_ugr_at_each_observer():
+    out = {
+        "project": "p",
+        "status": "feasible",
+        "method": "auto",
+        "evaluations": 10,
+        "seconds": 1.0,
+        "precompute_seconds": 0.1,
+        "ugr": {"desk": 18.94, "door": 12.0},
+    }
+    assert "  glare: UGR 18.9 at desk, 12.0 at door (CIE 117;" in solve_text(out)
 
 
 def test_a_ugr_violation_is_named_with_its_value(problem, office):
