@@ -107,8 +107,11 @@ class IntentionDialog(QtWidgets.QDialog):
             if value is not None:
                 box.setValue(value)
 
-    def intention(self, group: str | None = None, patches=None, grid=None) -> Intention:
-        """The intention described (DesignError if inconsistent, e.g. min above max)."""
+    def intention(
+        self, group: str | None = None, patches=None, grid=None, observers=None
+    ) -> Intention:
+        """The intention described (DesignError if inconsistent, e.g. min above max);
+        ``observers``: names of the design's observers (UGR)."""
         bounds = {k: box.value() for k, (check, box) in self.fields.items() if check.isChecked()}
         if not bounds:
             raise DesignError("tick at least one bound")
@@ -118,13 +121,17 @@ class IntentionDialog(QtWidgets.QDialog):
             patches=None if patches is None else tuple(int(i) for i in patches),
             quantity=self.quantity.currentData(),
             grid=grid,
+            observers=None if observers is None else tuple(observers),
             scenario=self.scenario.currentData(),
             **bounds,
         )
 
 
 def intention_target(it: Intention) -> str:
-    """What an intention bounds, in words: a group, picked patches, a work plane."""
+    """What an intention bounds, in words: a group, picked patches, a work plane, its
+    observers."""
     if it.grid is not None:
         return f"work plane {it.grid}"
+    if it.observers is not None:
+        return "observers " + ", ".join(it.observers)
     return it.group if it.group is not None else f"{len(it.patches)} picked patches"

@@ -173,6 +173,7 @@ class LayoutDaylight:
     floor_m2: float
     surface: object = None  # the scene's Patches
     observed: dict | None = None  # {observer: UGR} (``light/glare.py``), None without
+    observed_error: str = ""  # why the observers could not be rated (one outside the room)
 
     def quantity(self, intention: Intention) -> tuple[np.ndarray, np.ndarray]:
         """(values (R,), weights (R,)) of the intention's quantity in its scenario at its
@@ -180,7 +181,8 @@ class LayoutDaylight:
         the values at each eye (weight 1)."""
         if intention.observers is not None:
             if not self.observed:
-                raise DesignError(f"intention {intention.name!r}: no observers were rated")
+                why = self.observed_error or "no observers were rated"
+                raise DesignError(f"intention {intention.name!r}: {why}")
             q = np.array([self.observed[o] for o in intention.observers], dtype=float)
             return q, np.ones(len(q))
         if intention.grid is not None:
@@ -279,9 +281,12 @@ def layout_daylight(light, design: Design, sources=None, arrays=None) -> LayoutD
     floor = 0.0
     if plane is not None:
         floor = float(light.patches.area[light.patches.group_index(plane.group)].sum())
-    observed = None
+    observed, observed_error = None, ""
     if any(it.observers is not None for it in design.intentions):
-        observed = layout_glare(light, design, sources, arrays)
+        try:
+            observed = layout_glare(light, design, sources, arrays)
+        except DesignError as exc:  # the rest of the light stands; the glare says why
+            observed_error = str(exc)
     return LayoutDaylight(
         design,
         at_patches,
@@ -292,4 +297,5 @@ def layout_daylight(light, design: Design, sources=None, arrays=None) -> LayoutD
         floor,
         light.patches,
         observed,
+        observed_error,
     )

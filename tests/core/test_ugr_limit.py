@@ -319,3 +319,23 @@ def test_a_ugr_violation_is_named_with_its_value(problem, office):
     exact = layout_glare(office, d, (), pb.arrays_at(pb.vars.initial()))
     # Judged with the luminaires placed exactly; the background from the lattice blend.
     assert v[0].value == pytest.approx(max(exact.values()), abs=0.02)
+
+
+def test_the_editing_model_adds_and_removes_observers_with_their_limit():
+    from lightinv_core.editing.document import DocumentModel
+
+    doc = DocumentModel()
+    doc.set_project(
+        project_from_dict(json.loads((ROOT / "resources/projects/office-arrays.json").read_text()))
+    )
+    limit = Intention("glare desk", observers=("desk",), quantity="ugr", max=19.0)
+    doc.add_observer(Observer("desk", (6.0, 0.6), azimuth=90), limit)
+    doc.add_observer(Observer("door", (0.6, 4.0), azimuth=0))
+    doc.replace_intention("glare desk", replace(limit, observers=("desk", "door")))
+    assert [o.name for o in doc.design.observers] == ["desk", "door"]
+    with pytest.raises(DesignError, match="observer names must be unique"):
+        doc.add_observer(Observer("desk", (1.0, 1.0), azimuth=0))
+    doc.remove_observer("desk")  # the limit keeps the other eye
+    assert doc.design.intentions[-1].observers == ("door",)
+    doc.remove_observer("door")  # and goes with the last
+    assert not doc.design.observers and all(i.observers is None for i in doc.design.intentions)
