@@ -12,11 +12,11 @@ from lightinv_core.light.glare import observer_eyes
 
 COLOUR = "#ff4fa3"
 NAME = "observers"
-ARROW = 0.6  # m: the view arrow's length
+ARROW = 1.2  # m: the view arrow's length
 
 
 def observer_glyphs(patches, observers) -> pv.PolyData | None:
-    """A 0.1 m ball at each eye and an arrow ``ARROW`` m along its view."""
+    """A 0.15 m ball at each eye and an arrow ``ARROW`` m along its view."""
     blocks = []
     for ob in observers:
         try:
@@ -24,7 +24,7 @@ def observer_glyphs(patches, observers) -> pv.PolyData | None:
         except LightInvError:
             continue
         eye, view = eyes.points[0], eyes.views[0]
-        blocks.append(pv.Sphere(radius=0.1, center=eye))
+        blocks.append(pv.Sphere(radius=0.15, center=eye))
         blocks.append(
             pv.Arrow(
                 start=eye,

@@ -138,7 +138,7 @@ class DesignEdits(QtCore.QObject):
         if old is None:
             return False
         if dialog is None:
-            dialog = IntentionDialog(intention_target(old), self.win)
+            dialog = IntentionDialog(intention_target(old), self.win, old.observers is not None)
             dialog.load(old)
         if not ask.accepted(dialog):
             return False
@@ -182,6 +182,24 @@ class DesignEdits(QtCore.QObject):
         try:
             taken = {i.name for i in d.intentions}
             self.doc.add_observer(dialog.observer(), dialog.intention(taken))
+        except LightInvError as exc:
+            ask.warn(self.win, str(exc))
+            return False
+        return True
+
+    def add_glare_limit(self, dialog: IntentionDialog | None = None) -> bool:
+        """Ask for a UGR limit at every observer of the design (the intention dialog,
+        UGR chosen) and add it."""
+        names = [o.name for o in self.doc.design.observers] if self.doc.project else []
+        if not names:
+            ask.inform(self.win, "Add an observer first (Design > Add observer).")
+            return False
+        dialog = dialog or IntentionDialog("observers " + ", ".join(names), self.win, True)
+        dialog.name.setText("glare")
+        if not ask.accepted(dialog):
+            return False
+        try:
+            self.doc.add_intention(dialog.intention(observers=names))
         except LightInvError as exc:
             ask.warn(self.win, str(exc))
             return False
