@@ -206,6 +206,7 @@ class Glare:
         self.seen = np.unique(F.indices).astype(np.int64)
         self._index = {n: i for i, n in enumerate(self.eyes.names)}
         self._arrays: tuple | None = None
+        self._scale: tuple | None = None
 
     def anchor(self, intention: Intention) -> np.ndarray:
         """(1,) the patch the intention's eyes see most of: the one receiver a search
@@ -224,23 +225,47 @@ class Glare:
             self._arrays = (arrays.R, E)
         return self._arrays[1]
 
-    def sums(self, arrays: ArrayLight, layout: ArrayLayout) -> tuple[np.ndarray, np.ndarray]:
+    def _node_scale(self, arrays: ArrayLight) -> np.ndarray | None:
+        """(L,) 1 / the maintenance factor of each lattice node's array, so maintained
+        weights give the light as new; None when arrays of different maintenance
+        factors share a lattice (then the weights are made again, unmaintained)."""
+        if self._scale is None or self._scale[0] is not arrays:
+            scale = np.zeros(arrays.placements)
+            ok = True
+            for a, per in zip(arrays.arrays, arrays._lattice, strict=True):
+                for lat in per.values():
+                    nodes = slice(lat.start, lat.start + lat.nu * lat.nv)
+                    mf = 1.0 / a.maintenance_factor
+                    ok &= bool(np.all((scale[nodes] == 0) | np.isclose(scale[nodes], mf)))
+                    scale[nodes] = mf
+            self._scale = (arrays, scale if ok else None)
+        return self._scale[1]
+
+    def sums(
+        self, arrays: ArrayLight, layout: ArrayLayout, weights: np.ndarray | None = None
+    ) -> tuple[np.ndarray, np.ndarray]:
         """(glare sums, backgrounds Lb cd/m²), each (k, m), of the candidates' arrays
-        ``layout`` at every eye."""
+        ``layout`` at every eye; ``weights``: their maintained lattice weights, when
+        already made (the candidates' light made them)."""
         total = array_glare_sums(arrays, layout, self.eyes)
-        W = arrays.weights(layout, maintained=False).astype(float)
-        return total, (self._array_rows(arrays) @ W) / np.pi
+        rows = self._array_rows(arrays)
+        scale = self._node_scale(arrays) if weights is not None else None
+        if scale is not None:
+            indirect = (rows * scale) @ weights.astype(float)
+        else:
+            indirect = rows @ arrays.weights(layout, maintained=False).astype(float)
+        return total, indirect / np.pi
 
     def values(self, intention: Intention, lit, arrays: ArrayLight | None) -> np.ndarray:
         """The intention's quantity (UGR) at each of its observers, (k', m), for a
-        batch's light ``lit`` (``optimize.candidate_light.Lit``: its arrays' layout);
-        without arrays nothing glares (UGR_FLOOR)."""
+        batch's light ``lit`` (``optimize.candidate_light.Lit``: its arrays' layout and
+        lattice weights); without arrays nothing glares (UGR_FLOOR)."""
         layout = getattr(lit, "layout", None)
         idx = [self._index[o] for o in intention.observers]
         spec = quantity_spec(intention.quantity)
         if arrays is None or layout is None:
             return np.full((len(idx), lit.V.shape[1]), spec.from_glare(0.0, 1.0))
-        total, lb = self.sums(arrays, layout)
+        total, lb = self.sums(arrays, layout, getattr(lit, "weights", None))
         return spec.from_glare(total[idx], lb[idx])
 
 

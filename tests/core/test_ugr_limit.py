@@ -199,6 +199,10 @@ def test_in_loop_ugr_equals_the_cie117_function_luminaire_by_luminaire(problem):
                 assert abs(float(spec.from_glare(total[i, c], lb[i, c])) - want) < 1e-6
                 checked += 1
     assert checked >= 8
+    # The background from the search's own (maintained) lattice weights, rescaled per
+    # node to the light as new, equals the one from unmaintained weights.
+    _, lb2 = problem.glare.sums(problem.arrays, lay, problem.arrays.weights(lay))
+    assert np.allclose(lb2, lb, rtol=1e-6)
     # Rotated a quarter turn (C0 along the zone's u axis): the same agreement.
     turned = replace(lay, rotation=np.zeros_like(lay.rotation))
     t2 = array_glare_sums(problem.arrays, turned, eyes)
