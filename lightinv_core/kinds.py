@@ -84,6 +84,7 @@ class Quantity(Kind):
     UDI = "udi"  # useful daylight: share of occupied hours with 100-3000 lux daylight
     SDA = "sda"  # 1 where DA300 >= 50%, else 0: its average is sDA300/50%
     ASE = "ase"  # 1 where direct sun > 1000 lux in > 250 occupied hours: ASE1000,250
+    UGR = "ugr"  # CIE 117 unified glare rating at the design's observers (luminaires only)
 
 
 MAX_LUX = 1e6

@@ -82,6 +82,10 @@ class QuantitySpec:
     ``from_lux(lux, rho)``: a light quantity from illuminance (and the receivers'
     reflectance when ``needs_reflectance``: not on work-plane grid points).
     ``uniformity``: U0 = min / mean means something (the report shows it).
+    ``at_observers``: measured at the design's observers, not at patches or grid points
+    (an intention on it names ``observers`` and sets ``max`` only); ``from_glare(total,
+    background)``: its value from the glare sum ``sum L² omega / p²`` (cd²/m⁴ sr) and
+    the background luminance (cd/m²) at each eye, arrays broadcast like numpy.
     """
 
     name: str
@@ -101,6 +105,8 @@ class QuantitySpec:
     from_lux: Callable[[Any, Any], Any] | None = None
     needs_reflectance: bool = False
     uniformity: bool = True
+    at_observers: bool = False
+    from_glare: Callable[[Any, Any], Any] | None = None
 
     @property
     def daylight(self) -> bool:
@@ -162,6 +168,20 @@ def annual_metrics() -> tuple[QuantitySpec, ...]:
 def quantity_kind(name: str) -> Quantity | str:
     """The ``Quantity`` member of a built-in name, the name itself for a registered one."""
     return Quantity(name) if name in tuple(Quantity) else str(name)
+
+
+UGR_FLOOR = 0.0
+"""The least UGR a layout reads: a luminaire out of view (a glare sum of 0) gives -inf,
+read as this (CIE 117's scale runs from 10, no glare, to 30)."""
+
+
+def _ugr(total, background):
+    """CIE 117: UGR = 8 log10(0.25 / Lb * total), floored at ``UGR_FLOOR``."""
+    t = np.asarray(total, dtype=float)
+    lb = np.maximum(np.asarray(background, dtype=float), 1e-12)
+    with np.errstate(divide="ignore"):
+        u = 8.0 * np.log10(0.25 * t / lb)
+    return np.maximum(u, UGR_FLOOR)
 
 
 _FRACTION = (0.0, 1.0)
@@ -254,6 +274,21 @@ for _spec in (
         scenario=Scenario.ANNUAL,
         hours=HourBand(1000.0, direct_sun=True, above=True, point_hours=250),
         uniformity=False,
+    ),
+    QuantitySpec(
+        Quantity.UGR,
+        "unified glare rating",
+        "unified glare rating UGR (CIE 117) at observers",
+        "",
+        "UGR, CIE 117's scale",
+        0.0,
+        40.0,
+        1,
+        (10.0, 19.0, 16.0, 0.0),
+        metric="UGR",
+        uniformity=False,
+        at_observers=True,
+        from_glare=_ugr,
     ),
 ):
     register_quantity(_spec)

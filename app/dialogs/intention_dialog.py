@@ -28,7 +28,9 @@ class IntentionDialog(QtWidgets.QDialog):
     """Name, quantity, scenario and bounds of a lighting intention on a group, the
     selection or a work plane."""
 
-    def __init__(self, target: str, parent: QtWidgets.QWidget | None = None):
+    def __init__(
+        self, target: str, parent: QtWidgets.QWidget | None = None, at_observers: bool = False
+    ):
         super().__init__(parent)
         self.setWindowTitle(f"Lighting intention on {target}")
         form = QtWidgets.QFormLayout(self)
@@ -37,6 +39,13 @@ class IntentionDialog(QtWidgets.QDialog):
         self.quantity = QtWidgets.QComboBox()
         for q in quantity_specs():
             self.quantity.addItem(q.label, str(q.name))
+        # UGR is judged at observers, the other quantities at patches or grid points:
+        # the list offers what the target takes.
+        for row, q in enumerate(quantity_specs()):
+            self.quantity.model().item(row).setEnabled(q.at_observers == at_observers)
+        if at_observers:
+            first = next(r for r, q in enumerate(quantity_specs()) if q.at_observers)
+            self.quantity.setCurrentIndex(first)
         form.addRow("Quantity", self.quantity)
         self.scenario = QtWidgets.QComboBox()
         for sc in scenario_specs():
@@ -69,7 +78,8 @@ class IntentionDialog(QtWidgets.QDialog):
             self.scenario.setCurrentIndex(self.scenario.findData(str(forced)))
         elif self._last_metric():  # leave the scenario the metric had fixed
             self.scenario.setCurrentIndex(self.scenario.findData(str(Scenario.DESIGN)))
-        self.scenario.setEnabled(forced is None)
+        # UGR rates the luminaires alone, whatever the scenario (light/glare.py).
+        self.scenario.setEnabled(forced is None and not q.at_observers)
         self._metric = forced is not None
         decimals, top, defaults = q.decimals, q.high, q.defaults
         for key, value in zip(("min", "max", "average"), defaults, strict=False):
@@ -80,6 +90,8 @@ class IntentionDialog(QtWidgets.QDialog):
         self.fields["uniformity"][1].setValue(defaults[3])
         if q.average_only:  # sDA is the average of a 0/1 mark: only that bound tells
             self.set_values(min=None, max=None, uniformity=None, average=defaults[2])
+        if q.at_observers:  # UGR is bounded from above only
+            self.set_values(min=None, average=None, uniformity=None, max=defaults[1])
 
     def _last_metric(self) -> bool:
         return getattr(self, "_metric", False)
@@ -107,8 +119,11 @@ class IntentionDialog(QtWidgets.QDialog):
             if value is not None:
                 box.setValue(value)
 
-    def intention(self, group: str | None = None, patches=None, grid=None) -> Intention:
-        """The intention described (DesignError if inconsistent, e.g. min above max)."""
+    def intention(
+        self, group: str | None = None, patches=None, grid=None, observers=None
+    ) -> Intention:
+        """The intention described (DesignError if inconsistent, e.g. min above max);
+        ``observers``: names of the design's observers (UGR)."""
         bounds = {k: box.value() for k, (check, box) in self.fields.items() if check.isChecked()}
         if not bounds:
             raise DesignError("tick at least one bound")
@@ -118,13 +133,17 @@ class IntentionDialog(QtWidgets.QDialog):
             patches=None if patches is None else tuple(int(i) for i in patches),
             quantity=self.quantity.currentData(),
             grid=grid,
+            observers=None if observers is None else tuple(observers),
             scenario=self.scenario.currentData(),
             **bounds,
         )
 
 
 def intention_target(it: Intention) -> str:
-    """What an intention bounds, in words: a group, picked patches, a work plane."""
+    """What an intention bounds, in words: a group, picked patches, a work plane, its
+    observers."""
     if it.grid is not None:
         return f"work plane {it.grid}"
+    if it.observers is not None:
+        return "observers " + ", ".join(it.observers)
     return it.group if it.group is not None else f"{len(it.patches)} picked patches"

@@ -104,6 +104,14 @@ class DesignTree(QtWidgets.QTreeWidget):
             for w in d.design.workplanes:
                 about = f"{w.height:g} m over {w.group}, border {w.border:g} m, {w.edition}"
                 QtWidgets.QTreeWidgetItem(planes, [w.name, about])
+        if d.design.observers:
+            eyes = QtWidgets.QTreeWidgetItem(self, ["Observers", str(len(d.design.observers))])
+            for o in d.design.observers:
+                view = f"azimuth {o.azimuth:g}°" if o.azimuth is not None else "direction"
+                QtWidgets.QTreeWidgetItem(
+                    eyes,
+                    [o.name, f"({o.position[0]:g}, {o.position[1]:g}), eye {o.height:g} m, {view}"],
+                )
         rules_item = QtWidgets.QTreeWidgetItem(self, ["Rules", str(len(d.design.rules))])
         for k, rule in enumerate(d.design.rules):
             what, bounds = rule_text(rule)

@@ -164,6 +164,14 @@ def design_menu(win, bar: QtWidgets.QMenuBar) -> None:
         design.addAction(act)
     win.act_add_rule = action(win, "Add a geometric &rule...", lambda _=False: win.edits.add_rule())
     design.addAction(win.act_add_rule)
+    win.act_add_observer = action(
+        win, "Add &observer (glare, UGR)...", lambda _=False: win.edits.add_observer()
+    )
+    design.addAction(win.act_add_observer)
+    win.act_glare_limit = action(
+        win, "Add UGR &limit at the observers...", lambda _=False: win.edits.add_glare_limit()
+    )
+    design.addAction(win.act_glare_limit)
     # Two goals make a Pareto front: both power goals, or annual energy and glazing area.
     # Every registered goal is offered; one the design cannot take (a match without a
     # target lighting) is refused with the model's reason.

@@ -17,6 +17,7 @@ from PySide6 import QtCore
 
 from app.dialogs import ask
 from app.dialogs.intention_dialog import IntentionDialog, intention_target
+from app.dialogs.observer_dialog import ObserverDialog
 from app.dialogs.rule_dialog import RuleDialog
 from app.dialogs.zone_dialog import ZoneDialog
 from app.view.zone_frame import ZoneFrame
@@ -137,12 +138,14 @@ class DesignEdits(QtCore.QObject):
         if old is None:
             return False
         if dialog is None:
-            dialog = IntentionDialog(intention_target(old), self.win)
+            dialog = IntentionDialog(intention_target(old), self.win, old.observers is not None)
             dialog.load(old)
         if not ask.accepted(dialog):
             return False
         try:
-            new = dialog.intention(group=old.group, patches=old.patches, grid=old.grid)
+            new = dialog.intention(
+                group=old.group, patches=old.patches, grid=old.grid, observers=old.observers
+            )
             self.doc.replace_intention(name, replace(new, weight=old.weight))
         except LightInvError as exc:
             ask.warn(self.win, str(exc))
@@ -155,6 +158,53 @@ class DesignEdits(QtCore.QObject):
         self._say(f"Deleted intention {name} (Edit > Undo to restore)", 6000)
 
     # -- rules and goals -----------------------------------------------------------------------
+    def add_observer(self, dialog: ObserverDialog | None = None) -> bool:
+        """Ask for an observer (an eye the glare rating is judged from) and, ticked, a
+        UGR limit at it; add both."""
+        if self.doc.project is None:
+            return False
+        d = self.doc.design
+        if dialog is None:
+            patches = self.doc.patches
+            centre = (0.0, 0.0)
+            if patches is not None:
+                lo, hi = patches.centroid.min(axis=0), patches.centroid.max(axis=0)
+                centre = (round(float(lo[0] + hi[0]) / 2, 2), round(float(lo[1] + 0.1), 2))
+            groups = list(patches.group_names) if patches is not None else ["floor"]
+            name = next(
+                f"observer {k}"
+                for k in range(1, 999)
+                if f"observer {k}" not in {o.name for o in d.observers}
+            )
+            dialog = ObserverDialog(groups, name, centre, self.win)
+        if not ask.accepted(dialog):
+            return False
+        try:
+            taken = {i.name for i in d.intentions}
+            self.doc.add_observer(dialog.observer(), dialog.intention(taken))
+        except LightInvError as exc:
+            ask.warn(self.win, str(exc))
+            return False
+        return True
+
+    def add_glare_limit(self, dialog: IntentionDialog | None = None) -> bool:
+        """Ask for a UGR limit at every observer of the design (the intention dialog,
+        UGR chosen) and add it."""
+        names = [o.name for o in self.doc.design.observers] if self.doc.project else []
+        if not names:
+            ask.inform(self.win, "Add an observer first (Design > Add observer).")
+            return False
+        dialog = dialog or IntentionDialog("observers " + ", ".join(names), self.win, True)
+        dialog.name.setText("glare")
+        if not ask.accepted(dialog):
+            return False
+        try:
+            self.doc.add_intention(dialog.intention(observers=names))
+        except LightInvError as exc:
+            ask.warn(self.win, str(exc))
+            return False
+        return True
+
     def add_rule(self, dialog: RuleDialog | None = None) -> bool:
         """Ask for a geometric rule (area, aspect, spacing, align; spacing-to-height and
         clearance on luminaire arrays) and add it."""

@@ -15,6 +15,7 @@ from lightinv_core.cli.solve_text import solve_text
 from lightinv_core.design.model import Design
 from lightinv_core.design.solution import Solution
 from lightinv_core.errors import LightInvError
+from lightinv_core.light.glare import layout_glare
 from lightinv_core.light.model import LightModel
 from lightinv_core.sources.types import daylit
 from lightinv_core.study import SolutionLight, solution_light
@@ -151,6 +152,8 @@ def cmd_solve(args) -> int:
             summary["workplanes"] = light.grid_stats
             if daylit(best.sources):
                 summary["daylight"] = daylight_summary(prepared.light, project.design, best)
+        if project.design.observers and any(i.observers for i in project.design.intentions):
+            summary["ugr"] = layout_glare(prepared.light, project.design, best.sources, best.arrays)
     if result.pareto is not None:
         summary["pareto"] = [
             _solution_summary(s, project.design.daylight) for s in result.pareto.solutions

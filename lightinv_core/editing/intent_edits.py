@@ -10,7 +10,7 @@ from __future__ import annotations
 from dataclasses import replace
 
 from lightinv_core.climate.weather import Weather
-from lightinv_core.design.model import Intention
+from lightinv_core.design.model import Intention, Observer
 from lightinv_core.editing import rules
 from lightinv_core.editing.climate import weather_of
 from lightinv_core.editing.state import DocumentState
@@ -69,6 +69,32 @@ class IntentEdits(DocumentState):
             daylight = replace(daylight, workplane=None)  # dimming reads the first again
         self._set_design(
             replace(self.design, workplanes=workplanes, intentions=its, daylight=daylight), label
+        )
+
+    # -- observers (glare) ----------------------------------------------------------------------
+    def add_observer(self, observer: Observer, intention: Intention | None = None) -> None:
+        """Append an observer and, given, an intention at it (one undo step; DesignError
+        if a name is taken). Where it stands is checked against the room when the
+        design's light is shown or solved."""
+        its = self.design.intentions + ((intention,) if intention is not None else ())
+        self._set_design(
+            replace(self.design, observers=(*self.design.observers, observer), intentions=its),
+            f"add observer {observer.name}",
+        )
+
+    def remove_observer(self, name: str) -> None:
+        """Delete an observer; an intention at it names the others, or goes with it."""
+        its = []
+        for it in self.design.intentions:
+            if it.observers is not None and name in it.observers:
+                left = tuple(o for o in it.observers if o != name)
+                if not left:
+                    continue
+                it = replace(it, observers=left)
+            its.append(it)
+        obs = tuple(o for o in self.design.observers if o.name != name)
+        self._set_design(
+            replace(self.design, observers=obs, intentions=tuple(its)), f"remove observer {name}"
         )
 
     # -- daylight and climate -------------------------------------------------------------------

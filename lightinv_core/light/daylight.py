@@ -232,10 +232,19 @@ class LayoutDaylight:
     control: str | None
     floor_m2: float
     surface: object = None  # the scene's Patches
+    observed: dict | None = None  # {observer: UGR} (``light/glare.py``), None without
+    observed_error: str = ""  # why the observers could not be rated (one outside the room)
 
     def quantity(self, intention: Intention) -> tuple[np.ndarray, np.ndarray]:
         """(values (R,), weights (R,)) of the intention's quantity in its scenario at its
-        receivers: grid points (weight 1) or patches (weight = area, m²)."""
+        receivers: grid points (weight 1) or patches (weight = area, m²); at observers
+        the values at each eye (weight 1)."""
+        if intention.observers is not None:
+            if not self.observed:
+                why = self.observed_error or "no observers were rated"
+                raise DesignError(f"intention {intention.name!r}: {why}")
+            q = np.array([self.observed[o] for o in intention.observers], dtype=float)
+            return q, np.ones(len(q))
         if intention.grid is not None:
             if self.points is None or intention.grid not in self.grids.spans:
                 raise DesignError(f"intention {intention.name!r}: no work plane {intention.grid!r}")
@@ -296,6 +305,7 @@ def layout_daylight(light, design: Design, sources=None, arrays=None) -> LayoutD
     design's work planes."""
     from lightinv_core.light.arrays import arrays_field, resolve_product
     from lightinv_core.light.daylight_year import sky_groups
+    from lightinv_core.light.glare import layout_glare
     from lightinv_core.light.grids import design_grids, grid_light
 
     sources = light.layout(design) if sources is None else tuple(sources)
@@ -343,6 +353,12 @@ def layout_daylight(light, design: Design, sources=None, arrays=None) -> LayoutD
     floor = 0.0
     if plane is not None:
         floor = float(light.patches.area[light.patches.group_index(plane.group)].sum())
+    observed, observed_error = None, ""
+    if any(it.observers is not None for it in design.intentions):
+        try:
+            observed = layout_glare(light, design, sources, arrays)
+        except DesignError as exc:  # the rest of the light stands; the glare says why
+            observed_error = str(exc)
     return LayoutDaylight(
         design,
         at_patches,
@@ -352,4 +368,6 @@ def layout_daylight(light, design: Design, sources=None, arrays=None) -> LayoutD
         None if plane is None else plane.name,
         floor,
         light.patches,
+        observed,
+        observed_error,
     )

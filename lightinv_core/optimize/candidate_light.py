@@ -35,13 +35,18 @@ class Lit:
     ``by_kind`` its parts by source kind, ``cols`` the zone columns any candidate emits
     from; ``H`` (receivers, m) lux in the design scenario (None when no receiver is
     read) and, for designs judged in other scenarios, ``parts``: the electric sources'
-    light and each sky group's daylight per exterior lux (``light/daylight.py``)."""
+    light and each sky group's daylight per exterior lux (``light/daylight.py``);
+    ``layout`` the candidates' luminaire arrays (None without), for their glare, and
+    ``weights`` their lattice weights (maintained, ``ArrayLight.weights``) when lit
+    from the lattice."""
 
     V: np.ndarray
     by_kind: dict
     cols: np.ndarray
     H: np.ndarray | None
     parts: ScenarioLight | None = None
+    layout: ArrayLayout | None = None
+    weights: np.ndarray | None = None
 
 
 class LightSource(Protocol):
@@ -83,6 +88,7 @@ class CandidateLight:
         types = source_types()
         self._electric = tuple(str(t.kind) for t in types if t.electric)
         self._daylit = tuple(str(t.kind) for t in types if t.daylit)
+        self._weights: tuple = (None, None)  # (layout, its lattice weights): the last made
 
     def of(
         self,
@@ -112,7 +118,7 @@ class CandidateLight:
         H = None
         if self.needs_field(level):
             H = self._receiver_light(V, cols, level, lay, arrays_H)
-        return Lit(V, by_kind, cols, H)
+        return Lit(V, by_kind, cols, H, layout=lay, weights=self._weights_of(lay))
 
     def needs_field(self, level: Level) -> bool:
         """Whether anything reads the lux at the level's receivers."""
@@ -135,11 +141,17 @@ class CandidateLight:
         if len(cols) or not (blend or arrays_H is not None):
             H = self.problem.light.illuminance(V, level.receivers, cols)
         if blend:
-            lit = level.arrays_R @ self.problem.arrays.weights(lay)
+            W = self.problem.arrays.weights(lay)
+            self._weights = (lay, W)
+            lit = level.arrays_R @ W
             H = lit if H is None else H + lit
         elif arrays_H is not None:
             H = arrays_H if H is None else H + arrays_H
         return H
+
+    def _weights_of(self, lay) -> np.ndarray | None:
+        """The lattice weights last made, if for ``lay`` (the glare reuses them)."""
+        return self._weights[1] if lay is not None and self._weights[0] is lay else None
 
     def _split(self, rect, flux, filt, level: Level, lay, arrays_H) -> Lit:
         """``of`` for designs judged in several scenarios: the electric sources' light
@@ -163,7 +175,7 @@ class CandidateLight:
         by_kind |= {k: ext * by_unit.get(k, V_sky) for k in daylit}
         cols = np.flatnonzero(np.any(V != 0, axis=1))
         if not self.needs_field(level):
-            return Lit(V, by_kind, cols, None)
+            return Lit(V, by_kind, cols, None, layout=lay)
         lum_cols = np.flatnonzero(np.any(V_lum != 0, axis=1))
         lux = self._receiver_light(V_lum, lum_cols, level, lay, arrays_H)
         if lux is None:
@@ -179,7 +191,8 @@ class CandidateLight:
                 Vg[on] = V_sky[on]
             sky[g] = p.light.illuminance(Vg, level.receivers, on)
         parts = ScenarioLight(d.daylight, p.sky, lux, sky, self._year_box, self._clear(level))
-        return Lit(V, by_kind, cols, parts.lux(Scenario.DESIGN), parts)
+        W = self._weights_of(lay)
+        return Lit(V, by_kind, cols, parts.lux(Scenario.DESIGN), parts, lay, W)
 
     def _clear(self, level: Level):
         """The fixed clear glazing's light at the level's receivers (None without)."""
@@ -200,4 +213,5 @@ class CandidateLight:
         points = None if p.grids is None else p.grids.points
         Hp, Hq = arrays_field(p.patches, p.light.op, p.arrays_at(x), points)
         exact = np.concatenate([Hp[lv.rows], Hq])[:, None]
-        return self.of(rect, flux, filt, lv, None, arrays_H=exact)
+        lit = self.of(rect, flux, filt, lv, None, arrays_H=exact)
+        return replace(lit, layout=p.vars.decode_arrays(x[None]))

@@ -70,8 +70,11 @@ class Judge:
     """The constraints of one design (its rules, intentions and ``epsilon`` bounds, pairs
     (goal kind, bound)) and how candidates meet them."""
 
-    def __init__(self, design: Design, light: LightModel, epsilon: tuple):
+    def __init__(self, design: Design, light: LightModel, epsilon: tuple, glare=None):
         self.design, self.light, self.epsilon = design, light, epsilon
+        # glare(intention, lit) -> (observers, m): the quantity at an intention's
+        # observers (UGR, ``light/glare.py``); None when no intention names observers.
+        self.glare = glare
         rules = rule_names(design)
         self.n_rules = len(rules)
         cols = [Constraint("geometry", n, "", 0.0) for n in rules]
@@ -88,6 +91,10 @@ class Judge:
         rho = self.light.op.rho
         for i, it in enumerate(self.design.intentions):
             pos = level.intent_pos[i]
+            if it.observers is not None:  # at eyes, not at the level's receivers
+                q = self.glare(it, lit)
+                out += bound_checks(it, intention_stats(q, np.ones(len(q))))
+                continue
             # Grid points have no reflectance: they take illuminance and daylight metrics.
             r = None if it.grid is not None else rho[level.rows[pos]]
             if lit.parts is not None:

@@ -43,6 +43,7 @@ from lightinv_core.kinds import GoalKind, Scenario
 from lightinv_core.light.arrays import ArrayLight, array_light, array_shapes, resolve_product
 from lightinv_core.light.clear_build import clear_light
 from lightinv_core.light.daylight_year import sky_groups
+from lightinv_core.light.glare import Glare
 from lightinv_core.light.grids import DesignGrids, design_grids
 from lightinv_core.light.intentions import FEASIBILITY_TOL, intention_patches
 from lightinv_core.light.model import LightModel
@@ -160,9 +161,17 @@ class DesignProblem:
         self.grids: DesignGrids | None = (
             design_grids(light, design.workplanes) if design.workplanes else None
         )
-        # Grid intentions read points, not patches: no patch set.
+        # Glare at the design's observers (UGR intentions, ``light/glare.py``).
+        self.glare = Glare(light, design) if any(i.observers for i in design.intentions) else None
+        # Grid intentions read points, not patches: no patch set. An intention at
+        # observers is read at its eyes (``Glare``): a level keeps one receiver for it,
+        # the patch its eyes see most of (unread).
         self.intent_sets = [
-            None if i.grid is not None else intention_patches(i, self.patches)
+            None
+            if i.grid is not None
+            else self.glare.anchor(i)
+            if i.observers is not None
+            else intention_patches(i, self.patches)
             for i in design.intentions
         ]
         self._arrays: ArrayLight | None = None
@@ -194,7 +203,8 @@ class DesignProblem:
         self.goals = DesignGoals(self, self.epsilon)
         self.primary, self.objectives = self.goals.primary, self.goals.objectives
         self.scales = self.goals.scales
-        self.judge = Judge(design, light, self.epsilon)
+        glare = None if self.glare is None else self._glare_values
+        self.judge = Judge(design, light, self.epsilon, glare)
         self.constraints: tuple[Constraint, ...] = self.judge.constraints
         self._year_box: list = []  # the weather year, read at the first annual use
         self.lighting = CandidateLight(self, self._year_box)
@@ -203,6 +213,8 @@ class DesignProblem:
     def _patch_rows(self) -> np.ndarray:
         """Every patch any level may read: the patch intentions' (and the match goal's)."""
         sets = [s for s in self.intent_sets if s is not None]
+        if self.glare is not None:  # the arrays' light where the eyes look: the background
+            sets.append(self.glare.seen)
         if any(g.kind == GoalKind.MATCH for g in self.design.goals):
             sets.append(np.arange(self.patches.n))
         return np.unique(np.concatenate(sets)) if sets else np.zeros(0, np.int64)
@@ -223,6 +235,10 @@ class DesignProblem:
                 cancel,
             )
         return self._arrays
+
+    def _glare_values(self, intention, lit: Lit) -> np.ndarray:
+        """UGR (observers, m) at an intention's observers for a batch's light."""
+        return self.glare.values(intention, lit, self.arrays)
 
     def layout_of(self, X: np.ndarray) -> ArrayLayout | None:
         """The luminaire arrays of candidates X (None without arrays)."""

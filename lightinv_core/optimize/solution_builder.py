@@ -87,7 +87,7 @@ def offending_patches(problem: JudgedProblem, x: np.ndarray) -> list[tuple[str, 
     ``LightField.offending_patches``). Empty when a geometric rule fails."""
     x = np.asarray(x, dtype=float)
     design = problem.design
-    patch_intentions = [it for it in design.intentions if it.grid is None]
+    patch_intentions = [it for it in design.intentions if it.grid is None and it.observers is None]
     if not patch_intentions or np.any(problem.rule_violations(x[None]) > 0):
         return []
     field = problem.light.field(problem.sources_at(x), design.daylight)

@@ -47,6 +47,7 @@ from lightinv_core.project.specs import (
     DAYLIGHT,
     GOAL,
     INTENTION,
+    OBSERVER,
     RULE,
     SOURCE,
     WORKPLANE,
@@ -54,6 +55,7 @@ from lightinv_core.project.specs import (
     read_daylight,
     read_goals,
     read_intentions,
+    read_observers,
     read_rules,
     read_sources,
     read_workplanes,
@@ -198,6 +200,15 @@ TOP = ObjectSpec(
             many=True,
         ),
         Field(
+            "observers",
+            read_observers,
+            (),
+            "list",
+            _see("observers", "observers") + ": eyes the glare rating (UGR) is judged from",
+            of=OBSERVER,
+            many=True,
+        ),
+        Field(
             "rules",
             read_rules,
             (),
@@ -259,6 +270,7 @@ FILE_SPECS = (
     SOURCE,
     ARRAY,
     WORKPLANE,
+    OBSERVER,
     RULE,
     INTENTION,
     GOAL,
@@ -285,6 +297,7 @@ def project_from_values(values: Mapping[str, Any]) -> Project:
             values["penalty_power"],
             values["arrays"],
             values["workplanes"],
+            values["observers"],
         )
     results = values["results"] or {}
     return Project(
@@ -318,6 +331,7 @@ def project_values(p: Project) -> dict[str, Any]:
         "target_sources": d.target_sources,
         "arrays": d.arrays,
         "workplanes": d.workplanes,
+        "observers": d.observers,
         "rules": d.rules,
         "intentions": d.intentions,
         "goals": d.goals,

@@ -20,6 +20,7 @@ from lightinv_core.design.model import (
     DAYLIGHT_FIELDS,
     GOAL_FIELDS,
     INTENTION_FIELDS,
+    OBSERVER_FIELDS,
     RULE_FIELDS,
     SOURCE_FIELDS,
     WORKPLANE_FIELDS,
@@ -27,6 +28,7 @@ from lightinv_core.design.model import (
     Goal,
     Intention,
     LuminaireArray,
+    Observer,
     Rule,
     Source,
     Workplane,
@@ -46,6 +48,7 @@ GOAL = GOAL_FIELDS
 DAYLIGHT = DAYLIGHT_FIELDS
 ARRAY = ARRAY_FIELDS
 WORKPLANE = WORKPLANE_FIELDS
+OBSERVER = OBSERVER_FIELDS
 
 
 def _source(v: Any, path: str) -> Source:
@@ -68,6 +71,11 @@ def read_arrays(v: Any, path: str) -> tuple[LuminaireArray, ...]:
 def read_workplanes(v: Any, path: str) -> tuple[Workplane, ...]:
     """The work planes listed at ``path``, names unique."""
     return _unique_names(_list(v, path, partial(WORKPLANE.build, Workplane), "work planes"), path)
+
+
+def read_observers(v: Any, path: str) -> tuple[Observer, ...]:
+    """The observers listed at ``path``, names unique."""
+    return _unique_names(_list(v, path, partial(OBSERVER.build, Observer), "observers"), path)
 
 
 def _unique_names(items: tuple, path: str) -> tuple:

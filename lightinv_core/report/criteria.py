@@ -25,6 +25,7 @@ from lightinv_core.light.daylight import LayoutDaylight
 from lightinv_core.light.intentions import bounds_set
 from lightinv_core.luminaires.rendering import product_ra
 from lightinv_core.quantities import quantity_spec
+from lightinv_core.report.glare import observer_rows
 from lightinv_core.report.tables import FAIL, PASS, Table
 from lightinv_core.value_text import bound_value, fmt
 
@@ -163,6 +164,11 @@ def status_table(
             where = f"{it.name} ({'every surface' if it.group == '*' else 'group ' + it.group})"
         if it.weight == 0:
             where += ", not optimised"
+        if it.observers is not None:  # one row per eye (report/glare.py)
+            for row in observer_rows(it, solution, daylight):
+                rows.append(row)
+                flags.append(_flag(row[-1]))
+            continue
         for crit, req, got, res in intention_rows(it, solution, daylight):
             rows.append((where, crit, req, got, res))
             flags.append(_flag(res))

@@ -312,7 +312,7 @@ def _measured(
     it, field: LightField, daylight: LayoutDaylight | None, problems: dict[str, list[str]]
 ):
     """(where, stats or None, [(bound, limit, BoundCheck or None)]) of one intention."""
-    design_patch = it.grid is None and it.scenario == Scenario.DESIGN
+    design_patch = it.grid is None and it.observers is None and it.scenario == Scenario.DESIGN
     stats, checks = None, None
     if design_patch:
         res = field.intention(it)
@@ -323,6 +323,8 @@ def _measured(
             span = daylight.grids.spans.get(it.grid) if daylight.grids is not None else None
             n = "?" if span is None else str(len(daylight.grids.points[span]))
             where = f"grid {it.grid} ({n} points)"
+        elif it.observers is not None:
+            where = "observers " + ", ".join(it.observers)
         else:
             picked = f"{len(set(it.patches or ()))} picked"
             where = {None: picked, "*": "all"}.get(it.group, it.group)

@@ -106,6 +106,9 @@ VALID: dict = {
         }
     ],
     "workplanes": [{"name": "wp", "height": 0.8, "border": 0.5, "group": "floor"}],
+    "observers": [
+        {"name": "desk", "position": [2.0, 1.0], "height": 1.2, "azimuth": 90.0, "group": "floor"}
+    ],
     "rules": [
         {"kind": "area", "sources": ["S1"], "min": 1, "max": 4},
         {"kind": "aspect", "sources": ["S1", "S2"], "max": 3},
@@ -426,7 +429,7 @@ def _set(path: str, value):
 
 
 DELETE = object()
-KNOWN_SOURCE = "known: name, zone, kind, rect, free, flux, exitance, flux_range, efficacy, filter"
+KNOWN_SOURCE = "known: name, zone, kind, rect, free, flux, exitance, flux_range, efficacy, filter, glazing"
 
 ERRORS = [
     # top level and schema
@@ -579,7 +582,7 @@ ERRORS = [
     (
         _set("intentions[0].quantity", "cd"),
         "intentions[0].quantity: expected one of 'lux', 'C', 'df', 'da', 'udi', 'sda', "
-        "got string 'cd'",
+        "'ase', 'ugr', got string 'cd'",
     ),
     (_set("rules[2].axis", "x"), "rules[2].axis: expected one of 'u', 'v', got string 'x'"),
     (_set("results.pareto.objectives[0]", "cost"), "results.pareto.objectives[0]: expected one of"),
@@ -632,8 +635,8 @@ ERRORS = [
     ),
     (
         _set("intentions[1].group", "desks"),
-        "intentions[1]: intention 'picked': give one of a group, a list of patches or a "
-        "work-plane grid",
+        "intentions[1]: intention 'picked': give one of a group, a list of patches, a "
+        "work-plane grid or observers",
     ),
     (
         _set("intentions[0].max", 400),
@@ -682,7 +685,7 @@ ERRORS = [
     (_set("sources[0].free[1]", "u0"), "sources[0].free[1]: 'u0' is listed twice"),
     (
         _set("sources[0].efficacy", 80),
-        "sources[0].efficacy: only luminaires have this (a skylight's own fields: filter)",
+        "sources[0].efficacy: only luminaires have this (a skylight's own fields: filter, glazing)",
     ),
     (
         _set("sources[3].filter", 0.5),

@@ -1,5 +1,5 @@
 """The inverse design problem as data: sources, geometric rules, lighting intentions,
-luminaire arrays, work planes, daylight and goals, each a frozen dataclass that declares
+luminaire arrays, work planes, observers, daylight and goals, each a frozen dataclass that declares
 its project-file fields once.
 
 Every field is declared in its class with ``fields.declare``: its typed check (which
@@ -41,6 +41,7 @@ from lightinv_core.design.model.daylight import (
 from lightinv_core.design.model.design import Design
 from lightinv_core.design.model.goal import GOAL_FIELDS, GOALS, Goal
 from lightinv_core.design.model.intention import INTENTION_FIELDS, MAX_PATCH_ID, Intention
+from lightinv_core.design.model.observer import OBSERVER_FIELDS, SEATED_EYE, Observer
 from lightinv_core.design.model.rule import (
     ARRAY_RULES,
     AXES,
@@ -77,10 +78,12 @@ __all__ = [
     "MAX_PATCH_ID",
     "MAX_WATTS",
     "NEW_ARRAY_FREE",
+    "OBSERVER_FIELDS",
     "ROTATIONS",
     "RULE_FIELDS",
     "RULE_SOURCES",
     "RULE_TAKES",
+    "SEATED_EYE",
     "SOURCE_FIELDS",
     "SOURCE_KINDS",
     "VARIABLES",
@@ -91,6 +94,7 @@ __all__ = [
     "Goal",
     "Intention",
     "LuminaireArray",
+    "Observer",
     "Rule",
     "Source",
     "Workplane",

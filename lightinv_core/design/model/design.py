@@ -1,6 +1,6 @@
 """A complete inverse problem on one scene: the design's objects and the checks that
-span them (unique names, rules naming sources that exist, goals that need a work plane
-or target sources)."""
+span them (unique names, rules naming sources that exist, intentions naming work planes
+and observers that exist, goals that need a work plane or target sources)."""
 
 from __future__ import annotations
 
@@ -11,6 +11,7 @@ from lightinv_core.design.model.array import LuminaireArray
 from lightinv_core.design.model.daylight import Daylight, Workplane
 from lightinv_core.design.model.goal import Goal
 from lightinv_core.design.model.intention import Intention
+from lightinv_core.design.model.observer import Observer
 from lightinv_core.design.model.rule import ARRAY_RULES, Rule
 from lightinv_core.design.model.source import Source
 from lightinv_core.errors import DesignError
@@ -43,6 +44,7 @@ class Design:
     penalty_power: int = 2
     arrays: tuple[LuminaireArray, ...] = ()
     workplanes: tuple[Workplane, ...] = ()
+    observers: tuple[Observer, ...] = ()
 
     def __post_init__(self) -> None:
         for name, cls in (
@@ -53,6 +55,7 @@ class Design:
             ("target_sources", Source),
             ("arrays", LuminaireArray),
             ("workplanes", Workplane),
+            ("observers", Observer),
         ):
             items = _items(getattr(self, name), "design", name)
             bad = [x for x in items if not isinstance(x, cls)]
@@ -74,6 +77,7 @@ class Design:
             ("source", names),
             ("source or array", names + array_names),
             ("work plane", [w.name for w in self.workplanes]),
+            ("observer", [o.name for o in self.observers]),
             ("target source", [s.name for s in self.target_sources]),
             ("intention", [i.name for i in self.intentions]),
             ("goal", [g.kind for g in self.goals]),
@@ -105,6 +109,14 @@ class Design:
                 raise DesignError(
                     f"intention {it.name!r}: no work plane {it.grid!r} "
                     f"(work planes: {sorted(planes) or 'none'})"
+                )
+        eyes = {o.name for o in self.observers}
+        for it in self.intentions:
+            missing = [o for o in it.observers or () if o not in eyes]
+            if missing:
+                raise DesignError(
+                    f"intention {it.name!r}: no observer {missing[0]!r} "
+                    f"(observers: {sorted(eyes) or 'none'})"
                 )
         if self.daylight.workplane is not None and self.daylight.workplane not in planes:
             raise DesignError(

@@ -58,6 +58,15 @@ class Intention:
             nullable=True,
         ),
     )
+    observers: tuple[str, ...] | None = field(
+        default=None,
+        metadata=declare(
+            ListOf(String(), "observer names", 1, unique=True, name="list of observer names"),
+            "the design's observers (at least one): UGR (`quantity` `ugr`) at each eye; "
+            "this, `group`, `patches` or `grid`",
+            nullable=True,
+        ),
+    )
     quantity: Quantity = field(
         default=Quantity.LUX,
         metadata=declare(
@@ -66,7 +75,8 @@ class Intention:
             "daylight metric: daylight factor `df` (%), DA300 `da` and UDI 100-3000 `udi` "
             "(fractions of the occupied hours), `sda` (1 where DA300 >= 50%: its average "
             "is sDA300/50%), `ase` (1 where clear glazing's direct sun exceeds 1000 lux "
-            "in more than 250 occupied hours: its average is ASE1000,250)",
+            "in more than 250 occupied hours: its average is ASE1000,250); or the glare "
+            "rating `ugr` (CIE 117) at `observers`",
             always=True,
         ),
     )
@@ -112,10 +122,25 @@ class Intention:
                 f"{where}: the {self.scenario} scenario bounds a daylight metric: quantity "
                 f"{_either(its)}"
             )
-        if sum(x is not None for x in (self.group, self.patches, self.grid)) != 1:
+        targets = (self.group, self.patches, self.grid, self.observers)
+        if sum(x is not None for x in targets) != 1:
             raise DesignError(
-                f"{where}: give one of a group, a list of patches or a work-plane grid"
+                f"{where}: give one of a group, a list of patches, a work-plane grid or observers"
             )
+        if spec.at_observers and self.observers is None:
+            raise DesignError(
+                f"{where}: {spec.noun} is measured at observers: give `observers` (names "
+                "of the design's observers), not a group, patches or a grid"
+            )
+        if self.observers is not None and not spec.at_observers:
+            its = [q for q in quantity_names() if quantity_spec(q).at_observers]
+            raise DesignError(
+                f"{where}: observers take quantity {_either(its)}, not {self.quantity!r}"
+            )
+        if spec.at_observers and any(
+            getattr(self, k) is not None for k in (Bound.MIN, Bound.AVERAGE, Bound.UNIFORMITY)
+        ):
+            raise DesignError(f"{where}: {spec.noun} is bounded from above: give max only")
         if self.grid is not None and spec.needs_reflectance:
             raise DesignError(
                 f"{where}: a work-plane grid takes illuminance (lux) or a daylight metric, "
