@@ -7,7 +7,7 @@ whether it has a flux range and an efficacy, its ``SourceType`` says."""
 
 from __future__ import annotations
 
-from PySide6 import QtWidgets
+from PySide6 import QtCore, QtWidgets
 
 from app.document import Document
 from app.widgets.elided_label import ElidedLabel
@@ -269,7 +269,23 @@ class SourcePanel(QtWidgets.QGroupBox):
             return
         # Clear glazing is fixed: it frees nothing (the optimiser keeps it as drawn).
         free = () if kind == GlazingKind.CLEAR else self.doc.design.source(name).free
-        self._apply(glazing=kind, free=free)
+        if kind != GlazingKind.CLEAR:
+            self._apply(glazing=kind, free=free)
+            return
+        # The first clear glazing traces its sky and sun before the view relights: a few
+        # seconds in which the window says so rather than looking hung.
+        win = self.window()
+        bar = win.statusBar() if isinstance(win, QtWidgets.QMainWindow) else None
+        if bar is not None:
+            bar.showMessage("Tracing the sky and the sun through the clear glazing...")
+            bar.repaint()
+        QtWidgets.QApplication.setOverrideCursor(QtCore.Qt.WaitCursor)
+        try:
+            self._apply(glazing=kind, free=free)
+        finally:
+            QtWidgets.QApplication.restoreOverrideCursor()
+            if bar is not None:
+                bar.clearMessage()
 
     def _range_edited(self) -> None:
         self._apply(flux_range=(self.flux_min.value(), self.flux_max.value()))
