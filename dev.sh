@@ -75,7 +75,8 @@ case "${1:-}" in
     .venv/bin/ruff check .
     .venv/bin/ruff format --check .
     .venv/bin/lint-imports --no-cache
-    exec .venv/bin/python -m pytest -q
+    # Every core (at most 4: the GUI tests each run a window and an X server).
+    exec .venv/bin/python -m pytest -q -n auto --maxprocesses 4
     ;;
   *) echo "usage: ./dev.sh demo | test | setup" >&2; exit 2 ;;
 esac
