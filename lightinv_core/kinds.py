@@ -101,12 +101,23 @@ class Scenario(Kind):
 
 
 class Bound(Kind):
-    """The bounds of an intention: per patch (min, max), area-weighted mean, U0."""
+    """The bounds of an intention: per patch (min, max), area-weighted mean (at least
+    ``average``, at most ``max_average``), U0."""
 
     MIN = "min"  # lower bound on every patch
     MAX = "max"  # upper bound on every patch
     AVERAGE = "average"  # lower bound on the area-weighted mean
     UNIFORMITY = "uniformity"  # lower bound on U0 = min / mean, in [0, 1]
+    MAX_AVERAGE = "max_average"  # upper bound on the area-weighted mean (ASE <= 10%)
+
+
+UPPER_BOUNDS = frozenset({Bound.MAX, Bound.MAX_AVERAGE})
+"""The bounds a value must stay at or below (the others: at or above)."""
+
+
+def bound_sign(bound: str) -> str:
+    """ "≤" for an upper bound, "≥" for a lower one."""
+    return "≤" if bound in UPPER_BOUNDS else "≥"
 
 
 class GoalKind(Kind):

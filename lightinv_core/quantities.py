@@ -17,7 +17,7 @@ from typing import Any
 
 import numpy as np
 
-from lightinv_core.kinds import MAX_LUX, Quantity, Scenario
+from lightinv_core.kinds import MAX_LUX, Bound, Quantity, Scenario
 
 
 def _reflected(lux, rho):
@@ -82,6 +82,8 @@ class QuantitySpec:
     ``from_lux(lux, rho)``: a light quantity from illuminance (and the receivers'
     reflectance when ``needs_reflectance``: not on work-plane grid points).
     ``uniformity``: U0 = min / mean means something (the report shows it).
+    ``average_bound``: the bound the window offers on the mean (``max_average`` for a
+    quantity to keep low, ASE).
     ``at_observers``: measured at the design's observers, not at patches or grid points
     (an intention on it names ``observers`` and sets ``max`` only); ``from_glare(total,
     background)``: its value from the glare sum ``sum L² omega / p²`` (cd²/m⁴ sr) and
@@ -105,6 +107,7 @@ class QuantitySpec:
     from_lux: Callable[[Any, Any], Any] | None = None
     needs_reflectance: bool = False
     uniformity: bool = True
+    average_bound: Bound = Bound.AVERAGE
     at_observers: bool = False
     from_glare: Callable[[Any, Any], Any] | None = None
 
@@ -270,6 +273,7 @@ for _spec in (
         3,
         (0.0, 1.0, 0.1, 0.3),
         average_only=True,
+        average_bound=Bound.MAX_AVERAGE,
         metric="ASE1000,250",
         scenario=Scenario.ANNUAL,
         hours=HourBand(1000.0, direct_sun=True, above=True, point_hours=250),

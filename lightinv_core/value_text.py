@@ -12,7 +12,7 @@ import math
 
 from lightinv_core.design.model import Daylight, Intention, Source
 from lightinv_core.goals import goal_spec, is_goal
-from lightinv_core.kinds import Bound
+from lightinv_core.kinds import Bound, bound_sign
 from lightinv_core.light.intentions import bounds_set
 from lightinv_core.quantities import quantity_spec
 from lightinv_core.sources.emission import source_electric_power, source_flux
@@ -88,10 +88,14 @@ def bound_value(bound: str, quantity: str, value: float | None) -> str:
     return u0_text(value) if bound == Bound.UNIFORMITY else quantity_value(quantity, value)
 
 
+BOUND_LABELS = {Bound.UNIFORMITY: "U0", Bound.MAX_AVERAGE: "average"}
+"""How a bound is named beside its sign: "U0 ≥ 0.600", "average ≤ 0.1"."""
+
+
 def bound_text(bound: str, quantity: str, limit: float) -> str:
     """One bound of an intention: "min ≥ 300 lux", "max ≤ 2,000 lux", "U0 ≥ 0.600"."""
-    label = "U0" if bound == Bound.UNIFORMITY else str(bound)
-    sign = "≤" if bound == Bound.MAX else "≥"
+    label = BOUND_LABELS.get(bound, str(bound))
+    sign = bound_sign(bound)
     return f"{label} {sign} {bound_value(bound, quantity, limit)}"
 
 

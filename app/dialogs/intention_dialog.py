@@ -17,6 +17,7 @@ BOUND_FIELDS = {
     Bound.MAX: ("Maximum", 1000.0),
     Bound.AVERAGE: ("Average at least", 500.0),
     Bound.UNIFORMITY: ("Uniformity U0 at least", 0.6),
+    Bound.MAX_AVERAGE: ("Average at most", 0.1),
 }
 """Each bound of an intention: its label and the value the dialog offers."""
 
@@ -82,14 +83,17 @@ class IntentionDialog(QtWidgets.QDialog):
         self.scenario.setEnabled(forced is None and not q.at_observers)
         self._metric = forced is not None
         decimals, top, defaults = q.decimals, q.high, q.defaults
-        for key, value in zip(("min", "max", "average"), defaults, strict=False):
+        values = (*defaults[:3], defaults[2])
+        for key, value in zip(("min", "max", "average", "max_average"), values, strict=True):
             box = self.fields[key][1]
             box.setDecimals(decimals)
             box.setMaximum(top)
             box.setValue(value)
         self.fields["uniformity"][1].setValue(defaults[3])
+        self.set_values(max_average=None)
         if q.average_only:  # sDA is the average of a 0/1 mark: only that bound tells
-            self.set_values(min=None, max=None, uniformity=None, average=defaults[2])
+            self.set_values(min=None, max=None, uniformity=None, average=None)
+            self.set_values(**{str(q.average_bound): defaults[2]})  # ASE: at most
         if q.at_observers:  # UGR is bounded from above only
             self.set_values(min=None, average=None, uniformity=None, max=defaults[1])
 

@@ -30,6 +30,7 @@ LABELS = {
     Bound.MAX: "max ≤",
     Bound.AVERAGE: "average ≥",
     Bound.UNIFORMITY: "U0 ≥",
+    Bound.MAX_AVERAGE: "average ≤",
 }
 
 

@@ -8,7 +8,8 @@ every patch, each standing for its own area):
 - its statistics over them: min, max, area-weighted average, U0 = min / average;
 - one relative violation c per bound it sets (0.05 = 5% past the bound):
   min: (min - q_min) / min, max: (q_max - max) / max, average: (average - q_avg) /
-  average, uniformity: (U0_req - U0) / U0_req. A bound of 0 on min, average or
+  average, uniformity: (U0_req - U0) / U0_req, max_average: (q_avg - max_average) /
+  max_average (0.1 past a bound of 0). A bound of 0 on min, average or
   uniformity bounds nothing and is skipped.
 
 A bound is met when c <= ``FEASIBILITY_TOL`` (0.1%).
@@ -112,7 +113,8 @@ def intention_stats(q: np.ndarray, weights: np.ndarray) -> IntentionStats:
 
 @functools.lru_cache(maxsize=1024)
 def bounds_set(intention: Intention) -> tuple[Bound, ...]:
-    """The bounds an intention sets, in the order min, max, average, uniformity."""
+    """The bounds an intention sets, in the order min, max, average, uniformity,
+    max_average."""
     it = intention
     return tuple(
         b
@@ -121,6 +123,7 @@ def bounds_set(intention: Intention) -> tuple[Bound, ...]:
             (Bound.MAX, it.max is not None),
             (Bound.AVERAGE, it.average is not None and it.average > 0),
             (Bound.UNIFORMITY, it.uniformity is not None and it.uniformity > 0),
+            (Bound.MAX_AVERAGE, it.max_average is not None),
         )
         if on
     )
@@ -137,6 +140,9 @@ def bound_checks(intention: Intention, stats: IntentionStats) -> list[BoundCheck
             c, value = (stats.max - it.max) / max(it.max, 1e-12), stats.max
         elif b == Bound.AVERAGE:
             c, value = (it.average - stats.average) / it.average, stats.average
+        elif b == Bound.MAX_AVERAGE:
+            c = (stats.average - it.max_average) / max(it.max_average, 1e-12)
+            value = stats.average
         else:
             c, value = (it.uniformity - stats.uniformity) / it.uniformity, stats.uniformity
         limit = getattr(it, str(b))
@@ -146,10 +152,11 @@ def bound_checks(intention: Intention, stats: IntentionStats) -> list[BoundCheck
 
 def offending(check: BoundCheck, q: np.ndarray, average: float) -> np.ndarray:
     """Mask of the patches (q (p,) for one candidate) that break ``check``: below a min,
-    above a max, below U0 x the average; every patch for a short average."""
+    above a max, below U0 x the average; every patch for a short average, those above
+    the bound for a mean too high."""
     if check.bound == Bound.MIN:
         return q < check.limit
-    if check.bound == Bound.MAX:
+    if check.bound in (Bound.MAX, Bound.MAX_AVERAGE):
         return q > check.limit
     if check.bound == Bound.UNIFORMITY:
         return q < check.limit * average

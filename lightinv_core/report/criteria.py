@@ -20,7 +20,7 @@ from lightinv_core.design.en12464 import Requirement, preset_of, ra_check
 from lightinv_core.design.model import Design, Intention, Workplane
 from lightinv_core.design.solution import Solution
 from lightinv_core.errors import LightInvError
-from lightinv_core.kinds import Bound, Scenario
+from lightinv_core.kinds import Bound, Scenario, bound_sign
 from lightinv_core.light.daylight import LayoutDaylight
 from lightinv_core.light.intentions import bounds_set
 from lightinv_core.luminaires.rendering import product_ra
@@ -29,7 +29,13 @@ from lightinv_core.report.glare import observer_rows
 from lightinv_core.report.tables import FAIL, PASS, Table
 from lightinv_core.value_text import bound_value, fmt
 
-EN_LABELS = {Bound.AVERAGE: "Em", Bound.MIN: "Emin", Bound.MAX: "Emax", Bound.UNIFORMITY: "U0"}
+EN_LABELS = {
+    Bound.AVERAGE: "Em",
+    Bound.MIN: "Emin",
+    Bound.MAX: "Emax",
+    Bound.UNIFORMITY: "U0",
+    Bound.MAX_AVERAGE: "Em",
+}
 NOT_CALCULATED = "not calculated"
 
 
@@ -51,7 +57,8 @@ def _criterion(it: Intention, bound: Bound) -> str:
     elif bound == Bound.UNIFORMITY:
         name = "U0"
     else:
-        name = f"{bound} {q.metric or q.noun}"
+        label = "average" if bound == Bound.MAX_AVERAGE else bound
+        name = f"{label} {q.metric or q.noun}"
     if it.scenario != Scenario.DESIGN and q.metric is None:
         name += f" ({it.scenario})"
     return name
@@ -73,8 +80,7 @@ def intention_rows(
     rows = []
     for bound in bounds_set(it):
         limit = getattr(it, bound)
-        sign = "≤" if bound == Bound.MAX else "≥"
-        required = f"{sign} {bound_value(bound, it.quantity, limit)}"
+        required = f"{bound_sign(bound)} {bound_value(bound, it.quantity, limit)}"
         chk = checks.get(bound)
         achieved = "—" if chk is None else bound_value(bound, it.quantity, float(chk.value[0]))
         if chk is None and (broken or not judged):

@@ -17,7 +17,7 @@ import numpy as np
 
 from lightinv_core.design.model import Design, LuminaireArray
 from lightinv_core.errors import LightInvError
-from lightinv_core.kinds import Bound, Scenario
+from lightinv_core.kinds import UPPER_BOUNDS, Bound, Scenario, bound_sign
 from lightinv_core.light.arrays import Product, resolve_product
 from lightinv_core.light.daylight import LayoutDaylight
 from lightinv_core.light.grids import DesignGrids
@@ -26,10 +26,16 @@ from lightinv_core.quantities import quantity_spec
 from lightinv_core.report.figures import new_figure
 from lightinv_core.report.tables import FAIL, PASS, Table, product_title
 from lightinv_core.transport.workplane import grid_statistics
-from lightinv_core.value_text import fmt, u0_text
+from lightinv_core.value_text import BOUND_LABELS, fmt, u0_text
 
 ISO_LEVELS = 8  # iso-lux lines per plan
-EN_LABELS = {Bound.AVERAGE: "Em", Bound.MIN: "Emin", Bound.MAX: "Emax", Bound.UNIFORMITY: "U0"}
+EN_LABELS = {
+    Bound.AVERAGE: "Em",
+    Bound.MIN: "Emin",
+    Bound.MAX: "Emax",
+    Bound.UNIFORMITY: "U0",
+    Bound.MAX_AVERAGE: "Em",
+}
 
 
 def luminaire_table(arrays: Sequence[LuminaireArray], warnings: Sequence[str] = ()) -> Table | None:
@@ -113,6 +119,7 @@ def grid_table(
             Bound.MIN: st["Emin"],
             Bound.MAX: st["Emax"],
             Bound.UNIFORMITY: st["U0"],
+            Bound.MAX_AVERAGE: st["Em"],
         }
         required = []
         ok, unknown = True, False
@@ -128,7 +135,7 @@ def grid_table(
                 limit = getattr(it, bound)
                 if limit is None:
                     continue
-                sign = "≤" if bound == Bound.MAX else "≥"
+                sign = bound_sign(bound)
                 if q.metric is None:  # light on the grid: EN 12464-1's Em, Emin, U0
                     text = f"{EN_LABELS[bound]} {sign} {fmt(limit)}"
                     if it.scenario != Scenario.DESIGN:
@@ -136,7 +143,7 @@ def grid_table(
                         other = True
                 else:
                     units = q.unit if bound != Bound.UNIFORMITY else ""
-                    label = "U0" if bound == Bound.UNIFORMITY else str(bound)
+                    label = BOUND_LABELS.get(bound, str(bound))
                     text = f"{q.metric} {label} {sign} {fmt(limit)}"
                     text += f" {units}" if units else ""
                     other = True
@@ -149,7 +156,7 @@ def grid_table(
                     met = chk is None or bool(chk.met[0])
                 else:
                     v = values[bound]
-                    met = v <= limit * 1.001 if bound == Bound.MAX else v >= limit * 0.999
+                    met = v <= limit * 1.001 if bound in UPPER_BOUNDS else v >= limit * 0.999
                 ok = ok and met
         verdict = PASS if ok and not unknown else FAIL if not ok else "—"
         rows.append(

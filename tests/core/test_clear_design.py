@@ -230,3 +230,30 @@ def test_the_editors_view_shows_the_clear_light_in_the_design_scenario(sidelit):
     assert shown.grid_lux.mean() > 100  # the work plane sees the window's light
     lost = replace(design, daylight=replace(design.daylight, weather="no-such.epw"))
     assert float(np.abs(ShownLight(sidelit).relight(lost).illuminance).max()) == 0.0
+
+
+def test_ase_at_most_ten_percent_is_an_upper_bound_on_the_average(sidelit):
+    """LEED v4's ASE1000,250 <= 10% is a ``max_average`` bound: its check is the
+    relative excess of the mean over the bound; the report states it with "≤" and the
+    value reached, pass or fail as the mean falls."""
+    from lightinv_core.design.model import DesignError
+    from lightinv_core.light.intentions import bound_checks, intention_stats
+    from lightinv_core.value_text import intention_target
+
+    got = layout_daylight(sidelit, window_design(sidelit))
+    ase = got.points.quantity(Intention("a", grid="wp", quantity="ase", max=1.0))[:, 0]
+    mean = float(ase.mean())
+    assert 0.05 < mean < 0.95  # the south window's sun reaches part of the plane
+    for limit in (0.10, mean + 0.05):
+        it = Intention("LEED ASE", grid="wp", quantity="ase", max_average=limit)
+        (chk,) = got.checks(it)
+        assert chk.bound == "max_average" and chk.value[0] == pytest.approx(mean)
+        assert chk.c[0] == pytest.approx((mean - limit) / limit)
+        assert bool(chk.met[0]) == (mean <= limit)
+        assert intention_target(it) == f"average ≤ {limit:.4g}"
+    # The same formula on plain numbers: 3 of 10 points over the bound of 0.2.
+    it = Intention("x", grid="wp", quantity="ase", max_average=0.2)
+    (chk,) = bound_checks(it, intention_stats(np.r_[np.ones(3), np.zeros(7)][:, None], np.ones(10)))
+    assert chk.c[0] == pytest.approx(0.5)
+    with pytest.raises(DesignError, match="no mean can meet both"):
+        Intention("y", grid="wp", quantity="ase", average=0.3, max_average=0.2)

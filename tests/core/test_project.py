@@ -429,7 +429,9 @@ def _set(path: str, value):
 
 
 DELETE = object()
-KNOWN_SOURCE = "known: name, zone, kind, rect, free, flux, exitance, flux_range, efficacy, filter, glazing"
+KNOWN_SOURCE = (
+    "known: name, zone, kind, rect, free, flux, exitance, flux_range, efficacy, filter, glazing"
+)
 
 ERRORS = [
     # top level and schema

@@ -103,6 +103,14 @@ class Intention:
         default=None,
         metadata=declare(Number(lo=0.0, hi=1.0), "lower bound on U0 = min / mean", nullable=True),
     )
+    max_average: float | None = field(
+        default=None,
+        metadata=declare(
+            Number(lo=0.0),
+            "upper bound on the area-weighted mean (e.g. ASE1000,250 at most 0.10, LEED v4)",
+            nullable=True,
+        ),
+    )
     weight: float = field(
         default=100.0, metadata=declare(Number(lo=0.0), "scales its penalty", always=True)
     )
@@ -138,7 +146,8 @@ class Intention:
                 f"{where}: observers take quantity {_either(its)}, not {self.quantity!r}"
             )
         if spec.at_observers and any(
-            getattr(self, k) is not None for k in (Bound.MIN, Bound.AVERAGE, Bound.UNIFORMITY)
+            getattr(self, k) is not None
+            for k in (Bound.MIN, Bound.AVERAGE, Bound.UNIFORMITY, Bound.MAX_AVERAGE)
         ):
             raise DesignError(f"{where}: {spec.noun} is bounded from above: give max only")
         if self.grid is not None and spec.needs_reflectance:
@@ -150,11 +159,12 @@ class Intention:
 
     def _check_bounds(self, where: str, spec) -> None:
         lo, hi, unit = spec.low, spec.high, spec.range_text
-        for key in (Bound.MIN, Bound.MAX, Bound.AVERAGE):
+        for key in (Bound.MIN, Bound.MAX, Bound.AVERAGE, Bound.MAX_AVERAGE):
             v = getattr(self, key)
             # A maximum above the range always holds (a "no limit" of 1e9 is fine), up to a
             # sane number; a minimum or an average outside it can never be met.
-            if v is not None and (v < lo or (v > hi and key != Bound.MAX) or v > 1e12):
+            upper = key in (Bound.MAX, Bound.MAX_AVERAGE)
+            if v is not None and (v < lo or (v > hi and not upper) or v > 1e12):
                 raise DesignError(
                     f"{where}: {key} {v:g} is outside the range of {self.quantity} "
                     f"({unit}), {lo:g} to {hi:g}; it could never be met"
@@ -165,6 +175,15 @@ class Intention:
             raise DesignError(f"{where}: min {self.min} is above max {self.max}")
         if self.average is not None and self.max is not None and self.average > self.max:
             raise DesignError(f"{where}: average {self.average} is above max {self.max}")
+        if (
+            self.average is not None
+            and self.max_average is not None
+            and self.average > self.max_average
+        ):
+            raise DesignError(
+                f"{where}: average at least {self.average} is above max_average "
+                f"{self.max_average}: no mean can meet both"
+            )
 
 
 INTENTION_FIELDS = ObjectSpec.of(Intention, "intention")
