@@ -1,0 +1,289 @@
+"""Exact form factors from receiver points to patches: no random rays.
+
+The form factor from a differential area at point p with unit normal n to a planar
+polygon with vertices v_1..v_V is Lambert's contour integral (Hottel and Sarofim,
+*Radiative Transfer*, 1967; Howell's catalogue, factor B-2 in general form):
+
+    F = 1 / (2 pi) |sum_k gamma_k  n . (R_k x R_k+1) / |R_k x R_k+1||
+
+with R_k = v_k - p and gamma_k the angle between R_k and R_k+1 (radians). It holds for
+a polygon wholly above the point's tangent plane; a polygon straddling that plane is
+first clipped to it (Sutherland-Hodgman against one plane), since only the part above
+can send light to the point's front.
+
+**Visibility.** The formula is the factor of an unobstructed polygon. Each pair of a
+point and a patch it faces gets shadow rays towards fixed points of the patch (no
+random numbers, so the factors do not depend on a ray count or a seed):
+
+- a pair whose factor is at most ``NEAR_FACTOR`` (a patch seen small, the size rule)
+  gets one ray, to its centroid: seen or hidden as a whole;
+- a larger one gets ``PROBES`` x ``PROBES`` rays, one to the centre of each of as many
+  equal sub-cells; all seen keeps the whole polygon's factor, none seen gives 0;
+- where the probes disagree (an edge of an occluder crosses the patch) the patch is cut
+  into ``FINE`` x ``FINE`` sub-cells and the factor is the sum of each sub-cell's own
+  contour-integral factor times the visibility of its centre: a fixed quadrature of the
+  visibility only, the geometry staying exact.
+
+The sub-cells tile the patch, so where all are seen the sum is the whole factor (the
+contour integrals of adjacent cells cancel along shared edges).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from functools import cache
+
+import numpy as np
+import scipy.sparse as sp
+
+from lightinv_core.scene.patches import Patches
+from lightinv_core.transport.raycast import RayCaster
+
+NEAR_FACTOR = 1e-3
+"""Factor above which a patch gets ``PROBES`` x ``PROBES`` visibility rays instead of one:
+a patch at most this share of a point's view changes its light by at most that share
+when it is half hidden, and at most 1,000 patches can exceed it from one point."""
+PROBES = 3
+FINE = 8
+PAIRS_PER_BLOCK = 1 << 18
+"""Point-patch pairs examined at once (memory about 100 bytes each, times the vertices)."""
+_TINY = 1e-300
+
+
+@cache
+def _cells(q: int, triangle: bool) -> tuple[np.ndarray, np.ndarray]:
+    """Sub-cells of a patch in its (s, t) parameters: ``(q*q, 4, 2)`` vertices (a
+    triangle's sub-triangles repeat their last vertex) and ``(q*q, 2)`` centroids.
+    A rectangle (s, t in [0, 1]) is cut into q x q cells, a triangle (s + t <= 1) into
+    q² similar triangles; both keep the patch's winding."""
+    cells, centres = [], []
+    for i in range(q):
+        for j in range(q):
+            if not triangle:
+                c = np.array([[i, j], [i + 1, j], [i + 1, j + 1], [i, j + 1]], float) / q
+                cells.append(c)
+                centres.append(c.mean(axis=0))
+                continue
+            if i + j < q:
+                c = np.array([[i, j], [i + 1, j], [i, j + 1]], float) / q
+                cells.append(np.vstack([c, c[-1:]]))
+                centres.append(c.mean(axis=0))
+            if i + j < q - 1:
+                c = np.array([[i + 1, j], [i + 1, j + 1], [i, j + 1]], float) / q
+                cells.append(np.vstack([c, c[-1:]]))
+                centres.append(c.mean(axis=0))
+    return np.array(cells), np.array(centres)
+
+
+def patch_polygons(patches: Patches, idx: np.ndarray) -> np.ndarray:
+    """(len(idx), 4, 3) vertices (m) of patches ``idx`` in their winding; a triangle
+    repeats its last vertex (a zero-length edge adds nothing to a contour integral)."""
+    o, e1, e2 = patches.origin[idx], patches.edge1[idx], patches.edge2[idx]
+    quad = np.stack([o, o + e1, o + e1 + e2, o + e2], axis=1)
+    tri = patches.is_triangle[idx]
+    quad[tri, 2] = o[tri] + e2[tri]
+    return quad
+
+
+def sub_cells(patches: Patches, idx: np.ndarray, q: int) -> tuple[np.ndarray, np.ndarray]:
+    """Sub-cells of patches ``idx``: ``(len(idx), q*q, 4, 3)`` vertices and
+    ``(len(idx), q*q, 3)`` centroids (m), q x q per rectangle, q² per triangle."""
+    o, e1, e2 = patches.origin[idx], patches.edge1[idx], patches.edge2[idx]
+    verts = np.empty((len(idx), q * q, 4, 3))
+    centres = np.empty((len(idx), q * q, 3))
+    for triangle in (False, True):
+        sel = patches.is_triangle[idx] == triangle
+        if not sel.any():
+            continue
+        st, mid = _cells(q, triangle)
+        oo, a, b = o[sel][:, None], e1[sel][:, None], e2[sel][:, None]
+        verts[sel] = (
+            oo[:, :, None] + st[None, ..., :1] * a[:, :, None] + st[None, ..., 1:] * (b[:, :, None])
+        )
+        centres[sel] = oo + mid[None, :, :1] * a + mid[None, :, 1:] * b
+    return verts, centres
+
+
+def _clip(R: np.ndarray, h: np.ndarray) -> np.ndarray:
+    """Polygons ``R`` (K, V, 3), vertex heights ``h`` (K, V) above the tangent plane,
+    clipped to h >= 0: (K, 2V, 3), the kept vertices first, padded by repeating the last
+    (an empty polygon is all zeros)."""
+    K, V = h.shape
+    Rn, hn = np.roll(R, -1, axis=1), np.roll(h, -1, axis=1)
+    crossing = ((h > 0) & (hn < 0)) | ((h < 0) & (hn > 0))
+    t = np.where(crossing, h / np.where(crossing, h - hn, 1.0), 0.0)
+    slots = np.stack([R, R + t[..., None] * (Rn - R)], axis=2).reshape(K, 2 * V, 3)
+    keep = np.stack([h >= 0, crossing], axis=2).reshape(K, 2 * V)
+    order = np.argsort(~keep, axis=1, kind="stable")
+    slots = np.take_along_axis(slots, order[..., None], axis=1)
+    count = keep.sum(axis=1)
+    last = np.maximum(count - 1, 0)
+    pad = np.arange(2 * V)[None] >= count[:, None]
+    fill = slots[np.arange(K), last]
+    slots = np.where(pad[..., None], fill[:, None], slots)
+    slots[count == 0] = 0.0
+    return slots
+
+
+def polygon_factor(points: np.ndarray, normals: np.ndarray, verts: np.ndarray) -> np.ndarray:
+    """Form factor from differential areas at ``points`` (K, 3) m with unit ``normals``
+    (K, 3) to the polygons ``verts`` (K, V, 3) m (in order, either winding; repeated
+    vertices allowed), each clipped to the half-space in front of its point (see the
+    module): dimensionless, 0 to 1, unobstructed."""
+    R = verts - points[:, None]
+    h = np.einsum("kvc,kc->kv", R, normals)
+    behind = (h <= 0).all(axis=1)
+    straddle = (h < 0).any(axis=1) & (h > 0).any(axis=1)
+    if straddle.any():
+        clipped = _clip(R[straddle], h[straddle])
+        R = np.concatenate([R, R[:, -1:].repeat(R.shape[1], axis=1)], axis=1)
+        R[straddle] = clipped
+    Rn = np.roll(R, -1, axis=1)
+    c = np.cross(R, Rn)
+    size = np.linalg.norm(c, axis=2)
+    gamma = np.arctan2(size, np.einsum("kvc,kvc->kv", R, Rn))
+    along = np.einsum("kvc,kc->kv", c, normals)
+    term = np.where(size > _TINY, gamma * along / np.maximum(size, _TINY), 0.0)
+    return np.where(behind, 0.0, np.abs(term.sum(axis=1)) / (2.0 * np.pi))
+
+
+def _seen(caster: RayCaster, origins: np.ndarray, targets: np.ndarray) -> np.ndarray:
+    """Whether each ``targets`` point (on a patch) is seen from its ``origins`` point: a
+    shadow ray stopped ``2 * caster.offset`` short of the target (the patch itself)."""
+    d = targets - origins
+    length = np.linalg.norm(d, axis=-1)
+    unit = d / np.maximum(length, _TINY)[..., None]
+    short = np.maximum(length - 2.0 * caster.offset, 0.0)
+    flat = caster.occluded(origins.reshape(-1, 3), unit.reshape(-1, 3), short.ravel())
+    return ~flat.reshape(length.shape)
+
+
+def _visible_factor(
+    patches: Patches,
+    caster: RayCaster,
+    P: np.ndarray,
+    N: np.ndarray,
+    j: np.ndarray,
+    F: np.ndarray,
+) -> np.ndarray:
+    """The unobstructed factors ``F`` of pairs (points ``P``, normals ``N``, patches
+    ``j``) times their visibility, by the rule of the module."""
+    out = F.copy()
+    far = F <= NEAR_FACTOR
+    if far.any():
+        out[far] *= _seen(caster, P[far], patches.centroid[j[far]])
+    near = np.flatnonzero(~far)
+    if not len(near):
+        return out
+    _, probes = sub_cells(patches, j[near], PROBES)
+    seen = _seen(caster, np.broadcast_to(P[near][:, None], probes.shape), probes)
+    share = seen.mean(axis=1)
+    out[near[share == 0]] = 0.0
+    mixed = near[(share > 0) & (share < 1)]
+    if len(mixed):
+        verts, centres = sub_cells(patches, j[mixed], FINE)
+        k, c = len(mixed), FINE * FINE
+        Pm = np.repeat(P[mixed], c, axis=0)
+        Nm = np.repeat(N[mixed], c, axis=0)
+        f = polygon_factor(Pm, Nm, verts.reshape(k * c, 4, 3)).reshape(k, c)
+        vis = _seen(caster, np.broadcast_to(P[mixed][:, None], centres.shape), centres)
+        out[mixed] = (f * vis).sum(axis=1)
+    return out
+
+
+@dataclass(frozen=True)
+class _Contours:
+    """The patches' outlines as a mesh: distinct ``verts`` (nv, 3) m, edges ``lo`` ->
+    ``hi`` (vertex ids), ``incidence`` (n, ne) +-1 (each patch's edges in its winding),
+    the corner ``ids`` (n, 4) and ``polys`` (n, 4, 3)."""
+
+    verts: np.ndarray
+    lo: np.ndarray
+    hi: np.ndarray
+    incidence: sp.csr_matrix
+    ids: np.ndarray
+    polys: np.ndarray
+
+
+def _contours(patches: Patches) -> _Contours:
+    """The outline mesh of ``patches``: neighbours on a surface grid share corners and
+    edges, so an edge's term of the contour integral is computed once per point (a
+    corner not recognised as shared is merely computed twice)."""
+    n = patches.n
+    polys = patch_polygons(patches, np.arange(n))
+    flat = polys.reshape(-1, 3)
+    step = 1e-9 * max(1.0, float(np.abs(flat).max()))
+    _, first, inverse = np.unique(
+        np.round(flat / step).astype(np.int64), axis=0, return_index=True, return_inverse=True
+    )
+    ids = inverse.reshape(n, 4)
+    a, b = ids, np.roll(ids, -1, axis=1)
+    real = a != b
+    lo, hi = np.minimum(a, b)[real], np.maximum(a, b)[real]
+    edges, column = np.unique(lo.astype(np.int64) * len(first) + hi, return_inverse=True)
+    sign = np.where(a < b, 1.0, -1.0)[real]
+    owner = np.repeat(np.arange(n), 4).reshape(n, 4)[real]
+    incidence = sp.csr_matrix((sign, (owner, column)), shape=(n, len(edges)))
+    return _Contours(flat[first], edges // len(first), edges % len(first), incidence, ids, polys)
+
+
+def _edge_terms(mesh: _Contours, P: np.ndarray, N: np.ndarray) -> np.ndarray:
+    """(p, ne) terms gamma n . (u_lo x u_hi) / |u_lo x u_hi| of every outline edge seen
+    from points ``P`` (p, 3) with normals ``N`` (p, 3)."""
+    R = mesh.verts[None] - P[:, None]
+    u = R / np.maximum(np.linalg.norm(R, axis=2), _TINY)[..., None]
+    a, b = u[:, mesh.lo], u[:, mesh.hi]
+    cx = a[..., 1] * b[..., 2] - a[..., 2] * b[..., 1]
+    cy = a[..., 2] * b[..., 0] - a[..., 0] * b[..., 2]
+    cz = a[..., 0] * b[..., 1] - a[..., 1] * b[..., 0]
+    size = np.sqrt(cx * cx + cy * cy + cz * cz)
+    gamma = np.arctan2(size, np.einsum("pec,pec->pe", a, b))
+    along = cx * N[:, :1] + cy * N[:, 1:2] + cz * N[:, 2:]
+    return np.where(size > _TINY, gamma * along / np.maximum(size, _TINY), 0.0)
+
+
+def point_form_factors(
+    points: np.ndarray,
+    normals: np.ndarray,
+    patches: Patches,
+    caster: RayCaster | None = None,
+) -> sp.csr_matrix:
+    """Sparse (m, n) form factors from points (m, 3) m with normals (m, 3) to the fronts
+    of ``patches``, with occlusion (see the module): row sums are the share of each
+    point's view that is the room (1 in a closed room). Points are lifted
+    ``caster.offset`` along their normals first, as traced rays' origins are."""
+    caster = caster or RayCaster(patches)
+    pts = np.asarray(points, dtype=float).reshape(-1, 3)
+    nrm = np.asarray(normals, dtype=float).reshape(-1, 3)
+    nrm = nrm / np.linalg.norm(nrm, axis=1)[:, None]
+    P_all = pts + caster.offset * nrm
+    n = patches.n
+    mesh = _contours(patches)
+    plane = np.einsum("jc,jc->j", patches.origin, patches.normal)
+    block = max(1, PAIRS_PER_BLOCK // max(mesh.lo.size, 1))
+    rows, cols, vals = [], [], []
+    for start in range(0, len(pts), block):
+        P, N = P_all[start : start + block], nrm[start : start + block]
+        # The point must lie in front of the patch's plane, and some of the patch in
+        # front of the point's tangent plane; a patch crossing that plane is clipped.
+        ahead = P @ patches.normal.T - plane > 0
+        h = (mesh.verts @ N.T).T - np.einsum("pc,pc->p", P, N)[:, None]
+        corner = h[:, mesh.ids]
+        seen = ahead & (corner.max(axis=2) > 0)
+        F = np.abs(mesh.incidence @ _edge_terms(mesh, P, N).T).T / (2.0 * np.pi)
+        pi, j = np.nonzero(seen)
+        f = F[pi, j]
+        cut = corner[pi, j].min(axis=1) < 0
+        if cut.any():
+            f[cut] = polygon_factor(P[pi[cut]], N[pi[cut]], mesh.polys[j[cut]])
+        f = _visible_factor(patches, caster, P[pi], N[pi], j, f)
+        ok = f > 0
+        rows.append(start + pi[ok])
+        cols.append(j[ok])
+        vals.append(f[ok])
+    shape = (len(pts), n)
+    if not rows:
+        return sp.csr_matrix(shape)
+    return sp.csr_matrix(
+        (np.concatenate(vals), (np.concatenate(rows), np.concatenate(cols))), shape=shape
+    )
