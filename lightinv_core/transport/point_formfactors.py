@@ -40,11 +40,13 @@ from lightinv_core.scene.patches import Patches
 from lightinv_core.transport.raycast import RayCaster
 
 NEAR_FACTOR = 1e-3
-"""Factor above which a patch gets ``PROBES`` x ``PROBES`` visibility rays instead of one:
-a patch at most this share of a point's view changes its light by at most that share
-when it is half hidden, and at most 1,000 patches can exceed it from one point."""
-PROBES = 3
-FINE = 8
+"""Factor above which a patch gets ``PROBES`` x ``PROBES`` visibility probes instead of
+five: at most 1,000 patches can exceed it from one point."""
+PROBES = 4
+FINE = 16
+INSET = 0.01
+"""Probes sit this share of an edge inside a patch's outline: clear of the surfaces
+meeting it there, which a ray grazing the corner would hit."""
 PAIRS_PER_BLOCK = 1 << 18
 """Point-patch pairs examined at once (memory about 100 bytes each, times the vertices)."""
 _TINY = 1e-300
@@ -158,6 +160,20 @@ def _seen(caster: RayCaster, origins: np.ndarray, targets: np.ndarray) -> np.nda
     return ~flat.reshape(length.shape)
 
 
+def probe_points(patches: Patches, idx: np.ndarray, q: int) -> np.ndarray:
+    """(len(idx), q*q, 3) points (m) of patches ``idx`` on a q x q lattice that includes
+    the corners and edges, inset by ``INSET`` of each edge (a triangle folds the
+    lattice's far half onto itself): an occluder's shadow crossing a patch's outline
+    covers a probe unless it is narrower than the lattice step."""
+    g = INSET + (1.0 - 2.0 * INSET) * np.arange(q) / (q - 1)
+    s, t = (x.ravel() for x in np.meshgrid(g, g, indexing="ij"))
+    tri = patches.is_triangle[idx][:, None]
+    fold = tri & (s + t > 1.0)[None]
+    s, t = np.where(fold, 1.0 - s, s), np.where(fold, 1.0 - t, t)
+    o, e1, e2 = patches.origin[idx], patches.edge1[idx], patches.edge2[idx]
+    return o[:, None] + s[..., None] * e1[:, None] + t[..., None] * e2[:, None]
+
+
 def _visible_factor(
     patches: Patches,
     caster: RayCaster,
@@ -169,17 +185,22 @@ def _visible_factor(
     """The unobstructed factors ``F`` of pairs (points ``P``, normals ``N``, patches
     ``j``) times their visibility, by the rule of the module."""
     out = F.copy()
-    far = F <= NEAR_FACTOR
-    if far.any():
-        out[far] *= _seen(caster, P[far], patches.centroid[j[far]])
-    near = np.flatnonzero(~far)
-    if not len(near):
-        return out
-    _, probes = sub_cells(patches, j[near], PROBES)
-    seen = _seen(caster, np.broadcast_to(P[near][:, None], probes.shape), probes)
-    share = seen.mean(axis=1)
-    out[near[share == 0]] = 0.0
-    mixed = near[(share > 0) & (share < 1)]
+    share = np.empty(len(F))
+    near = F > NEAR_FACTOR
+    for sel, q in ((~near, 2), (near, PROBES)):
+        k = np.flatnonzero(sel)
+        if not len(k):
+            continue
+        probes = probe_points(patches, j[k], q)
+        if q == 2:  # a small patch's corners and its centroid
+            probes = np.concatenate([probes, patches.centroid[j[k]][:, None]], axis=1)
+        seen = _seen(caster, np.broadcast_to(P[k][:, None], probes.shape), probes)
+        # Probes behind the point's tangent plane send it no light: they do not vote.
+        ahead = np.einsum("kqc,kc->kq", probes - P[k][:, None], N[k]) > 0
+        votes = ahead.sum(axis=1)
+        share[k] = np.where(votes > 0, (seen & ahead).sum(axis=1) / np.maximum(votes, 1), 1.0)
+    out[share == 0] = 0.0
+    mixed = np.flatnonzero((share > 0) & (share < 1))
     if len(mixed):
         verts, centres = sub_cells(patches, j[mixed], FINE)
         k, c = len(mixed), FINE * FINE
