@@ -163,19 +163,21 @@ def test_the_glazing_seen_from_every_work_plane_point_is_its_closed_form(scene, 
     np.testing.assert_allclose(np.asarray(R.sum(axis=1)).ravel(), 1.0, atol=1e-12)
 
 
-def plate_room(edge: float) -> tuple:
-    """A black 6 x 4 x 3 m room with a 2 x 4 m rooflight (x 2-4 m) and an opaque plate
-    at z = 2 m from x = 1 m to ``edge``, spanning y = 0.5-3.5 m."""
+def plate_room(edge: float, rho: float = 0.0, resolution: float = 0.5):
+    """Patches of a 6 x 4 x 3 m room of reflectance ``rho`` with a 2 x 4 m rooflight
+    (x 2-4 m) and an opaque plate 2 cm thick whose underside is at z = 2 m, from
+    x = 1 m to ``edge``, spanning y = 0.5-3.5 m (two faces apart, so rays tell them
+    apart)."""
     faces = room_faces(0, 0, 0, 6, 4, 3)
-    surfaces = [Surface(k, k, 0.0, rect=r) for k, r in faces.items() if k != "ceiling"]
+    surfaces = [Surface(k, k, rho, rect=r) for k, r in faces.items() if k != "ceiling"]
     surfaces += [
-        Surface("c1", "ceiling", 0.0, rect=Rect((0, 4, 3), (2, 0, 0), (0, -4, 0))),
+        Surface("c1", "ceiling", rho, rect=Rect((0, 4, 3), (2, 0, 0), (0, -4, 0))),
         Surface("glass", "rooflight", 0.0, rect=Rect((2, 4, 3), (2, 0, 0), (0, -4, 0))),
-        Surface("c2", "ceiling", 0.0, rect=Rect((4, 4, 3), (2, 0, 0), (0, -4, 0))),
-        Surface("top", "plate", 0.0, rect=Rect((1, 0.5, 2), (edge - 1, 0, 0), (0, 3, 0))),
-        Surface("under", "plate", 0.0, rect=Rect((1, 3.5, 2), (edge - 1, 0, 0), (0, -3, 0))),
+        Surface("c2", "ceiling", rho, rect=Rect((4, 4, 3), (2, 0, 0), (0, -4, 0))),
+        Surface("top", "plate", rho, rect=Rect((1, 0.5, 2.02), (edge - 1, 0, 0), (0, 3, 0))),
+        Surface("under", "plate", rho, rect=Rect((1, 3.5, 2), (edge - 1, 0, 0), (0, -3, 0))),
     ]
-    return mesh_patches(Scene("plate", surfaces, resolution=0.5))
+    return mesh_patches(Scene("plate", surfaces, resolution=resolution))
 
 
 @pytest.mark.parametrize("shadow", [3.0, 3.28])
