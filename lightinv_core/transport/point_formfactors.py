@@ -1,8 +1,8 @@
 """Exact form factors from receiver points to patches: no random rays.
 
 The form factor from a differential area at point p with unit normal n to a planar
-polygon with vertices v_1..v_V is Lambert's contour integral (Hottel and Sarofim,
-*Radiative Transfer*, 1967; Howell's catalogue, factor B-2 in general form):
+polygon with vertices v_1..v_V is Lambert's contour integral (by Stokes' theorem;
+Hottel and Sarofim, *Radiative Transfer*, 1967; Siegel and Howell's contour form):
 
     F = 1 / (2 pi) |sum_k gamma_k  n . (R_k x R_k+1) / |R_k x R_k+1||
 
@@ -13,19 +13,22 @@ can send light to the point's front.
 
 **Visibility.** The formula is the factor of an unobstructed polygon. Each pair of a
 point and a patch it faces gets shadow rays towards fixed points of the patch (no
-random numbers, so the factors do not depend on a ray count or a seed):
+random numbers, so the factors depend on no ray count or seed):
 
-- a pair whose factor is at most ``NEAR_FACTOR`` (a patch seen small, the size rule)
-  gets one ray, to its centroid: seen or hidden as a whole;
-- a larger one gets ``PROBES`` x ``PROBES`` rays, one to the centre of each of as many
-  equal sub-cells; all seen keeps the whole polygon's factor, none seen gives 0;
-- where the probes disagree (an edge of an occluder crosses the patch) the patch is cut
-  into ``FINE`` x ``FINE`` sub-cells and the factor is the sum of each sub-cell's own
-  contour-integral factor times the visibility of its centre: a fixed quadrature of the
-  visibility only, the geometry staying exact.
+- probes: a pair whose factor is at most ``NEAR_FACTOR`` (a patch seen small: the size
+  rule) gets five, its corners (inset by ``INSET``) and its centroid; a larger one a
+  ``PROBES`` x ``PROBES`` lattice over the patch, outline included. Only probes in
+  front of the point's tangent plane vote (those behind send it no light);
+- all seen keeps the whole polygon's factor, none seen gives 0;
+- where they disagree (an occluder's outline crosses the patch) the patch is cut into
+  ``FINE`` x ``FINE`` sub-cells and the factor is the sum of each sub-cell's own
+  contour-integral factor times the visibility of its centre: a fixed quadrature of
+  the visibility only, the geometry staying exact.
 
 The sub-cells tile the patch, so where all are seen the sum is the whole factor (the
-contour integrals of adjacent cells cancel along shared edges).
+contour integrals of adjacent cells cancel along shared edges). Neighbouring patches
+share corners and edges, so each edge's term is computed once per point
+(``_contours``): a point costs O(patches), like a few hundred traced rays.
 """
 
 from __future__ import annotations
