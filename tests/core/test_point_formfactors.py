@@ -16,6 +16,7 @@ from lightinv_core.scene.builders import room_faces
 from lightinv_core.scene.builtin import builtin_scene
 from lightinv_core.scene.model import Rect, Scene, Surface
 from lightinv_core.scene.patches import mesh_patches
+from lightinv_core.transport import point_formfactors
 from lightinv_core.transport.point_formfactors import (
     FINE,
     patch_polygons,
@@ -210,3 +211,13 @@ def test_factors_depend_on_no_ray_count_or_seed():
     a = receiver_factors(grid.points, grid.normals, caster, p.n, 16, 0)
     b = receiver_factors(grid.points, grid.normals, caster, p.n, 4096, 9)
     assert (a != b).nnz == 0
+
+
+def test_a_large_scene_looks_only_at_the_surfaces_its_points_reach(monkeypatch):
+    p = mesh_patches(builtin_scene("sidelit"))
+    caster = RayCaster(p)
+    grid = work_plane_grid(p, caster, WorkPlane())
+    whole = point_form_factors(grid.points, grid.normals, p, caster)
+    monkeypatch.setattr(point_formfactors, "CULL_PAIRS", 0)  # as for a whole building
+    culled = point_form_factors(grid.points, grid.normals, p, caster)
+    assert abs(whole - culled).max() == 0.0
