@@ -47,6 +47,7 @@ NEAR_FACTOR = 1e-3
 five: at most 1,000 patches can exceed it from one point."""
 PROBES = 4
 FINE = 16
+FINE_SMALL = 4
 INSET = 0.01
 """Probes sit this share of an edge inside a patch's outline: clear of the surfaces
 meeting it there, which a ray grazing the corner would hit."""
@@ -212,7 +213,10 @@ def _visible_factor(
         votes = ahead.sum(axis=1)
         share[k] = np.where(votes > 0, (seen & ahead).sum(axis=1) / np.maximum(votes, 1), 1.0)
     out[share == 0] = 0.0
-    mixed = np.flatnonzero((share > 0) & (share < 1))
+    partly = (share > 0) & (share < 1)
+    # A partly hidden patch seen large: its cells' own factors times their centres'
+    # visibility (the quadrature of the module).
+    mixed = np.flatnonzero(partly & near)
     if len(mixed):
         verts, centres = sub_cells(patches, j[mixed], FINE)
         k, c = len(mixed), FINE * FINE
@@ -221,6 +225,20 @@ def _visible_factor(
         f = polygon_factor(Pm, Nm, verts.reshape(k * c, 4, 3)).reshape(k, c)
         vis = _seen(caster, np.broadcast_to(P[mixed][:, None], centres.shape), centres)
         out[mixed] = (f * vis).sum(axis=1)
+    # One seen small (at most NEAR_FACTOR): its exact factor times the share of its
+    # FINE_SMALL x FINE_SMALL cells seen, each weighed by its centre's point factor
+    # cos cos / r² (equal cells; far away, so the weights' own error hardly counts).
+    small = np.flatnonzero(partly & ~near)
+    if len(small):
+        _, centres = sub_cells(patches, j[small], FINE_SMALL)
+        d = P[small][:, None] - centres
+        r2 = np.maximum(np.einsum("kcx,kcx->kc", d, d), _TINY)
+        w = np.maximum(-np.einsum("kcx,kx->kc", d, N[small]), 0.0) * np.maximum(
+            np.einsum("kcx,kx->kc", d, patches.normal[j[small]]), 0.0
+        )
+        w /= r2 * r2
+        vis = _seen(caster, np.broadcast_to(P[small][:, None], centres.shape), centres)
+        out[small] *= (w * vis).sum(axis=1) / np.maximum(w.sum(axis=1), _TINY)
     return out
 
 
