@@ -20,10 +20,12 @@ random numbers, so the factors depend on no ray count or seed):
   ``PROBES`` x ``PROBES`` lattice over the patch, outline included. Only probes in
   front of the point's tangent plane vote (those behind send it no light);
 - all seen keeps the whole polygon's factor, none seen gives 0;
-- where they disagree (an occluder's outline crosses the patch) the patch is cut into
-  ``FINE`` x ``FINE`` sub-cells and the factor is the sum of each sub-cell's own
-  contour-integral factor times the visibility of its centre: a fixed quadrature of
-  the visibility only, the geometry staying exact.
+- where they disagree (an occluder's outline crosses the patch) a patch seen large is
+  cut into ``FINE`` x ``FINE`` sub-cells and the factor is the sum of each sub-cell's
+  own contour-integral factor times the visibility of its centre: a fixed quadrature
+  of the visibility only, the geometry staying exact. A patch seen small keeps its
+  exact factor times the share of its ``FINE_SMALL`` x ``FINE_SMALL`` cells seen, each
+  weighed by its centre's point factor.
 
 The sub-cells tile the patch, so where all are seen the sum is the whole factor (the
 contour integrals of adjacent cells cancel along shared edges). Neighbouring patches
@@ -42,9 +44,10 @@ import scipy.sparse as sp
 from lightinv_core.scene.patches import Patches
 from lightinv_core.transport.raycast import RayCaster
 
-NEAR_FACTOR = 1e-3
+NEAR_FACTOR = 1e-4
 """Factor above which a patch gets ``PROBES`` x ``PROBES`` visibility probes instead of
-five: at most 1,000 patches can exceed it from one point."""
+five (at most 10,000 patches can exceed it from one point). On the patio's work plane
+(columns and arches above it) 1e-3 left 0.33% rms against a fine trace, 1e-4 0.11%."""
 PROBES = 4
 FINE = 16
 FINE_SMALL = 4
