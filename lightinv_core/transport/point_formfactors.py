@@ -331,7 +331,7 @@ def _block(
     return pi[ok], j[ok], f[ok]
 
 
-def _surfaces_seen(patches: Patches, caster: RayCaster, P: np.ndarray, N: np.ndarray):
+def _surfaces_seen(patches: Patches, caster: RayCaster, P: np.ndarray, N: np.ndarray) -> np.ndarray:
     """Patches of the surfaces that any of ``CULL_DIRECTIONS`` fixed cosine-weighted
     directions from points ``P`` (normals ``N``) reaches: the candidates of a block
     of points in a large scene (the rooms around the points, not the whole building)."""
