@@ -38,6 +38,8 @@ class RayCaster:
     """
 
     def __init__(self, patches: Patches) -> None:
+        self.patches = patches
+        """The patches traced (their geometry: ``point_formfactors`` reads it)."""
         corners = np.concatenate(
             [patches.origin, patches.origin + patches.edge1, patches.origin + patches.edge2]
         )

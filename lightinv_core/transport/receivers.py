@@ -3,9 +3,12 @@ patches but give none back, so they do not take part in light transport.
 
 At a point with unit normal ``n`` the light of Lambertian surfaces of exitance B
 (lm/m², emitted plus reflected) is ``sum_j B_j F_pj`` (lux), with ``F_pj`` the
-point's form factor to patch j: the share of cosine-weighted rays from the point
-that reach j's front. That share is what ``receiver_factors`` traces, once per grid;
-any radiosity solution is then a sparse product (O(points * rays), not O(n)).
+point's form factor to patch j. ``receiver_factors`` computes them once per grid,
+exactly (``point_formfactors``: the contour integral of each patch with its
+visibility, no random rays, so a point's light does not depend on a ray count);
+any radiosity solution is then a sparse product. ``traced_receiver_factors`` is the
+earlier estimate, the share of cosine-weighted rays from the point that reach j's
+front, kept as an independent check (tests, ``bench/point_light.py``).
 """
 
 from __future__ import annotations
@@ -15,6 +18,7 @@ import scipy.sparse as sp
 
 from lightinv_core.errors import LightInvError
 from lightinv_core.transport.formfactors import DEFAULT_RAYS, MAX_RAYS
+from lightinv_core.transport.point_formfactors import point_form_factors
 from lightinv_core.transport.raycast import RayCaster, stratified_unit_square
 
 
@@ -34,8 +38,33 @@ def receiver_factors(
     rays: int = DEFAULT_RAYS,
     seed: int = 0,
 ) -> sp.csr_matrix:
-    """Sparse (m, n) matrix of the points' form factors to the patches: rows sum to the
-    share of each point's view that is the room (1 in a closed room)."""
+    """Sparse (m, n) matrix of the points' exact form factors to the patches of
+    ``caster`` (``point_formfactors``): rows sum to the share of each point's view that
+    is the room (1 in a closed room). ``rays`` and ``seed`` are checked and otherwise
+    unused: they are the traced estimate's (``traced_receiver_factors``), which the
+    callers still hand on."""
+    if not 1 <= int(rays) <= MAX_RAYS:
+        raise LightInvError(f"rays per point must be from 1 to {MAX_RAYS:,}, got {rays}")
+    if caster.patches.n != n_patches:
+        raise LightInvError(
+            f"receiver factors to {n_patches:,} patches asked of a ray caster of "
+            f"{caster.patches.n:,}"
+        )
+    return point_form_factors(points, normals, caster.patches, caster)
+
+
+def traced_receiver_factors(
+    points: np.ndarray,
+    normals: np.ndarray,
+    caster: RayCaster,
+    n_patches: int,
+    rays: int = DEFAULT_RAYS,
+    seed: int = 0,
+) -> sp.csr_matrix:
+    """The points' form factors estimated by ``rays`` cosine-weighted stratified rays
+    each (random stream ``seed``): the share reaching each patch's front. Unbiased, with
+    a noise falling as about 1/sqrt(rays); rows sum to the share of the view that is
+    the room."""
     if not 1 <= int(rays) <= MAX_RAYS:
         raise LightInvError(f"rays per point must be from 1 to {MAX_RAYS:,}, got {rays}")
     pts = np.asarray(points, dtype=float).reshape(-1, 3)
