@@ -30,6 +30,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from lightinv_core.design.model import Daylight, LuminaireArray, Source, Workplane
+from lightinv_core.errors import LightInvError, SceneError
 from lightinv_core.kinds import Edition
 from lightinv_core.light.arrays import arrays_field, caster_for
 from lightinv_core.light.model import LightModel
@@ -40,8 +41,6 @@ from lightinv_core.transport.formfactors import DEFAULT_RAYS
 from lightinv_core.transport.raycast import RayCaster
 from lightinv_core.transport.receivers import receiver_factors
 from lightinv_core.transport.workplane import (
-    BORDER_DIRECTIONS,
-    UP,
     Grid,
     WorkPlane,
     en12464_spacing,
@@ -72,60 +71,19 @@ GRID_RULES: dict[str, Callable[[float, float], tuple[int, int, float]]] = {
 
 
 def edition_grid(patches: Patches, caster: RayCaster, wp: Workplane) -> Grid:
-    """The grid of work plane ``wp`` by its edition's rule. The 2011 grid is the
-    transport's (``work_plane_grid``, which also checks the plane); another rule lays
-    its counts over the same area and keeps the points by the same tests."""
-    g = work_plane_grid(patches, caster, WorkPlane(wp.height, wp.border, wp.group, wp.name))
-    w, d = (g.spacing[0] * g.counts[0], g.spacing[1] * g.counts[1])
-    nx, ny, p = GRID_RULES[wp.edition](w, d)
-    if (nx, ny) == g.counts:
-        return Grid(g.points, g.spacing, g.counts, p, g.dropped)
-    idx = patches.group_index(wp.group)
-    corners = np.concatenate(
-        [patches.origin[idx], patches.origin[idx] + patches.edge1[idx] + patches.edge2[idx]]
-    )
-    lo = corners[:, :2].min(axis=0) + wp.border
-    xs = lo[0] + (np.arange(nx) + 0.5) * w / nx
-    ys = lo[1] + (np.arange(ny) + 0.5) * d / ny
-    gx, gy = np.meshgrid(xs, ys, indexing="ij")
-    xy = np.column_stack([gx.ravel(), gy.ravel()])
-    z = float(g.points[0, 2])
-    keep = _kept(patches, caster, xy, z - wp.height, z, wp.border, idx)
-    if not keep.any():  # the 2011 grid had points: keep the plane usable
-        return g
-    pts = np.column_stack([xy, np.full(len(xy), z)])[keep]
-    return Grid(pts, (w / nx, d / ny), (nx, ny), p, int((~keep).sum()))
-
-
-def _kept(
-    patches: Patches,
-    caster: RayCaster,
-    xy: np.ndarray,
-    floor_z: float,
-    z: float,
-    border: float,
-    idx: np.ndarray,
-) -> np.ndarray:
-    """The tests ``work_plane_grid`` keeps its points by: the floor group straight below
-    each point and ``border`` away in 16 directions, and the point not inside a solid
-    (looking up meets the back of a face)."""
-    floor = np.zeros(patches.n, bool)
-    floor[idx] = True
-    z_probe = floor_z + 4 * caster.offset
-    down = np.broadcast_to(-UP, (len(xy), 3))
-
-    def below(at: np.ndarray) -> np.ndarray:
-        hit = caster.hit_patches(np.column_stack([at, np.full(len(at), z_probe)]), down)
-        return (hit >= 0) & floor[np.maximum(hit, 0)]
-
-    keep = below(xy)
-    if border > 0:
-        for t in np.arange(BORDER_DIRECTIONS) * 2 * np.pi / BORDER_DIRECTIONS:
-            keep &= below(xy + border * np.array([np.cos(t), np.sin(t)]))
-    pts = np.column_stack([xy, np.full(len(xy), z)])
-    up = np.broadcast_to(UP, pts.shape)
-    inside = caster.occluded(pts, up, np.full(len(pts), 1e6)) & (caster.hit_patches(pts, up) < 0)
-    return keep & ~inside
+    """The grid of work plane ``wp`` by its edition's rule (``work_plane_grid`` lays the
+    rule's counts over the floor and keeps the points by its tests). Should another rule
+    keep no point where 2011's keeps some, the 2011 grid keeps the plane usable."""
+    plane = WorkPlane(wp.height, wp.border, wp.group, wp.name)
+    rule = GRID_RULES[wp.edition]
+    if rule is grid_counts:
+        return work_plane_grid(patches, caster, plane)
+    try:
+        return work_plane_grid(patches, caster, plane, rule)
+    except SceneError:
+        raise  # the plane is not inside its room: no rule helps
+    except LightInvError:
+        return work_plane_grid(patches, caster, plane)
 
 
 @dataclass(frozen=True)

@@ -3,7 +3,8 @@
 A work plane lies ``height`` m above a floor group (default 0.8 m, the usual desk
 height) over that floor's extent less a ``border`` band along the walls (default
 0.5 m, the band EN 12464-1 leaves out of a room's calculation area). Its grid
-follows EN 12464-1:2011, 4.4 (kept in EN 12464-1:2021): the largest spacing is
+follows by default EN 12464-1:2011, 4.4 (another edition's rule is passed in as
+``counts``: ``light.grids.GRID_RULES``): the largest spacing is
 
     p = 0.2 x 5^log10(d)    (m, and at most 10 m)
 
@@ -17,6 +18,7 @@ and dropped where they sit inside a solid object (its back faces all around).
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from dataclasses import dataclass
 
 import numpy as np
@@ -109,8 +111,15 @@ def _room_top(patches: Patches, caster: RayCaster, xy: np.ndarray, z: float) -> 
     return float(z_hit.max())
 
 
-def work_plane_grid(patches: Patches, caster: RayCaster, plane: WorkPlane) -> Grid:
-    """The EN 12464-1 grid of ``plane`` over its floor group (see the module)."""
+def work_plane_grid(
+    patches: Patches,
+    caster: RayCaster,
+    plane: WorkPlane,
+    counts: Callable[[float, float], tuple[int, int, float]] = grid_counts,
+) -> Grid:
+    """The EN 12464-1 grid of ``plane`` over its floor group (see the module); ``counts``
+    (width, depth m) -> (nx, ny, cell m) is the edition's rule (``light.grids.GRID_RULES``;
+    default the 2011 one, ``grid_counts``)."""
     try:
         idx = patches.group_index(plane.group)
     except LightInvError:
@@ -136,7 +145,7 @@ def work_plane_grid(patches: Patches, caster: RayCaster, plane: WorkPlane) -> Gr
             f"({np.ptp(corners[:, 0]):.2f} x {np.ptp(corners[:, 1]):.2f} m); use a smaller border"
         )
     w, dpt = hi - lo
-    nx, ny, p = grid_counts(float(w), float(dpt))
+    nx, ny, p = counts(float(w), float(dpt))
     xs = lo[0] + (np.arange(nx) + 0.5) * w / nx
     ys = lo[1] + (np.arange(ny) + 0.5) * dpt / ny
     gx, gy = np.meshgrid(xs, ys, indexing="ij")
