@@ -70,18 +70,26 @@ class BackgroundTasks(QtCore.QObject):
         if self.worker.warnings:
             self._say(self.worker.warnings[0], 8000)
 
+    def _solution_to_write(self, title: str):
+        """The design on screen as a solution to report or export, or None once the
+        user has been told why not (no operator yet, work running, a bad design)."""
+        d = self.doc
+        if d.operator is None or self.worker is not None:
+            ask.inform(self.win, "Wait for the radiosity operator first.")
+            return None
+        try:
+            return d.design_solution()
+        except LightInvError as exc:
+            ask.error(self.win, title, str(exc))
+            return None
+
     # -- the report ----------------------------------------------------------------------------
     def export_report(self, path: str | Path) -> bool:
         """Write the PDF report of the design on screen (as edited or as a result loaded
         into it) in a worker (progress bar, Cancel); needs the operator."""
         d = self.doc
-        if d.operator is None or self.worker is not None:
-            ask.inform(self.win, "Wait for the radiosity operator first.")
-            return False
-        try:
-            solution = d.design_solution()
-        except LightInvError as exc:
-            ask.error(self.win, "cannot report", str(exc))
+        solution = self._solution_to_write("cannot report")
+        if solution is None:
             return False
         worker = ReportWorker(d.project, d.prepared(), Path(path), solution, self)
         worker.succeeded.connect(
@@ -97,13 +105,8 @@ class BackgroundTasks(QtCore.QObject):
         """Write the design on screen in the export format ``name`` (the registry's) in a
         worker; needs the operator, as the report."""
         d = self.doc
-        if d.operator is None or self.worker is not None:
-            ask.inform(self.win, "Wait for the radiosity operator first.")
-            return False
-        try:
-            solution = d.design_solution()
-        except LightInvError as exc:
-            ask.error(self.win, "cannot export", str(exc))
+        solution = self._solution_to_write("cannot export")
+        if solution is None:
             return False
         worker = ExportWorker(d.project, d.prepared(), name, Path(path), solution, self)
         worker.succeeded.connect(lambda out: self._say(f"Design exported: {out.path}", 8000))

@@ -162,3 +162,23 @@ def tregenza() -> SkyDome:
     """Tregenza's 145 patches: 7 bands of 12 degrees (30, 30, 24, 24, 18, 12, 6
     patches) and a zenith cap above 84 degrees."""
     return reinhart(1)
+
+
+SUN_BASIS_MF = 2
+"""Reinhart subdivision of the sun positions whose inter-reflected light is solved (a
+study's clear year and a project's clear glazing alike)."""
+
+
+def sun_bins(geo: np.ndarray, up: np.ndarray, mf: int = SUN_BASIS_MF):
+    """The sun positions binned on Reinhart MF:``mf``: (S, 3) mean geographic direction
+    of each bin some hour's sun falls in, and each hour's bin (H,) (-1 where ``up`` is
+    False: the sun below the horizon). ``geo`` (H, 3) unit sun directions."""
+    b = np.full(len(geo), -1)
+    b[up] = reinhart(mf).patch_of(geo[up])
+    used, inverse = np.unique(b[up], return_inverse=True)
+    mean = np.zeros((len(used), 3))
+    np.add.at(mean, inverse, geo[up])
+    mean /= np.linalg.norm(mean, axis=1)[:, None]
+    hour_bin = np.full(len(geo), -1)
+    hour_bin[up] = inverse
+    return mean, hour_bin

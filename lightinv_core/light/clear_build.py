@@ -32,6 +32,7 @@ from types import SimpleNamespace
 
 import numpy as np
 
+from lightinv_core.climate.skydome import SUN_BASIS_MF, sun_bins
 from lightinv_core.design.model import Daylight, Design
 from lightinv_core.kinds import GlazingKind
 from lightinv_core.light.arrays import caster_for
@@ -58,8 +59,6 @@ from lightinv_core.transport.clear_glazing import (
 from lightinv_core.transport.formfactors import DEFAULT_RAYS
 from lightinv_core.transport.receivers import receiver_factors
 
-SUN_BASIS_MF = 2
-"""Reinhart subdivision of the sun positions (as ``study.clear_year``)."""
 GLASS_SAMPLES = 6
 """Per side: glass samples per pane patch for the receivers' view and the sun's beam."""
 ROOM_RAYS = 256
@@ -139,21 +138,6 @@ def _binned(rays, groups: int, bins, nbins: int) -> np.ndarray:
     return out.reshape(groups, rays.targets, nbins)
 
 
-def _sun_bins(geo: np.ndarray, up: np.ndarray):
-    """(S, 3) geographic mean sun direction of each MF:2 bin used, each hour's bin."""
-    from lightinv_core.climate.skydome import reinhart
-
-    b = np.full(len(geo), -1)
-    b[up] = reinhart(SUN_BASIS_MF).patch_of(geo[up])
-    used, inverse = np.unique(b[up], return_inverse=True)
-    mean = np.zeros((len(used), 3))
-    np.add.at(mean, inverse, geo[up])
-    mean /= np.linalg.norm(mean, axis=1)[:, None]
-    hour_bin = np.full(len(geo), -1)
-    hour_bin[up] = inverse
-    return mean, hour_bin
-
-
 def _reflected(light, rho: np.ndarray, H: np.ndarray) -> np.ndarray:
     """(n, c) irradiance (lux) from the room's reflections of first-hit irradiance H
     (n, c): two exact bounces over F (reflectances ``rho``, the panes 0), then the
@@ -220,7 +204,7 @@ def _build(light, design: Design, sources) -> ClearDesignLight:
 
     sky_w, geo, dn, up = _weather(d, dome)
     H = len(dn)
-    mean, hour_bin = _sun_bins(geo, up)
+    mean, hour_bin = sun_bins(geo, up, SUN_BASIS_MF)
     S = len(mean)
     hours = np.flatnonzero(up)
     sun_w = np.zeros((S, H))

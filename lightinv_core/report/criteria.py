@@ -26,16 +26,9 @@ from lightinv_core.light.intentions import bounds_set
 from lightinv_core.luminaires.rendering import product_ra
 from lightinv_core.quantities import quantity_spec
 from lightinv_core.report.glare import observer_rows
-from lightinv_core.report.tables import FAIL, PASS, Table
+from lightinv_core.report.tables import EN_LABELS, FAIL, PASS, Table
 from lightinv_core.value_text import bound_value, fmt
 
-EN_LABELS = {
-    Bound.AVERAGE: "Em",
-    Bound.MIN: "Emin",
-    Bound.MAX: "Emax",
-    Bound.UNIFORMITY: "U0",
-    Bound.MAX_AVERAGE: "Em",
-}
 NOT_CALCULATED = "not calculated"
 
 

@@ -24,18 +24,11 @@ from lightinv_core.light.grids import DesignGrids
 from lightinv_core.luminaires.photometry import light_warnings
 from lightinv_core.quantities import quantity_spec
 from lightinv_core.report.figures import new_figure
-from lightinv_core.report.tables import FAIL, PASS, Table, product_title
+from lightinv_core.report.tables import EN_LABELS, FAIL, PASS, Table, product_title
 from lightinv_core.transport.workplane import grid_statistics
 from lightinv_core.value_text import BOUND_LABELS, fmt, u0_text
 
 ISO_LEVELS = 8  # iso-lux lines per plan
-EN_LABELS = {
-    Bound.AVERAGE: "Em",
-    Bound.MIN: "Emin",
-    Bound.MAX: "Emax",
-    Bound.UNIFORMITY: "U0",
-    Bound.MAX_AVERAGE: "Em",
-}
 
 
 def luminaire_table(arrays: Sequence[LuminaireArray], warnings: Sequence[str] = ()) -> Table | None:

@@ -48,6 +48,15 @@ from lightinv_core.value_text import objective_text as objective_text
 
 PASS, FAIL = "pass", "FAIL"
 
+EN_LABELS = {
+    Bound.AVERAGE: "Em",
+    Bound.MIN: "Emin",
+    Bound.MAX: "Emax",
+    Bound.UNIFORMITY: "U0",
+    Bound.MAX_AVERAGE: "Em",
+}
+"""EN 12464-1's name of each bound of a lux intention on a work plane's grid."""
+
 
 @dataclass(frozen=True)
 class Table:

@@ -24,6 +24,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from lightinv_core.climate.skydome import SUN_BASIS_MF, sun_bins
 from lightinv_core.design.model import Daylight
 from lightinv_core.errors import LightInvError
 from lightinv_core.light.daylight_year import daylight_year, weather_path
@@ -38,8 +39,6 @@ _SKIES: dict = {}
 SKY_SUBDIVISIONS = (1, 2, 4)
 """Reinhart subdivisions of the sky a year may use (1: Tregenza)."""
 
-SUN_BASIS_MF = 2
-"""Reinhart subdivision of the sun positions whose inter-reflected light is solved."""
 
 BLIND_TRANSMITTANCE = 0.2
 """Share of a clear group's transmittance its closed blinds pass, as a diffusing glow
@@ -101,17 +100,7 @@ def _suns(sky, weather, north_deg: float):
 
 def _sun_basis(geo: np.ndarray, up: np.ndarray, north_deg: float):
     """(S, 3) scene directions of the sun bins used, and each hour's bin (-1: none)."""
-    from lightinv_core.climate.skydome import reinhart
-
-    dome = reinhart(SUN_BASIS_MF)
-    b = np.full(len(geo), -1)
-    b[up] = dome.patch_of(geo[up])
-    used, inverse = np.unique(b[up], return_inverse=True)
-    mean = np.zeros((len(used), 3))
-    np.add.at(mean, inverse, geo[up])
-    mean /= np.linalg.norm(mean, axis=1)[:, None]
-    hour_bin = np.full(len(geo), -1)
-    hour_bin[up] = inverse
+    mean, hour_bin = sun_bins(geo, up, SUN_BASIS_MF)
     return to_scene(mean, north_deg), hour_bin
 
 
