@@ -24,6 +24,9 @@ from lightinv_core.optimize.result import HistoryRow, OptimizationResult, status
 from lightinv_core.optimize.termination import StopRule
 
 START_TRIES = 20_000
+JUDGING = 1
+"""Evaluations of judging one answer on every patch (``DesignProblem.solution``): a
+result's count includes them, so it is every evaluation the run made."""
 
 
 @dataclass
@@ -249,7 +252,8 @@ def history_rows(history) -> tuple[HistoryRow, ...]:
 def judged(
     problem: DesignProblem, res: SearchResult, method: str, seed: int, **info
 ) -> OptimizationResult:
-    """A search's answer judged on every patch, with its typed info."""
+    """A search's answer judged on every patch, with its typed info; the result's
+    evaluations are the search's and the judging's (``JUDGING``)."""
     history = history_rows(res.history)
     best = problem.solution(
         res.x,
@@ -264,4 +268,5 @@ def judged(
         ),
     )
     status = status_of(best, res.status == "cancelled")
-    return OptimizationResult(status, best, None, res.evaluations, res.seconds, history)
+    evaluations = res.evaluations + JUDGING
+    return OptimizationResult(status, best, None, evaluations, res.seconds, history)
