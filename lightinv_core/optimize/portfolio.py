@@ -20,7 +20,7 @@ By the problem's shape (decided from bench/optimizers.py, table in docs/design.m
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
@@ -36,14 +36,13 @@ from lightinv_core.optimize.termination import StopRule
 from lightinv_core.optimize.vns import VNSRun
 
 FRONT_GOALS = frozenset(OBJECTIVES)
-COST = {"cmaes": 40, "vns": 8}
+COST = {"cmaes": 50, "vns": 8}
 """Fixed cost of one batch, in evaluations: ``cma``'s ask and tell and the batch's own
-overhead (measured on the office demo: a CMA-ES generation of 11 costs about as much CPU
-as 50 evaluations, a VNS batch of 32 as 40)."""
+overhead. Measured (CPU, one BLAS thread) with VNS's batch of 32 as 32 + 8: a CMA-ES
+generation of 10-11 costs as much as 56 evaluations on the office demo and 69 on the
+patio."""
 GAIN = 1e-3
 """A search improves when its best f + P falls by this share (or becomes feasible)."""
-LEAD_SHARE = 2.0
-"""The share of the search holding the best so far, against the other's 1."""
 STAGNANT_SHARE = 0.25
 """CMA-ES's share while it stagnates (its restarts keep ending in one basin)."""
 RESTART_SEED = 104_729
@@ -114,6 +113,14 @@ def _restart_vns(problem: DesignProblem, arm: _Arm, rng: np.random.Generator) ->
     arm.mark, arm.mark_evals = (np.inf, np.inf), arm.evals
 
 
+def _stalled(arms: list[_Arm], stall: int | None) -> str | None:
+    """ "stall" when no search has improved its best in ``stall`` of its evaluations."""
+    if stall is None:
+        return None
+    done = all(a.evals - a.run.budget.last_gain >= stall for a in arms)
+    return "stall" if done else None
+
+
 def interleaved(
     problem: DesignProblem, context: RunContext, trials: int = 32
 ) -> tuple[SearchResult, dict[str, int]]:
@@ -127,12 +134,15 @@ def interleaved(
     ]
     rng = np.random.default_rng(context.seed + RESTART_SEED)
     nvar = problem.vars.n
-    total = Budget(problem, context.stop, context.cancel)
+    # The stall rule is each search's own: auto stalls when both do (interleaved, the
+    # run's evaluations grow twice as fast as either search's).
+    stall = context.stop.stall
+    total = Budget(problem, replace(context.stop, stall=None), context.cancel)
     best_x = arms[0].run.best_x
-    iterations, leader = 0, arms[0]
+    iterations = 0
 
     def absorb() -> None:
-        nonlocal best_x, leader
+        nonlocal best_x
         total.evals = sum(a.evals for a in arms)
         for a in arms:
             b = a.run.budget.best
@@ -140,13 +150,11 @@ def interleaved(
                 total.best = b
                 total.history.append((total.evals, *b))
                 total.gain()
-                best_x, leader = a.run.best_x, a
+                best_x = a.run.best_x
 
     absorb()
-    while (why := total.why()) is None:
-        share = {a.name: LEAD_SHARE if a is leader else 1.0 for a in arms}
-        if arms[0].stagnating(nvar):
-            share["cmaes"] = STAGNANT_SHARE
+    while (why := total.why() or _stalled(arms, stall)) is None:
+        share = {"cmaes": STAGNANT_SHARE if arms[0].stagnating(nvar) else 1.0, "vns": 1.0}
         arm = min(arms, key=lambda a: a.cost / share[a.name])
         if arm.name == "vns" and (arm.run.stuck or arm.stagnating(2 * nvar)):
             _restart_vns(problem, arm, rng)
