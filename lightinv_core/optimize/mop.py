@@ -46,7 +46,7 @@ from lightinv_core.optimize.multilevel import DEFAULT_DIVISORS, multilevel
 from lightinv_core.optimize.problem import DesignProblem
 from lightinv_core.optimize.progress import ProgressFn
 from lightinv_core.optimize.result import OptimizationResult
-from lightinv_core.optimize.search import JUDGING, judged
+from lightinv_core.optimize.search import judged
 from lightinv_core.optimize.termination import StopRule
 from lightinv_core.sources.types import daylit, electric, source_types
 
@@ -115,7 +115,7 @@ def _solve(
     sub = context.but(progress=_tagged(context.progress, *run), stop=stop)
     res, _ = multilevel(problem, sub, divisors)
     if tally is not None:
-        tally.evaluations += res.evaluations + JUDGING  # the search's and its answer's
+        tally.evaluations += res.evaluations
     sol = judged(problem, res, method, context.seed, **(info or {})).best
     # A sweep's points carry no convergence history (each is one of many runs).
     return res, replace(sol, info=sol.info.but(history=()))

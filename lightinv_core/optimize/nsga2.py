@@ -37,7 +37,7 @@ from lightinv_core.optimize.problem import DesignProblem
 from lightinv_core.optimize.progress import Progress
 from lightinv_core.optimize.quality import front_scales
 from lightinv_core.optimize.result import OptimizationResult
-from lightinv_core.optimize.search import JUDGING, random_layouts
+from lightinv_core.optimize.search import random_layouts
 
 _BIG = 1e12  # stands for +inf (not lit) in F and G: pymoo needs finite numbers
 
@@ -239,6 +239,4 @@ def judged_front(
         status = "cancelled"
     else:
         status = "feasible" if best is not None else "infeasible"
-    # Judging each point on every patch is one evaluation more per point.
-    evaluations = run.evaluations + len(solutions) * JUDGING
-    return OptimizationResult(status, best, front, evaluations, run.seconds)
+    return OptimizationResult(status, best, front, run.evaluations, run.seconds)

@@ -24,9 +24,6 @@ from lightinv_core.optimize.result import HistoryRow, OptimizationResult, status
 from lightinv_core.optimize.termination import StopRule
 
 START_TRIES = 20_000
-JUDGING = 1
-"""Evaluations of judging one answer on every patch (``DesignProblem.solution``): a
-result's count includes them, so it is every evaluation the run made."""
 
 
 @dataclass
@@ -252,8 +249,9 @@ def history_rows(history) -> tuple[HistoryRow, ...]:
 def judged(
     problem: DesignProblem, res: SearchResult, method: str, seed: int, **info
 ) -> OptimizationResult:
-    """A search's answer judged on every patch, with its typed info; the result's
-    evaluations are the search's and the judging's (``JUDGING``)."""
+    """A search's answer judged on every patch, with its typed info. The result's
+    evaluations are the search's: judging an answer (one evaluation on every patch,
+    ``DesignProblem.solution``) is not a search step and is not counted."""
     history = history_rows(res.history)
     best = problem.solution(
         res.x,
@@ -268,5 +266,4 @@ def judged(
         ),
     )
     status = status_of(best, res.status == "cancelled")
-    evaluations = res.evaluations + JUDGING
-    return OptimizationResult(status, best, None, evaluations, res.seconds, history)
+    return OptimizationResult(status, best, None, res.evaluations, res.seconds, history)
