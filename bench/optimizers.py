@@ -151,7 +151,11 @@ def _front_run(project, prepared, method: str, seed: int, scales) -> dict:
     }
 
 
-def run(problems: list[str], methods: list[str] | None, seeds: list[int]) -> dict:
+def run(
+    problems: list[str], methods: list[str] | None, seeds: list[int], save: Path | None = None
+) -> dict:
+    """Every method on every problem with ``seeds``; the JSON so far is rewritten to
+    ``save`` after each method (a run stopped early keeps what it finished)."""
     # Imported before timing: not part of any run.
     import cma  # noqa: F401
     import pymoo.algorithms.moo.nsga2  # noqa: F401
@@ -172,6 +176,7 @@ def run(problems: list[str], methods: list[str] | None, seeds: list[int]) -> dic
             for m in methods or SINGLE_METHODS:
                 entry["methods"][m] = [_single_run(project, prepared, m, s) for s in seeds]
                 print(f"{name} {m} done", file=sys.stderr, flush=True)
+                _save(out, name, entry, save)
         else:
             entry["kind"] = "front"
             entry["level_build_cpu"] = level_build_cpu(project, prepared)
@@ -181,6 +186,7 @@ def run(problems: list[str], methods: list[str] | None, seeds: list[int]) -> dic
                 rows = [_front_run(project, prepared, m, s, scales) for s in seeds]
                 entry["methods"][m] = rows
                 print(f"{name} {m} done", file=sys.stderr, flush=True)
+                _save(out, name, entry, save)
         out["problems"][name] = entry
     return summarise(out)
 
@@ -226,6 +232,12 @@ def built_match(name: str):
         OperatorSettings(),
         OptimizerSettings(method="auto", max_evals=20000, target=MATCH_TARGET),
     )
+
+
+def _save(out: dict, name: str, entry: dict, save: Path | None) -> None:
+    if save is not None:
+        out["problems"][name] = entry
+        save.write_text(json.dumps(out, separators=(",", ":")))
 
 
 def three_luminaires():
@@ -375,6 +387,7 @@ def main() -> None:
     ap.add_argument("--methods", nargs="+")
     ap.add_argument("--runs", type=int, default=10, help="seeds 0 .. runs - 1")
     ap.add_argument("--seeds", nargs="+", type=int, help="these seeds instead of --runs")
+    ap.add_argument("--save", type=Path, help="rewrite the raw JSON here after each method")
     ap.add_argument("--merge", nargs="+", type=Path, help="merge benchmark JSON files")
     ap.add_argument("--markdown", type=Path, help="print the table of a benchmark JSON")
     ap.add_argument("--update", nargs="+", type=Path, help="with --markdown: rewrite files")
@@ -404,7 +417,7 @@ def main() -> None:
         return
     with threadpool_limits(limits=1, user_api="blas"):
         seeds = args.seeds if args.seeds is not None else list(range(args.runs))
-        out = run(args.problems or [*SINGLE, *BUILT, *FRONTS], args.methods, seeds)
+        out = run(args.problems or [*SINGLE, *BUILT, *FRONTS], args.methods, seeds, args.save)
     print(json.dumps(out, separators=(",", ":")))
 
 
