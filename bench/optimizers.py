@@ -366,6 +366,18 @@ def markdown(out: dict) -> str:
                     f"| {_fmt(s['median_spacing'], '.4f')} | {_fmt(s['median_points'], '.0f')} "
                     f"| {_fmt(s['median_evaluations'])} | {_fmt(s['median_cpu_seconds'], '.1f')} |"
                 )
+    problems = out["problems"].items()
+    built = [(n, e["level_build_cpu"]) for n, e in problems if "level_build_cpu" in e]
+    if built:
+        lines += [
+            "",
+            "Multilevel levels built cold, once per operator (CPU s; kept for every later run):",
+            "",
+            "| problem | n/64 | n/16 | every patch |",
+            "|---|---|---|---|",
+        ]
+        for name, cpu in built:
+            lines.append(f"| {name} | {cpu['64']:.2f} | {cpu['16']:.2f} | {cpu['1']:.2f} |")
     return "\n".join(lines)
 
 
