@@ -63,6 +63,79 @@ def ranking_fitness(ev: Evaluation) -> np.ndarray:
     return fit
 
 
+class CMAESRun:
+    """A CMA-ES search taken one generation at a time (``step``), for a driver that
+    interleaves it with other searches (``auto``); ``cmaes`` runs one to its stop.
+
+    ``budget`` holds its evaluations, best (value, penalty, goal) and history; ``best_x``
+    its best layout; ``restarts`` the IPOP restarts begun so far."""
+
+    def __init__(
+        self,
+        problem: DesignProblem,
+        context: RunContext,
+        level: Level | None = None,
+        popsize: int | None = None,
+    ):
+        self.problem, self.context = problem, context
+        self.rng = np.random.default_rng(context.seed)
+        self.level = level or problem.level(1)
+        x, self.budget = first_point(
+            problem, context.x0, self.rng, self.level, context.stop, context.cancel
+        )
+        self.x0, self.best_x = x, x.copy()
+        lo, hi = problem.vars.lo, problem.vars.hi
+        self.lo, self.span = lo, np.where(hi > lo, hi - lo, 1.0)
+        self.lam0 = popsize or 4 + int(3 * math.log(problem.vars.n))
+        self.lam, self.iterations, self.restarts = self.lam0, 0, 0
+        self.es = None
+
+    def _new_run(self):
+        import cma  # lazily: only CMA-ES runs need it
+
+        if self.es is not None:  # IPOP: each restart doubles the population
+            self.restarts += 1
+            self.lam = min(2 * self.lam, MAX_POPSIZE_FACTOR * self.lam0)
+        start = self.x0 if self.restarts == 0 else random_start(self.problem, self.rng)
+        rng = self.rng
+        return cma.CMAEvolutionStrategy(
+            (start - self.lo) / self.span,
+            SIGMA0,
+            {
+                "bounds": [0.0, 1.0],
+                "popsize": self.lam,
+                "randn": lambda *shape: rng.standard_normal(shape),
+                "seed": np.nan,  # never touch numpy's global random state
+                "tolx": TOLX,
+                "tolfun": TOLFUN,
+                "verbose": -10,  # silent; no signals file read from the working folder
+                "verb_log": 0,  # no output files
+                "verb_disp": 0,
+                "maxiter": np.inf,
+            },
+        )
+
+    def step(self) -> int:
+        """One generation (a new IPOP run first when the last one has converged or
+        stagnated); returns the candidates evaluated."""
+        if self.es is None or self.es.stop():
+            self.es = self._new_run()
+        es, budget, problem = self.es, self.budget, self.problem
+        Z = np.asarray(es.ask())
+        X = self.lo + np.clip(Z, 0.0, 1.0) * self.span
+        ev = problem.evaluate(X, self.level)
+        es.tell(list(Z), ranking_fitness(ev).tolist())
+        budget.evals += ev.evaluated
+        self.iterations += 1
+        j = best_of(ev)
+        if ev.ok[j] and better(ev.value[j], ev.penalty[j], *budget.best[:2]):
+            self.best_x = X[j].copy()
+            budget.improve(ev, j)
+        if self.context.progress is not None:
+            self.context.progress(budget.snapshot(self.iterations, self.level.divisor, self.best_x))
+        return ev.evaluated
+
+
 def cmaes(
     problem: DesignProblem,
     context: RunContext | None = None,
@@ -77,53 +150,10 @@ def cmaes(
     ``context.x0`` starts the first run (later restarts start at random layouts);
     ``popsize`` is the first run's population (default ``cma``'s 4 + 3 ln n).
     """
-    import cma  # lazily: only CMA-ES runs need it
-
-    c = context_of(context, given)
-    rng = np.random.default_rng(c.seed)
-    level = level or problem.level(1)
-    x, budget = first_point(problem, c.x0, rng, level, c.stop, c.cancel)
-    progress = c.progress
-    lo, hi = problem.vars.lo, problem.vars.hi
-    span = np.where(hi > lo, hi - lo, 1.0)
-    lam0 = popsize or 4 + int(3 * math.log(problem.vars.n))
-    best_x = x.copy()
-    iters, restarts, lam = 0, 0, lam0
-    why = budget.why()
-    while why is None:
-        start = x if restarts == 0 else random_start(problem, rng)
-        es = cma.CMAEvolutionStrategy(
-            (start - lo) / span,
-            SIGMA0,
-            {
-                "bounds": [0.0, 1.0],
-                "popsize": lam,
-                "randn": lambda *shape: rng.standard_normal(shape),
-                "seed": np.nan,  # never touch numpy's global random state
-                "tolx": TOLX,
-                "tolfun": TOLFUN,
-                "verbose": -10,  # silent; no signals file read from the working folder
-                "verb_log": 0,  # no output files
-                "verb_disp": 0,
-                "maxiter": np.inf,
-            },
-        )
-        while (why := budget.why()) is None and not es.stop():
-            Z = np.asarray(es.ask())
-            X = lo + np.clip(Z, 0.0, 1.0) * span
-            ev = problem.evaluate(X, level)
-            es.tell(list(Z), ranking_fitness(ev).tolist())
-            budget.evals += ev.evaluated
-            iters += 1
-            j = best_of(ev)
-            if ev.ok[j] and better(ev.value[j], ev.penalty[j], *budget.best[:2]):
-                best_x = X[j].copy()
-                budget.improve(ev, j)
-            if progress is not None:
-                progress(budget.snapshot(iters, level.divisor, best_x))
-        restarts += 1
-        lam = min(2 * lam, MAX_POPSIZE_FACTOR * lam0)
-    return budget.result(best_x, iters, why)
+    run = CMAESRun(problem, context_of(context, given), level, popsize)
+    while (why := run.budget.why()) is None:
+        run.step()
+    return run.budget.result(run.best_x, run.iterations, why)
 
 
 def run_cmaes(problem: DesignProblem, context: RunContext) -> OptimizationResult:

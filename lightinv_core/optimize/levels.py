@@ -3,7 +3,9 @@
 A ``Level`` lists the patches the search reads at divisor d (one representative per
 cluster of about d patches, standing for the cluster's area), where each intention and
 the match goal find theirs among them, and every work-plane grid point after them.
-``build_level`` makes one; ``DesignProblem.level`` keeps each divisor's.
+``build_level`` makes one from the clusters and Phi's rows kept with the operator
+(``level_cache.py``: a second run on the same operator builds neither);
+``DesignProblem.level`` keeps each divisor's.
 """
 
 from __future__ import annotations
@@ -17,7 +19,7 @@ from lightinv_core.design.model import Design
 from lightinv_core.light.arrays import ArrayLight
 from lightinv_core.light.grids import DesignGrids
 from lightinv_core.light.model import LightModel, Receivers
-from lightinv_core.operator.clustering import cluster_patches
+from lightinv_core.optimize.level_cache import cluster_labels, receivers
 from lightinv_core.scene.patches import Patches
 
 
@@ -83,7 +85,8 @@ def build_level(problem: LevelSource, divisor: int) -> Level:
     patches = problem.patches
     n = patches.n
     coarse = divisor > 1
-    labels = cluster_patches(patches, max(1, n // divisor))[0] if coarse else np.arange(n)
+    # The clusters and Phi's rows are the costly parts: kept with the operator.
+    labels = cluster_labels(problem.light, max(1, n // divisor)) if coarse else np.arange(n)
     sets = [s for s in problem.intent_sets if s is not None]
     if problem.match is not None:
         sets.append(np.arange(n))
@@ -101,13 +104,13 @@ def build_level(problem: LevelSource, divisor: int) -> Level:
             span = problem.grids.spans[it.grid]
             pos.append(len(rows) + np.arange(span.start, span.stop))
             weights.append(np.ones(span.stop - span.start))
-    receivers = problem.light.receivers(rows)
+    got = receivers(problem.light, rows)
     grids = problem.grids
     if grids is not None and len(grids.points):
-        top = receivers.Phi_rows
+        top = got.Phi_rows
         if top is None:  # over the basis budget: the rows from the factors, once
             top = problem.light.op.phi_rows(rows)
-        receivers = Receivers(rows, np.asfortranarray(np.vstack([top, grids.Phi])))
+        got = Receivers(rows, np.asfortranarray(np.vstack([top, grids.Phi])))
     arrays_R = None
     arrays = problem.arrays
     if arrays is not None:
@@ -115,4 +118,4 @@ def build_level(problem: LevelSource, divisor: int) -> Level:
         q = arrays.n_points
         idx = np.concatenate([at, len(arrays.rows) + np.arange(q)])
         arrays_R = np.ascontiguousarray(arrays.R[idx])
-    return Level(divisor, receivers, tuple(pos), tuple(weights), match_pos, arrays_R)
+    return Level(divisor, got, tuple(pos), tuple(weights), match_pos, arrays_R)

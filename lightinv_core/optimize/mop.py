@@ -5,7 +5,10 @@ against glazing area (m²) on the climate demo, any other pair), and the two-ste
 (paper 5.5) over electric power and light power.
 
 Every sub-run's evaluations count towards the sweep's: the range runs and the
-two-step's first steps too, each level of a multilevel run (a ``_Tally``)."""
+two-step's first steps too, each level of a multilevel run (a ``_Tally``). Run as a
+method (``run_epsilon``, ``run_two_step``), the stop rule's ``max_evals`` and
+``time_limit`` are the sweep's totals: each sub-run gets an even share of what is left
+(``_Tally.rule``), so what one leaves unused goes to the next."""
 
 from __future__ import annotations
 
@@ -64,10 +67,33 @@ __all__ = [
 
 
 class _Tally:
-    """The light evaluations of a sweep's sub-runs so far (every level of each)."""
+    """The light evaluations of a sweep's sub-runs so far (every level of each), and,
+    given ``total``, the budgets the sweep shares out: ``plan(runs)`` says how many
+    sub-runs will come, ``rule(stop)`` is the next one's stop rule."""
 
-    def __init__(self) -> None:
+    def __init__(self, total: StopRule | None = None) -> None:
         self.evaluations = 0
+        self.total, self.left_runs = total, 1
+        self.t0 = time.perf_counter()
+
+    def plan(self, runs: int) -> None:
+        """``runs`` sub-runs are still to come."""
+        self.left_runs = max(1, runs)
+
+    def rule(self, stop: StopRule) -> StopRule:
+        """The next sub-run's stop rule: ``stop`` with an even share of the evaluations
+        and seconds left of ``total`` (none given: ``stop`` as it is)."""
+        t = self.total
+        if t is None:
+            return stop
+        n = max(1, self.left_runs)
+        self.left_runs = n - 1
+        if t.max_evals is not None:
+            stop = replace(stop, max_evals=max(1, (t.max_evals - self.evaluations) // n))
+        if t.time_limit is not None:
+            left = t.time_limit - (time.perf_counter() - self.t0)
+            stop = replace(stop, time_limit=max(0.0, left / n))
+        return stop
 
 
 def _solve(
@@ -85,7 +111,8 @@ def _solve(
     and hooks (its snapshots tagged as ``run``), and its solution judged on every patch;
     its evaluations (every level's) are added to ``tally``."""
     problem = DesignProblem(design, light, epsilon=epsilon)
-    sub = context.but(progress=_tagged(context.progress, *run))
+    stop = context.stop if tally is None else tally.rule(context.stop)
+    sub = context.but(progress=_tagged(context.progress, *run), stop=stop)
     res, _ = multilevel(problem, sub, divisors)
     if tally is not None:
         tally.evaluations += res.evaluations
@@ -149,6 +176,8 @@ def epsilon_constraint(
     c = context_of(context, given)
     pair = front_pair(design)
     first, x = 0, None
+    if tally is not None:
+        tally.plan(count + 2 if epsilons is None else len(epsilons))
     if epsilons is None:
         lo, hi, x_lo = bounded_range(design, light, pair, divisors, count + 2, c, tally)
         epsilons = list(np.linspace(lo, hi, count))
@@ -196,6 +225,8 @@ def two_step(
     to ``on_solution``); returns the non-dominated front. Both steps' evaluations are
     added to ``tally``."""
     c = context_of(context, given)
+    if tally is not None:
+        tally.plan(2 * runs)
     sky, lum = daylit(design.sources), electric(design.sources)
     sky_names = {s.name for s in sky}
     daylit_kinds = tuple(t.kind for t in source_types() if t.daylit)
@@ -254,7 +285,7 @@ def _swept(
     """A sweep run with the context's seed, stop rule and hooks: each point as it is
     found goes to ``on_solution``, every VNS snapshot to ``progress``."""
     t0 = time.perf_counter()
-    tally = _Tally()
+    tally = _Tally(context.stop)  # the stop rule's budgets are the sweep's totals
     front = sweep(context.but(x0=None), tally)
     cancelled = context.cancel is not None and context.cancel()
     return _front_result(front, cancelled, time.perf_counter() - t0, tally.evaluations)

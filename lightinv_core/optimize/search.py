@@ -249,7 +249,9 @@ def history_rows(history) -> tuple[HistoryRow, ...]:
 def judged(
     problem: DesignProblem, res: SearchResult, method: str, seed: int, **info
 ) -> OptimizationResult:
-    """A search's answer judged on every patch, with its typed info."""
+    """A search's answer judged on every patch, with its typed info. The result's
+    evaluations are the search's: judging an answer (one evaluation on every patch,
+    ``DesignProblem.solution``) is not a search step and is not counted."""
     history = history_rows(res.history)
     best = problem.solution(
         res.x,

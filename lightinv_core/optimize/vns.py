@@ -47,6 +47,78 @@ def neighbourhoods(
     return [(v, r) for r in r_values for v in range(1, top + 1)]
 
 
+class VNSRun:
+    """A VNS search taken one local search at a time (``step``), for a driver that
+    interleaves it with other searches (``auto``); ``vns`` runs one to its stop.
+
+    ``budget`` holds its evaluations, best (value, penalty, goal) and history, ``best_x``
+    its best layout; ``stuck`` says a whole sweep of the neighbourhoods found nothing
+    better than the incumbent (a local optimum for every one). ``restart(x)`` goes on
+    from another layout (the best found is kept): the incumbent becomes x, evaluated,
+    and the neighbourhoods start again."""
+
+    def __init__(
+        self,
+        problem: DesignProblem,
+        context: RunContext,
+        level: Level | None = None,
+        trials: int = 32,
+    ):
+        self.problem, self.context, self.trials = problem, context, trials
+        self.rng = np.random.default_rng(context.seed)
+        self.level = level or problem.level(1)
+        self.x, self.budget = first_point(
+            problem, context.x0, self.rng, self.level, context.stop, context.cancel
+        )
+        self.best_x = self.x
+        self.here = self.budget.best[:2]  # the incumbent's (value, penalty)
+        self.hoods = neighbourhoods(problem.vars.n)
+        self.k, self.iterations = 0, 0
+        self.stuck = False  # a whole sweep of the neighbourhoods found nothing better
+
+    def restart(self, x: np.ndarray) -> int:
+        """Go on from layout x (meeting the geometric rules); returns the evaluations
+        (one)."""
+        ev = self.problem.evaluate(x[None], self.level)
+        self.budget.evals += ev.evaluated
+        self.x, self.k, self.stuck = x, 0, False
+        self.here = (float(ev.value[0]), float(ev.penalty[0]))
+        if better(*self.here, *self.budget.best[:2]):
+            self.best_x = x
+            self.budget.improve(ev, 0)
+        return ev.evaluated
+
+    def step(self) -> int:
+        """One local search: ``trials`` neighbours of the incumbent in the current
+        neighbourhood, as one batch; returns the candidates evaluated."""
+        problem, rng, budget, trials = self.problem, self.rng, self.budget, self.trials
+        nvar = problem.vars.n
+        lo, hi = problem.vars.lo, problem.vars.hi
+        v, r = self.hoods[self.k]
+        X = np.repeat(self.x[None], trials, axis=0)
+        pick = np.argsort(rng.random((trials, nvar)), axis=1)[:, :v]
+        step = rng.uniform(-r, r, (trials, v)) * (hi - lo)[pick]
+        rows = np.repeat(np.arange(trials), v)
+        X[rows, pick.ravel()] += step.ravel()
+        X = np.clip(X, lo, hi)
+        ev = problem.evaluate(X, self.level)
+        budget.evals += ev.evaluated
+        self.iterations += 1
+        j = best_of(ev)
+        if better(ev.value[j], ev.penalty[j], *self.here):
+            self.x, self.k, self.stuck = X[j], 0, False
+            self.here = (float(ev.value[j]), float(ev.penalty[j]))
+            if better(*self.here, *budget.best[:2]):
+                self.best_x = self.x
+                budget.improve(ev, j)
+        else:
+            self.k = (self.k + 1) % len(self.hoods)
+            self.stuck = self.stuck or self.k == 0
+        if self.context.progress is not None:
+            self.context.progress(budget.snapshot(self.iterations, self.level.divisor, self.best_x))
+        return ev.evaluated
+
+
 def vns(
     problem: DesignProblem,
     context: RunContext | None = None,
@@ -57,38 +129,10 @@ def vns(
     """Minimise f + P over the problem's variables at ``level`` (default: every patch)
     from ``context.x0``, with its seed, stop rule and hooks (or those fields ``given``
     as keywords); returns the best solution found."""
-    c = context_of(context, given)
-    rng = np.random.default_rng(c.seed)
-    level = level or problem.level(1)
-    x, budget = first_point(problem, c.x0, rng, level, c.stop, c.cancel)
-    progress = c.progress
-    nvar = problem.vars.n
-    lo, hi = problem.vars.lo, problem.vars.hi
-    span = hi - lo
-    iters = 0
-    hoods = neighbourhoods(nvar)
-    k = 0
-    while (why := budget.why()) is None:
-        v, r = hoods[k]
-        X = np.repeat(x[None], trials, axis=0)
-        pick = np.argsort(rng.random((trials, nvar)), axis=1)[:, :v]
-        step = rng.uniform(-r, r, (trials, v)) * span[pick]
-        rows = np.repeat(np.arange(trials), v)
-        X[rows, pick.ravel()] += step.ravel()
-        X = np.clip(X, lo, hi)
-        ev = problem.evaluate(X, level)
-        budget.evals += ev.evaluated
-        iters += 1
-        j = best_of(ev)
-        if better(ev.value[j], ev.penalty[j], *budget.best[:2]):
-            x = X[j]
-            budget.improve(ev, j)
-            k = 0
-        else:
-            k = (k + 1) % len(hoods)
-        if progress is not None:
-            progress(budget.snapshot(iters, level.divisor, x))
-    return budget.result(x, iters, why)
+    run = VNSRun(problem, context_of(context, given), level, trials)
+    while (why := run.budget.why()) is None:
+        run.step()
+    return run.budget.result(run.best_x, run.iterations, why)
 
 
 @dataclass(frozen=True)
