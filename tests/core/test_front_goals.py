@@ -183,7 +183,7 @@ def test_the_reported_evaluations_are_those_that_reached_the_light(integrated, m
 
 def test_a_cancelled_sweep_reports_what_it_used(integrated, monkeypatch):
     project, prepared = integrated
-    opt = replace(project.optimizer, max_evals=400, stall=None, epsilon_count=4, divisors=(1,))
+    opt = replace(project.optimizer, max_evals=2400, stall=None, epsilon_count=4, divisors=(1,))
     counter = _Counter(monkeypatch)
     snaps = []
 
