@@ -39,15 +39,15 @@ from tests.export.office import exported, office_project
 from tests.radiance.run import radiance_env
 
 PARAMS = "-aa 0 -as 0 -lw 1e-4 -lr -12 -dj 0 -ds 0.02 -dt 0 -dc 1 -dr 3 -st 0 -ss 0 -u+"
-"""rtrace settings beside -ab and -ad: the harness's (tests/radiance/run.py) with Russian
-roulette (-lr -12: rays below -lw are ended at random, unbiased, not cut: the first
-version's -lw 1e-5 with the default -lr cut the deeper bounces), area sources split
-into parts under 2% of their distance (-ds 0.02: -ds 0 traces the 1 x 3 m panel as a
-point at its centre, 21 lux instead of 26.6 at one point), a new random seed per run
-(-u+)."""
+"""rtrace settings beside -ab and -ad: the harness's (tests/radiance/run.py): no
+ambient cache or super-samples, Russian roulette below -lw (rtrace's default too), area
+sources split into parts under 2% of their distance (-ds 0.02: the first version's
+-ds 0 traced the 1 x 3 m panel as a point at its centre, 21 lux instead of 26.6 at one
+point), a new random seed per run (-u+)."""
 DAYLIGHT = PARAMS.replace("-lw 1e-4", "-lw 1e-6")
 """For the skylight: its light reaches the room by ambient rays alone (a transmitter is
-no light source), where ending rays at random at 1e-4 left the two runs 10% apart."""
+no light source), so the dark points far from it are noisy: at -ad 8192 and 1e-5 runs
+read 13.8 to 17.4 lux at one point (LightInv 18.7); 1e-6 and -ad 16384, 17.9 to 18.5."""
 
 
 def rtrace(folder: Path, points: np.ndarray, ab: int, ad: int, params: str = PARAMS) -> np.ndarray:
@@ -85,6 +85,35 @@ def daylight(ab: int, ad: int, runs: int = 2) -> dict:
         lightinv=plane.lux[pick].round(1).tolist(), lightinv_fine=fine.lux[pick].round(1).tolist(),
     )  # fmt: skip
     return res
+
+
+OLD_PARAMS = "-aa 0 -lw 1e-5 -dj 0 -ds 0 -dt 0 -dc 1 -dr 0 -st 0 -ss 0"
+"""The first version's rtrace settings (beside -ab 6 -ad 8192 for the skylight)."""
+
+
+def diagnose() -> dict:
+    """``--diagnose``: the skylight at 6 points with the first version's settings (two
+    runs), and the panel alone with interreflections against coarse and fine LightInv."""
+    out: dict = {}
+    ex = exported(office_project(arrays=False, panel=False))
+    plane = ex.planes[0]
+    pick = np.linspace(0, len(plane.points) - 1, 6).astype(int)
+    with tempfile.TemporaryDirectory() as d:
+        write_radiance(ex, Path(d) / "scene.rad", sky="overcast")
+        runs = [rtrace(Path(d), plane.points[pick], 6, 8192, OLD_PARAMS) for _ in range(2)]
+    out["daylight_first_settings"] = {"runs": [r.round(1).tolist() for r in runs]}
+    pan = exported(office_project(arrays=False, skylight=False))
+    fine = exported(office_project(arrays=False, skylight=False, fine=True)).planes[0]
+    plane = pan.planes[0]
+    with tempfile.TemporaryDirectory() as d:
+        write_radiance(pan, Path(d) / "scene.rad", sky="none")
+        got = rtrace(Path(d), plane.points[pick], 10, 16384, DAYLIGHT)
+    out["panel_interreflected"] = {
+        "rtrace": got.round(1).tolist(), "lightinv": plane.lux[pick].round(1).tolist(),
+        "lightinv_fine": fine.lux[pick].round(1).tolist(),
+        "coarse": errors(got, plane.lux[pick]), "fine": errors(got, fine.lux[pick]),
+    }  # fmt: skip
+    return out
 
 
 def panel_direct() -> dict:
@@ -146,7 +175,11 @@ def main() -> None:
     ap.add_argument("--ab", type=int, default=10)
     ap.add_argument("--ad", type=int, default=2048)
     ap.add_argument("--daylight-only", action="store_true", help="only the skylight part")
+    ap.add_argument("--diagnose", action="store_true", help="only the diagnosis runs")
     a = ap.parse_args()
+    if a.diagnose:
+        print(json.dumps(diagnose(), indent=2))
+        return
     out: dict = {"params": PARAMS, "daylight_overcast": daylight(a.ab, 16384)}
     out["daylight_direct_black_room"] = daylight_direct(16384)
     out["panel_direct"] = panel_direct()

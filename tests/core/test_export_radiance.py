@@ -60,7 +60,7 @@ def test_exported_luminaires_light_as_lightinv_direct(tmp_path, product):
 def test_exported_scene_with_interreflections_matches_the_work_plane(tmp_path):
     """The array and the Lambertian panel with -ab 8 and converged settings: the work
     plane's illuminance (interreflections by LightInv's operator on the coarse 1 m
-    office) within 6% on average and 12% at each of 6 points (bench/export.py: 2.4%
+    office) within 6% on average and 12% at each of 6 points (bench/export.py: 2.2%
     mean over 77 points)."""
     ex = exported(office_project(skylight=False))
     write_radiance(ex, tmp_path / "night.rad", sky="auto")
@@ -74,8 +74,9 @@ def test_exported_scene_with_interreflections_matches_the_work_plane(tmp_path):
 
 
 CONVERGED = "-aa 0 -as 0 -lw 1e-6 -lr -12 -dj 0 -ds 0.02 -dt 0 -dc 1 -dr 3 -st 0 -ss 0"
-"""rtrace settings that converge on this scene (bench/export.py): Russian roulette below
--lw instead of a cut, area sources split (-ds 0.02; -ds 0 traces a panel as a point)."""
+"""rtrace settings that converge on this scene (bench/export.py): no ambient cache,
+rays below -lw ended at random (Russian roulette), area sources split (-ds 0.02: -ds 0
+traces a panel as a point at its centre)."""
 
 
 def _corner(x: np.ndarray, y: np.ndarray, h: float) -> np.ndarray:
@@ -107,7 +108,7 @@ def test_exported_panel_lights_as_a_lambertian_rectangle(tmp_path):
 def test_exported_skylight_under_the_overcast_sky_matches_the_design_scenario(tmp_path):
     """The diffusing skylight alone under the exported CIE overcast sky with
     interreflections (-ab 10): within 5% on average and 10% at each of 6 points of the
-    design scenario LightInv reports on the office at 0.5 m (measured 1.9%, 3.7%;
+    design scenario LightInv reports on the office at 0.5 m (measured 1.8% mean;
     before the work-plane points read the room exactly, LightInv said 171 lux where
     Radiance says 211)."""
     ex = exported(office_project(arrays=False, panel=False, fine=True))
