@@ -20,14 +20,14 @@ from tests.radiance.run import radiance_env
 FAST = "-aa 0 -lw 1e-4 -dj 0 -ds 0 -dt 0 -dc 1 -dr 0 -st 0 -ss 0"
 
 
-def rtrace(folder, rad: str, points, ab: int, ad: int = 256) -> np.ndarray:
+def rtrace(folder, rad: str, points, ab: int, ad: int = 256, params: str = FAST) -> np.ndarray:
     """Illuminance (lux) at ``points`` facing up, by rtrace on the exported scene."""
     env = radiance_env()
     oct_ = folder / "scene.oct"
     with open(oct_, "wb") as fh:
         subprocess.run(["oconv", rad], cwd=folder, env=env, stdout=fh, check=True)
     rays = "".join(f"{p[0]:.9g} {p[1]:.9g} {p[2]:.9g} 0 0 1\n" for p in points).encode()
-    args = ["rtrace", "-h", "-I+", "-ov", "-ab", str(ab), "-ad", str(ad), *FAST.split()]
+    args = ["rtrace", "-h", "-I+", "-ov", "-ab", str(ab), "-ad", str(ad), *params.split()]
     out = subprocess.run(
         [*args, oct_.name], input=rays, cwd=folder, env=env, capture_output=True, check=True
     )
@@ -58,13 +58,64 @@ def test_exported_luminaires_light_as_lightinv_direct(tmp_path, product):
 
 
 def test_exported_scene_with_interreflections_matches_the_work_plane(tmp_path):
-    """The array and the Lambertian panel with -ab 4: the work plane's illuminance
-    (interreflections by LightInv's operator) within 10% on average at 6 points."""
+    """The array and the Lambertian panel with -ab 8 and converged settings: the work
+    plane's illuminance (interreflections by LightInv's operator on the coarse 1 m
+    office) within 6% on average and 12% at each of 6 points (bench/export.py: 2.2%
+    mean over 77 points)."""
     ex = exported(office_project(skylight=False))
     write_radiance(ex, tmp_path / "night.rad", sky="auto")
     plane = ex.planes[0]
     pick = np.linspace(0, len(plane.points) - 1, 6).astype(int)
-    got = rtrace(tmp_path, "night.rad", plane.points[pick], ab=4, ad=512)
+    params = CONVERGED.replace("-lw 1e-6", "-lw 1e-4")
+    got = rtrace(tmp_path, "night.rad", plane.points[pick], ab=6, ad=256, params=params)
     err = np.abs(got / plane.lux[pick] - 1)
     print("rtrace", got.round(1), "lightinv", plane.lux[pick].round(1), "mean error", err.mean())
-    assert err.mean() < 0.10, (got.round(), plane.lux[pick].round())
+    assert err.mean() < 0.06 and err.max() < 0.12, (got.round(), plane.lux[pick].round())
+
+
+CONVERGED = "-aa 0 -as 0 -lw 1e-6 -lr -12 -dj 0 -ds 0.02 -dt 0 -dc 1 -dr 3 -st 0 -ss 0"
+"""rtrace settings that converge on this scene (bench/export.py): no ambient cache,
+rays below -lw ended at random (Russian roulette), area sources split (-ds 0.02: -ds 0
+traces a panel as a point at its centre)."""
+
+
+def _corner(x: np.ndarray, y: np.ndarray, h: float) -> np.ndarray:
+    """Form factor from a point to a parallel rectangle [0, x] x [0, y] at height h
+    with one corner above it (signed in x and y)."""
+    a, b = x / h, y / h
+    sa, sb = np.sqrt(1 + a * a), np.sqrt(1 + b * b)
+    return (a / sa * np.arctan(b / sa) + b / sb * np.arctan(a / sb)) / (2 * np.pi)
+
+
+def test_exported_panel_lights_as_a_lambertian_rectangle(tmp_path):
+    """The 3,000 lm panel's direct light (-ab 0) at 6 work-plane points within 1% of
+    the closed form of a Lambertian rectangle parallel to the work plane."""
+    ex = exported(office_project(arrays=False, skylight=False))
+    write_radiance(ex, tmp_path / "panel.rad", sky="none")
+    plane = ex.planes[0]
+    pts = plane.points[np.linspace(0, len(plane.points) - 1, 6).astype(int)]
+    pan = next(p for p in ex.panels if p.electric)
+    lo, hi = pan.corners.min(axis=0), pan.corners.max(axis=0)
+    assert lo[2] == hi[2] and np.allclose(pan.normal, [0, 0, -1])
+    h = hi[2] - pts[:, 2]
+    x0, x1, y0, y1 = lo[0] - pts[:, 0], hi[0] - pts[:, 0], lo[1] - pts[:, 1], hi[1] - pts[:, 1]
+    form = _corner(x1, y1, h) - _corner(x0, y1, h) - _corner(x1, y0, h) + _corner(x0, y0, h)
+    want = pan.lumens / np.prod(pan.size) * form
+    got = rtrace(tmp_path, "panel.rad", pts, ab=0, ad=1, params=CONVERGED)
+    np.testing.assert_allclose(got, want, rtol=0.01)
+
+
+def test_exported_skylight_under_the_overcast_sky_matches_the_design_scenario(tmp_path):
+    """The diffusing skylight alone under the exported CIE overcast sky with
+    interreflections (-ab 10): within 5% on average and 10% at each of 6 points of the
+    design scenario LightInv reports on the office at 0.5 m (measured 1.8% mean;
+    before the work-plane points read the room exactly, LightInv said 171 lux where
+    Radiance says 211)."""
+    ex = exported(office_project(arrays=False, panel=False, fine=True))
+    write_radiance(ex, tmp_path / "day.rad", sky="overcast")
+    plane = ex.planes[0]
+    pick = np.linspace(0, len(plane.points) - 1, 6).astype(int)
+    got = rtrace(tmp_path, "day.rad", plane.points[pick], ab=8, ad=8192, params=CONVERGED)
+    err = np.abs(got / plane.lux[pick] - 1)
+    print("rtrace", got.round(1), "lightinv", plane.lux[pick].round(1), "mean error", err.mean())
+    assert err.mean() < 0.05 and err.max() < 0.10, (got.round(1), plane.lux[pick].round(1))

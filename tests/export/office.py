@@ -16,13 +16,21 @@ from lightinv_core.study import prepare
 
 DATA = Path(__file__).resolve().parents[1] / "data"
 IES = DATA / "photometry" / "rab-round-4.ies"  # a real downlight (tests/data/SOURCES.md)
+COARSE = OperatorSettings(rank=60, rays=128)
 BATWING = "Linear batwing 4000 lm 32 W"  # asymmetric C planes, a 1.2 m opening
 
 
 def office_project(
-    *, arrays: bool = True, panel: bool = True, skylight: bool = True, product: str | None = None
+    *,
+    arrays: bool = True,
+    panel: bool = True,
+    skylight: bool = True,
+    product: str | None = None,
+    fine: bool = False,
 ) -> Project:
-    """The office design (see the module), its parts chosen."""
+    """The office design (see the module), its parts chosen; ``fine``: meshed at 0.5 m
+    (the skylight's and panel's edges on patch edges) with the default operator
+    tolerance and 512 rays per patch instead of 1 m, rank 60 and 128 rays."""
     arr = (
         LuminaireArray(
             "west", "lum_west", product or str(IES), (0.0, 0.0, 2.0, 6.0), rows=3, columns=1,
@@ -40,8 +48,9 @@ def office_project(
         arrays=arr, workplanes=(Workplane("wp", 0.8, 0.5),),
     )  # fmt: skip
     project = Project(
-        "Export test office", SceneSpec(builtin="office", resolution=1.0), design,
-        OperatorSettings(rank=60, rays=128), OptimizerSettings(),
+        "Export test office", SceneSpec(builtin="office", resolution=0.5 if fine else 1.0),
+        design, OperatorSettings(rank=None, rays=512) if fine else COARSE,
+        OptimizerSettings(),
     )  # fmt: skip
     solution = Solution(design.sources, {}, 0.0, arrays=design.arrays)
     return replace(project, solutions=(solution,))
