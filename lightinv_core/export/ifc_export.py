@@ -108,11 +108,12 @@ def _fixture_type(w: IfcWriter, fx: Fixture | None, name: str, watts: float, lum
         values["Distribution"] = "photometric table"
         if fx.photometry_file:
             values["PhotometryFile"] = Path(fx.photometry_file).name
-            ref = f.createIfcDocumentReference(
-                Path(fx.photometry_file).as_uri(), None, Path(fx.photometry_file).name,
-                f"photometry of {name}"[:255], None,
-            )  # fmt: skip
-            f.createIfcRelAssociatesDocument(w.ifc.guid.new(), None, "photometry", None, [t], ref)
+            ref = w.document(
+                Path(fx.photometry_file).as_uri(),
+                Path(fx.photometry_file).name,
+                f"photometry of {name}"[:255],
+            )
+            w.relation("IfcRelAssociatesDocument", "photometry", None, [t], ref)
         if fx.photometry.kind == "C":
             source = f.createIfcLightSourceGoniometric(
                 name, f.createIfcColourRgb(None, 1.0, 1.0, 1.0), None, None,
@@ -128,7 +129,8 @@ def _fixture_type(w: IfcWriter, fx: Fixture | None, name: str, watts: float, lum
 
 
 def _fixtures(w: IfcWriter) -> int:
-    """Every luminaire as an ``IfcLightFixture`` of its product's type."""
+    """Every luminaire as an ``IfcLightFixture`` (IFC2X3: ``IfcFlowTerminal``) of its
+    product's type."""
     api, ex = w.ifc.api, w.ex
     types: dict[str, object] = {}
     count = 0
@@ -136,7 +138,7 @@ def _fixtures(w: IfcWriter) -> int:
         if fx.product not in types:
             types[fx.product] = _fixture_type(w, fx, fx.product, fx.rated_watts, fx.rated_lumens)
         e = w.entity(
-            "IfcLightFixture", fx.name, ObjectPlacement=w.placement(fx.position, -fx.aim, fx.c0)
+            w.schema.fixture, fx.name, ObjectPlacement=w.placement(fx.position, -fx.aim, fx.c0)
         )
         api.type.assign_type(w.f, related_objects=[e], relating_type=types[fx.product])
         w.pset(e, "LightInv_Luminaire", {
@@ -150,7 +152,7 @@ def _fixtures(w: IfcWriter) -> int:
         t = _fixture_type(w, None, f"{p.name} (Lambertian panel)", p.watts, p.lumens)
         edge = p.corners[1] - p.corners[0]
         place = w.placement(p.centre, -p.normal, edge)
-        e = w.entity("IfcLightFixture", p.name, ObjectPlacement=place)
+        e = w.entity(w.schema.fixture, p.name, ObjectPlacement=place)
         api.type.assign_type(w.f, related_objects=[e], relating_type=t)
         width, length = p.size
         w.pset(e, "LightInv_Luminaire", {
@@ -238,25 +240,26 @@ def _opening_host(w: IfcWriter, p: Panel):
 
 def _glazing(w: IfcWriter, proxies: dict[int, object]) -> int:
     """Every designed skylight or window: an opening in its host filled by a window."""
-    f, count = w.f, 0
+    count = 0
     for p in w.ex.panels:
         if p.electric:
             continue
         host = _host(w, p, proxies)
         opening = w.entity(
             "IfcOpeningElement", f"{p.name} opening", ObjectPlacement=w.placement(),
-            Representation=_box(w, p, OPENING_DEPTH, -OPENING_DEPTH / 2), PredefinedType="OPENING",
+            Representation=_box(w, p, OPENING_DEPTH, -OPENING_DEPTH / 2),
+            **w.predefined("OPENING"),
         )  # fmt: skip
         w.placed.remove(opening)  # an opening is related through its host, not contained
-        f.createIfcRelVoidsElement(w.ifc.guid.new(), None, None, None, host, opening)
+        w.relation("IfcRelVoidsElement", None, None, host, opening)
         width, length = p.size
         window = w.entity(
             "IfcWindow", p.name, ObjectPlacement=w.placement(),
             Representation=_box(w, p, PANE, -PANE / 2), OverallWidth=width / w.unit / w.scale,
             OverallHeight=length / w.unit / w.scale,
-            PredefinedType="SKYLIGHT" if p.kind == "skylight" else "WINDOW",
+            **w.predefined("SKYLIGHT" if p.kind == "skylight" else "WINDOW"),
         )  # fmt: skip
-        f.createIfcRelFillsElement(w.ifc.guid.new(), None, None, None, opening, window)
+        w.relation("IfcRelFillsElement", None, None, opening, window)
         w.pset(window, "LightInv_Glazing", {
             "VisibleTransmittance": p.transmittance, "Kind": p.kind, "Diffusing": True,
             "Zone": p.zone,

@@ -2,11 +2,13 @@
 model or a new IFC4 file with its project, units, site, building and storey; its
 'Body' and 'Lighting' contexts; and scene points and directions in the file's world
 coordinates and length unit (the inverse of the importer's: its ``scale`` and up
-axis). ifcopenshell (the ``ifc`` extra) is imported only when a file is written.
+axis); what differs between the schemas a model may be in (``SCHEMAS``: IFC4 and
+IFC2X3). ifcopenshell (the ``ifc`` extra) is imported only when a file is written.
 """
 
 from __future__ import annotations
 
+from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
@@ -23,6 +25,7 @@ def libraries():
         import ifcopenshell
         import ifcopenshell.api.aggregate
         import ifcopenshell.api.context
+        import ifcopenshell.api.owner
         import ifcopenshell.api.pset
         import ifcopenshell.api.root
         import ifcopenshell.api.spatial
@@ -35,6 +38,33 @@ def libraries():
     return ifcopenshell
 
 
+def _document_ifc4(f, location: str, name: str, description: str):
+    # IfcDocumentReference(Location, Identification, Name, Description, ReferencedDocument)
+    return f.createIfcDocumentReference(location, None, name, description, None)
+
+
+def _document_ifc2x3(f, location: str, name: str, description: str):
+    # IFC2X3: IfcDocumentReference(Location, ItemReference, Name), no description
+    return f.createIfcDocumentReference(location, None, name)
+
+
+@dataclass(frozen=True)
+class Schema:
+    """What the export writes differently in one IFC schema."""
+
+    fixture: str  # the luminaire occurrence's class (typed by an IfcLightFixtureType)
+    predefined: bool  # IfcWindow and IfcOpeningElement have a PredefinedType
+    owner_history: bool  # every rooted entity needs an IfcOwnerHistory
+    document: object  # (file, location, name, description) -> IfcDocumentReference
+
+
+SCHEMAS = {
+    "IFC4": Schema("IfcLightFixture", True, False, _document_ifc4),
+    # IFC2X3 has no IfcLightFixture occurrence: a flow terminal typed as a light fixture.
+    "IFC2X3": Schema("IfcFlowTerminal", False, True, _document_ifc2x3),
+}
+
+
 class IfcWriter:
     """One IFC file being written: its contexts, container and unit conversion."""
 
@@ -43,12 +73,10 @@ class IfcWriter:
         api = ifc.api
         if model_path is not None:
             self.f = ifc.open(str(model_path))
-            if self.f.schema != "IFC4":
-                # IFC2X3 has no IfcLightFixture occurrence (a flow terminal typed as a
-                # light fixture), other window and document attributes: not written yet.
+            if self.f.schema not in SCHEMAS:
                 raise LightInvError(
                     f"{model_path.name} is {self.f.schema}: the design can be added to IFC4 "
-                    "models only; export the model from its authoring tool as IFC4"
+                    "or IFC2X3 models only; export the model from its authoring tool as IFC4"
                 )
             self.unit = ifc.util.unit.calculate_unit_scale(self.f)  # m per file unit
             self.angle = ifc.util.unit.calculate_unit_scale(self.f, "PLANEANGLEUNIT")
@@ -87,7 +115,40 @@ class IfcWriter:
             self.f, context_type="Model", context_identifier="Lighting", target_view="MODEL_VIEW",
             parent=model,
         )  # fmt: skip
+        self.schema = SCHEMAS[self.f.schema]
+        self.history = None
+        if self.schema.owner_history:
+            self.history = self._owner_history()
         self.placed: list = []
+
+    def _owner_history(self):
+        """An ``IfcOwnerHistory`` for what the export adds: the model's own user and
+        application (every IFC2X3 model has them), else LightInv as both."""
+        api, f = self.ifc.api, self.f
+        if not f.by_type("IfcApplication") or not f.by_type("IfcPersonAndOrganization"):
+            org = api.owner.add_organisation(f, identification="LightInv", name="LightInv")
+            if not f.by_type("IfcApplication"):
+                api.owner.add_application(
+                    f, application_developer=org, version="1", application_full_name="LightInv",
+                    application_identifier="LightInv",
+                )  # fmt: skip
+            if not f.by_type("IfcPersonAndOrganization"):
+                person = api.owner.add_person(f, identification="LightInv", family_name="LightInv")
+                api.owner.add_person_and_organisation(f, person=person, organisation=org)
+        return api.owner.create_owner_history(f)
+
+    def relation(self, cls: str, *attrs):
+        """A relationship entity ``cls`` with a new GlobalId, the owner history the
+        schema needs and ``attrs`` after them (Name, Description, ...)."""
+        return self.f.create_entity(cls, self.ifc.guid.new(), self.history, *attrs)
+
+    def predefined(self, value: str) -> dict:
+        """``{"PredefinedType": value}`` where windows and openings have one, else {}."""
+        return {"PredefinedType": value} if self.schema.predefined else {}
+
+    def document(self, location: str, name: str, description: str):
+        """An ``IfcDocumentReference`` to ``location`` (a URI) in the schema's form."""
+        return self.schema.document(self.f, location, name, description)
 
     def point(self, p) -> list[float]:
         """A scene point (m) in the file's world coordinates and length unit."""

@@ -15,6 +15,8 @@ import pytest
 pytest.importorskip("ifcopenshell")
 import ifcopenshell
 import ifcopenshell.util.element
+import ifcopenshell.util.placement
+import ifcopenshell.util.unit
 import ifcopenshell.validate
 
 from lightinv_core.design.model import Design, Goal, LuminaireArray, Source
@@ -178,13 +180,136 @@ def test_an_imported_ifc_gets_the_design_in_a_copy(house, tmp_path):
         write_ifc(ex, house)
 
 
-def test_an_ifc2x3_model_is_refused_with_what_to_do(tmp_path):
-    """IFC2X3 models (Revit's default export) are not written into: one line says so
-    and what to do; nothing is written."""
+def schema_room(path: Path, schema: str = "IFC2X3") -> Path:
+    """A 6 x 4 x 3 m room in ``schema`` (IFC2X3: Revit's default export) in millimetres:
+    four walls, floor and roof slabs, a 1.5 x 1.2 m window in an opening of the south
+    wall and a 2 x 4 m ceiling covering; with the user and application every IFC2X3
+    file has (its entities need an owner history)."""
+    import ifcopenshell.api
+    import ifcopenshell.api.aggregate
+    import ifcopenshell.api.context
+    import ifcopenshell.api.feature
+    import ifcopenshell.api.geometry
+    import ifcopenshell.api.owner
+    import ifcopenshell.api.project
+    import ifcopenshell.api.root
+    import ifcopenshell.api.spatial
+    import ifcopenshell.api.unit
+
+    api = ifcopenshell.api
+    f = api.project.create_file(version=schema)
+    org = api.owner.add_organisation(f, identification="T", name="Test")
+    person = api.owner.add_person(f, identification="T", family_name="Test")
+    api.owner.add_person_and_organisation(f, person=person, organisation=org)
+    api.owner.add_application(f, application_developer=org)
+    project = api.root.create_entity(f, ifc_class="IfcProject", name="Old")
+    api.unit.assign_unit(f)  # millimetres
+    model = api.context.add_context(f, context_type="Model")
+    body = api.context.add_context(
+        f, context_type="Model", context_identifier="Body", target_view="MODEL_VIEW", parent=model
+    )
+    site = api.root.create_entity(f, ifc_class="IfcSite", name="Site")
+    building = api.root.create_entity(f, ifc_class="IfcBuilding", name="Building")
+    storey = api.root.create_entity(f, ifc_class="IfcBuildingStorey", name="Ground")
+    api.aggregate.assign_object(f, relating_object=project, products=[site])
+    api.aggregate.assign_object(f, relating_object=site, products=[building])
+    api.aggregate.assign_object(f, relating_object=building, products=[storey])
+
+    def box(cls, name, x, y, z, lx, ly, lz, predefined=None, contained=True):
+        e = api.root.create_entity(f, ifc_class=cls, name=name, predefined_type=predefined)
+        rep = api.geometry.add_wall_representation(
+            f, context=body, length=lx, height=lz, thickness=ly
+        )
+        api.geometry.assign_representation(f, product=e, representation=rep)
+        m = np.eye(4)
+        m[:3, 3] = (x, y, z)
+        api.geometry.edit_object_placement(f, product=e, matrix=m)
+        if contained:
+            api.spatial.assign_container(f, relating_structure=storey, products=[e])
+        return e
+
+    t = 0.2
+    box("IfcSlab", "Floor", -t, -t, -t, 6.4, 4.4, t, predefined="FLOOR")
+    south = box("IfcWall", "South", -t, -t, 0, 6.4, t, 3.0)
+    box("IfcWall", "North", -t, 4.0, 0, 6.4, t, 3.0)
+    box("IfcWall", "West", -t, 0, 0, t, 4.0, 3.0)
+    box("IfcWall", "East", 6.0, 0, 0, t, 4.0, 3.0)
+    box("IfcSlab", "Roof", -t, -t, 3.0, 6.4, 4.4, t, predefined="ROOF")
+    hole = box("IfcOpeningElement", "W1 opening", 1.0, -0.3, 0.9, 1.5, 0.4, 1.2, contained=False)
+    api.feature.add_feature(f, feature=hole, element=south)
+    window = box("IfcWindow", "W1", 1.0, -0.1, 0.9, 1.5, 0.05, 1.2)
+    api.feature.add_filling(f, opening=hole, element=window)
+    box("IfcCovering", "Panel", 4.0, 0, 2.7, 2.0, 4.0, 0.02, predefined="CEILING")
+    if schema == "IFC2X3":  # add_filling leaves its relation without the owner history
+        history = f.by_type("IfcOwnerHistory")[0]
+        for e in f.by_type("IfcRoot"):
+            e.OwnerHistory = e.OwnerHistory or history
+    f.write(str(path))
+    return path
+
+
+def test_an_ifc2x3_model_gets_the_design_in_a_copy(tmp_path):
+    """An IFC2X3 model (Revit's default export): the luminaires go in as
+    ``IfcFlowTerminal`` occurrences typed by an ``IfcLightFixtureType`` (IFC2X3 has no
+    ``IfcLightFixture``), the window without a PredefinedType, the photometry's
+    document reference in the IFC2X3 form; the copy validates, the original's bytes
+    are unchanged and re-read, every luminaire is where it was with its flux."""
+    old = schema_room(tmp_path / "old.ifc")
+    assert problems(old) == []  # the model itself is valid
+    before = hashlib.sha256(old.read_bytes()).hexdigest()
+    empty = Design((), (Goal("min_electric_power"),))
+    project = Project(
+        "Old", SceneSpec(obj=str(old), resolution=0.5), empty,
+        OperatorSettings(rank=40, rays=64), OptimizerSettings(),
+    )  # fmt: skip
+    prepared = prepare(project)  # LightInv reads the IFC2X3 model itself
+    w, h = zone_frame(prepared.patches, "IfcWindow:W1").size
+    glass = Source("G1", "IfcWindow:W1", "window", (0.0, 0.0, w, h), filter=0.9)
+    arr = LuminaireArray("ceiling", "IfcCovering:Panel", str(IES), (0.2, 0.2, 1.8, 3.8),
+                         rows=2, columns=2, watts=20.0)  # fmt: skip
+    design = Design((glass,), (Goal("min_electric_power"),), arrays=(arr,))
+    project = replace(
+        project, design=design, solutions=(Solution((glass,), {}, 0.0, arrays=(arr,)),)
+    )
+    ex = export_design(project, prepared)
+    out = write_ifc(ex, tmp_path / "old-lit.ifc")
+    assert hashlib.sha256(old.read_bytes()).hexdigest() == before
+    assert out.counts["luminaires"] == 4 and out.counts["glazing"] == 1
+    assert problems(out.path, rules=True) == []  # the EXPRESS rules too (under 1 s here)
+    f = ifcopenshell.open(str(out.path))
+    assert f.schema == "IFC2X3"
+    terminals = f.by_type("IfcFlowTerminal")
+    assert len(terminals) == 4
+    t = ifcopenshell.util.element.get_type(terminals[0])
+    assert t.is_a("IfcLightFixtureType") and t.PredefinedType == "DIRECTIONSOURCE"
+    doc = t.HasAssociations[0].RelatingDocument
+    assert doc.Name == IES.name and doc.Location.endswith(IES.name)
+    source = t.RepresentationMaps[0].MappedRepresentation.Items[0]
+    assert source.LuminousFlux == pytest.approx(ex.fixtures[0].rated_lumens)
+    added = next(w for w in f.by_type("IfcWindow") if w.Name == "G1")
+    host = added.FillsVoids[0].RelatingOpeningElement.VoidsElements[0].RelatingBuildingElement
+    assert host.Name == "South"
+    assert all(e.OwnerHistory is not None for e in f.by_type("IfcRoot"))
+    # Re-imported by LightInv: positions (the file's mm) and fluxes as designed.
+    check_round_trip(ex, load_ifc(out.path, resolution=0.5).info["ifc"]["light_fixtures"])
+
+
+def test_lightinv_reads_an_ifc2x3_model(tmp_path):
+    """LightInv's importer reads an IFC2X3 model: its window a zone, no light fixtures
+    (IFC2X3 has no ``IfcLightFixture`` to ask for: ``ifc_fixtures`` reads flow
+    terminals typed as light fixtures instead)."""
+    scene = load_ifc(schema_room(tmp_path / "old.ifc"), resolution=0.5)
+    assert "IfcWindow:W1" in {z.name for z in scene.zones}
+    assert scene.info["ifc"]["light_fixtures"] == []
+
+
+def test_an_ifc4x3_model_is_refused_with_what_to_do(tmp_path):
+    """A schema the export does not write (IFC4X3): one line says so and what to do;
+    nothing is written."""
     old = tmp_path / "old.ifc"
-    ifcopenshell.file(schema="IFC2X3").write(str(old))
+    ifcopenshell.file(schema="IFC4X3").write(str(old))
     ex = exported()
     ex.project = replace(ex.project, scene=replace(ex.project.scene, builtin=None, obj=str(old)))
-    with pytest.raises(LightInvError, match=r"old\.ifc is IFC2X3: the design can be added to IFC4"):
+    with pytest.raises(LightInvError, match=r"old\.ifc is IFC4X3: the design can be added to IFC4"):
         write_ifc(ex, tmp_path / "new.ifc")
     assert not (tmp_path / "new.ifc").exists()

@@ -1,5 +1,7 @@
-"""The light fixtures of an IFC model (``IfcLightFixture``), read beside its surfaces:
-where each one is, where it points, its flux and power, for ``scene.info["ifc"]``.
+"""The light fixtures of an IFC model, read beside its surfaces: where each one is,
+where it points, its flux and power, for ``scene.info["ifc"]``. IFC4 has
+``IfcLightFixture`` occurrences; IFC2X3 has none (a light is an ``IfcFlowTerminal``
+typed by an ``IfcLightFixtureType``).
 
 A fixture's position is the origin of its placement and its aim the placement's
 local -z (as ``export.ifc_export`` writes them, and as a downlight hangs in most
@@ -26,6 +28,20 @@ def _goniometric_flux(t) -> float | None:
     return None
 
 
+def _fixtures(model) -> list:
+    """The model's light fixture occurrences, in either schema."""
+    import ifcopenshell.util.element
+
+    if model.schema != "IFC2X3":
+        return list(model.by_type("IfcLightFixture"))
+    return [
+        e
+        for e in model.by_type("IfcFlowTerminal")
+        if (t := ifcopenshell.util.element.get_type(e)) is not None
+        and t.is_a("IfcLightFixtureType")
+    ]
+
+
 def light_fixtures(model, scale: float = 1.0, up: str = "z") -> list[dict]:
     """Every ``IfcLightFixture`` of the opened ``model`` (ifcopenshell) as a dict: name,
     class, position (m, the scene's axes: the file's unit, times ``scale``, turned by
@@ -37,7 +53,7 @@ def light_fixtures(model, scale: float = 1.0, up: str = "z") -> list[dict]:
 
     unit = ifcopenshell.util.unit.calculate_unit_scale(model)
     out = []
-    for e in model.by_type("IfcLightFixture"):
+    for e in _fixtures(model):
         if e.ObjectPlacement is None:
             continue
         m = ifcopenshell.util.placement.get_local_placement(e.ObjectPlacement)
