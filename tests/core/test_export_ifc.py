@@ -29,6 +29,7 @@ from lightinv_core.project import OperatorSettings, OptimizerSettings, Project, 
 from lightinv_core.scene.edits import ZoneEdit
 from lightinv_core.scene.importers.ifc import load_ifc
 from lightinv_core.study import prepare
+from tests.core.ifc_rooms import ifc_model
 from tests.export.office import IES, exported
 
 DATA = Path(__file__).resolve().parents[1] / "data" / "ifc"
@@ -185,48 +186,8 @@ def schema_room(path: Path, schema: str = "IFC2X3") -> Path:
     four walls, floor and roof slabs, a 1.5 x 1.2 m window in an opening of the south
     wall and a 2 x 4 m ceiling covering; with the user and application every IFC2X3
     file has (its entities need an owner history)."""
-    import ifcopenshell.api
-    import ifcopenshell.api.aggregate
-    import ifcopenshell.api.context
-    import ifcopenshell.api.feature
-    import ifcopenshell.api.geometry
-    import ifcopenshell.api.owner
-    import ifcopenshell.api.project
-    import ifcopenshell.api.root
-    import ifcopenshell.api.spatial
-    import ifcopenshell.api.unit
-
-    api = ifcopenshell.api
-    f = api.project.create_file(version=schema)
-    org = api.owner.add_organisation(f, identification="T", name="Test")
-    person = api.owner.add_person(f, identification="T", family_name="Test")
-    api.owner.add_person_and_organisation(f, person=person, organisation=org)
-    api.owner.add_application(f, application_developer=org)
-    project = api.root.create_entity(f, ifc_class="IfcProject", name="Old")
-    api.unit.assign_unit(f)  # millimetres
-    model = api.context.add_context(f, context_type="Model")
-    body = api.context.add_context(
-        f, context_type="Model", context_identifier="Body", target_view="MODEL_VIEW", parent=model
-    )
-    site = api.root.create_entity(f, ifc_class="IfcSite", name="Site")
-    building = api.root.create_entity(f, ifc_class="IfcBuilding", name="Building")
-    storey = api.root.create_entity(f, ifc_class="IfcBuildingStorey", name="Ground")
-    api.aggregate.assign_object(f, relating_object=project, products=[site])
-    api.aggregate.assign_object(f, relating_object=site, products=[building])
-    api.aggregate.assign_object(f, relating_object=building, products=[storey])
-
-    def box(cls, name, x, y, z, lx, ly, lz, predefined=None, contained=True):
-        e = api.root.create_entity(f, ifc_class=cls, name=name, predefined_type=predefined)
-        rep = api.geometry.add_wall_representation(
-            f, context=body, length=lx, height=lz, thickness=ly
-        )
-        api.geometry.assign_representation(f, product=e, representation=rep)
-        m = np.eye(4)
-        m[:3, 3] = (x, y, z)
-        api.geometry.edit_object_placement(f, product=e, matrix=m)
-        if contained:
-            api.spatial.assign_container(f, relating_structure=storey, products=[e])
-        return e
+    m = ifc_model(schema, name="Old", owner=True)
+    api, f, box = m.api, m.f, m.box
 
     t = 0.2
     box("IfcSlab", "Floor", -t, -t, -t, 6.4, 4.4, t, predefined="FLOOR")

@@ -19,6 +19,7 @@ from lightinv_core.scene.importers.ifc import MISSING, ROLE_REFLECTANCE, load_if
 from lightinv_core.scene.loading import load_scene
 from lightinv_core.scene.patches import mesh_patches
 from lightinv_core.transport.formfactors import form_factor_matrix, lost_fraction
+from tests.core.ifc_rooms import ifc_model
 
 ifcopenshell = pytest.importorskip("ifcopenshell")
 
@@ -33,46 +34,9 @@ def ifc_room(path: Path, unit: str = "mm", extra=None, floor: bool = True) -> Pa
     """Write the test room as IFC4 with lengths in ``unit`` ("mm" or "m"); ``extra(box,
     file)`` may add elements (``box(cls, name, x, y, z, lx, ly, lz, ...)``, metres);
     ``floor=False`` leaves the floor slab out (as in models of one discipline)."""
-    import ifcopenshell.api.aggregate
-    import ifcopenshell.api.context
-    import ifcopenshell.api.feature
-    import ifcopenshell.api.geometry
-    import ifcopenshell.api.project
-    import ifcopenshell.api.root
-    import ifcopenshell.api.spatial
-    import ifcopenshell.api.unit
 
-    api = ifcopenshell.api
-    f = api.project.create_file(version="IFC4")
-    project = api.root.create_entity(f, ifc_class="IfcProject", name="Test")
-    if unit == "mm":
-        api.unit.assign_unit(f)  # millimetres, the library's default
-    else:
-        api.unit.assign_unit(f, length={"is_metric": True, "raw": "METERS"})
-    model = api.context.add_context(f, context_type="Model")
-    body = api.context.add_context(
-        f, context_type="Model", context_identifier="Body", target_view="MODEL_VIEW", parent=model
-    )
-    site = api.root.create_entity(f, ifc_class="IfcSite", name="Site")
-    building = api.root.create_entity(f, ifc_class="IfcBuilding", name="Building")
-    storey = api.root.create_entity(f, ifc_class="IfcBuildingStorey", name="Ground")
-    api.aggregate.assign_object(f, relating_object=project, products=[site])
-    api.aggregate.assign_object(f, relating_object=site, products=[building])
-    api.aggregate.assign_object(f, relating_object=building, products=[storey])
-
-    def box(cls, name, x, y, z, lx, ly, lz, predefined=None, contained=True):
-        """A box element from (x, y, z), lx x ly x lz metres along the axes."""
-        e = api.root.create_entity(f, ifc_class=cls, name=name, predefined_type=predefined)
-        rep = api.geometry.add_wall_representation(
-            f, context=body, length=lx, height=lz, thickness=ly
-        )
-        api.geometry.assign_representation(f, product=e, representation=rep)
-        m = np.eye(4)
-        m[:3, 3] = (x, y, z)
-        api.geometry.edit_object_placement(f, product=e, matrix=m)
-        if contained:
-            api.spatial.assign_container(f, relating_structure=storey, products=[e])
-        return e
+    m = ifc_model("IFC4", metres=unit != "mm")
+    api, f, storey, box = m.api, m.f, m.storey, m.box
 
     if floor:
         box("IfcSlab", "Floor", -T, -T, -T, L + 2 * T, W + 2 * T, T, predefined="FLOOR")
