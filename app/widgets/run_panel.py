@@ -77,7 +77,9 @@ class RunPanel(QtWidgets.QWidget):
         limits.setContentsMargins(0, 0, 0, 0)
         self.max_evals = QtWidgets.QSpinBox(maximum=100_000_000, singleStep=1000)
         self.max_evals.setSpecialValueText("no limit")
-        self.max_evals.setToolTip("Most light evaluations of each run (each seed or sub-run)")
+        self.max_evals.setToolTip(
+            "Most light evaluations of each run (each seed), in all: a sweep shares them out"
+        )
         self.time_limit = QtWidgets.QDoubleSpinBox(maximum=86_400.0, decimals=1, suffix=" s")
         self.time_limit.setSpecialValueText("no limit")
         self.time_limit.setToolTip("Longest time of each run")

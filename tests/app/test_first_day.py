@@ -8,6 +8,7 @@ screenshots of each step go to /tmp/firstday for a person to look at."""
 
 from __future__ import annotations
 
+import re
 import subprocess
 from dataclasses import dataclass
 from pathlib import Path
@@ -198,14 +199,23 @@ def first_day(qtbot, win, path: Path, model: Model, out: Path) -> None:
     )
     u.screenshot(win, shot, "03-luminaires")
 
-    # Run with the defaults, from the Optimisation dock's Run tab.
+    # Run from the Optimisation dock's Run tab: the default method and goal, and a
+    # budget typed in as a designer trying the tool out would (the default 20,000
+    # evaluations is a long wait in a test; the run's path is the same).
     u.tab(win, "Run")
     run_dock = win.findChild(QtWidgets.QDockWidget, "optimisation")
+    budget = u.beside(run_dock, "Evaluations")
+    u.type_text(budget, "1500")
+    u.press(budget, QtCore.Qt.Key_Tab)
+    assert budget.value() == 1500
     state = u.label(run_dock, "Ready")
     u.click(u.button(run_dock, "Run"))
     assert u.wait_for(lambda: state.text().startswith("Running"), 30_000), state.text()
     assert u.wait_for(lambda: not state.text().startswith(("Running", "Cancelling")), 600_000)
     assert "evaluations" in state.text(), state.text()
+    # The typed budget ended it (a run may pass its budget by the last batch).
+    evaluations = int(re.search(r"([\d,]+) evaluations", state.text()).group(1).replace(",", ""))
+    assert evaluations < 2000, state.text()
     u.screenshot(win, shot, "04-run")
 
     # Load the best result from the Solutions table by clicking its row.

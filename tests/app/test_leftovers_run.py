@@ -72,7 +72,7 @@ def report(out: Path) -> None:
     box = panel.max_evals
     QTest.mouseClick(box, QtCore.Qt.LeftButton)
     box.lineEdit().selectAll()
-    QTest.keyClicks(box, "2500")
+    QTest.keyClicks(box, "1000")
     QTest.keyClick(box, QtCore.Qt.Key_Tab)
     got["max_evals"] = win.doc.project.optimizer.max_evals
     design_layout = [(a.rows, a.columns) for a in win.doc.design.arrays]
@@ -132,7 +132,7 @@ def test_run_on_a_laptop_screen_shows_the_running_best_arrays_and_one_count(tmp_
     # Run, the method and the goal are whole on the screen, the dock not scrolled.
     assert all(got["whole"].values()), got["whole"]
     assert inside(got["run"], got["screen"]) and got["scrolled"] == 0, got
-    assert got["max_evals"] == 2500
+    assert got["max_evals"] == 1000
     assert got["status"] in (["feasible"], ["infeasible"]), got["status"]
     # The view drew the running best's arrays, and they changed as the search went.
     assert got["layouts"] and len(got["layouts"]) >= 2, got["layouts"]

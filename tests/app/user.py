@@ -132,6 +132,22 @@ def field(dialog: QtWidgets.QWidget, text: str) -> QtWidgets.QWidget:
     raise AssertionError(f"no field {text!r} in {dialog.windowTitle()!r}")
 
 
+def beside(parent: QtWidgets.QWidget, text: str) -> QtWidgets.QWidget:
+    """The input right of the label showing ``text`` in a grid of label/input pairs."""
+    for grid in parent.findChildren(QtWidgets.QGridLayout):
+        for i in range(grid.count()):
+            lab = grid.itemAt(i).widget()
+            if not isinstance(lab, QtWidgets.QLabel) or plain(lab.text()) != plain(text):
+                continue
+            if not shown(lab):
+                continue
+            row, col, _, _ = grid.getItemPosition(i)
+            cell = grid.itemAtPosition(row, col + 1)
+            if cell is not None and cell.widget() is not None:
+                return cell.widget()
+    raise AssertionError(f"no input beside {text!r}")
+
+
 def choose(combo: QtWidgets.QComboBox, text: str) -> None:
     """Open ``combo``'s list with a click and click the entry starting with ``text``."""
     click(combo)

@@ -379,7 +379,9 @@ def test_two_processes_building_the_same_cache_at_once(tmp_path):
     ]
     outs = [p.communicate(timeout=120) for p in procs]
     assert [p.returncode for p in procs] == [0, 0], outs
-    assert all(not json.loads(out)["from_cache"] for out, _ in outs)  # both built
+    # Usually both build and race to write; on a busy machine the second may start
+    # after the first has written and read it: either way one whole file, no leftover.
+    assert any(not json.loads(out)["from_cache"] for out, _ in outs)
     files = list(tmp_path.iterdir())
     assert len(files) == 1 and files[0].suffix == ".lrr"  # one whole file, no temporary
     again = subprocess.run(cmd, capture_output=True, text=True, env=env, timeout=120)
