@@ -113,3 +113,15 @@ def strictest_preset(design: Design) -> Requirement | None:
     limit a new observer is offered; None without one."""
     rows = [r for _, r in plane_presets(design) if r.ugr_l is not None]
     return min(rows, key=lambda r: r.ugr_l) if rows else None
+
+
+def preset_glare_limit(
+    design: Design, patches: Patches, plane: Workplane, key: str
+) -> tuple[tuple[Observer, ...], Intention]:
+    """What applying preset ``key`` to ``plane`` adds for glare: (the observers to add,
+    the UGR_L intention). At every observer of the design when it has some (none
+    added), else at ``default_observers`` of the plane."""
+    new = () if design.observers else default_observers(patches, plane, ())
+    names = [o.name for o in (*design.observers, *new)]
+    taken = {i.name for i in design.intentions}
+    return new, preset_glare_intention(key, plane, names, taken)
