@@ -4,7 +4,8 @@ sets x 2 orientations), with the position index from CIE 117's Table 4.1 (what
 ``ugr_table`` uses) and, for comparison, from Guth's formula (``ugr.guth_index``: what it
 used before). Per file: the largest |ours - theirs| and its cell, the mean difference,
 the 4H 8H 70/50/20 values; for the DN150 downlight, the ratio of our background
-luminance and glare sum to eulumdat-ugr's in the 2H 2H and 4H 8H rooms.
+luminance and glare sum to eulumdat-ugr's in the 2H 2H and 4H 8H rooms; the built-in
+catalogue's 4H 8H values (crosswise, endwise) with either index.
 
 Prints one JSON object; ``--out`` also writes it.
 
@@ -31,7 +32,7 @@ from eulumdat_ugr.guth import GuthTable
 from eulumdat_ugr.photometry import UgrPhotometry
 from pyldt import LdtReader
 
-from lightinv_core.luminaires import read_photometry
+from lightinv_core.luminaires import builtin_catalogue, read_photometry
 from lightinv_core.luminaires import ugr_table as ut
 from lightinv_core.luminaires.ldt import format_ldt
 from lightinv_core.luminaires.ugr import position_index
@@ -120,6 +121,13 @@ def main() -> None:
                 guth = _compare(_ours(name), ref)
             result["files"][name] = {"table_4_1": table, "guth_formula": guth}
     result["dn150_parts"] = _dn150_parts()
+    cat = {}
+    for e in builtin_catalogue():
+        table = [round(v, 2) for v in ut.catalogue_ugr(e.photometry())]
+        with mock.patch.object(ut, "table_position_index", position_index):
+            guth = [round(v, 2) for v in ut.catalogue_ugr(e.photometry())]
+        cat[e.name] = {"table_4_1": table, "guth_formula": guth}
+    result["catalogue_4H8H"] = cat
     result["cpu_s"] = round(time.process_time() - t0, 1)
     text = json.dumps(result, indent=1)
     print(text)
