@@ -20,6 +20,7 @@ from app.dialogs.intention_dialog import IntentionDialog, intention_target
 from app.dialogs.observer_dialog import ObserverDialog
 from app.dialogs.rule_dialog import RuleDialog
 from app.dialogs.zone_dialog import ZoneDialog
+from app.view import observer_overlay
 from app.view.observer_drag import ObserverDrag
 from app.view.zone_frame import ZoneFrame
 from app.window import actions
@@ -46,6 +47,7 @@ class DesignEdits(QtCore.QObject):
     def __init__(self, window):
         super().__init__(window)
         self.win, self.doc = window, window.doc
+        self.current_observer: str | None = None  # picked in the view, drawn green
         # Observers: picked and dragged in the view (Move mode), edited and deleted from
         # the view or the tree; wired here, beside the edits they make.
         self.observer_drag = ObserverDrag(window.viewport, self.observer_eyes)
@@ -183,7 +185,11 @@ class DesignEdits(QtCore.QObject):
         return out
 
     def observer_picked(self, name: str) -> None:
-        """An observer's ball pressed in the view: say what can be done with it."""
+        """An observer's ball pressed in the view: draw it green, say what can be done."""
+        self.current_observer = name
+        d, vp = self.doc, self.win.viewport
+        observer_overlay.draw(vp.plotter, d.patches, d.design.observers, name)
+        vp.request_render()
         self.win.tree.select_observer(name)
         self._say(
             f"Observer {name}: drag its ball to move it; double-click it, or its row under "
@@ -210,9 +216,14 @@ class DesignEdits(QtCore.QObject):
             dialog.load(old)
         if not ask.accepted(dialog):
             return False
+        picked = self.current_observer
         try:
-            self.doc.replace_observer(name, dialog.observer())
+            new = dialog.observer()
+            if picked == name:
+                self.current_observer = new.name  # drawn green under its new name
+            self.doc.replace_observer(name, new)
         except LightInvError as exc:
+            self.current_observer = picked
             ask.warn(self.win, str(exc))
             return False
         return True

@@ -122,6 +122,10 @@ def test_preset_glare_limit_and_observers_edited_by_clicks(qtbot, window):
     u.view_drag(window.viewport, eye, eye + np.array([1.5, 1.0, 0.0]), steps=6)
     x, y = _observer(window, "desks along y").position
     assert (x, y) == pytest.approx((7.5, 1.5), abs=0.05)
+    # The one picked is drawn green (its own actor), the other pink as before.
+    actors = window.viewport.plotter.actors
+    green = actors["observer-current"].GetBounds()
+    assert (green[0] + green[1]) / 2 == pytest.approx(x, abs=0.3) and "observers" in actors
     assert window.doc.design.sources == project.design.sources  # no source moved
     QTest.qWait(200)
     u.screenshot(window, SHOTS, "observer-dragged")
