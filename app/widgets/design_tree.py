@@ -41,6 +41,7 @@ class DesignTree(QtWidgets.QTreeWidget):
     intentionDeleted = QtCore.Signal(str)
     ruleDeleted = QtCore.Signal(int)
     observerActivated = QtCore.Signal(str)  # edit it
+    observerChosen = QtCore.Signal(str)  # clicked: picked, as in the view
     observerDeleted = QtCore.Signal(str)
 
     def __init__(self, doc: Document, parent: QtWidgets.QWidget | None = None):
@@ -132,6 +133,8 @@ class DesignTree(QtWidgets.QTreeWidget):
         data = item.data(0, 256)
         if data and data[0] == "source":
             self.doc.set_current_source(data[1])
+        elif data and data[0] == "observer":
+            self.observerChosen.emit(data[1])
 
     def _double_clicked(self, item, _col) -> None:
         data = item.data(0, 256)

@@ -55,6 +55,7 @@ class DesignEdits(QtCore.QObject):
         self.observer_drag.dragged.connect(self.observer_dragged)
         self.observer_drag.activated.connect(self.edit_observer)
         window.tree.observerActivated.connect(self.edit_observer)
+        window.tree.observerChosen.connect(self.observer_picked)
         window.tree.observerDeleted.connect(self.delete_observer)
 
     def _say(self, message: str, ms: int = 4000) -> None:

@@ -141,7 +141,9 @@ def test_preset_glare_limit_and_observers_edited_by_clicks(qtbot, window):
     assert seen["from view"] == "Edit observer desks along y"
 
     # Deleted from the tree (Delete on its row): the limit keeps the other eye.
-    u.click_tree(window.tree, "desks along x")
+    u.click_tree(window.tree, "desks along x")  # picked: its ball turns green
+    green = window.viewport.plotter.actors["observer-current"].GetBounds()
+    assert (green[2] + green[3]) / 2 == pytest.approx(4.0, abs=0.3)  # at y 4, looking +x
     u.press(window.tree, QtCore.Qt.Key_Delete)
     design = window.doc.design
     assert [o.name for o in design.observers] == ["desks along y"]
