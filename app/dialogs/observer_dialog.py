@@ -1,7 +1,12 @@
 """The dialog that places an observer: an eye at a point of the plan, seated or standing,
-looking one way, where the glare rating (UGR) is judged; optionally a UGR limit there."""
+looking one way, where the glare rating (UGR) is judged; optionally a UGR limit there
+(the strictest UGR_L of the design's EN 12464-1 presets when it has one). The same
+dialog edits an observer placed before (``load``): its limit row is then hidden (the
+limits at it are intentions, edited in the tree)."""
 
 from __future__ import annotations
+
+import math
 
 from PySide6 import QtWidgets
 
@@ -25,10 +30,12 @@ class ObserverDialog(QtWidgets.QDialog):
         name: str = "observer",
         centre: tuple[float, float] = (0.0, 0.0),
         parent: QtWidgets.QWidget | None = None,
+        limit: float = UGR_L,
+        limit_source: str | None = None,
     ):
         super().__init__(parent)
         self.setWindowTitle("Observer")
-        form = QtWidgets.QFormLayout(self)
+        self.form = form = QtWidgets.QFormLayout(self)
         self.name = QtWidgets.QLineEdit(name)
         form.addRow("Name", self.name)
         self.x = number_box(-1e4, 1e4, centre[0])
@@ -45,13 +52,34 @@ class ObserverDialog(QtWidgets.QDialog):
         self.group.addItems(groups)
         self.group.setCurrentText("floor" if "floor" in groups else groups[0])
         form.addRow("Floor group", self.group)
-        self.limit = optional_number(form, "UGR at most", UGR_L, 40.0, decimals=1)
+        self.limit = optional_number(form, "UGR at most", limit, 40.0, decimals=1)
         self.limit[0].setChecked(True)
+        source = f"the design's preset: {limit_source}; " if limit_source else ""
         self.limit[0].setToolTip(
             "Adds a lighting intention: UGR (CIE 117) at this eye at most this value "
-            "(EN 12464-1 UGR_L: 19 offices, 22 industry, 25 corridors)"
+            f"({source}EN 12464-1 UGR_L: 19 offices, 22 industry, 25 corridors)"
         )
         form.addRow(ok_cancel(self))
+
+    def load(self, observer: Observer) -> None:
+        """Show an observer placed before, to edit it (its place, eye height, view, floor
+        group, name); the limit row is hidden. A view ``direction`` is shown as its
+        azimuth and kept (its tilt too) unless the azimuth is changed."""
+        self.setWindowTitle(f"Edit observer {observer.name}")
+        self.name.setText(observer.name)
+        self.x.setValue(observer.position[0])
+        self.y.setValue(observer.position[1])
+        self.height.setValue(observer.height)
+        view = observer.view
+        self.azimuth.setValue(round(math.degrees(math.atan2(view[1], view[0])), 1))
+        self._direction = (observer.direction, self.azimuth.value())
+        self.group.setCurrentText(observer.group)
+        check = self.limit[0]
+        check.setChecked(False)
+        for row in range(self.form.rowCount()):  # the limit's row: hidden
+            item = self.form.itemAt(row, QtWidgets.QFormLayout.FieldRole)
+            if item is not None and item.layout() is not None and item.layout().indexOf(check) >= 0:
+                self.form.setRowVisible(row, False)
 
     def accept(self) -> None:
         """Close only on an observer that can be built (OK or Enter); else say why."""
@@ -64,11 +92,14 @@ class ObserverDialog(QtWidgets.QDialog):
 
     def observer(self) -> Observer:
         """The observer as entered (DesignError naming the bad field)."""
+        direction, shown = getattr(self, "_direction", (None, None))
+        keep = direction is not None and self.azimuth.value() == shown
         return Observer(
             self.name.text().strip(),
             (self.x.value(), self.y.value()),
             self.height.value(),
-            azimuth=self.azimuth.value(),
+            azimuth=None if keep else self.azimuth.value(),
+            direction=direction if keep else None,
             group=self.group.currentText(),
         )
 

@@ -1,7 +1,9 @@
 """The dialog that adds a work plane: a grid of points at a height over a floor group,
 where the EN 12464-1 values are read, the edition of EN 12464-1 it follows (its grid
 rule and presets; 2021 for a new one) and, optionally, a preset of that edition to ask
-of it (the list follows the edition)."""
+of it (the list follows the edition), with its glare limit UGR_L at the design's
+observers, or at two placed at the plane's edges when it has none
+(``design.preset_glare``)."""
 
 from __future__ import annotations
 
@@ -10,7 +12,7 @@ from PySide6 import QtCore, QtWidgets
 
 from app.dialogs import ask
 from app.dialogs.fields import number_box, ok_cancel
-from lightinv_core.design.en12464 import DEFAULT_EDITION, EDITIONS, requirements
+from lightinv_core.design.en12464 import DEFAULT_EDITION, EDITIONS, requirement, requirements
 from lightinv_core.design.model import Workplane
 from lightinv_core.errors import LightInvError
 from lightinv_core.scene.patches import Patches
@@ -55,12 +57,16 @@ class WorkplaneDialog(QtWidgets.QDialog):
         name: str = "wp",
         parent: QtWidgets.QWidget | None = None,
         patches: Patches | None = None,
+        observers: int | None = None,
     ):
         super().__init__(parent)
         self.setWindowTitle("Work plane")
-        if patches is None:  # the Luminaires panel's document, when it is the parent
-            doc = getattr(parent, "doc", None)
+        doc = getattr(parent, "doc", None)  # the Luminaires panel's, when it is the parent
+        if patches is None:
             patches = getattr(doc, "patches", None)
+        if observers is None:
+            design = getattr(doc, "design", None) if getattr(doc, "project", None) else None
+            observers = len(design.observers) if design is not None else 0
         base = base or Workplane(
             name, group=floor_default(groups, patches), edition=DEFAULT_EDITION
         )
@@ -92,7 +98,20 @@ class WorkplaneDialog(QtWidgets.QDialog):
         standard.addWidget(self.edition)
         standard.addWidget(self.preset_box, 1)
         form.addRow("EN 12464-1", standard)
+        # The preset's UGR_L as a limit at the observers (default ones when none yet).
+        self.glare = QtWidgets.QCheckBox()
+        self.glare.setChecked(True)
+        self.glare.setToolTip(
+            f"A lighting intention: UGR (CIE 117) at most the preset's UGR_L at the design's "
+            f"{observers} observers"
+            if observers
+            else "A lighting intention: UGR (CIE 117) at most the preset's UGR_L, at two seated "
+            "observers (eye 1.2 m) placed at the middle of the plane's edges of least y and "
+            "least x, looking across it (the design has none yet)"
+        )
+        form.addRow("", self.glare)
         self.edition.currentTextChanged.connect(self._fill_presets)
+        self.preset_box.currentIndexChanged.connect(self._preset_changed)
         self._fill_presets(self.edition.currentText())
         form.addRow(ok_cancel(self))
 
@@ -108,6 +127,18 @@ class WorkplaneDialog(QtWidgets.QDialog):
                 self.preset_box.count() - 1, f"{r.label}; {r.values}", QtCore.Qt.ToolTipRole
             )
         self.preset_box.setCurrentIndex(max(0, self.preset_box.findData(key)))
+
+    def _preset_changed(self) -> None:
+        """The glare box names the chosen preset's UGR_L (greyed without one)."""
+        key = self.preset_box.currentData()
+        ugr = requirement(key, self.edition.currentText()).ugr_l if key else None
+        limit = f" (UGR_L {ugr:g})" if ugr is not None else ""
+        self.glare.setText(f"Add UGR limit from preset{limit}")
+        self.glare.setEnabled(ugr is not None)
+
+    def ugr_limit(self) -> bool:
+        """Whether to add the chosen preset's UGR_L as a limit at observers."""
+        return self.glare.isEnabled() and self.glare.isChecked()
 
     def preset(self) -> str | None:
         """The key of the preset chosen to ask of the work plane (None: none)."""

@@ -1,6 +1,7 @@
 """The scene and design tree: surfaces, emitter zones, sources, intentions, arrays, work
-planes, rules and goals, refreshed from the document; double-clicks and its context menu
-ask the window to add or edit an intention, or delete one or a rule."""
+planes, observers, rules and goals, refreshed from the document; double-clicks and its
+context menu ask the window to add or edit an intention or an observer, or delete one
+(or a rule)."""
 
 from __future__ import annotations
 
@@ -39,6 +40,9 @@ class DesignTree(QtWidgets.QTreeWidget):
     intentionActivated = QtCore.Signal(str)  # edit it
     intentionDeleted = QtCore.Signal(str)
     ruleDeleted = QtCore.Signal(int)
+    observerActivated = QtCore.Signal(str)  # edit it
+    observerChosen = QtCore.Signal(str)  # clicked: picked, as in the view
+    observerDeleted = QtCore.Signal(str)
 
     def __init__(self, doc: Document, parent: QtWidgets.QWidget | None = None):
         super().__init__(parent)
@@ -111,7 +115,7 @@ class DesignTree(QtWidgets.QTreeWidget):
                 QtWidgets.QTreeWidgetItem(
                     eyes,
                     [o.name, f"({o.position[0]:g}, {o.position[1]:g}), eye {o.height:g} m, {view}"],
-                )
+                ).setData(0, 256, ("observer", o.name))
         rules_item = QtWidgets.QTreeWidgetItem(self, ["Rules", str(len(d.design.rules))])
         for k, rule in enumerate(d.design.rules):
             what, bounds = rule_text(rule)
@@ -129,6 +133,8 @@ class DesignTree(QtWidgets.QTreeWidget):
         data = item.data(0, 256)
         if data and data[0] == "source":
             self.doc.set_current_source(data[1])
+        elif data and data[0] == "observer":
+            self.observerChosen.emit(data[1])
 
     def _double_clicked(self, item, _col) -> None:
         data = item.data(0, 256)
@@ -136,6 +142,15 @@ class DesignTree(QtWidgets.QTreeWidget):
             self.groupActivated.emit(data[1])
         elif data and data[0] == "intention":
             self.intentionActivated.emit(data[1])
+        elif data and data[0] == "observer":
+            self.observerActivated.emit(data[1])
+
+    def select_observer(self, name: str) -> None:
+        """Make observer ``name``'s row the current one (picked in the view)."""
+        for item in self.findItems(name, QtCore.Qt.MatchExactly | QtCore.Qt.MatchRecursive):
+            if item.data(0, 256) == ("observer", name):
+                self.setCurrentItem(item)
+                self.scrollToItem(item)
 
     def intention_menu(self, name: str) -> QtWidgets.QMenu:
         """The menu of an intention's item: edit it, delete it."""
@@ -153,13 +168,18 @@ class DesignTree(QtWidgets.QTreeWidget):
             menu = QtWidgets.QMenu(self)
             menu.addAction("Delete", lambda: self.ruleDeleted.emit(data[1]))
             menu.exec(self.viewport().mapToGlobal(pos))
+        elif data and data[0] == "observer":
+            menu = QtWidgets.QMenu(self)
+            menu.addAction("Edit...", lambda: self.observerActivated.emit(data[1]))
+            menu.addAction("Delete", lambda: self.observerDeleted.emit(data[1]))
+            menu.exec(self.viewport().mapToGlobal(pos))
         elif data and data[0] == "group":
             menu = QtWidgets.QMenu(self)
             menu.addAction("Add a lighting intention...", lambda: self.groupActivated.emit(data[1]))
             menu.exec(self.viewport().mapToGlobal(pos))
 
     def keyPressEvent(self, event: QtGui.QKeyEvent) -> None:
-        """Delete removes the selected intention."""
+        """Delete removes the selected intention, rule or observer."""
         item = self.currentItem()
         data = item.data(0, 256) if item is not None else None
         deleting = event.key() in (QtCore.Qt.Key_Delete, QtCore.Qt.Key_Backspace)
@@ -168,5 +188,8 @@ class DesignTree(QtWidgets.QTreeWidget):
             return
         if deleting and data and data[0] == "rule":
             self.ruleDeleted.emit(data[1])
+            return
+        if deleting and data and data[0] == "observer":
+            self.observerDeleted.emit(data[1])
             return
         super().keyPressEvent(event)

@@ -37,6 +37,7 @@ from lightinv_core.design.en12464 import (
     ra_warnings,
     requirements,
 )
+from lightinv_core.design.preset_glare import preset_glare_limit
 from lightinv_core.errors import LightInvError
 from lightinv_core.kinds import Scenario
 from lightinv_core.light.arrays import Product, resolve_product
@@ -344,7 +345,20 @@ class LuminairesPanel(QtWidgets.QWidget):
             ask.warn(self, str(exc))
             return False
         key = dialog.preset()
-        return True if key is None else self.add_preset(key, wp.name)
+        if key is None or not self.add_preset(key, wp.name):
+            return key is None
+        return not dialog.ugr_limit() or self.add_preset_glare(key, wp)
+
+    def add_preset_glare(self, key: str, wp) -> bool:
+        """The preset's UGR_L at the observers (``design.preset_glare``): one undo step."""
+        d = self.doc
+        try:
+            new, it = preset_glare_limit(d.design, d.patches, wp, key)
+            d.add_observers(new, it, f"add {it.name} {it.max:g}")
+        except LightInvError as exc:
+            ask.warn(self, str(exc))
+            return False
+        return True
 
     def remove_workplane(self) -> None:
         rows = self.planes.selectionModel().selectedRows()

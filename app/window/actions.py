@@ -21,7 +21,7 @@ from lightinv_core.sources.types import source_types
 MODES = (
     ("navigate", "Navigate"),
     ("select", "Select patches"),
-    ("move", "Move source"),
+    ("move", "Move source or observer"),
     ("zone", "Draw zone"),
     ("polygon", "Draw polygon zone"),
 )

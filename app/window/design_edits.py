@@ -20,9 +20,13 @@ from app.dialogs.intention_dialog import IntentionDialog, intention_target
 from app.dialogs.observer_dialog import ObserverDialog
 from app.dialogs.rule_dialog import RuleDialog
 from app.dialogs.zone_dialog import ZoneDialog
+from app.view import observer_overlay
+from app.view.observer_drag import ObserverDrag
 from app.view.zone_frame import ZoneFrame
 from app.window import actions
+from lightinv_core.design.preset_glare import strictest_preset
 from lightinv_core.errors import LightInvError
+from lightinv_core.light.glare import observer_eyes
 from lightinv_core.scene.edits import ZoneEdit
 from lightinv_core.scene.model import Rect
 
@@ -43,6 +47,16 @@ class DesignEdits(QtCore.QObject):
     def __init__(self, window):
         super().__init__(window)
         self.win, self.doc = window, window.doc
+        self.current_observer: str | None = None  # picked in the view, drawn green
+        # Observers: picked and dragged in the view (Move mode), edited and deleted from
+        # the view or the tree; wired here, beside the edits they make.
+        self.observer_drag = ObserverDrag(window.viewport, self.observer_eyes)
+        self.observer_drag.picked.connect(self.observer_picked)
+        self.observer_drag.dragged.connect(self.observer_dragged)
+        self.observer_drag.activated.connect(self.edit_observer)
+        window.tree.observerActivated.connect(self.edit_observer)
+        window.tree.observerChosen.connect(self.observer_picked)
+        window.tree.observerDeleted.connect(self.delete_observer)
 
     def _say(self, message: str, ms: int = 4000) -> None:
         self.win.statusBar().showMessage(message, ms)
@@ -157,7 +171,69 @@ class DesignEdits(QtCore.QObject):
         self.doc.remove_intention(name)
         self._say(f"Deleted intention {name} (Edit > Undo to restore)", 6000)
 
-    # -- rules and goals -----------------------------------------------------------------------
+    # -- observers -----------------------------------------------------------------------------
+    def observer_eyes(self) -> dict[str, np.ndarray]:
+        """{name: eye (x, y, z) m} of the design's observers inside the room (as drawn)."""
+        d = self.doc
+        if d.project is None or d.patches is None:
+            return {}
+        out = {}
+        for ob in d.design.observers:
+            try:
+                out[ob.name] = observer_eyes(d.patches, (ob,)).points[0]
+            except LightInvError:
+                continue  # outside the room: not drawn, not picked
+        return out
+
+    def observer_picked(self, name: str) -> None:
+        """An observer's ball pressed in the view: draw it green, say what can be done."""
+        self.current_observer = name
+        d, vp = self.doc, self.win.viewport
+        observer_overlay.draw(vp.plotter, d.patches, d.design.observers, name)
+        vp.request_render()
+        self.win.tree.select_observer(name)
+        self._say(
+            f"Observer {name}: drag its ball to move it; double-click it, or its row under "
+            "Observers, to edit it; Delete there removes it",
+            8000,
+        )
+
+    def observer_dragged(self, name: str, dx: float, dy: float) -> None:
+        """An observer dragged by (dx, dy) m in plan (one undo step per drag)."""
+        try:
+            self.doc.move_observer(name, dx, dy)
+        except LightInvError as exc:
+            self._say(str(exc), 6000)
+
+    def edit_observer(self, name: str, dialog: ObserverDialog | None = None) -> bool:
+        """Change an observer's name, place, eye height, view or floor group in the
+        observer dialog (its limits follow a new name)."""
+        old = next((o for o in self.doc.design.observers if o.name == name), None)
+        if old is None:
+            return False
+        if dialog is None:
+            groups = list(self.doc.patches.group_names) if self.doc.patches is not None else []
+            dialog = ObserverDialog(groups or [old.group], name, old.position, self.win)
+            dialog.load(old)
+        if not ask.accepted(dialog):
+            return False
+        picked = self.current_observer
+        try:
+            new = dialog.observer()
+            if picked == name:
+                self.current_observer = new.name  # drawn green under its new name
+            self.doc.replace_observer(name, new)
+        except LightInvError as exc:
+            self.current_observer = picked
+            ask.warn(self.win, str(exc))
+            return False
+        return True
+
+    def delete_observer(self, name: str) -> None:
+        """Remove an observer; a limit at it alone goes too (Edit > Undo brings both back)."""
+        self.doc.remove_observer(name)
+        self._say(f"Deleted observer {name} (Edit > Undo to restore)", 6000)
+
     def add_observer(self, dialog: ObserverDialog | None = None) -> bool:
         """Ask for an observer (an eye the glare rating is judged from) and, ticked, a
         UGR limit at it; add both."""
@@ -176,7 +252,9 @@ class DesignEdits(QtCore.QObject):
                 for k in range(1, 999)
                 if f"observer {k}" not in {o.name for o in d.observers}
             )
-            dialog = ObserverDialog(groups, name, centre, self.win)
+            preset = strictest_preset(d)
+            limit = {} if preset is None else {"limit": preset.ugr_l, "limit_source": preset.label}
+            dialog = ObserverDialog(groups, name, centre, self.win, **limit)
         if not ask.accepted(dialog):
             return False
         try:
@@ -205,6 +283,7 @@ class DesignEdits(QtCore.QObject):
             return False
         return True
 
+    # -- rules and goals -----------------------------------------------------------------------
     def add_rule(self, dialog: RuleDialog | None = None) -> bool:
         """Ask for a geometric rule (area, aspect, spacing, align; spacing-to-height and
         clearance on luminaire arrays) and add it."""

@@ -73,7 +73,8 @@ class ViewColouring(QtCore.QObject):
         d = self.doc
         if d.project is not None and self.viewport.mesh is not None:
             luminaire_overlay.draw(self.viewport.plotter, d.patches, d.design.arrays)
-            observer_overlay.draw(self.viewport.plotter, d.patches, d.design.observers)
+            picked = self.win.edits.current_observer
+            observer_overlay.draw(self.viewport.plotter, d.patches, d.design.observers, picked)
             self._luminaire_warnings(d.patches, d.design.arrays)
         self.update_hint()
         if field is None or not np.any(field.illuminance > 0):

@@ -97,6 +97,50 @@ class IntentEdits(DocumentState):
             replace(self.design, observers=obs, intentions=tuple(its)), f"remove observer {name}"
         )
 
+    def add_observers(
+        self, observers, intention: Intention | None = None, label: str | None = None
+    ) -> None:
+        """Append several observers and, given, an intention (one undo step: an EN
+        12464-1 preset's UGR_L at its default observers)."""
+        observers = tuple(observers)
+        its = self.design.intentions + ((intention,) if intention is not None else ())
+        names = ", ".join(o.name for o in observers)
+        self._set_design(
+            replace(self.design, observers=(*self.design.observers, *observers), intentions=its),
+            label or f"add observers {names}",
+        )
+
+    def replace_observer(self, name: str, observer: Observer) -> None:
+        """Put ``observer`` in place of the one called ``name`` (its place, height, view
+        edited); a new name is carried into the intentions at it. DesignError if there
+        is none or the new name is another observer's."""
+        names = [o.name for o in self.design.observers]
+        if name not in names:
+            raise DesignError(f"no observer {name!r}")
+        if observer.name != name and observer.name in names:
+            raise DesignError(f"another observer is already called {observer.name!r}")
+        obs = tuple(observer if o.name == name else o for o in self.design.observers)
+        its = tuple(
+            replace(it, observers=tuple(observer.name if o == name else o for o in it.observers))
+            if it.observers is not None and name in it.observers
+            else it
+            for it in self.design.intentions
+        )
+        self._set_design(
+            replace(self.design, observers=obs, intentions=its), f"edit observer {name}"
+        )
+
+    def move_observer(self, name: str, dx: float, dy: float) -> None:
+        """Move an observer by (dx, dy) m in plan (a drag in the view; consecutive moves
+        are one undo step, "move observer NAME")."""
+        ob = next((o for o in self.design.observers if o.name == name), None)
+        if ob is None:
+            raise DesignError(f"no observer {name!r}")
+        x, y = ob.position
+        moved = replace(ob, position=(round(x + dx, 4), round(y + dy, 4)))
+        obs = tuple(moved if o.name == name else o for o in self.design.observers)
+        self._set_design(replace(self.design, observers=obs), f"move observer {name}")
+
     # -- daylight and climate -------------------------------------------------------------------
     def set_daylight(self, **fields) -> None:
         """Change the design's daylight and climate (weather, north_deg, occupancy,

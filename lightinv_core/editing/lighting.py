@@ -76,7 +76,10 @@ class ShownLight:
     def _arrays_light(self, arrays: tuple[LuminaireArray, ...]) -> tuple[np.ndarray, np.ndarray]:
         """Light of ``arrays`` on the patches and at the grid points (kept until they or
         the grids change)."""
-        if self._arrays is None or self._arrays[:2] != (arrays, self.grids):
+        # The grids by identity (``design_grids`` keeps one per set of work planes): a
+        # dataclass of numpy arrays compared with == raised once a second plane was added.
+        kept = self._arrays
+        if kept is None or kept[0] != arrays or kept[1] is not self.grids:
             points = None if self.grids is None else self.grids.points
             H, at_points = arrays_field(self.model.patches, self.model.op, arrays, points)
             self._arrays = (arrays, self.grids, H, at_points)

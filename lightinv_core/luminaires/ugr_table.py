@@ -8,6 +8,9 @@ middle of one wall of length X and looks horizontally along Y. Rooms: X = 2H wit
 2H, 3H, 4H, 6H, 8H, 12H; X = 4H with the same; X = 8H and 12H with Y = 4H, 6H, 8H (and
 8H x 12H): 19 rooms, as DIALux/Relux catalogues and eulumdat-ugr list them.
 
+**Position index.** CIE 117's Table 4.1, interpolated bilinearly (``position_table.py``),
+as CIE 190 prescribes for the table; observers in a room are rated with Guth's formula.
+
 **Orientations.** *Crosswise*: the luminaire's C0-C180 plane lies along the line of
 sight (C = atan2(T, R) from a luminaire to the eye, T sideways, R ahead); *endwise*: the
 C90-C270 plane does (C = 90 - atan2(T, R)). This is the convention eulumdat-ugr gives as
@@ -38,13 +41,8 @@ from dataclasses import dataclass
 import numpy as np
 
 from lightinv_core.luminaires.photometry import Photometry
-from lightinv_core.luminaires.ugr import (
-    in_field,
-    luminance,
-    position_index,
-    projected_area,
-    ugr_from_sum,
-)
+from lightinv_core.luminaires.position_table import table_position_index
+from lightinv_core.luminaires.ugr import in_field, luminance, projected_area, ugr_from_sum
 
 H = 2.0
 """m, luminaires above the eye in the standard rooms."""
@@ -171,8 +169,12 @@ def glare_sum(ph: Photometry, x_h: float, y_h: float, orientation: str) -> float
     tt, rr = _grid(x_h, y_h)
     horizontal = np.hypot(tt, rr)
     gamma = np.degrees(np.arctan2(horizontal, H))
-    keep = in_field(H / rr, tt / rr) & (gamma <= GAMMA_MAX)
-    tt, rr, gamma = tt[keep], rr[keep], gamma[keep]
+    # CIE 190 takes p from CIE 117's Table 4.1; Guth's smooth formula (ugr.guth_index),
+    # a few percent above the table near the line of sight, made the DN150 downlight's
+    # table 0.24 UGR lower than eulumdat-ugr's (docs/photometry.md).
+    p = table_position_index(H / rr, tt / rr)
+    keep = in_field(H / rr, tt / rr) & (gamma <= GAMMA_MAX) & np.isfinite(p)
+    tt, rr, gamma, p = tt[keep], rr[keep], gamma[keep], p[keep]
     c = np.degrees(np.arctan2(tt, rr))
     if orientation == "endwise":
         c = 90.0 - c
@@ -181,7 +183,6 @@ def glare_sum(ph: Photometry, x_h: float, y_h: float, orientation: str) -> float
     c = np.mod(c, 360.0)
     lum = luminance(ph, c, gamma)
     omega = projected_area(ph.opening, c, gamma) / (horizontal[keep] ** 2 + H * H)
-    p = position_index(H / rr, tt / rr)
     return float(np.sum(lum**2 * omega / p**2))
 
 

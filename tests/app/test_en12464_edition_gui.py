@@ -60,7 +60,10 @@ def test_the_work_plane_dialog_names_the_edition_and_its_presets(qtbot, window):
     )
     (wp,) = d.design.workplanes
     assert wp.edition == EDITION_2021
-    (it,) = d.design.intentions
+    # The preset, and its UGR_L at two observers placed for it ("Add UGR limit from
+    # preset", ticked by default; tests/app/test_observer_edit_gui.py).
+    it, glare = d.design.intentions
+    assert (glare.quantity, glare.max, len(d.design.observers)) == ("ugr", 19.0, 2)
     assert (it.grid, it.average, it.uniformity, it.scenario) == (wp.name, 500, 0.6, "night")
     # The work plane row shows its values and its edition; the status line the preset.
     table = panel.planes
