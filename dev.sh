@@ -75,8 +75,10 @@ case "${1:-}" in
     .venv/bin/ruff check .
     .venv/bin/ruff format --check .
     .venv/bin/lint-imports --no-cache
-    # Every core (at most 4: the GUI tests each run a window and an X server).
-    exec .venv/bin/python -m pytest -q -n auto --maxprocesses 4
+    # Four workers even on two cores: a GUI test spends much of its time waiting (on
+    # its X server, its timers, its worker threads), so two workers left the cores
+    # half idle. worksteal: a worker that runs dry takes tests queued for another.
+    exec .venv/bin/python -m pytest -q -n 4 --dist worksteal
     ;;
   *) echo "usage: ./dev.sh demo | test | setup" >&2; exit 2 ;;
 esac
