@@ -31,11 +31,9 @@ class IntentEdits(DocumentState):
     def replace_intention(self, name: str, intention: Intention) -> None:
         """Put ``intention`` in place of the one called ``name`` (same position);
         DesignError if there is none or the new name is another intention's."""
-        names = [i.name for i in self.design.intentions]
-        if name not in names:
-            raise DesignError(f"no lighting intention {name!r}")
-        if intention.name != name and intention.name in names:
-            raise DesignError(f"another lighting intention is already called {intention.name!r}")
+        _check_rename(
+            [i.name for i in self.design.intentions], name, intention.name, "lighting intention"
+        )
         its = tuple(intention if i.name == name else i for i in self.design.intentions)
         self._set_design(replace(self.design, intentions=its), f"edit intention {name}")
 
@@ -114,11 +112,7 @@ class IntentEdits(DocumentState):
         """Put ``observer`` in place of the one called ``name`` (its place, height, view
         edited); a new name is carried into the intentions at it. DesignError if there
         is none or the new name is another observer's."""
-        names = [o.name for o in self.design.observers]
-        if name not in names:
-            raise DesignError(f"no observer {name!r}")
-        if observer.name != name and observer.name in names:
-            raise DesignError(f"another observer is already called {observer.name!r}")
+        _check_rename([o.name for o in self.design.observers], name, observer.name, "observer")
         obs = tuple(observer if o.name == name else o for o in self.design.observers)
         its = tuple(
             replace(it, observers=tuple(observer.name if o == name else o for o in it.observers))
@@ -158,3 +152,11 @@ class IntentEdits(DocumentState):
         """The design's weather file, read (``climate.weather.Weather``: site, hours);
         WeatherError when it cannot be read."""
         return weather_of(self.design.daylight)
+
+
+def _check_rename(names: list[str], name: str, new: str, what: str) -> None:
+    """DesignError unless ``name`` is one of ``names`` and ``new`` is no other's."""
+    if name not in names:
+        raise DesignError(f"no {what} {name!r}")
+    if new != name and new in names:
+        raise DesignError(f"another {what} is already called {new!r}")

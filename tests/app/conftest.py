@@ -43,3 +43,24 @@ def no_thread_left_running():
 
 def wait_for_operator(qtbot, win, timeout=60_000):
     qtbot.waitUntil(lambda: win.worker is None and win.doc.operator is not None, timeout=timeout)
+
+
+def open_coarse_office(qtbot, win):
+    """office-arrays.json loaded coarse (0.7 m patches, rank 200) at 1366 x 768, lit;
+    the project loaded."""
+    from dataclasses import replace
+    from pathlib import Path
+
+    from lightinv_core.project import OperatorSettings, load_project
+
+    path = Path(__file__).resolve().parents[2] / "resources" / "projects" / "office-arrays.json"
+    project = load_project(path)
+    project = replace(
+        project,
+        scene=replace(project.scene, resolution=0.7),
+        operator=OperatorSettings(rank=200, rays=256),
+    )
+    win.resize(1366, 768)
+    assert win.load_project(project)
+    wait_for_operator(qtbot, win)
+    return project

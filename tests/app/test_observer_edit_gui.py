@@ -10,7 +10,6 @@ limit (issue #31, items 1-2 leftovers), on a 1366 x 768 window:
 
 from __future__ import annotations
 
-from dataclasses import replace
 from pathlib import Path
 
 import numpy as np
@@ -19,9 +18,8 @@ from PySide6 import QtCore, QtWidgets
 from PySide6.QtTest import QTest
 
 from lightinv_core.design.en12464 import EDITION_2021
-from lightinv_core.project import OperatorSettings, load_project
 from tests.app import user as u
-from tests.app.conftest import wait_for_operator
+from tests.app.conftest import open_coarse_office
 
 ROOT = Path(__file__).resolve().parents[2]
 SHOTS = Path("/tmp/shots-observer")
@@ -45,15 +43,7 @@ def _observer(window, name: str):
 
 
 def test_preset_glare_limit_and_observers_edited_by_clicks(qtbot, window):
-    project = load_project(ROOT / "resources" / "projects" / "office-arrays.json")
-    project = replace(
-        project,
-        scene=replace(project.scene, resolution=0.7),
-        operator=OperatorSettings(rank=200, rays=256),
-    )
-    window.resize(1366, 768)
-    assert window.load_project(project)
-    wait_for_operator(qtbot, window)
+    project = open_coarse_office(qtbot, window)
     SHOTS.mkdir(exist_ok=True)
     window.findChild(QtWidgets.QDockWidget, "luminaires").raise_()
     seen = {}

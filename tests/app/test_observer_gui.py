@@ -5,7 +5,6 @@ eye, the luminaires placed exactly: ``light/glare.layout_glare``)."""
 
 from __future__ import annotations
 
-from dataclasses import replace
 from pathlib import Path
 
 import pytest
@@ -13,9 +12,8 @@ from PySide6.QtCore import Qt
 from PySide6.QtTest import QTest
 
 from lightinv_core.light.glare import layout_glare
-from lightinv_core.project import OperatorSettings, load_project
 from tests.app import user as u
-from tests.app.conftest import wait_for_operator
+from tests.app.conftest import open_coarse_office
 
 ROOT = Path(__file__).resolve().parents[2]
 SHOTS = Path("/tmp/shots-ugrlimit")
@@ -23,15 +21,7 @@ SHOTS = Path("/tmp/shots-ugrlimit")
 
 @pytest.mark.slow
 def test_an_observer_is_placed_by_clicks_and_its_ugr_shown(qtbot, window):
-    project = load_project(ROOT / "resources" / "projects" / "office-arrays.json")
-    project = replace(
-        project,
-        scene=replace(project.scene, resolution=0.7),
-        operator=OperatorSettings(rank=200, rays=256),
-    )
-    window.resize(1366, 768)
-    assert window.load_project(project)
-    wait_for_operator(qtbot, window)
+    open_coarse_office(qtbot, window)
 
     def fill(dialog) -> None:
         u.type_text(u.field(dialog, "Name"), "desk")
