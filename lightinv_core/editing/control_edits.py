@@ -23,15 +23,16 @@ def new_group_name(design: Design, stem: str = "group") -> str:
     return f"{stem} {i}"
 
 
-def _renamed(design: Design, old: str, new: str) -> Design:
-    """``design`` with the luminaires of group ``old`` moved to ``new``."""
+def _regrouped(design: Design, old: str, new: str, groups: tuple[ControlGroup, ...]) -> Design:
+    """``design`` with control groups ``groups`` and the luminaires of group ``old`` moved
+    to ``new`` (in one step: the design checks that every luminaire's group exists)."""
     sources = tuple(
         replace(s, control_group=new) if s.control_group == old else s for s in design.sources
     )
     arrays = tuple(
         replace(a, control_group=new) if a.control_group == old else a for a in design.arrays
     )
-    return replace(design, sources=sources, arrays=arrays)
+    return replace(design, sources=sources, arrays=arrays, control_groups=groups)
 
 
 class ControlEdits(DocumentState):
@@ -51,27 +52,25 @@ class ControlEdits(DocumentState):
         )
         return group
 
-    def update_control_group(self, name: str, **fields) -> None:
+    def update_control_group(self, name: str, /, **fields) -> None:
         """Change a declared group's fields (name, sensor, workplane, min_level); a new
         name follows into its luminaires. DesignError on a bad value or a name in use."""
         old = self._group(name)
         group = replace(old, **fields)
         if group == old:
             return
-        design = self.design
-        if group.name != name:
-            if group.name in self.control_group_names():
-                raise DesignError(f"control group names must be unique: {group.name!r} is used")
-            design = _renamed(design, name, group.name)
-        groups = tuple(group if c.name == name else c for c in design.control_groups)
-        self._set_design(replace(design, control_groups=groups), f"edit control group {name}")
+        if group.name != name and group.name in self.control_group_names():
+            raise DesignError(f"control group names must be unique: {group.name!r} is used")
+        groups = tuple(group if c.name == name else c for c in self.design.control_groups)
+        design = _regrouped(self.design, name, group.name, groups)
+        self._set_design(design, f"edit control group {name}")
 
     def remove_control_group(self, name: str) -> None:
         """Delete a declared group; its luminaires go back to the default group."""
         self._group(name)
-        design = _renamed(self.design, name, DEFAULT_CONTROL_GROUP)
-        groups = tuple(c for c in design.control_groups if c.name != name)
-        self._set_design(replace(design, control_groups=groups), f"remove control group {name}")
+        groups = tuple(c for c in self.design.control_groups if c.name != name)
+        design = _regrouped(self.design, name, DEFAULT_CONTROL_GROUP, groups)
+        self._set_design(design, f"remove control group {name}")
 
     def set_luminaire_group(self, name: str, group: str) -> None:
         """Put the luminaire source or array ``name`` in control group ``group``."""

@@ -1,10 +1,11 @@
 """Control groups made by clicks at 1366 x 768 (issue #30 item 5, docs/daylight.md
 "Control groups in a project"): the integrated office opened by File > Open project...,
-Climate > Control groups > Add group... names a "window row" group whose sensor reads
-the west third of the work plane, the west luminaire strip L1 joins it in Properties >
-Source > Control group (Edit > Undo takes that back, chosen again), a run,
-then the energy box lists the two groups with their energies adding up to the total.
-The energies themselves are checked in tests/core/test_control_groups_design.py.
+Climate > Control groups > Add group... adds a group as proposed, Edit... names it
+"window row" and has its sensor read the west third of the work plane, the west
+luminaire strip L1 joins it in Properties > Source > Control group (Edit > Undo takes
+that back, chosen again), a run, then the energy box lists the two groups with their
+energies adding up to the total. The energies themselves are checked in
+tests/core/test_control_groups_design.py.
 
 Screenshots go to /tmp/shots-groups/."""
 
@@ -18,6 +19,7 @@ import pytest
 from PySide6 import QtCore, QtWidgets
 
 from app.dialogs import ask
+from lightinv_core.design.model import ControlGroup
 from tests.app import user as u
 from tests.app.conftest import wait_for_operator
 from tests.app.test_dialog_buttons import menu_action
@@ -82,7 +84,13 @@ def test_a_window_row_group_by_clicks(qtbot, window, monkeypatch, tmp_path):
     box = u.reveal(window.climate_panel.groups)  # below the others: scrolled to
     assert not d.design.control_groups
     assert window.width() <= 1366  # the box widens nothing on a laptop's screen
-    u.answer(lambda: u.click(u.button(box, "Add group...")), _window_row)
+    u.answer(lambda: u.click(u.button(box, "Add group...")), u.ok)  # as proposed
+    assert d.design.control_groups == (ControlGroup("group 1"),)
+    # Edit... renames it and gives it a sensor region.
+    item = box.list.item(0)
+    assert item.text().startswith("group 1: control plane, whole plane; no luminaires")
+    u.click(box.list.viewport(), box.list.visualItemRect(item).center())
+    u.answer(lambda: u.click(u.button(box, "Edit...")), _window_row)
     (group,) = d.design.control_groups
     assert (group.name, group.sensor, group.workplane) == ("window row", (0, 0, 4, 8), None)
     assert box.list.item(0).text().startswith("window row: control plane, x 0-4, y 0-8 m")

@@ -308,3 +308,42 @@ def test_two_groups_in_the_optimiser_and_the_hour(office):
     with pytest.raises(DesignError, match="holds no point of work plane 'wp'"):
         bad = replace(design, control_groups=(ControlGroup("west", sensor=(50, 50, 60, 60)),))
         layout_daylight(light, bad)
+
+
+# -- editing (the window's rules, without a display) -----------------------------------
+
+
+def test_editing_groups_renames_and_removes_with_their_luminaires():
+    from lightinv_core.editing import DocumentModel, blank_project
+
+    doc = DocumentModel()
+    doc.set_project(blank_project("office", 0.7))
+    edits = []
+    doc.on_edit = lambda label, before, after: edits.append(label)
+    lum = doc.add_source("lum_west")
+    doc.set_workplanes((Workplane("wp"),), "add work plane wp")
+    array = LuminaireArray("A1", "lum_east", PRODUCT, (0, 0, 2, 6), rows=2)
+    doc.set_arrays((array,), "add array A1")
+    assert doc.control_group_names() == ("all",)
+    g = doc.add_control_group()
+    assert g.name == "group 1" and doc.control_group_names() == ("all", "group 1")
+    doc.set_luminaire_group(lum.name, "group 1")
+    doc.set_luminaire_group("A1", "group 1")
+    with pytest.raises(DesignError, match="no control group 'nope'"):
+        doc.set_luminaire_group("A1", "nope")
+    doc.update_control_group("group 1", name="window row", sensor=(0.0, 0.0, 4.0, 8.0))
+    d = doc.design
+    assert d.source(lum.name).control_group == d.array("A1").control_group == "window row"
+    assert d.control_groups == (ControlGroup("window row", sensor=(0.0, 0.0, 4.0, 8.0)),)
+    with pytest.raises(DesignError, match="'all' is used"):
+        doc.update_control_group("window row", name="all")
+    doc.remove_control_group("window row")
+    d = doc.design
+    assert not d.control_groups and d.array("A1").control_group == "all"
+    assert d.source(lum.name).control_group == "all"
+    assert edits[-4:] == [
+        f"{lum.name}: control group group 1",
+        "A1: control group group 1",
+        "edit control group group 1",
+        "remove control group window row",
+    ]
