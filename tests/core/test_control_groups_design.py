@@ -347,3 +347,46 @@ def test_editing_groups_renames_and_removes_with_their_luminaires():
         "edit control group group 1",
         "remove control group window row",
     ]
+
+
+@pytest.mark.slow  # a solve and a PDF report
+def test_solve_and_report_a_project_with_two_groups(tmp_path, capsys):
+    """``lightinv-cli solve --json`` carries each group, the saved project keeps them and
+    ``lightinv-cli report`` prints their table: the integrated office with its west strip
+    in a "window row" group read by the west third of the work plane."""
+    import json
+    import shutil
+    import subprocess
+    from pathlib import Path
+
+    from lightinv_core import cli
+
+    d = json.loads(Path("resources/projects/office-integrated.json").read_text())
+    d["scene"]["resolution"] = 0.7
+    d["control_groups"] = [{"name": "window row", "sensor": [0, 0, 4, 8]}]
+    d["sources"][0]["control_group"] = "window row"  # L1, the west strip
+    d["goals"] = [{"kind": "min_annual_energy"}]
+    d["optimizer"] = {"method": "vns", "seed": 0, "max_evals": 150, "divisors": [1]}
+    d["operator"] = {"rank": 120, "rays": 128}
+    path, solved = tmp_path / "groups.json", tmp_path / "solved.json"
+    path.write_text(json.dumps(d))
+    assert cli.main(["solve", str(path), "--json", "-o", str(solved)]) == 0
+    out = json.loads(capsys.readouterr().out)
+    day = out["daylight"]
+    groups = {g["name"]: g for g in day["control_groups"]}
+    assert set(groups) == {"window row", "all"}
+    assert groups["window row"]["luminaires"] == groups["all"]["luminaires"] == 1
+    assert groups["window row"]["sensor_points"] < groups["all"]["sensor_points"]
+    standby = d["daylight"]["standby_w"] * 8.76
+    kwh = sum(g["energy_kwh"] for g in groups.values()) + standby
+    assert kwh == pytest.approx(day["energy_kwh"], rel=1e-9)
+    assert out["objective"] == pytest.approx(day["energy_kwh"], rel=1e-6)
+    assert "control group window row: 1 luminaires" in solve_text(out)
+    again = json.loads(solved.read_text())
+    assert again["control_groups"] == d["control_groups"]
+    assert cli.main(["report", str(solved), "-o", str(tmp_path / "r.pdf")]) == 0
+    if shutil.which("pdftotext"):
+        text = subprocess.run(
+            ["pdftotext", str(tmp_path / "r.pdf"), "-"], capture_output=True, text=True
+        ).stdout
+        assert "Control groups" in text and "window row" in text
