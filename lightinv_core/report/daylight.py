@@ -315,6 +315,8 @@ def energy_table(section: DaylightSection) -> Table:
         "daylight plus electric, reaches the target; off outside the schedule. Full output: "
         "the same hours undimmed. LENI = annual energy / floor area (simplified EN 15193-1)."
     )
+    if e is not None and e.groups:
+        note = note.replace("so the control plane's mean", "so each control group's sensor")
     if e is None:
         note = _missing(section)
     return Table("Daylight-linked dimming energy", ("item", "value"), tuple(rows), note=note)
