@@ -12,6 +12,8 @@ from dataclasses import replace
 
 from lightinv_core.design.model import DEFAULT_CONTROL_GROUP, ControlGroup, Design, DesignError
 from lightinv_core.editing.state import DocumentState
+from lightinv_core.light.control_groups import control_plan
+from lightinv_core.light.grids import design_grids
 
 
 def new_group_name(design: Design, stem: str = "group") -> str:
@@ -46,10 +48,10 @@ class ControlEdits(DocumentState):
     def add_control_group(self, group: ControlGroup | None = None) -> ControlGroup:
         """Add ``group`` (default: a new one named "group N" reading the control plane)."""
         group = group or ControlGroup(new_group_name(self.design))
-        groups = (*self.design.control_groups, group)
-        self._set_design(
-            replace(self.design, control_groups=groups), f"add control group {group.name}"
+        design = self._checked(
+            replace(self.design, control_groups=(*self.design.control_groups, group))
         )
+        self._set_design(design, f"add control group {group.name}")
         return group
 
     def update_control_group(self, name: str, /, **fields) -> None:
@@ -62,7 +64,7 @@ class ControlEdits(DocumentState):
         if group.name != name and group.name in self.control_group_names():
             raise DesignError(f"control group names must be unique: {group.name!r} is used")
         groups = tuple(group if c.name == name else c for c in self.design.control_groups)
-        design = _regrouped(self.design, name, group.name, groups)
+        design = self._checked(_regrouped(self.design, name, group.name, groups))
         self._set_design(design, f"edit control group {name}")
 
     def remove_control_group(self, name: str) -> None:
@@ -87,7 +89,14 @@ class ControlEdits(DocumentState):
             )
             design = replace(d, arrays=items)
         if design != d:
-            self._set_design(design, f"{name}: control group {group}")
+            self._set_design(self._checked(design), f"{name}: control group {group}")
+
+    def _checked(self, design: Design) -> Design:
+        """``design``, its sensors checked on the work planes' grids when the light model
+        exists (DesignError: a sensor region that holds no grid point)."""
+        if self.light is not None and design.workplanes:
+            control_plan(design, design_grids(self.light, design.workplanes))
+        return design
 
     def _group(self, name: str) -> ControlGroup:
         for c in self.design.control_groups:

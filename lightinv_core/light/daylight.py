@@ -237,6 +237,7 @@ class LayoutDaylight:
     observed: dict | None = None  # {observer: UGR} (``light/glare.py``), None without
     observed_error: str = ""  # why the observers could not be rated (one outside the room)
     groups: object = None  # ``light.control_groups.GroupLight``: None for the default group
+    groups_error: str = ""  # why the control groups cannot be read (a sensor on no point)
 
     @cached_property
     def _levels(self) -> np.ndarray:
@@ -278,6 +279,8 @@ class LayoutDaylight:
         if self.points is None or self.control is None:
             raise DesignError("annual energy is measured on a work plane: add one")
         span = self.grids.spans[self.control]
+        if self.groups_error:
+            raise DesignError(self.groups_error)
         if self.groups is not None:
             return self._groups_energy()
         return annual_energy(self.points, span, self.installed_w, self.floor_m2)
@@ -416,8 +419,11 @@ def layout_daylight(light, design: Design, sources=None, arrays=None) -> LayoutD
     floor = 0.0
     if plane is not None:
         floor = float(light.patches.area[light.patches.group_index(plane.group)].sum())
-    groups = None
-    plan = None if grids is None else control_plan(design, grids)
+    groups, plan, groups_error = None, None, ""
+    try:
+        plan = None if grids is None else control_plan(design, grids)
+    except DesignError as exc:  # the rest of the light stands; the energy says why
+        groups_error = str(exc)
     if plan is not None:
         groups = group_light(light, design, grids, plan, sources, arrays)
     observed, observed_error = None, ""
@@ -438,4 +444,5 @@ def layout_daylight(light, design: Design, sources=None, arrays=None) -> LayoutD
         observed,
         observed_error,
         groups,
+        groups_error,
     )

@@ -305,9 +305,12 @@ def test_two_groups_in_the_optimiser_and_the_hour(office):
     assert np.allclose(ld.hour_lux(hour), want)
     night = int(np.flatnonzero(~year.occupied)[0])
     assert np.allclose(ld.hour_electric(night), 0.0)
+    # A sensor on no grid point: the energy says so, the rest of the light stands.
+    bad = replace(design, control_groups=(ControlGroup("west", sensor=(50, 50, 60, 60)),))
+    held = layout_daylight(light, bad)
     with pytest.raises(DesignError, match="holds no point of work plane 'wp'"):
-        bad = replace(design, control_groups=(ControlGroup("west", sensor=(50, 50, 60, 60)),))
-        layout_daylight(light, bad)
+        held.energy()
+    assert held.points.da(ld.grids.spans["wp"]).shape == (77, 1)
 
 
 # -- editing (the window's rules, without a display) -----------------------------------
@@ -337,6 +340,12 @@ def test_editing_groups_renames_and_removes_with_their_luminaires():
     assert d.control_groups == (ControlGroup("window row", sensor=(0.0, 0.0, 4.0, 8.0)),)
     with pytest.raises(DesignError, match="'all' is used"):
         doc.update_control_group("window row", name="all")
+    # With the light model, a sensor region on no grid point is refused, nothing changes.
+    doc.set_operator(build_operator(doc.patches, OperatorSettings(rank=100, rays=128)))
+    kept = doc.design
+    with pytest.raises(DesignError, match="holds no point of work plane 'wp'"):
+        doc.update_control_group("window row", sensor=(50.0, 50.0, 60.0, 60.0))
+    assert doc.design is kept
     doc.remove_control_group("window row")
     d = doc.design
     assert not d.control_groups and d.array("A1").control_group == "all"
