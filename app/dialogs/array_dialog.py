@@ -87,6 +87,7 @@ class ArrayDialog(QtWidgets.QDialog):
         name: str = "A1",
         parent: QtWidgets.QWidget | None = None,
         others: tuple[LuminaireArray, ...] = (),
+        groups: tuple[str, ...] = (),
     ):
         super().__init__(parent)
         self.setWindowTitle("Luminaire array" if base is None else f"Edit array {base.name}")
@@ -135,6 +136,12 @@ class ArrayDialog(QtWidgets.QDialog):
         form.addRow("Dimming", self.dimming)
         self.mf = number_box(0.01, 1.0, base.maintenance_factor, 2, 0.05)
         form.addRow("Maintenance factor", self.mf)
+        self.control = QtWidgets.QComboBox()
+        for g in dict.fromkeys((*groups, base.control_group)):
+            self.control.addItem(g)
+        self.control.setCurrentText(base.control_group)
+        self.control.setToolTip("The control group whose daylight sensor dims it")
+        form.addRow("Control group", self.control)
         self.free = {}
         free = QtWidgets.QHBoxLayout()
         for var in ARRAY_VARIABLES:
@@ -274,4 +281,5 @@ class ArrayDialog(QtWidgets.QDialog):
             columns_range=(self.cols_range[0].value(), self.cols_range[1].value()),
             dimming_range=(self.dim_range[0].value(), self.dim_range[1].value()),
             maintenance_factor=self.mf.value(),
+            control_group=self.control.currentText(),
         )

@@ -138,7 +138,7 @@ def _on(light, ld, key: str, hour: int) -> np.ndarray:
     if light is ld.patches:
         return ld.hour_lux(hour)
     # The same sum as ``LayoutDaylight.hour_lux``, at the work planes' points.
-    return light.electric[:, 0] * ld.level_at(hour) + light.hour_daylight(hour)
+    return ld.hour_electric(hour, at_points=True) + light.hour_daylight(hour)
 
 
 def _weather_or_none(doc: Document):

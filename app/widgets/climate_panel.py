@@ -20,6 +20,7 @@ from PySide6 import QtCore, QtWidgets
 from app.dialogs import ask
 from app.dialogs.fields import compact_form, typed_number
 from app.document import Document
+from app.widgets.control_groups_box import ControlGroupsBox
 from app.widgets.energy_box import EnergyBox
 from lightinv_core.climate.weather import BUILTIN
 from lightinv_core.editing.climate import (
@@ -69,6 +70,8 @@ class ClimatePanel(QtWidgets.QWidget):
         grid.addWidget(self._hour_group(), 1, 0)
         self.energy = EnergyBox()
         grid.addWidget(self.energy, 1, 1)
+        self.groups = ControlGroupsBox(doc)
+        grid.addWidget(self.groups, 2, 0, 1, 2)  # below: the dock has no width to spare
         grid.setColumnStretch(1, 1)
         self._fields = (
             self.north,

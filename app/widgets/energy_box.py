@@ -18,6 +18,7 @@ class EnergyBox(QtWidgets.QGroupBox):
         self.chart = EnergyChart()
         lay.addWidget(self.chart, 1)
         self.text = QtWidgets.QLabel("-")
+        self.text.setWordWrap(True)  # a line per control group: no wider than the dock
         lay.addWidget(self.text)
 
     def clear(self) -> None:
@@ -47,4 +48,9 @@ class EnergyBox(QtWidgets.QGroupBox):
             f"{100 * saved:.0f}% less than at full output ({e.full_kwh:,.1f} kWh); "
             f"mean level {100 * e.mean_level:.0f}%\n"
             f"{ld.installed_w:,.0f} W installed, dimmed on work plane {ld.control}"
+            + "".join(
+                f"\ngroup {g.name}: {g.watts:,.0f} W, {g.energy_kwh:,.1f} kWh, "
+                f"LENI {g.leni:.2f}, level {100 * g.mean_level:.0f}%"
+                for g in e.groups
+            )
         )

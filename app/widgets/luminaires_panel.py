@@ -277,7 +277,11 @@ class LuminairesPanel(QtWidgets.QWidget):
         taken = {s.name for s in d.sources} | {a.name for a in d.arrays}
         if dialog is None:
             dialog = ArrayDialog(
-                zones, name=self._new_name("A", taken), parent=self, others=d.arrays
+                zones,
+                name=self._new_name("A", taken),
+                parent=self,
+                others=d.arrays,
+                groups=self.doc.control_group_names(),
             )
             product = self.selected_product()
             if product:
@@ -305,7 +309,13 @@ class LuminairesPanel(QtWidgets.QWidget):
         arrays = self.doc.design.arrays
         if dialog is None:
             others = arrays[:i] + arrays[i + 1 :]
-            dialog = ArrayDialog(self._luminaire_zones(), arrays[i], parent=self, others=others)
+            dialog = ArrayDialog(
+                self._luminaire_zones(),
+                arrays[i],
+                parent=self,
+                others=others,
+                groups=self.doc.control_group_names(),
+            )
             if not ask.accepted(dialog):
                 return False
         try:

@@ -92,6 +92,12 @@ class SourcePanel(QtWidgets.QGroupBox):
         self.glazing.currentIndexChanged.connect(self._glazing_edited)
         self.glazing_label = QtWidgets.QLabel("Glazing")
         form.addRow(self.glazing_label, self.glazing)
+        # The daylight-linked control group a luminaire is dimmed with (Climate tab).
+        self.control = QtWidgets.QComboBox()
+        self.control.setToolTip("The control group whose daylight sensor dims it (Climate tab)")
+        self.control.activated.connect(self._control_edited)
+        self.control_label = QtWidgets.QLabel("Control group")
+        form.addRow(self.control_label, self.control)
         # What the optimiser may change, and within what: without these a luminaire kept
         # its 3,000 lm and a least-power run could not reach the target.
         self.free_place = QtWidgets.QCheckBox("position and size")
@@ -163,6 +169,7 @@ class SourcePanel(QtWidgets.QGroupBox):
             self.flux_max,
             self.efficacy,
             self.glazing,
+            self.control,
         ]
         for b in boxes:
             b.blockSignals(True)
@@ -250,6 +257,14 @@ class SourcePanel(QtWidgets.QGroupBox):
         for w in (self.efficacy, self.efficacy_label):
             w.setVisible(rated)
             w.setEnabled(not tied and rated)
+        grouped = "control_group" in t.fields
+        for w in (self.control, self.control_label):
+            w.setVisible(grouped)
+        self.control.setEnabled(grouped)
+        self.control.clear()
+        for g in self.doc.control_group_names():
+            self.control.addItem(g, g)
+        self.control.setCurrentIndex(max(0, self.control.findData(s.control_group)))
 
     def _free_edited(self) -> None:
         name = self.doc.current_source
@@ -286,6 +301,11 @@ class SourcePanel(QtWidgets.QGroupBox):
             QtWidgets.QApplication.restoreOverrideCursor()
             if bar is not None:
                 bar.clearMessage()
+
+    def _control_edited(self) -> None:
+        name, group = self.doc.current_source, self.control.currentData()
+        if name is not None and group is not None:
+            self._guard(self.doc.set_luminaire_group, name, group)
 
     def _range_edited(self) -> None:
         self._apply(flux_range=(self.flux_min.value(), self.flux_max.value()))

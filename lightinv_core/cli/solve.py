@@ -87,6 +87,8 @@ def daylight_summary(light: LightModel, design: Design, sol: Solution) -> dict:
         leni_kwh_m2=energy.leni,
         monthly_kwh=list(energy.monthly_kwh),
     )
+    if energy.groups:  # several daylight-linked control groups, each on its own sensor
+        out["control_groups"] = [g.as_dict() for g in energy.groups]
     if lay.points.clear is not None:  # clear glazing lets the sun's beam in
         from lightinv_core.kinds import Quantity
         from lightinv_core.quantities import quantity_spec

@@ -48,6 +48,13 @@ def solve_text(out: dict) -> str:
                 f"dimmed lighting {d['energy_kwh']:.0f} kWh a year (full output "
                 f"{d['full_output_kwh']:.0f} kWh), LENI {d['leni_kwh_m2']:.2f} kWh/m² a"
             )
+            for g in d.get("control_groups", []):
+                lines.append(
+                    f"    control group {g['name']}: {g['luminaires']} luminaires, "
+                    f"{g['watts']:.0f} W, sensor {g['sensor_points']} points, mean level "
+                    f"{100 * g['mean_level']:.0f}%, {g['energy_kwh']:.1f} kWh a year, "
+                    f"LENI {g['leni']:.2f} kWh/m² a"
+                )
     for v in out.get("violations", []):
         lines.append(
             f"  violated: {v['name']} {v['constraint']} by {100 * v['amount']:.1f}% "

@@ -17,6 +17,7 @@ of those (docs/daylight.md):
 from __future__ import annotations
 
 from dataclasses import dataclass, field, replace
+from functools import cached_property
 
 import numpy as np
 
@@ -179,6 +180,7 @@ class AnnualEnergy:
     monthly_kwh: tuple[float, ...]
     mean_level: float
     floor_m2: float
+    groups: tuple = ()  # ``light.control_groups.GroupEnergy`` each, with control groups
 
 
 def annual_energy(
@@ -234,6 +236,16 @@ class LayoutDaylight:
     surface: object = None  # the scene's Patches
     observed: dict | None = None  # {observer: UGR} (``light/glare.py``), None without
     observed_error: str = ""  # why the observers could not be rated (one outside the room)
+    groups: object = None  # ``light.control_groups.GroupLight``: None for the default group
+    groups_error: str = ""  # why the control groups cannot be read (a sensor on no point)
+
+    @cached_property
+    def _levels(self) -> np.ndarray:
+        """(K, T) each control group's dimming level in each occupied hour."""
+        from lightinv_core.light.control_groups import group_levels
+
+        year = self.patches.year()
+        return group_levels(self.points, year, self.groups, self.design.daylight.target_lux)
 
     def quantity(self, intention: Intention) -> tuple[np.ndarray, np.ndarray]:
         """(values (R,), weights (R,)) of the intention's quantity in its scenario at its
@@ -267,7 +279,40 @@ class LayoutDaylight:
         if self.points is None or self.control is None:
             raise DesignError("annual energy is measured on a work plane: add one")
         span = self.grids.spans[self.control]
+        if self.groups_error:
+            raise DesignError(self.groups_error)
+        if self.groups is not None:
+            return self._groups_energy()
         return annual_energy(self.points, span, self.installed_w, self.floor_m2)
+
+    def _groups_energy(self) -> AnnualEnergy:
+        """``energy`` with several control groups: each dimmed on its own sensor."""
+        from lightinv_core.light.control_groups import group_energies
+
+        y, d = self.patches.year(), self.design.daylight
+        levels = self._levels
+        groups = group_energies(levels, y, self.groups, self.floor_m2)
+        hours_year = y.every.shape[1]
+        standby = float(lighting_kwh(0.0, 0.0, d.standby_w, hours_year))
+        energy = sum(g.energy_kwh for g in groups) + standby
+        per_month = np.bincount(np.asarray(y.midpoints.month) - 1, minlength=12)
+        monthly = tuple(
+            sum(g.monthly_kwh[i] for g in groups) + d.standby_w * per_month[i] / 1000.0
+            for i in range(12)
+        )
+        full_kwh = lighting_kwh(self.installed_w, y.hours, d.standby_w, hours_year)
+        watts = self.groups.watts
+        mean = float((watts @ levels.mean(axis=1)) / max(watts.sum(), 1e-9))
+        floor = max(float(self.floor_m2), 1e-9)
+        return AnnualEnergy(
+            float(energy),
+            float(energy / floor),
+            float(full_kwh),
+            monthly,
+            mean,
+            float(self.floor_m2),
+            groups,
+        )
 
     def hour_lux(self, hour: int) -> np.ndarray:
         """Illuminance (lux, (n,)) on every patch in hour ``hour`` (0-based, of the
@@ -277,8 +322,25 @@ class LayoutDaylight:
         y = p.year()
         if not 0 <= hour < y.every.shape[1]:
             raise DesignError(f"hour {hour} is outside the year (0-{y.every.shape[1] - 1})")
-        level = self.level_at(hour)
-        return p.electric[:, 0] * level + p.hour_daylight(hour)
+        return self.hour_electric(hour) + p.hour_daylight(hour)
+
+    def hour_electric(self, hour: int, at_points: bool = False) -> np.ndarray:
+        """The luminaires' light (lux) in hour ``hour`` on every patch (or at the grid
+        points), each control group dimmed by its own sensor."""
+        light = self.points if at_points else self.patches
+        if self.groups is None:
+            return light.electric[:, 0] * self.level_at(hour)
+        levels = self.group_levels_at(hour)
+        each = self.groups.points if at_points else self.groups.patches
+        return levels @ each
+
+    def group_levels_at(self, hour: int) -> np.ndarray:
+        """(K,) each control group's level (0-1) in hour ``hour``: 0 when unoccupied."""
+        y = self.patches.year()
+        if not y.occupied[hour]:
+            return np.zeros(self.groups.plan.count)
+        t = int(np.count_nonzero(y.occupied[:hour]))
+        return self._levels[:, t]
 
     def level_at(self, hour: int) -> float:
         """The luminaires' dimming level (0-1) in hour ``hour``: 0 when unoccupied."""
@@ -288,6 +350,9 @@ class LayoutDaylight:
         d = self.design.daylight
         if self.points is None or self.control is None:
             return 1.0
+        if self.groups is not None:  # the groups' levels weighted by their power
+            w = self.groups.watts
+            return float(w @ self.group_levels_at(hour) / max(w.sum(), 1e-9))
         span = self.grids.spans[self.control]
         full = float(self.points.electric[span, 0].mean())
         day = 0.0
@@ -304,6 +369,7 @@ def layout_daylight(light, design: Design, sources=None, arrays=None) -> LayoutD
     default: the design as written) in every scenario, on ``light``'s patches and the
     design's work planes."""
     from lightinv_core.light.arrays import arrays_field, resolve_product
+    from lightinv_core.light.control_groups import control_plan, group_light
     from lightinv_core.light.daylight_year import sky_groups
     from lightinv_core.light.glare import layout_glare
     from lightinv_core.light.grids import design_grids, grid_light
@@ -353,6 +419,13 @@ def layout_daylight(light, design: Design, sources=None, arrays=None) -> LayoutD
     floor = 0.0
     if plane is not None:
         floor = float(light.patches.area[light.patches.group_index(plane.group)].sum())
+    groups, plan, groups_error = None, None, ""
+    try:
+        plan = None if grids is None else control_plan(design, grids)
+    except DesignError as exc:  # the rest of the light stands; the energy says why
+        groups_error = str(exc)
+    if plan is not None:
+        groups = group_light(light, design, grids, plan, sources, arrays)
     observed, observed_error = None, ""
     if any(it.observers is not None for it in design.intentions):
         try:
@@ -370,4 +443,6 @@ def layout_daylight(light, design: Design, sources=None, arrays=None) -> LayoutD
         light.patches,
         observed,
         observed_error,
+        groups,
+        groups_error,
     )

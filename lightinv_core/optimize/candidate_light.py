@@ -21,6 +21,7 @@ from lightinv_core.design.variables import ArrayLayout, Variables
 from lightinv_core.kinds import Scenario
 from lightinv_core.light.arrays import ArrayLight, arrays_field
 from lightinv_core.light.clear_glazing import stacked
+from lightinv_core.light.control_groups import exact_arrays_at_sensors
 from lightinv_core.light.daylight import ScenarioLight
 from lightinv_core.light.grids import DesignGrids
 from lightinv_core.light.model import LightModel
@@ -47,6 +48,7 @@ class Lit:
     parts: ScenarioLight | None = None
     layout: ArrayLayout | None = None
     weights: np.ndarray | None = None
+    control_exact: np.ndarray | None = None  # (K,) control groups' exact arrays' lux
 
 
 class LightSource(Protocol):
@@ -214,4 +216,8 @@ class CandidateLight:
         Hp, Hq = arrays_field(p.patches, p.light.op, p.arrays_at(x), points)
         exact = np.concatenate([Hp[lv.rows], Hq])[:, None]
         lit = self.of(rect, flux, filt, lv, None, arrays_H=exact)
-        return replace(lit, layout=p.vars.decode_arrays(x[None]))
+        control = None
+        plan = getattr(p, "control_groups", None)
+        if plan is not None:  # each control group's arrays, placed exactly, on its sensor
+            control = exact_arrays_at_sensors(p.light, plan, p.grids, p.arrays_at(x))
+        return replace(lit, layout=p.vars.decode_arrays(x[None]), control_exact=control)

@@ -133,7 +133,9 @@ class DesignGoals:
             "max_sda": np.full(m, np.nan),
         }
         if self.annual:
-            goals["min_annual_energy"], goals["max_sda"] = self.annual_values(lit, level, watts)
+            goals["min_annual_energy"], goals["max_sda"] = self.annual_values(
+                lit, level, watts, (rect, flux, filt, lay)
+            )
         goals.update(self._registered_values(rect, flux, filt, lay, lit, level, goals))
         return goals
 
@@ -148,13 +150,23 @@ class DesignGoals:
                 out[spec.kind] = np.asarray(spec.value(batch), dtype=float)
         return out
 
-    def annual_values(self, lit: Lit, level: Level, watts: np.ndarray):
+    def annual_values(self, lit: Lit, level: Level, watts: np.ndarray, decoded=None):
         """(annual energy kWh, sDA) of m candidates on the control work plane, ``watts``
-        (m,) their electric power."""
+        (m,) their electric power; with control groups each group is dimmed on its own
+        sensor (``decoded``: the candidates' rect, flux, filt and array layout)."""
         p = self.problem
         d, parts, control = p.design.daylight, lit.parts, p.control
         idx = len(level.rows) + np.arange(control.start, control.stop)
         year = parts.year()
+        batch = getattr(p, "group_batch", None)
+        if batch is not None:
+            rect, flux, filt, lay = decoded
+            full, group_w = batch.full_and_watts(p.light, rect, flux, filt, lay, lit.control_exact)
+            levels = batch.level_sums(parts, len(level.rows), full, d.target_lux)
+            hours = year.every.shape[1]
+            energy = lighting_kwh(group_w, levels, 0.0, hours).sum(axis=0)
+            energy = energy + lighting_kwh(0.0, 0.0, d.standby_w, hours)
+            return energy, parts.sda_mark(idx).mean(axis=0)
         full = parts.electric[idx].mean(axis=0)
         # Without skylights there are no sky groups: b is (m, 0) and the daylight zero.
         b = parts.sky[:, idx].mean(axis=1).T

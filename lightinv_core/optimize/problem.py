@@ -42,6 +42,7 @@ from lightinv_core.goals import goal_names, goal_spec
 from lightinv_core.kinds import GoalKind, Scenario
 from lightinv_core.light.arrays import ArrayLight, array_light, array_shapes, resolve_product
 from lightinv_core.light.clear_build import clear_light
+from lightinv_core.light.control_groups import GroupBatch, control_plan
 from lightinv_core.light.daylight_year import sky_groups
 from lightinv_core.light.glare import Glare
 from lightinv_core.light.grids import DesignGrids, design_grids
@@ -193,6 +194,9 @@ class DesignProblem:
         self.sky = sky_groups(light, design) if self.split else None
         plane = design.control_plane
         self.control = None if plane is None or self.grids is None else self.grids.spans[plane.name]
+        # Several daylight-linked control groups (None: all luminaires dimmed as one).
+        self.control_groups = control_plan(design, self.grids)
+        self._group_batch: GroupBatch | None = None
         if self.annual_goals and self.control is None:
             raise DesignError(
                 "the annual energy and sDA goals are measured on a work plane: add one"
@@ -235,6 +239,14 @@ class DesignProblem:
                 cancel,
             )
         return self._arrays
+
+    @property
+    def group_batch(self) -> GroupBatch | None:
+        """The control groups' light for batches (None with the default group alone)."""
+        if self.control_groups is not None and self._group_batch is None:
+            plan, grids = self.control_groups, self.grids
+            self._group_batch = GroupBatch(plan, self.design, grids, self.arrays)
+        return self._group_batch
 
     def _glare_values(self, intention, lit: Lit) -> np.ndarray:
         """UGR (observers, m) at an intention's observers for a batch's light."""

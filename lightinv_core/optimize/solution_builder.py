@@ -35,6 +35,9 @@ class JudgedProblem(Protocol):
     goals: DesignGoals
     judge: Judge
     lighting: CandidateLight
+    vars: object
+
+    def layout_of(self, X: np.ndarray): ...
 
     def level(self, divisor: int = 1) -> Level: ...
 
@@ -64,7 +67,10 @@ def build_solution(
             judged = problem.lighting.judged(x, lv)
         if goal_set.annual and design.arrays:
             # The year's goals from the arrays placed exactly, as the intentions.
-            energy, sda = goal_set.annual_values(judged, lv, ev.goals["min_electric_power"])
+            decoded = (*problem.vars.decode(x[None]), problem.layout_of(x[None]))
+            energy, sda = goal_set.annual_values(
+                judged, lv, ev.goals["min_electric_power"], decoded
+            )
             goals = {**ev.goals, "min_annual_energy": energy, "max_sda": sda}
         more, penalty = judge.verdict(judged, lv, goals)
         viol += more

@@ -44,6 +44,7 @@ from lightinv_core.project.scene import SCENE, ZONE, SceneSpec, resolve_path
 from lightinv_core.project.source_kinds import check_source_kinds
 from lightinv_core.project.specs import (
     ARRAY,
+    CONTROL_GROUP,
     DAYLIGHT,
     GOAL,
     INTENTION,
@@ -52,6 +53,7 @@ from lightinv_core.project.specs import (
     SOURCE,
     WORKPLANE,
     read_arrays,
+    read_control_groups,
     read_daylight,
     read_goals,
     read_intentions,
@@ -209,6 +211,16 @@ TOP = ObjectSpec(
             many=True,
         ),
         Field(
+            "control_groups",
+            read_control_groups,
+            (),
+            "list",
+            _see("control_groups", "daylight-linked control groups")
+            + ": luminaires dimmed together by one sensor region",
+            of=CONTROL_GROUP,
+            many=True,
+        ),
+        Field(
             "rules",
             read_rules,
             (),
@@ -271,6 +283,7 @@ FILE_SPECS = (
     ARRAY,
     WORKPLANE,
     OBSERVER,
+    CONTROL_GROUP,
     RULE,
     INTENTION,
     GOAL,
@@ -298,6 +311,7 @@ def project_from_values(values: Mapping[str, Any]) -> Project:
             values["arrays"],
             values["workplanes"],
             values["observers"],
+            values["control_groups"],
         )
     results = values["results"] or {}
     return Project(
@@ -332,6 +346,7 @@ def project_values(p: Project) -> dict[str, Any]:
         "arrays": d.arrays,
         "workplanes": d.workplanes,
         "observers": d.observers,
+        "control_groups": d.control_groups,
         "rules": d.rules,
         "intentions": d.intentions,
         "goals": d.goals,

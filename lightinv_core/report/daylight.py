@@ -315,18 +315,52 @@ def energy_table(section: DaylightSection) -> Table:
         "daylight plus electric, reaches the target; off outside the schedule. Full output: "
         "the same hours undimmed. LENI = annual energy / floor area (simplified EN 15193-1)."
     )
+    if e is not None and e.groups:
+        note = note.replace("so the control plane's mean", "so each control group's sensor")
     if e is None:
         note = _missing(section)
     return Table("Daylight-linked dimming energy", ("item", "value"), tuple(rows), note=note)
 
 
+def control_groups_table(section: DaylightSection) -> Table | None:
+    """Each daylight-linked control group's year (None with the one default group)."""
+    e = section.energy
+    if e is None or not e.groups:
+        return None
+    rows = tuple(
+        (
+            g.name,
+            str(g.luminaires),
+            f"{fmt(g.watts)} W",
+            str(g.sensor_points),
+            _percent(g.min_level),
+            _percent(g.mean_level),
+            f"{fmt(g.energy_kwh)} kWh",
+            f"{fmt(g.leni)}",
+        )
+        for g in e.groups
+    )
+    head = ("group", "luminaires", "power", "sensor points", "floor", "mean dimming")
+    return Table(
+        "Control groups",
+        (*head, "annual energy", "LENI kWh/m² a"),
+        rows,
+        note="Each group dims on its own sensor region (the mean daylight of its points) "
+        "with its own luminaires' light there; standby is counted once, in the total. "
+        "LENI per group over the whole floor, so the groups' LENIs add up.",
+    )
+
+
 def energy_figure(section: DaylightSection) -> Figure | None:
-    """The energy page: the dimming table above a bar chart of each month's lighting
-    energy (kWh); None without the energy (no weather year)."""
+    """The energy page: the dimming table (and the control groups') above a bar chart of
+    each month's lighting energy (kWh); None without the energy (no weather year)."""
     if section.energy is None:
         return None
     fig = new_figure()
     y = draw_table(fig, energy_table(section), 0.94)
+    groups = control_groups_table(section)
+    if groups is not None:
+        y = draw_table(fig, groups, y - 0.02)
     monthly_chart(section, fig, (0.08, 0.06, 0.87, max(y - 0.12, 0.15)))
     return fig
 

@@ -285,6 +285,9 @@ def daylight_blocks(ctx: Context) -> list[Block]:
     ]
     if section.energy is not None:
         blocks.append(table_block(dl.energy_table(section), "energy"))
+        groups = dl.control_groups_table(section)
+        if groups is not None:
+            blocks.append(table_block(groups, "energy"))
         blocks.append(drawing(3.2, lambda sf: dl.monthly_chart(section, sf), "energy"))
     plans = [(p, dl.df_plan, "df-plan") for p in section.planes]
     plans += [(p, dl.da_plan, "da-plan") for p in section.planes if p.da is not None]

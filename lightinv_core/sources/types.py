@@ -125,7 +125,7 @@ class ZoneLuminaire:
     daylit = False
     strength = "flux"
     strength_label = "Flux (lm)"
-    fields = ("flux", "flux_range", "exitance", "efficacy")
+    fields = ("flux", "flux_range", "exitance", "efficacy", "control_group")
     placement = OVERHEAD_OR_WALL
 
     def exitance(self, s, rect, flux, filt, daylight):

@@ -22,6 +22,9 @@ import numpy as np
 
 from lightinv_core.climate.metrics import dimming_level, lighting_kwh
 from lightinv_core.errors import LightInvError
+from lightinv_core.light.control_groups import sensor_mask
+
+__all__ = ["DEFAULT_GROUP", "GroupDimming", "group_dimming", "sensor_mask"]
 
 DEFAULT_GROUP = "all"
 """The control group of luminaires whose schedule names none."""
@@ -46,17 +49,6 @@ class GroupDimming:
     def as_dict(self) -> dict:
         """JSON-ready."""
         return dict(self.__dict__)
-
-
-def sensor_mask(points: np.ndarray, rect: tuple[float, float, float, float] | None) -> np.ndarray:
-    """The work-plane points (q, 3) within the plan rectangle (x0, y0, x1, y1), m: the
-    lower edges in, the upper edges out, so two regions sharing an edge share no point."""
-    pts = np.asarray(points, dtype=float)
-    if rect is None:
-        return np.ones(len(pts), bool)
-    x0, y0, x1, y1 = rect
-    lo_x, hi_x, lo_y, hi_y = min(x0, x1), max(x0, x1), min(y0, y1), max(y0, y1)
-    return (pts[:, 0] >= lo_x) & (pts[:, 0] < hi_x) & (pts[:, 1] >= lo_y) & (pts[:, 1] < hi_y)
 
 
 def group_dimming(

@@ -244,7 +244,7 @@ def test_a_spec_of_its_own_reads_writes_and_documents():
 # sha256 of the text save_project wrote for each file before the writers were driven by the
 # field specs (the same on this commit). If the file format changes on purpose, update them.
 # (with_results and zones last changed when the test project gained an array, a work plane
-# and a grid intention, then an observer.)
+# and a grid intention, then an observer, then two control groups.)
 SAVED = {
     "experiment1": "374e38154fb40f071fb900cab3b58532dabc4557aebda38fb8dc938f447f0fd9",
     "experiment2": "9a6a85741c3d0325be7a86e0fb8cc1c46f4fe5d4dfc61f098ea0a886b38ead3a",
@@ -255,8 +255,8 @@ SAVED = {
     "experiment5-twostep": "7962957b9cd8336277433827cc5944732dfa06e067a9b3eee0c9f614db7e11f0",
     "experiment5": "52e2dde92ed16508302ee42d8709f2cbc8e446066f75bfb6b45575cb08580bee",
     "office-demo": "cbaaf5377b272f4a4fb6582e23fdb0c42bc9be5cef733652e43804c9c123af9b",
-    "with_results": "0d555cc27083ed573d0b7ea43bd79b9ddc51ba0a03e51e99cc6497c80e50a352",
-    "zones": "381b47e0b8a4bf2a579e2e0c777d73df955d9ef5dcb6099081a19d38b8641f5f",
+    "with_results": "fa8f871068efa0f0a8fb956d5b97b2bb6ca71419d2955a3f5d049f6ad05306df",
+    "zones": "b08aac1a8566217e17986f52e794e69112bdfbc2c9e0d8664344e472036f1f51",
 }
 
 

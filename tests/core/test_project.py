@@ -78,6 +78,7 @@ VALID: dict = {
             "rect": [2, 0, 3, 0.6],
             "free": ["u0", "u1"],
             "flux": 1500,
+            "control_group": "window row",
         },
         {
             "name": "P2",
@@ -103,11 +104,16 @@ VALID: dict = {
             "free": ["columns", "dimming"],
             "columns_range": [1, 6],
             "maintenance_factor": 0.8,
+            "control_group": "inner",
         }
     ],
     "workplanes": [{"name": "wp", "height": 0.8, "border": 0.5, "group": "floor"}],
     "observers": [
         {"name": "desk", "position": [2.0, 1.0], "height": 1.2, "azimuth": 90.0, "group": "floor"}
+    ],
+    "control_groups": [
+        {"name": "window row", "sensor": [0.0, 0.0, 2.0, 2.0], "min_level": 0.2},
+        {"name": "inner", "workplane": "wp"},
     ],
     "rules": [
         {"kind": "area", "sources": ["S1"], "min": 1, "max": 4},
@@ -430,7 +436,8 @@ def _set(path: str, value):
 
 DELETE = object()
 KNOWN_SOURCE = (
-    "known: name, zone, kind, rect, free, flux, exitance, flux_range, efficacy, filter, glazing"
+    "known: name, zone, kind, rect, free, flux, exitance, flux_range, efficacy, filter, glazing, "
+    "control_group"
 )
 
 ERRORS = [
@@ -692,7 +699,7 @@ ERRORS = [
     (
         _set("sources[3].filter", 0.5),
         "sources[3].filter: only skylights or windows have this "
-        "(a luminaire's own fields: flux, flux_range, exitance, efficacy)",
+        "(a luminaire's own fields: flux, flux_range, exitance, efficacy, control_group)",
     ),
     (
         _set("sources[3].exitance", 100),

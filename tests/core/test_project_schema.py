@@ -143,5 +143,5 @@ def test_a_registered_source_kind_extends_the_reader_and_the_schema(panel):
     rules = {
         r["if"]["properties"]["kind"]["const"]: r["then"]["properties"] for r in schema["allOf"]
     }
-    assert set(rules["panel"]) == {"flux", "flux_range", "filter", "glazing"}
+    assert set(rules["panel"]) == {"flux", "flux_range", "filter", "glazing", "control_group"}
     assert np.isclose(SOURCE.read({**SOURCE.write(p)}, "s")["exitance"], 500.0)

@@ -31,6 +31,11 @@ from lightinv_core.design.model.array import (
     LuminaireArray,
     new_array,
 )
+from lightinv_core.design.model.control import (
+    CONTROL_GROUP_FIELDS,
+    DEFAULT_CONTROL_GROUP,
+    ControlGroup,
+)
 from lightinv_core.design.model.daylight import (
     DAYLIGHT_FIELDS,
     MAX_WATTS,
@@ -67,8 +72,10 @@ __all__ = [
     "ARRAY_RULES",
     "ARRAY_VARIABLES",
     "AXES",
+    "CONTROL_GROUP_FIELDS",
     "CORNERS",
     "DAYLIGHT_FIELDS",
+    "DEFAULT_CONTROL_GROUP",
     "GOALS",
     "GOAL_FIELDS",
     "INTENTION_FIELDS",
@@ -88,6 +95,7 @@ __all__ = [
     "SOURCE_KINDS",
     "VARIABLES",
     "WORKPLANE_FIELDS",
+    "ControlGroup",
     "Daylight",
     "Design",
     "DesignError",

@@ -5,6 +5,7 @@ from __future__ import annotations
 from collections.abc import Iterable
 from dataclasses import dataclass, field
 
+from lightinv_core.design.model.control import CONTROL_GROUP_OF, DEFAULT_CONTROL_GROUP
 from lightinv_core.design.model.source import free_variables
 from lightinv_core.errors import DesignError
 from lightinv_core.fields import (
@@ -130,6 +131,7 @@ class LuminaireArray:
             nullable=True,
         ),
     )
+    control_group: str = field(default=DEFAULT_CONTROL_GROUP, metadata=CONTROL_GROUP_OF)
 
     def __post_init__(self) -> None:
         where = f"array {self.name!r}" if isinstance(self.name, str) else "an array"

@@ -8,6 +8,7 @@ import numbers
 from dataclasses import dataclass, field
 
 from lightinv_core.design.model.array import LuminaireArray
+from lightinv_core.design.model.control import DEFAULT_CONTROL_GROUP, ControlGroup
 from lightinv_core.design.model.daylight import Daylight, Workplane
 from lightinv_core.design.model.goal import Goal
 from lightinv_core.design.model.intention import Intention
@@ -45,6 +46,7 @@ class Design:
     arrays: tuple[LuminaireArray, ...] = ()
     workplanes: tuple[Workplane, ...] = ()
     observers: tuple[Observer, ...] = ()
+    control_groups: tuple[ControlGroup, ...] = ()
 
     def __post_init__(self) -> None:
         for name, cls in (
@@ -56,6 +58,7 @@ class Design:
             ("arrays", LuminaireArray),
             ("workplanes", Workplane),
             ("observers", Observer),
+            ("control_groups", ControlGroup),
         ):
             items = _items(getattr(self, name), "design", name)
             bad = [x for x in items if not isinstance(x, cls)]
@@ -80,6 +83,7 @@ class Design:
             ("observer", [o.name for o in self.observers]),
             ("target source", [s.name for s in self.target_sources]),
             ("intention", [i.name for i in self.intentions]),
+            ("control group", [c.name for c in self.control_groups]),
             ("goal", [g.kind for g in self.goals]),
         ):
             if len(set(items)) != len(items):
@@ -123,6 +127,7 @@ class Design:
                 f"daylight workplane {self.daylight.workplane!r} is not a work plane "
                 f"(work planes: {sorted(planes) or 'none'})"
             )
+        self._check_control_groups(planes)
         annual = [str(g.kind) for g in self.goals if goal_spec(g.kind).annual]
         if annual and not self.workplanes:
             raise DesignError(
@@ -132,6 +137,24 @@ class Design:
             raise DesignError("a match goal needs target_sources (the light to reproduce)")
         if self.penalty_power < 1 or self.penalty_power % 2:
             raise DesignError("penalty power must be an even positive integer (paper eq. 3)")
+
+    def _check_control_groups(self, planes: set[str]) -> None:
+        """Each luminaire names a declared control group (or the default one), and each
+        group's sensor a work plane that exists."""
+        known = {c.name for c in self.control_groups} | {DEFAULT_CONTROL_GROUP}
+        for what, items in (("source", self.sources), ("array", self.arrays)):
+            for x in items:
+                if x.control_group not in known:
+                    raise DesignError(
+                        f"{what} {x.name!r}: no control group {x.control_group!r} "
+                        f"(control groups: {sorted(known)})"
+                    )
+        for c in self.control_groups:
+            if c.workplane is not None and c.workplane not in planes:
+                raise DesignError(
+                    f"control group {c.name!r}: no work plane {c.workplane!r} "
+                    f"(work planes: {sorted(planes) or 'none'})"
+                )
 
     @property
     def control_plane(self) -> Workplane | None:

@@ -17,6 +17,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 
+from lightinv_core.design.model.control import CONTROL_GROUP_OF, DEFAULT_CONTROL_GROUP
 from lightinv_core.errors import DesignError
 from lightinv_core.fields import (
     Choice,
@@ -116,6 +117,7 @@ class Source:
             "fixed: docs/daylight.md)",
         ),
     )
+    control_group: str = field(default=DEFAULT_CONTROL_GROUP, metadata=CONTROL_GROUP_OF)
 
     def __post_init__(self) -> None:
         where = f"source {self.name!r}" if isinstance(self.name, str) else "a source"

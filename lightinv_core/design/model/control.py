@@ -1,0 +1,80 @@
+"""Daylight-linked control groups: luminaires dimmed together by one sensor region.
+
+Every luminaire source and luminaire array belongs to one control group (its
+``control_group``, ``DEFAULT_CONTROL_GROUP`` unless it names another). A group's sensor
+reads the mean daylight over the grid points of a work plane (``workplane``, default the
+design's control plane) inside a plan rectangle (``sensor``, world x0, y0, x1, y1 in m;
+the whole plane when absent), and each occupied hour the group dims to top that mean up
+to ``daylight.target_lux`` with its own luminaires' light there at full output, down to
+``min_level`` at most (the ballast's floor; default ``daylight.min_level``). A design
+that declares no group and names none keeps the one group of all its luminaires read on
+the whole control plane: its results are bit for bit those before groups existed.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+from lightinv_core.errors import DesignError
+from lightinv_core.fields import Number, Numbers, ObjectSpec, String, declare
+
+DEFAULT_CONTROL_GROUP = "all"
+"""The control group of every luminaire that names none."""
+
+
+@dataclass(frozen=True)
+class ControlGroup:
+    """A daylight-linked control group (see the module): its ``name``, the ``sensor``
+    rectangle (x0, y0, x1, y1, m, plan; None: the whole work plane) on ``workplane``
+    (None: the control plane) and its lowest dimming level ``min_level`` (None: the
+    daylight's)."""
+
+    name: str = field(metadata=declare(String(), "unique among the control groups"))
+    sensor: tuple[float, float, float, float] | None = field(
+        default=None,
+        metadata=declare(
+            Numbers(4),
+            "`[x0, y0, x1, y1]`: the plan rectangle of work-plane points its sensor reads, "
+            "m (lower edges in, upper edges out); absent: the whole work plane",
+            nullable=True,
+        ),
+    )
+    workplane: str | None = field(
+        default=None,
+        metadata=declare(
+            String(),
+            "the work plane its sensor reads (default: the daylight's control plane)",
+            nullable=True,
+        ),
+    )
+    min_level: float | None = field(
+        default=None,
+        metadata=declare(
+            Number(lo=0.0, hi=1.0),
+            "lowest dimming level of its luminaires (the ballast's floor; default: the "
+            "daylight's `min_level`)",
+            nullable=True,
+        ),
+    )
+
+    def __post_init__(self) -> None:
+        where = f"control group {self.name!r}" if isinstance(self.name, str) else "a group"
+        CONTROL_GROUP_FIELDS.check_fields(self, where)
+        if self.sensor is not None:
+            x0, y0, x1, y1 = self.sensor
+            if x0 == x1 or y0 == y1:
+                raise DesignError(
+                    f"{where}: its sensor rectangle {list(self.sensor)} has no area; give "
+                    "two diagonal corners [x0, y0, x1, y1]"
+                )
+
+
+CONTROL_GROUP_FIELDS = ObjectSpec.of(ControlGroup, "control_group")
+"""The control group's fields, in the order a project file writes them."""
+
+CONTROL_GROUP_OF = declare(
+    String(),
+    "the daylight-linked control group it is dimmed with (a `control_groups` name; "
+    f'default `"{DEFAULT_CONTROL_GROUP}"`)',
+)
+"""The declaration of a luminaire's ``control_group`` field (sources and arrays)."""
