@@ -32,6 +32,7 @@ from lightinv_core.light.daylight_year import (
     daylight_year,
     dimming_levels,
 )
+from lightinv_core.light.en17037_plane import plane_score, reach_shares
 from lightinv_core.light.intentions import (
     BoundCheck,
     bound_checks,
@@ -143,6 +144,16 @@ class ScenarioLight:
         for r in range(a.shape[0]):
             out[r] = band.of_hours(a[r] @ year.exterior + fixed[r])
         return out
+
+    def en17037_score(self, idx=slice(None)) -> np.ndarray:
+        """(R', m) EN 17037 daylight provision of receivers idx as one work plane: the
+        level score (``light.en17037_plane``), the same at each receiver."""
+        return plane_score(self, idx)
+
+    def en17037_reach(self, idx=slice(None), lux: float = 300.0) -> np.ndarray:
+        """(R', m) the share of EN 17037's daylight hours with at least ``lux`` of
+        daylight (every blind open) at receivers idx."""
+        return reach_shares(self, idx, (lux,))[0]
 
     def da(self, idx=slice(None)) -> np.ndarray:
         """DA300 (share of occupied hours, 0-1) at receivers idx, (R', m)."""
