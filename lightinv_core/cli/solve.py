@@ -15,6 +15,7 @@ from lightinv_core.cli.solve_text import solve_text
 from lightinv_core.design.model import Design
 from lightinv_core.design.solution import Solution
 from lightinv_core.errors import LightInvError
+from lightinv_core.light.en17037_plane import plane_figures
 from lightinv_core.light.glare import layout_glare
 from lightinv_core.light.model import LightModel
 from lightinv_core.sources.types import daylit
@@ -87,6 +88,7 @@ def daylight_summary(light: LightModel, design: Design, sol: Solution) -> dict:
         leni_kwh_m2=energy.leni,
         monthly_kwh=list(energy.monthly_kwh),
     )
+    out["en17037_provision"] = plane_figures(lay.points, span)
     if lay.points.clear is not None:  # clear glazing lets the sun's beam in
         from lightinv_core.kinds import Quantity
         from lightinv_core.quantities import quantity_spec

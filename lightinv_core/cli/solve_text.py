@@ -48,6 +48,14 @@ def solve_text(out: dict) -> str:
                 f"dimmed lighting {d['energy_kwh']:.0f} kWh a year (full output "
                 f"{d['full_output_kwh']:.0f} kWh), LENI {d['leni_kwh_m2']:.2f} kWh/m² a"
             )
+            p = d.get("en17037_provision")
+            if p:
+                lines.append(
+                    f"  EN 17037 daylight provision on {d['workplane']}: {p['level']} (score "
+                    f"{p['score']:.2f}; E_T 300/500/750 lux reached on "
+                    f"{100 * p['minimum_300']:.0f}/{100 * p['medium_500']:.0f}/"
+                    f"{100 * p['high_750']:.0f}% of the plane in half the daylight hours)"
+                )
     for v in out.get("violations", []):
         lines.append(
             f"  violated: {v['name']} {v['constraint']} by {100 * v['amount']:.1f}% "

@@ -5,19 +5,24 @@ hour; the score's violation measure on a case worked by hand; the optimiser's ba
 
 from __future__ import annotations
 
+import json
 from dataclasses import replace
+from pathlib import Path
 
 import numpy as np
 import pytest
 
+from lightinv_core import cli
+from lightinv_core.cli.solve_text import solve_text
 from lightinv_core.climate.en17037 import daylight_hours, daylight_provision
 from lightinv_core.climate.weather import load_weather
-from lightinv_core.design.model import Daylight, DesignError, Goal, Intention
+from lightinv_core.design.model import Daylight, DesignError, Goal, Intention, Source
 from lightinv_core.light.daylight import layout_daylight
 from lightinv_core.light.daylight_year import weather_path
 from lightinv_core.light.en17037_plane import FLOOR, plane_figures, score_of, shortfall
 from lightinv_core.optimize.problem import DesignProblem
 from lightinv_core.quantities import level_name, quantity_spec
+from lightinv_core.report.en17037 import en17037_table, required_level
 from lightinv_core.study import SimulationSpec, simulate
 from lightinv_core.study.clear_metrics import work_plane_metrics
 from lightinv_core.transport.workplane import WorkPlane
@@ -144,3 +149,54 @@ def test_the_intention_is_a_work_planes_and_takes_min_only():
         Intention("e", grid="wp", quantity="en17037", min=4.0)
     it = Intention("e", grid="wp", quantity="en17037", min=2.0, scenario="night")
     assert it.scenario == "annual"
+
+
+def test_clear_and_diffusing_glazing_together_hour_by_hour(sidelit):  # noqa: F811
+    """Half the window clear, half diffusing: the score's shares are the standard's
+    arithmetic on the two lights added hour by hour, the clear blinds open."""
+    w, h = sidelit.zone_size("window")
+    clear = Source("W1", "window", "window", (0.0, 0.0, w, h / 2), glazing="clear")
+    glow = Source("W2", "window", "window", (0.0, h / 2, w, h))
+    design = replace(window_design(sidelit), sources=(clear, glow))
+    pts = layout_daylight(sidelit, design).points
+    mask = daylight_hours(load_weather(weather_path(pts.daylight)).dh_lux)
+    c = pts.clear
+    k = c.columns.count - 1  # the closed blinds' column left out
+    open_sun = c.coefficients[:, :k] @ c.columns.every[:k][:, mask]
+    open_sun += c.direct[0][:, mask]
+    lux = pts.sky[0, :, 0][:, None] * pts.year().every[0, mask] + open_sun
+    ref = daylight_provision(lux).summary()
+    got = plane_figures(pts, slice(None))
+    for key in LEVELS:
+        assert got[key] == pytest.approx(ref[key], abs=1e-12), key
+
+
+def test_the_report_and_solve_carry_each_criterion(sidelit, tmp_path, capsys):  # noqa: F811
+    """The report's EN 17037 table lists every criterion with its share, requirement and
+    pass/fail and the level against the one asked; ``lightinv-cli solve --json`` carries
+    the figures and its text the level."""
+    design = replace(window_design(sidelit), intentions=(provision(3.0),))
+    lay = layout_daylight(sidelit, design)
+    table = en17037_table(lay)
+    got = plane_figures(lay.points, lay.grids.spans["wp"])
+    assert len(table.rows) == 7  # two criteria at each of three levels, then the level
+    assert table.rows[2][1].startswith("medium: 500 lux")
+    assert table.rows[2][2] == f"{100 * got['medium_500']:.1f}%"
+    assert table.rows[5][-1] == "FAIL" and table.flags[5] == "fail"  # 500 lux on 95%
+    assert table.rows[-1][2:] == (f"medium (score {got['score']:.2f})", "high or better", "FAIL")
+    assert required_level(design, "wp") == "high"
+    assert required_level(window_design(sidelit), "wp") == "minimum"
+    # solve: the integrated office (a diffusing rooflight) asks the minimum level.
+    d = json.loads(Path("resources/projects/office-integrated.json").read_text())
+    d["intentions"] += [{"name": "EN", "grid": "wp", "quantity": "en17037", "min": 1}]
+    d["goals"] = [{"kind": "min_annual_energy"}]
+    d["optimizer"] = {"method": "vns", "seed": 0, "max_evals": 100, "divisors": [1]}
+    d["operator"] = {"rank": 120, "rays": 128}
+    path = tmp_path / "en.json"
+    path.write_text(json.dumps(d))
+    assert cli.main(["solve", str(path), "--json"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    p = out["daylight"]["en17037_provision"]
+    assert p["level"] in ("none", "minimum", "medium", "high")
+    assert p["horizontal_openings"] is True and "minimum_100" not in p
+    assert "EN 17037 daylight provision on wp: " in solve_text(out)
