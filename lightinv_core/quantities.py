@@ -332,5 +332,21 @@ for _spec in (
             for level, lux in (("minimum", 300.0), ("medium", 500.0), ("high", 750.0))
         ),
     ),
+    QuantitySpec(
+        Quantity.SUNLIGHT,
+        "EN 17037 sunlight exposure",
+        "EN 17037 sunlight exposure at observers (hours of sun on the day)",
+        "h",
+        "hours of sun on the day",
+        0.0,
+        24.0,
+        2,
+        (1.5, 24.0, 1.5, 0.0),
+        metric="EN 17037 sunlight",
+        scenario=Scenario.ANNUAL,
+        uniformity=False,
+        at_observers=True,
+        levels=(("minimum", 1.5), ("medium", 3.0), ("high", 4.0)),
+    ),
 ):
     register_quantity(_spec)

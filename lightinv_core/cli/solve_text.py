@@ -56,6 +56,11 @@ def solve_text(out: dict) -> str:
                     f"{100 * p['minimum_300']:.0f}/{100 * p['medium_500']:.0f}/"
                     f"{100 * p['high_750']:.0f}% of the plane in half the daylight hours)"
                 )
+            for name, sun in d.get("en17037_sunlight", {}).items():
+                lines.append(
+                    f"  EN 17037 sunlight exposure at {name} on {sun['date']}: "
+                    f"{sun['hours']:.2f} h ({sun['level']})"
+                )
     for v in out.get("violations", []):
         lines.append(
             f"  violated: {v['name']} {v['constraint']} by {100 * v['amount']:.1f}% "

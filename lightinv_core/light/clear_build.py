@@ -85,7 +85,7 @@ def clear_light(light, design: Design) -> ClearDesignLight | None:
     return memo[key]
 
 
-def _glass(light, sources, tau: float) -> Glass:
+def clear_glass(light, sources, tau: float) -> Glass:
     """The panes: the zone patches each clear source covers, with the transmittance
     times the source's filter times the share of the patch it covers."""
     from lightinv_core.sources.emission import source_stack
@@ -191,7 +191,7 @@ def _build(light, design: Design, sources) -> ClearDesignLight:
     t0 = time.process_time()
     d = design.daylight
     patches, op = light.patches, light.op
-    glass = _glass(light, sources, clear_transmittance(d))
+    glass = clear_glass(light, sources, clear_transmittance(d))
     rho = patches.rho.copy()
     rho[glass.idx] = 0.0  # the clear panes pass light and reflect none
     lit = replace(patches, rho=rho)

@@ -22,6 +22,7 @@ import numpy as np
 
 from lightinv_core.climate.metrics import lighting_kwh
 from lightinv_core.design.model import Daylight, Design, DesignError, Intention
+from lightinv_core.errors import LightInvError
 from lightinv_core.kinds import Quantity
 from lightinv_core.light.clear_build import clear_light
 from lightinv_core.light.clear_glazing import ClearLight
@@ -33,6 +34,7 @@ from lightinv_core.light.daylight_year import (
     dimming_levels,
 )
 from lightinv_core.light.en17037_plane import plane_score, reach_shares
+from lightinv_core.light.en17037_sun import observer_sunlight
 from lightinv_core.light.intentions import (
     BoundCheck,
     bound_checks,
@@ -245,16 +247,28 @@ class LayoutDaylight:
     surface: object = None  # the scene's Patches
     observed: dict | None = None  # {observer: UGR} (``light/glare.py``), None without
     observed_error: str = ""  # why the observers could not be rated (one outside the room)
+    sunlit: dict | None = None  # {observer: EN 17037 sunlight figures}, None without
+    sunlit_error: str = ""  # why the sunlight could not be counted (no minimum altitude)
+
+    def at_eyes(self, intention: Intention) -> np.ndarray:
+        """(k,) the intention's quantity at its observers: UGR, or the hours of sun
+        (EN 17037 sunlight exposure, ``light.en17037_sun``)."""
+        if quantity_spec(intention.quantity).from_glare is None:
+            if self.sunlit is None:
+                why = self.sunlit_error or "no sunlight was counted"
+                raise DesignError(f"intention {intention.name!r}: {why}")
+            return np.array([self.sunlit[o]["hours"] for o in intention.observers])
+        if not self.observed:
+            why = self.observed_error or "no observers were rated"
+            raise DesignError(f"intention {intention.name!r}: {why}")
+        return np.array([self.observed[o] for o in intention.observers], dtype=float)
 
     def quantity(self, intention: Intention) -> tuple[np.ndarray, np.ndarray]:
         """(values (R,), weights (R,)) of the intention's quantity in its scenario at its
         receivers: grid points (weight 1) or patches (weight = area, m²); at observers
         the values at each eye (weight 1)."""
         if intention.observers is not None:
-            if not self.observed:
-                why = self.observed_error or "no observers were rated"
-                raise DesignError(f"intention {intention.name!r}: {why}")
-            q = np.array([self.observed[o] for o in intention.observers], dtype=float)
+            q = self.at_eyes(intention)
             return q, np.ones(len(q))
         if intention.grid is not None:
             if self.points is None or intention.grid not in self.grids.spans:
@@ -364,12 +378,19 @@ def layout_daylight(light, design: Design, sources=None, arrays=None) -> LayoutD
     floor = 0.0
     if plane is not None:
         floor = float(light.patches.area[light.patches.group_index(plane.group)].sum())
-    observed, observed_error = None, ""
-    if any(it.observers is not None for it in design.intentions):
+    observed, observed_error, sunlit = None, "", None
+    eyes = [it for it in design.intentions if it.observers is not None]
+    if any(quantity_spec(it.quantity).from_glare for it in eyes):
         try:
             observed = layout_glare(light, design, sources, arrays)
         except DesignError as exc:  # the rest of the light stands; the glare says why
             observed_error = str(exc)
+    sunlit_error = ""
+    if any(quantity_spec(it.quantity).from_glare is None for it in eyes):
+        try:
+            sunlit = observer_sunlight(light, design)
+        except LightInvError as exc:  # the rest of the light stands; the intention says why
+            sunlit_error = str(exc)
     return LayoutDaylight(
         design,
         at_patches,
@@ -381,4 +402,6 @@ def layout_daylight(light, design: Design, sources=None, arrays=None) -> LayoutD
         light.patches,
         observed,
         observed_error,
+        sunlit,
+        sunlit_error,
     )

@@ -48,9 +48,7 @@ def en17037_table(lay: LayoutDaylight) -> Table | None:
     try:
         planes = provision_rows(lay)
     except LightInvError:
-        return None
-    if not planes:
-        return None
+        planes = []
     rows, flags = [], []
     for name, got in planes:
         for level, crits in level_criteria(got["horizontal_openings"]):
@@ -67,7 +65,12 @@ def en17037_table(lay: LayoutDaylight) -> Table | None:
         reached = f"{got['level']} (score {got['score']:.2f})"
         rows.append((name, "level reached", reached, f"{need} or better", _result(ok)))
         flags.append("pass" if ok else "fail")
-    hours = planes[0][1]["daylight_hours"]
+    for name, got in (lay.sunlit or {}).items():
+        rows.append(sunlight_row(lay.design, name, got))
+        flags.append("pass" if rows[-1][-1] == PASS else "fail")
+    if not rows:
+        return None
+    hours = planes[0][1]["daylight_hours"] if planes else 0
     note = (
         "EN 17037 daylight provision (Annex A, hourly illuminance; the 'points' basis): "
         "the share of the plane's points that reach the illuminance in at least half of "
@@ -75,7 +78,9 @@ def en17037_table(lay: LayoutDaylight) -> Table | None:
         "illuminance), every blind open. Vertical and inclined openings: E_T over 50% "
         "and E_TM over 95% of the plane; rooflights only (every pane within 10° of "
         "horizontal): E_T over 95%. The score is the level met plus the progress towards "
-        "the next (what the optimiser follows)."
+        "the next (what the optimiser follows). Sunlight exposure at an observer's eye: "
+        "the hours of the day the sun, above the stated altitude, is seen through clear "
+        "glazing (levels 1.5, 3 and 4 h)."
     )
     return Table(
         "EN 17037 daylight provision",
@@ -84,6 +89,22 @@ def en17037_table(lay: LayoutDaylight) -> Table | None:
         tuple(flags),
         note,
     )
+
+
+def sunlight_row(design: Design, name: str, got: dict) -> tuple[str, ...]:
+    """One observer's sunlight exposure against the level its intentions ask (the
+    highest), or the minimum level."""
+    spec = quantity_spec(Quantity.SUNLIGHT)
+    asked = [
+        it.min
+        for it in design.intentions
+        if it.quantity == Quantity.SUNLIGHT and name in (it.observers or ()) and it.min
+    ]
+    need = max(asked) if asked else spec.levels[0][1]
+    what = f"sunlight exposure on {got['date']} (sun above {got['min_altitude_deg']:g}°)"
+    value = f"{got['hours']:.2f} h ({got['level']})"
+    required = f"≥ {need:g} h ({level_name(spec, need)})"
+    return (f"observer {name}", what, value, required, _result(got["hours"] >= need - 1e-9))
 
 
 def _result(ok: bool) -> str:

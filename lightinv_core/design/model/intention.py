@@ -78,7 +78,9 @@ class Intention:
             "in more than 250 occupied hours: its average is ASE1000,250), `en17037` (a "
             "work plane's EN 17037 daylight provision as a level score: `min` 1, 2 or 3 "
             "asks at least the minimum, medium or high level); or the glare "
-            "rating `ugr` (CIE 117) at `observers`",
+            "rating `ugr` (CIE 117) or the EN 17037 sunlight exposure `sunlight` (hours of "
+            "sun on `daylight.sunlight_date` through clear glazing; `min` 1.5, 3 or 4 h) "
+            "at `observers`",
             always=True,
         ),
     )
@@ -147,11 +149,17 @@ class Intention:
             raise DesignError(
                 f"{where}: observers take quantity {_either(its)}, not {self.quantity!r}"
             )
-        if spec.at_observers and any(
-            getattr(self, k) is not None
-            for k in (Bound.MIN, Bound.AVERAGE, Bound.UNIFORMITY, Bound.MAX_AVERAGE)
+        if (
+            spec.at_observers
+            and not spec.levels
+            and any(
+                getattr(self, k) is not None
+                for k in (Bound.MIN, Bound.AVERAGE, Bound.UNIFORMITY, Bound.MAX_AVERAGE)
+            )
         ):
             raise DesignError(f"{where}: {spec.noun} is bounded from above: give max only")
+        if spec.levels and not spec.plane and _bounds_but(self, Bound.MIN):
+            raise DesignError(f"{where}: {spec.noun} is bounded by a level: give `min` only")
         if spec.plane and (self.grid is None or _bounds_but(self, Bound.MIN)):
             raise DesignError(
                 f"{where}: {spec.noun} is one figure of a work plane: give `grid` and "
