@@ -348,5 +348,19 @@ for _spec in (
         at_observers=True,
         levels=(("minimum", 1.5), ("medium", 3.0), ("high", 4.0)),
     ),
+    QuantitySpec(
+        Quantity.CDA,
+        "continuous daylight autonomy",
+        "continuous daylight autonomy cDA300 (0-1)",
+        "",
+        "cDA300, a fraction",
+        *_FRACTION,
+        3,
+        (0.3, 1.0, 0.5, 0.3),
+        metric="cDA300",
+        scenario=Scenario.ANNUAL,
+        from_scenarios=lambda light, idx: light.cda(idx),
+        uniformity=False,
+    ),
 ):
     register_quantity(_spec)

@@ -83,6 +83,7 @@ def daylight_summary(light: LightModel, design: Design, sol: Solution) -> dict:
         da300_mean=float(da.mean()),
         sda300_50=float((da >= 0.5).mean()),
         udi_100_3000_mean=float(lay.points.udi(span)[:, 0].mean()),
+        cda300_mean=float(lay.points.cda(span)[:, 0].mean()),
         energy_kwh=energy.energy_kwh,
         full_output_kwh=energy.full_kwh,
         leni_kwh_m2=energy.leni,

@@ -26,6 +26,7 @@ from lightinv_core.errors import LightInvError
 from lightinv_core.kinds import Quantity
 from lightinv_core.light.clear_build import clear_light
 from lightinv_core.light.clear_glazing import ClearLight
+from lightinv_core.light.continuous_da import cda as continuous_da
 from lightinv_core.light.daylight_year import (
     DaylightYear,
     SkyGroups,
@@ -156,6 +157,10 @@ class ScenarioLight:
         """(R', m) the share of EN 17037's daylight hours with at least ``lux`` of
         daylight (every blind open) at receivers idx."""
         return reach_shares(self, idx, (lux,))[0]
+
+    def cda(self, idx=slice(None)) -> np.ndarray:
+        """cDA300 (0-1) at receivers idx, (R', m) (``light.continuous_da``)."""
+        return continuous_da(self, idx)
 
     def da(self, idx=slice(None)) -> np.ndarray:
         """DA300 (share of occupied hours, 0-1) at receivers idx, (R', m)."""
