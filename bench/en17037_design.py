@@ -9,7 +9,7 @@ the cost of its intention in the optimiser. Prints JSON.
 (E lux reached in half the daylight hours) and the level, through the design's light
 model (``light.en17037_plane.plane_figures``) and through the forward study
 (``study.clear_metrics.work_plane_metrics``, checked against Radiance), and both sides'
-CPU seconds.
+CPU seconds; and the plane's mean cDA300 on both sides.
 
 ``evaluation``: the integrated office demo (diffusing skylight, luminaires free, the
 desks' 500 lux at night) evaluated in batches with and without the intention "EN 17037
@@ -76,7 +76,8 @@ def versus_study(scene_name: str, weather: str) -> dict:
         annual=daylight,
     )
     t0 = time.process_time()
-    theirs = work_plane_metrics(simulate(spec).clear_year)[0]["en17037_provision"]
+    metrics = work_plane_metrics(simulate(spec).clear_year)[0]
+    theirs = metrics["en17037_provision"]
     study_cpu = time.process_time() - t0
     keys = [k for k in KEYS if k in theirs]
     return {
@@ -87,6 +88,10 @@ def versus_study(scene_name: str, weather: str) -> dict:
         "design": {k: ours[k] for k in keys} | {"level": ours["level"], "score": ours["score"]},
         "study": {k: theirs[k] for k in keys} | {"level": theirs["level"]},
         "largest_difference_points": max(100 * abs(ours[k] - theirs[k]) for k in keys),
+        "cda300_mean": {
+            "design": float(lay.points.cda(lay.grids.spans["wp"])[:, 0].mean()),
+            "study": metrics["cda300_mean"],
+        },
         "design_cpu_s": ours_cpu,
         "study_cpu_s": study_cpu,
     }
