@@ -85,6 +85,9 @@ class Quantity(Kind):
     SDA = "sda"  # 1 where DA300 >= 50%, else 0: its average is sDA300/50%
     ASE = "ase"  # 1 where direct sun > 1000 lux in > 250 occupied hours: ASE1000,250
     UGR = "ugr"  # CIE 117 unified glare rating at the design's observers (luminaires only)
+    EN17037 = "en17037"  # EN 17037 daylight provision of a work plane: a level score 0-3
+    SUNLIGHT = "sunlight"  # EN 17037 sunlight exposure at observers: hours of sun on a day
+    CDA = "cda"  # continuous daylight autonomy cDA300: mean of min(E / 300, 1) over the hours
 
 
 MAX_LUX = 1e6

@@ -110,6 +110,9 @@ class QuantitySpec:
     average_bound: Bound = Bound.AVERAGE
     at_observers: bool = False
     from_glare: Callable[[Any, Any], Any] | None = None
+    plane: bool = False
+    levels: tuple[tuple[str, float], ...] = ()
+    point_maps: tuple[tuple[str, str, Callable[[Any, Any], Any]], ...] = ()
 
     @property
     def daylight(self) -> bool:
@@ -166,6 +169,15 @@ def is_quantity(name: object) -> bool:
 def annual_metrics() -> tuple[QuantitySpec, ...]:
     """The annual daylight metrics (quantities with an ``HourBand``), in registry order."""
     return tuple(q for q in _QUANTITIES.values() if q.hours is not None)
+
+
+def level_name(spec: QuantitySpec, value: float) -> str:
+    """The highest of ``spec.levels`` that ``value`` reaches ("none" below the first)."""
+    name = "none"
+    for level, need in spec.levels:
+        if value >= need - 1e-9:
+            name = level
+    return name
 
 
 def quantity_kind(name: str) -> Quantity | str:
@@ -293,6 +305,62 @@ for _spec in (
         uniformity=False,
         at_observers=True,
         from_glare=_ugr,
+    ),
+    QuantitySpec(
+        Quantity.EN17037,
+        "EN 17037 daylight provision",
+        "EN 17037 daylight provision (level: 1 minimum, 2 medium, 3 high)",
+        "",
+        "a level score, 0 (none) to 3 (high)",
+        0.0,
+        3.0,
+        2,
+        (1.0, 3.0, 1.0, 0.0),
+        metric="EN 17037 provision",
+        scenario=Scenario.ANNUAL,
+        from_scenarios=lambda light, idx: light.en17037_score(idx),
+        uniformity=False,
+        plane=True,
+        levels=(("minimum", 1.0), ("medium", 2.0), ("high", 3.0)),
+        point_maps=tuple(
+            (
+                f"en17037_{lux:.0f}",
+                f"EN 17037: share of the daylight hours with {lux:.0f} lux or more "
+                f"(E_T, {level} level)",
+                lambda light, idx, lux=lux: light.en17037_reach(idx, lux),
+            )
+            for level, lux in (("minimum", 300.0), ("medium", 500.0), ("high", 750.0))
+        ),
+    ),
+    QuantitySpec(
+        Quantity.SUNLIGHT,
+        "EN 17037 sunlight exposure",
+        "EN 17037 sunlight exposure at observers (hours of sun on the day)",
+        "h",
+        "hours of sun on the day",
+        0.0,
+        24.0,
+        2,
+        (1.5, 24.0, 1.5, 0.0),
+        metric="EN 17037 sunlight",
+        scenario=Scenario.ANNUAL,
+        uniformity=False,
+        at_observers=True,
+        levels=(("minimum", 1.5), ("medium", 3.0), ("high", 4.0)),
+    ),
+    QuantitySpec(
+        Quantity.CDA,
+        "continuous daylight autonomy",
+        "continuous daylight autonomy cDA300 (0-1)",
+        "",
+        "cDA300, a fraction",
+        *_FRACTION,
+        3,
+        (0.3, 1.0, 0.5, 0.3),
+        metric="cDA300",
+        scenario=Scenario.ANNUAL,
+        from_scenarios=lambda light, idx: light.cda(idx),
+        uniformity=False,
     ),
 ):
     register_quantity(_spec)

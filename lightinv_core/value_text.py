@@ -14,7 +14,7 @@ from lightinv_core.design.model import Daylight, Intention, Source
 from lightinv_core.goals import goal_spec, is_goal
 from lightinv_core.kinds import Bound, bound_sign
 from lightinv_core.light.intentions import bounds_set
-from lightinv_core.quantities import quantity_spec
+from lightinv_core.quantities import level_name, quantity_spec
 from lightinv_core.sources.emission import source_electric_power, source_flux
 from lightinv_core.sources.types import source_type
 
@@ -78,9 +78,14 @@ def goal_label(kind: str) -> str:
 
 
 def quantity_value(quantity: str, value: float | None, digits: int = 4) -> str:
-    """A value of an intention quantity with its unit: "312.5 lux", "2.13 %", "0.52"."""
-    unit = quantity_spec(quantity).unit
-    return f"{fmt(value, digits)} {unit}" if unit else fmt(value, digits)
+    """A value of an intention quantity with its unit: "312.5 lux", "2.13 %", "0.52";
+    a quantity with named levels adds the level reached: "2.4 (medium)"."""
+    spec = quantity_spec(quantity)
+    unit = spec.unit
+    text = f"{fmt(value, digits)} {unit}" if unit else fmt(value, digits)
+    if spec.levels and value is not None and math.isfinite(float(value)):
+        text += f" ({level_name(spec, float(value))})"  # "2.4 (medium)"
+    return text
 
 
 def bound_value(bound: str, quantity: str, value: float | None) -> str:

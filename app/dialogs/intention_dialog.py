@@ -30,7 +30,11 @@ class IntentionDialog(QtWidgets.QDialog):
     selection or a work plane."""
 
     def __init__(
-        self, target: str, parent: QtWidgets.QWidget | None = None, at_observers: bool = False
+        self,
+        target: str,
+        parent: QtWidgets.QWidget | None = None,
+        at_observers: bool = False,
+        on_grid: bool = False,
     ):
         super().__init__(parent)
         self.setWindowTitle(f"Lighting intention on {target}")
@@ -40,10 +44,12 @@ class IntentionDialog(QtWidgets.QDialog):
         self.quantity = QtWidgets.QComboBox()
         for q in quantity_specs():
             self.quantity.addItem(q.label, str(q.name))
-        # UGR is judged at observers, the other quantities at patches or grid points:
-        # the list offers what the target takes.
+        # UGR is judged at observers, the other quantities at patches or grid points,
+        # a work plane's own figure (EN 17037) on a work plane: the list offers what the
+        # target takes.
         for row, q in enumerate(quantity_specs()):
-            self.quantity.model().item(row).setEnabled(q.at_observers == at_observers)
+            takes = q.at_observers == at_observers and (on_grid or not q.plane)
+            self.quantity.model().item(row).setEnabled(takes)
         if at_observers:
             first = next(r for r, q in enumerate(quantity_specs()) if q.at_observers)
             self.quantity.setCurrentIndex(first)
@@ -57,11 +63,19 @@ class IntentionDialog(QtWidgets.QDialog):
         )
         form.addRow("Scenario", self.scenario)
         self.fields = {}
+        self._rows = []  # the bounds' form rows (hidden for a quantity with levels)
         for bound, (label, default) in BOUND_FIELDS.items():
             key, u0 = str(bound), bound == Bound.UNIFORMITY
+            self._rows.append(form.rowCount())
             self.fields[key] = optional_number(
                 form, label, default, 1.0 if u0 else 1e6, decimals=2 if u0 else 1
             )
+        # A quantity with named levels (EN 17037) is bounded by choosing one: its min.
+        self.level = QtWidgets.QComboBox()
+        self.level.setToolTip("The level the work plane must reach at least")
+        self._rows.append(form.rowCount())
+        form.addRow("Level at least", self.level)
+        self._form = form
         self.fields[str(Bound.AVERAGE)][0].setChecked(True)
         self.fields[str(Bound.UNIFORMITY)][0].setChecked(True)
         form.addRow(ok_cancel(self))
@@ -96,6 +110,12 @@ class IntentionDialog(QtWidgets.QDialog):
             self.set_values(**{str(q.average_bound): defaults[2]})  # ASE: at most
         if q.at_observers:  # UGR is bounded from above only
             self.set_values(min=None, average=None, uniformity=None, max=defaults[1])
+        self.level.clear()
+        for name, value in q.levels:
+            self.level.addItem(name, value)
+        for row in self._rows[:-1]:
+            self._form.setRowVisible(row, not q.levels)
+        self._form.setRowVisible(self._rows[-1], bool(q.levels))
 
     def _last_metric(self) -> bool:
         return getattr(self, "_metric", False)
@@ -108,6 +128,8 @@ class IntentionDialog(QtWidgets.QDialog):
         self.quantity.setCurrentIndex(max(0, self.quantity.findData(str(intention.quantity))))
         self.scenario.setCurrentIndex(max(0, self.scenario.findData(str(intention.scenario))))
         self.set_values(**{str(b): getattr(intention, str(b)) for b in Bound})
+        if self.level.count() and intention.min is not None:
+            self.level.setCurrentIndex(max(0, self.level.findData(float(intention.min))))
 
     def set_quantity(self, quantity: str, scenario: str | None = None) -> None:
         """Choose the quantity (and the scenario of lux or C) (tests, scripted use)."""
@@ -129,6 +151,8 @@ class IntentionDialog(QtWidgets.QDialog):
         """The intention described (DesignError if inconsistent, e.g. min above max);
         ``observers``: names of the design's observers (UGR)."""
         bounds = {k: box.value() for k, (check, box) in self.fields.items() if check.isChecked()}
+        if self.level.count():  # a quantity with levels: the level chosen is its min
+            bounds = {str(Bound.MIN): float(self.level.currentData())}
         if not bounds:
             raise DesignError("tick at least one bound")
         return Intention(

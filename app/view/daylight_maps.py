@@ -34,12 +34,25 @@ def maps() -> dict[str, tuple[str, str, str]]:
         if s.lux is not None and s.name != Scenario.DESIGN
     }
     for q in quantity_specs():
+        for key, text, _ in q.point_maps:  # per-point maps of a plane's figure
+            out[key] = (text, f"{key.rsplit('_', 1)[-1]} lux %", "%.0f")
+        if q.plane:
+            continue  # one figure of a whole work plane: its point maps above show it
         if q.hours is not None:
             out[q.name] = (_annual_text(q), f"{q.metric.split()[0]} %", "%.0f")
         elif q.from_scenarios is not None:
             out[q.name] = (q.label, f"{q.metric} {q.unit}".strip(), f"%.{q.decimals - 1}f")
     out[HOUR] = ("illuminance at the hour of the year (lux)", "lux", "%.0f")
     return out
+
+
+def _point_map(key: str):
+    """(quantity spec, Colour-by text, fn) of a quantity's per-point map, or None."""
+    for q in quantity_specs():
+        for k, text, fn in q.point_maps:
+            if k == key:
+                return q, text, fn
+    return None
 
 
 def _annual_text(q) -> str:
@@ -91,6 +104,9 @@ def _map(ld, doc: Document, key: str, hour: int, units: str, fmt: str) -> MapRes
     if is_scenario(key):
         light = _capital(scenario_spec(key).describe(doc.design.daylight))
         return MapResult(values, units, fmt, light + hint)
+    if _point_map(key) is not None:
+        text = _point_map(key)[1]
+        return MapResult(values, units, fmt, text + hint, (0.0, 100.0))
     if is_quantity(key):
         q = quantity_spec(key)
         if q.hours is None:
@@ -130,6 +146,8 @@ def _on(light, ld, key: str, hour: int) -> np.ndarray:
     """The map ``key`` at the receivers of ``light`` (the layout's patches or points)."""
     if is_scenario(key):
         return light.lux(key)[:, 0]
+    if _point_map(key) is not None:
+        return 100.0 * _point_map(key)[2](light, slice(None))[:, 0]
     if is_quantity(key):
         q = quantity_spec(key)
         if q.hours is not None:

@@ -21,6 +21,7 @@ from app.widgets.numbers import distinct
 from lightinv_core.climate.weather import WeatherError
 from lightinv_core.errors import LightInvError
 from lightinv_core.kinds import Bound, Scenario
+from lightinv_core.quantities import level_name, quantity_spec
 from lightinv_core.scenarios import is_scenario, scenario_spec
 
 COLUMNS = ("intention", "scenario", "bound", "required", "achieved", "units", "")
@@ -94,6 +95,10 @@ class AchievedPanel(QtWidgets.QWidget):
                 continue  # its patches or plane are not in this scene (the tree says why)
             for chk in checks:
                 achieved, required = distinct(float(chk.value[0]), float(chk.limit))
+                spec = quantity_spec(it.quantity)
+                if spec.levels:  # EN 17037's score: say the level too, "2.43 (medium)"
+                    achieved += f" ({level_name(spec, float(chk.value[0]))})"
+                    required += f" ({level_name(spec, float(chk.limit))})"
                 units = "" if chk.bound == Bound.UNIFORMITY else chk.units
                 out.append(
                     Row(

@@ -38,6 +38,7 @@ class DesignTree(QtWidgets.QTreeWidget):
 
     groupActivated = QtCore.Signal(str)
     intentionActivated = QtCore.Signal(str)  # edit it
+    workplaneActivated = QtCore.Signal(str)  # add an intention on its grid
     intentionDeleted = QtCore.Signal(str)
     ruleDeleted = QtCore.Signal(int)
     observerActivated = QtCore.Signal(str)  # edit it
@@ -107,7 +108,9 @@ class DesignTree(QtWidgets.QTreeWidget):
             planes = QtWidgets.QTreeWidgetItem(self, ["Work planes", str(len(d.design.workplanes))])
             for w in d.design.workplanes:
                 about = f"{w.height:g} m over {w.group}, border {w.border:g} m, {w.edition}"
-                QtWidgets.QTreeWidgetItem(planes, [w.name, about])
+                QtWidgets.QTreeWidgetItem(planes, [w.name, about]).setData(
+                    0, 256, ("workplane", w.name)
+                )
         if d.design.observers:
             eyes = QtWidgets.QTreeWidgetItem(self, ["Observers", str(len(d.design.observers))])
             for o in d.design.observers:
@@ -144,6 +147,8 @@ class DesignTree(QtWidgets.QTreeWidget):
             self.intentionActivated.emit(data[1])
         elif data and data[0] == "observer":
             self.observerActivated.emit(data[1])
+        elif data and data[0] == "workplane":
+            self.workplaneActivated.emit(data[1])
 
     def select_observer(self, name: str) -> None:
         """Make observer ``name``'s row the current one (picked in the view)."""
@@ -176,6 +181,12 @@ class DesignTree(QtWidgets.QTreeWidget):
         elif data and data[0] == "group":
             menu = QtWidgets.QMenu(self)
             menu.addAction("Add a lighting intention...", lambda: self.groupActivated.emit(data[1]))
+            menu.exec(self.viewport().mapToGlobal(pos))
+        elif data and data[0] == "workplane":
+            menu = QtWidgets.QMenu(self)
+            menu.addAction(
+                "Add a lighting intention...", lambda: self.workplaneActivated.emit(data[1])
+            )
             menu.exec(self.viewport().mapToGlobal(pos))
 
     def keyPressEvent(self, event: QtGui.QKeyEvent) -> None:

@@ -135,12 +135,17 @@ class DesignEdits(QtCore.QObject):
         """Ask for bounds and add an intention on a group's patches."""
         return self._add_intention(group, group, None, dialog)
 
-    def _add_intention(self, label, group, patches, dialog) -> bool:
+    def add_intention_on_grid(self, plane: str, dialog: IntentionDialog | None = None) -> bool:
+        """Ask for bounds and add an intention on a work plane's grid points."""
+        dialog = dialog or IntentionDialog(f"work plane {plane}", self.win, on_grid=True)
+        return self._add_intention(plane, None, None, dialog, grid=plane)
+
+    def _add_intention(self, label, group, patches, dialog, grid=None) -> bool:
         dialog = dialog or IntentionDialog(label, self.win)
         if not ask.accepted(dialog):
             return False
         try:
-            self.doc.add_intention(dialog.intention(group=group, patches=patches))
+            self.doc.add_intention(dialog.intention(group=group, patches=patches, grid=grid))
         except LightInvError as exc:
             ask.warn(self.win, str(exc))
             return False
@@ -152,7 +157,9 @@ class DesignEdits(QtCore.QObject):
         if old is None:
             return False
         if dialog is None:
-            dialog = IntentionDialog(intention_target(old), self.win, old.observers is not None)
+            dialog = IntentionDialog(
+                intention_target(old), self.win, old.observers is not None, old.grid is not None
+            )
             dialog.load(old)
         if not ask.accepted(dialog):
             return False

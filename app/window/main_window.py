@@ -225,6 +225,7 @@ class MainWindow(QtWidgets.QMainWindow):
         d.designChanged.connect(self._source_chosen)
         self.viewport.surface_frame = e.surface_frame
         self.tree.groupActivated.connect(e.add_intention_on_group)
+        self.tree.workplaneActivated.connect(e.add_intention_on_grid)
         self.tree.intentionActivated.connect(e.edit_intention)
         self.tree.intentionDeleted.connect(e.delete_intention)
         self.tree.ruleDeleted.connect(e.delete_rule)

@@ -15,6 +15,7 @@ from lightinv_core.cli.solve_text import solve_text
 from lightinv_core.design.model import Design
 from lightinv_core.design.solution import Solution
 from lightinv_core.errors import LightInvError
+from lightinv_core.light.en17037_plane import plane_figures
 from lightinv_core.light.glare import layout_glare
 from lightinv_core.light.model import LightModel
 from lightinv_core.sources.types import daylit
@@ -82,6 +83,7 @@ def daylight_summary(light: LightModel, design: Design, sol: Solution) -> dict:
         da300_mean=float(da.mean()),
         sda300_50=float((da >= 0.5).mean()),
         udi_100_3000_mean=float(lay.points.udi(span)[:, 0].mean()),
+        cda300_mean=float(lay.points.cda(span)[:, 0].mean()),
         energy_kwh=energy.energy_kwh,
         full_output_kwh=energy.full_kwh,
         leni_kwh_m2=energy.leni,
@@ -89,6 +91,9 @@ def daylight_summary(light: LightModel, design: Design, sol: Solution) -> dict:
     )
     if energy.groups:  # several daylight-linked control groups, each on its own sensor
         out["control_groups"] = [g.as_dict() for g in energy.groups]
+    out["en17037_provision"] = plane_figures(lay.points, span)
+    if lay.sunlit:  # EN 17037 sunlight exposure at the observers its intentions name
+        out["en17037_sunlight"] = lay.sunlit
     if lay.points.clear is not None:  # clear glazing lets the sun's beam in
         from lightinv_core.kinds import Quantity
         from lightinv_core.quantities import quantity_spec

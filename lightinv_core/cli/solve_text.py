@@ -55,6 +55,19 @@ def solve_text(out: dict) -> str:
                     f"{100 * g['mean_level']:.0f}%, {g['energy_kwh']:.1f} kWh a year, "
                     f"LENI {g['leni']:.2f} kWh/m² a"
                 )
+            p = d.get("en17037_provision")
+            if p:
+                lines.append(
+                    f"  EN 17037 daylight provision on {d['workplane']}: {p['level']} (score "
+                    f"{p['score']:.2f}; E_T 300/500/750 lux reached on "
+                    f"{100 * p['minimum_300']:.0f}/{100 * p['medium_500']:.0f}/"
+                    f"{100 * p['high_750']:.0f}% of the plane in half the daylight hours)"
+                )
+            for name, sun in d.get("en17037_sunlight", {}).items():
+                lines.append(
+                    f"  EN 17037 sunlight exposure at {name} on {sun['date']}: "
+                    f"{sun['hours']:.2f} h ({sun['level']})"
+                )
     for v in out.get("violations", []):
         lines.append(
             f"  violated: {v['name']} {v['constraint']} by {100 * v['amount']:.1f}% "

@@ -85,7 +85,7 @@ def clear_light(light, design: Design) -> ClearDesignLight | None:
     return memo[key]
 
 
-def _glass(light, sources, tau: float) -> Glass:
+def clear_glass(light, sources, tau: float) -> Glass:
     """The panes: the zone patches each clear source covers, with the transmittance
     times the source's filter times the share of the patch it covers."""
     from lightinv_core.sources.emission import source_stack
@@ -151,17 +151,19 @@ def _reflected(light, rho: np.ndarray, H: np.ndarray) -> np.ndarray:
 
 def _closed(light, design: Design, sources, glass: Glass):
     """Per clear source with its blinds closed: its panes' exitance per exterior lux on
-    their plane (n, G) (``BLIND_TRANSMITTANCE`` x their transmittance), and that
-    exterior lux every hour (G, H) (``light.daylight_year``: Perez, ground included)."""
+    their plane (n, G) (``BLIND_TRANSMITTANCE`` x their transmittance), that
+    exterior lux every hour (G, H) (``light.daylight_year``: Perez, ground included)
+    and each source's outward normal (G, 3)."""
     d = design.daylight
     E = np.zeros((light.n, len(sources)))
     E[glass.idx, glass.group] = BLIND_TRANSMITTANCE * glass.transmittance
-    outside = []
+    outside, outward = [], []
     for s in sources:
         glow = replace(s, glazing=GlazingKind.DIFFUSING)
         groups = sky_groups(light, SimpleNamespace(sources=(glow,), daylight=d))
         outside.append(daylight_year(groups, d).every[0])
-    return E, np.array(outside)
+        outward.append(groups.outward[0])
+    return E, np.array(outside), np.array(outward)
 
 
 def _blinds(design: Design, grids, direct: np.ndarray, H: int) -> np.ndarray:
@@ -189,7 +191,7 @@ def _build(light, design: Design, sources) -> ClearDesignLight:
     t0 = time.process_time()
     d = design.daylight
     patches, op = light.patches, light.op
-    glass = _glass(light, sources, clear_transmittance(d))
+    glass = clear_glass(light, sources, clear_transmittance(d))
     rho = patches.rho.copy()
     rho[glass.idx] = 0.0  # the clear panes pass light and reflect none
     lit = replace(patches, rho=rho)
@@ -216,7 +218,7 @@ def _build(light, design: Design, sources) -> ClearDesignLight:
     H_sun = sun_on_room(lit, glass, caster, to_scene(mean, north), GLASS_SAMPLES, 0)
     first = np.concatenate([H_sky, H_sun], axis=2)  # (G, n, K0 + 1 + S)
     # Closed blinds: the panes glow (emission E), their first light F E.
-    E_closed, outside = _closed(light, design, sources, glass)
+    E_closed, outside, outward = _closed(light, design, sources, glass)
     flat = np.moveaxis(first, 0, 1).reshape(patches.n, -1)
     flat = np.concatenate([flat, np.asarray(op.F @ E_closed)], axis=1)
     got = flat + _reflected(light, rho, flat)
@@ -261,7 +263,7 @@ def _build(light, design: Design, sources) -> ClearDesignLight:
         blinds[G * B + g] = every[G * B + g] * closed[g]
         over[g * B : g * B + K0 + 1] = over0
     sun_cols = np.concatenate([np.arange(g * B + K0 + 1 + S, (g + 1) * B) for g in range(G)])
-    columns = ClearColumns(every, blinds, over, sun_cols, closed)
+    columns = ClearColumns(every, blinds, over, sun_cols, closed, outward)
     patches_light = ClearLight(columns, at_patches)
     if at_points is not None:
         points_light = ClearLight(columns, at_points, direct)

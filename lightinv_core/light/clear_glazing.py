@@ -72,13 +72,16 @@ class ClearColumns:
     """The K columns of the clear glazing's light: ``every`` (K, H) weights for every
     hour of the weather file with the blinds open, ``blinds`` (K, H) with the LM-83
     blinds, ``overcast`` (K,) the CIE overcast sky per horizontal lux, ``sun_direct``
-    the indices of the sun's direct columns, ``closed`` (G, H) each source's blinds."""
+    the indices of the sun's direct columns, ``closed`` (G, H) each source's blinds,
+    ``outward`` (G, 3) each source's unit normal away from the room (None: unknown).
+    The last G columns are the closed blinds' glow."""
 
     every: np.ndarray
     blinds: np.ndarray
     overcast: np.ndarray
     sun_direct: np.ndarray
     closed: np.ndarray
+    outward: np.ndarray | None = None
 
     @property
     def count(self) -> int:
@@ -114,6 +117,20 @@ class ClearLight:
         key = (_index_key(idx), mask.tobytes(), band)
         if key not in self._memo:
             self._memo[key] = band.of_hours(self.hours(idx, mask, band.direct_sun))
+        return self._memo[key]
+
+    def open_hours(self, idx, mask: np.ndarray) -> np.ndarray:
+        """(R', T) lux at receivers idx in the hours of ``mask`` with every blind open
+        all year (EN 17037 counts the daylight available), remembered."""
+        key = (_index_key(idx), mask.tobytes(), "open")
+        if key not in self._memo:
+            if len(self._memo) >= 32:
+                self._memo.clear()
+            c = self.columns
+            k = c.count - c.closed.shape[0]  # without the closed blinds' glow
+            out = self.coefficients[idx][:, :k] @ c.every[:k][:, mask]
+            traced = self._traced(idx, mask, False)
+            self._memo[key] = np.ascontiguousarray(out if traced is None else out + traced)
         return self._memo[key]
 
     def overcast(self, idx=slice(None)) -> np.ndarray:

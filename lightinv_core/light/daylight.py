@@ -23,9 +23,11 @@ import numpy as np
 
 from lightinv_core.climate.metrics import lighting_kwh
 from lightinv_core.design.model import Daylight, Design, DesignError, Intention
+from lightinv_core.errors import LightInvError
 from lightinv_core.kinds import Quantity
 from lightinv_core.light.clear_build import clear_light
 from lightinv_core.light.clear_glazing import ClearLight
+from lightinv_core.light.continuous_da import cda as continuous_da
 from lightinv_core.light.daylight_year import (
     DaylightYear,
     SkyGroups,
@@ -33,6 +35,8 @@ from lightinv_core.light.daylight_year import (
     daylight_year,
     dimming_levels,
 )
+from lightinv_core.light.en17037_plane import plane_score, reach_shares
+from lightinv_core.light.en17037_sun import observer_sunlight
 from lightinv_core.light.intentions import (
     BoundCheck,
     bound_checks,
@@ -145,6 +149,20 @@ class ScenarioLight:
             out[r] = band.of_hours(a[r] @ year.exterior + fixed[r])
         return out
 
+    def en17037_score(self, idx=slice(None)) -> np.ndarray:
+        """(R', m) EN 17037 daylight provision of receivers idx as one work plane: the
+        level score (``light.en17037_plane``), the same at each receiver."""
+        return plane_score(self, idx)
+
+    def en17037_reach(self, idx=slice(None), lux: float = 300.0) -> np.ndarray:
+        """(R', m) the share of EN 17037's daylight hours with at least ``lux`` of
+        daylight (every blind open) at receivers idx."""
+        return reach_shares(self, idx, (lux,))[0]
+
+    def cda(self, idx=slice(None)) -> np.ndarray:
+        """cDA300 (0-1) at receivers idx, (R', m) (``light.continuous_da``)."""
+        return continuous_da(self, idx)
+
     def da(self, idx=slice(None)) -> np.ndarray:
         """DA300 (share of occupied hours, 0-1) at receivers idx, (R', m)."""
         return self.band(quantity_spec(Quantity.DA).hours, idx)
@@ -238,6 +256,8 @@ class LayoutDaylight:
     observed_error: str = ""  # why the observers could not be rated (one outside the room)
     groups: object = None  # ``light.control_groups.GroupLight``: None for the default group
     groups_error: str = ""  # why the control groups cannot be read (a sensor on no point)
+    sunlit: dict | None = None  # {observer: EN 17037 sunlight figures}, None without
+    sunlit_error: str = ""  # why the sunlight could not be counted (no minimum altitude)
 
     @cached_property
     def _levels(self) -> np.ndarray:
@@ -247,15 +267,25 @@ class LayoutDaylight:
         year = self.patches.year()
         return group_levels(self.points, year, self.groups, self.design.daylight.target_lux)
 
+    def at_eyes(self, intention: Intention) -> np.ndarray:
+        """(k,) the intention's quantity at its observers: UGR, or the hours of sun
+        (EN 17037 sunlight exposure, ``light.en17037_sun``)."""
+        if quantity_spec(intention.quantity).from_glare is None:
+            if self.sunlit is None:
+                why = self.sunlit_error or "no sunlight was counted"
+                raise DesignError(f"intention {intention.name!r}: {why}")
+            return np.array([self.sunlit[o]["hours"] for o in intention.observers])
+        if not self.observed:
+            why = self.observed_error or "no observers were rated"
+            raise DesignError(f"intention {intention.name!r}: {why}")
+        return np.array([self.observed[o] for o in intention.observers], dtype=float)
+
     def quantity(self, intention: Intention) -> tuple[np.ndarray, np.ndarray]:
         """(values (R,), weights (R,)) of the intention's quantity in its scenario at its
         receivers: grid points (weight 1) or patches (weight = area, m²); at observers
         the values at each eye (weight 1)."""
         if intention.observers is not None:
-            if not self.observed:
-                why = self.observed_error or "no observers were rated"
-                raise DesignError(f"intention {intention.name!r}: {why}")
-            q = np.array([self.observed[o] for o in intention.observers], dtype=float)
+            q = self.at_eyes(intention)
             return q, np.ones(len(q))
         if intention.grid is not None:
             if self.points is None or intention.grid not in self.grids.spans:
@@ -419,19 +449,26 @@ def layout_daylight(light, design: Design, sources=None, arrays=None) -> LayoutD
     floor = 0.0
     if plane is not None:
         floor = float(light.patches.area[light.patches.group_index(plane.group)].sum())
-    groups, plan, groups_error = None, None, ""
+    control_light, plan, groups_error = None, None, ""
     try:
         plan = None if grids is None else control_plan(design, grids)
     except DesignError as exc:  # the rest of the light stands; the energy says why
         groups_error = str(exc)
     if plan is not None:
-        groups = group_light(light, design, grids, plan, sources, arrays)
-    observed, observed_error = None, ""
-    if any(it.observers is not None for it in design.intentions):
+        control_light = group_light(light, design, grids, plan, sources, arrays)
+    observed, observed_error, sunlit = None, "", None
+    eyes = [it for it in design.intentions if it.observers is not None]
+    if any(quantity_spec(it.quantity).from_glare for it in eyes):
         try:
             observed = layout_glare(light, design, sources, arrays)
         except DesignError as exc:  # the rest of the light stands; the glare says why
             observed_error = str(exc)
+    sunlit_error = ""
+    if any(quantity_spec(it.quantity).from_glare is None for it in eyes):
+        try:
+            sunlit = observer_sunlight(light, design)
+        except LightInvError as exc:  # the rest of the light stands; the intention says why
+            sunlit_error = str(exc)
     return LayoutDaylight(
         design,
         at_patches,
@@ -443,6 +480,8 @@ def layout_daylight(light, design: Design, sources=None, arrays=None) -> LayoutD
         light.patches,
         observed,
         observed_error,
-        groups,
+        control_light,
         groups_error,
+        sunlit,
+        sunlit_error,
     )

@@ -44,6 +44,7 @@ from lightinv_core.light.arrays import ArrayLight, array_light, array_shapes, re
 from lightinv_core.light.clear_build import clear_light
 from lightinv_core.light.control_groups import GroupBatch, control_plan
 from lightinv_core.light.daylight_year import sky_groups
+from lightinv_core.light.en17037_sun import sunlight_values
 from lightinv_core.light.glare import Glare
 from lightinv_core.light.grids import DesignGrids, design_grids
 from lightinv_core.light.intentions import FEASIBILITY_TOL, intention_patches
@@ -63,6 +64,7 @@ from lightinv_core.optimize.objectives import (
     wanted_goals,
 )
 from lightinv_core.optimize.solution_builder import build_solution, offending_patches
+from lightinv_core.quantities import quantity_spec
 
 __all__ = [
     "ARRAY_MARGIN",
@@ -163,14 +165,16 @@ class DesignProblem:
             design_grids(light, design.workplanes) if design.workplanes else None
         )
         # Glare at the design's observers (UGR intentions, ``light/glare.py``).
-        self.glare = Glare(light, design) if any(i.observers for i in design.intentions) else None
+        ugr = any(i.observers and quantity_spec(i.quantity).from_glare for i in design.intentions)
+        self.glare = Glare(light, design) if ugr else None
+        self._eyes = any(i.observers for i in design.intentions)
         # Grid intentions read points, not patches: no patch set. An intention at
         # observers is read at its eyes (``Glare``): a level keeps one receiver for it,
         # the patch its eyes see most of (unread).
         self.intent_sets = [
             None
             if i.grid is not None
-            else self.glare.anchor(i)
+            else self._eye_anchor(i)
             if i.observers is not None
             else intention_patches(i, self.patches)
             for i in design.intentions
@@ -207,7 +211,7 @@ class DesignProblem:
         self.goals = DesignGoals(self, self.epsilon)
         self.primary, self.objectives = self.goals.primary, self.goals.objectives
         self.scales = self.goals.scales
-        glare = None if self.glare is None else self._glare_values
+        glare = self._glare_values if self._eyes else None
         self.judge = Judge(design, light, self.epsilon, glare)
         self.constraints: tuple[Constraint, ...] = self.judge.constraints
         self._year_box: list = []  # the weather year, read at the first annual use
@@ -249,8 +253,19 @@ class DesignProblem:
         return self._group_batch
 
     def _glare_values(self, intention, lit: Lit) -> np.ndarray:
-        """UGR (observers, m) at an intention's observers for a batch's light."""
+        """UGR (observers, m) at an intention's observers for a batch's light, or a
+        figure of the fixed glazing there (EN 17037 sunlight exposure, the same for
+        every candidate)."""
+        if quantity_spec(intention.quantity).from_glare is None:
+            hours = sunlight_values(self.light, self.design, intention.observers)
+            return np.repeat(hours[:, None], lit.V.shape[1], axis=1)
         return self.glare.values(intention, lit, self.arrays)
+
+    def _eye_anchor(self, intention) -> np.ndarray:
+        """The one receiver a level keeps for an intention at observers (unread)."""
+        if self.glare is not None and quantity_spec(intention.quantity).from_glare:
+            return self.glare.anchor(intention)
+        return np.zeros(1, dtype=np.int64)
 
     def layout_of(self, X: np.ndarray) -> ArrayLayout | None:
         """The luminaire arrays of candidates X (None without arrays)."""

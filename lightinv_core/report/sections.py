@@ -33,6 +33,7 @@ from lightinv_core.report.datasheet import (
     layout_energy,
     product_sheets,
 )
+from lightinv_core.report.en17037 import en17037_table
 from lightinv_core.report.figures import convergence_figure, pareto_figure
 from lightinv_core.report.layout import (
     TEXT_WIDTH,
@@ -283,6 +284,9 @@ def daylight_blocks(ctx: Context) -> list[Block]:
         table_block(dl.climate_table(section), "daylight"),
         table_block(dl.daylight_table(section), "daylight"),
     ]
+    en17037 = None if section.problem else en17037_table(lay)
+    if en17037 is not None:
+        blocks.append(table_block(en17037, "daylight"))
     if section.energy is not None:
         blocks.append(table_block(dl.energy_table(section), "energy"))
         groups = dl.control_groups_table(section)

@@ -155,6 +155,22 @@ class Daylight:
             nullable=True,
         ),
     )
+    sunlight_date: str = field(
+        default="03-21",
+        metadata=declare(
+            String(),
+            "EN 17037 sunlight exposure: the day it is counted on, `MM-DD` from 02-01 to 03-21",
+        ),
+    )
+    sunlight_min_altitude: float | None = field(
+        default=None,
+        metadata=declare(
+            Number(lo=-5.0, hi=89.0),
+            "EN 17037 sunlight exposure: the sun counts above this altitude, degrees (the "
+            "standard's value for the site; a sunlight intention needs it)",
+            nullable=True,
+        ),
+    )
 
     def __post_init__(self) -> None:
         DAYLIGHT_FIELDS.check_fields(self, "daylight")

@@ -75,8 +75,13 @@ class Intention:
             "daylight metric: daylight factor `df` (%), DA300 `da` and UDI 100-3000 `udi` "
             "(fractions of the occupied hours), `sda` (1 where DA300 >= 50%: its average "
             "is sDA300/50%), `ase` (1 where clear glazing's direct sun exceeds 1000 lux "
-            "in more than 250 occupied hours: its average is ASE1000,250); or the glare "
-            "rating `ugr` (CIE 117) at `observers`",
+            "in more than 250 occupied hours: its average is ASE1000,250), `cda` (cDA300, the "
+            "mean of min(E / 300 lux, 1) over the occupied hours), `en17037` (a "
+            "work plane's EN 17037 daylight provision as a level score: `min` 1, 2 or 3 "
+            "asks at least the minimum, medium or high level); or the glare "
+            "rating `ugr` (CIE 117) or the EN 17037 sunlight exposure `sunlight` (hours of "
+            "sun on `daylight.sunlight_date` through clear glazing; `min` 1.5, 3 or 4 h) "
+            "at `observers`",
             always=True,
         ),
     )
@@ -145,11 +150,22 @@ class Intention:
             raise DesignError(
                 f"{where}: observers take quantity {_either(its)}, not {self.quantity!r}"
             )
-        if spec.at_observers and any(
-            getattr(self, k) is not None
-            for k in (Bound.MIN, Bound.AVERAGE, Bound.UNIFORMITY, Bound.MAX_AVERAGE)
+        if (
+            spec.at_observers
+            and not spec.levels
+            and any(
+                getattr(self, k) is not None
+                for k in (Bound.MIN, Bound.AVERAGE, Bound.UNIFORMITY, Bound.MAX_AVERAGE)
+            )
         ):
             raise DesignError(f"{where}: {spec.noun} is bounded from above: give max only")
+        if spec.levels and not spec.plane and _bounds_but(self, Bound.MIN):
+            raise DesignError(f"{where}: {spec.noun} is bounded by a level: give `min` only")
+        if spec.plane and (self.grid is None or _bounds_but(self, Bound.MIN)):
+            raise DesignError(
+                f"{where}: {spec.noun} is one figure of a work plane: give `grid` and "
+                "`min` only (the level it must reach)"
+            )
         if self.grid is not None and spec.needs_reflectance:
             raise DesignError(
                 f"{where}: a work-plane grid takes illuminance (lux) or a daylight metric, "
@@ -184,6 +200,11 @@ class Intention:
                 f"{where}: average at least {self.average} is above max_average "
                 f"{self.max_average}: no mean can meet both"
             )
+
+
+def _bounds_but(it: Intention, keep: Bound) -> bool:
+    """Whether the intention sets a bound other than ``keep``."""
+    return any(getattr(it, str(b)) is not None for b in Bound if b != keep)
 
 
 INTENTION_FIELDS = ObjectSpec.of(Intention, "intention")

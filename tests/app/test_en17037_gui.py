@@ -1,0 +1,84 @@
+"""EN 17037 daylight provision set by clicks (issue #30): the integrated office opened by
+File > Open project... (its path typed into the file dialog); its work plane "wp"
+double-clicked in the design tree opens the intention dialog on the plane, where
+"EN 17037 daylight provision" offers a level list instead of the bounds: "medium", OK.
+View > Colour by then offers the per-point share of the daylight hours with 300 lux or
+more, which the view paints as the core computes it. The light itself is checked in
+tests/core/test_en17037_design.py."""
+
+from __future__ import annotations
+
+import shutil
+from pathlib import Path
+
+import numpy as np
+import pytest
+from PySide6 import QtWidgets
+
+from tests.app import user as u
+from tests.app.conftest import wait_for_operator
+
+PROJECT = Path(__file__).resolve().parents[2] / "resources" / "projects" / "office-integrated.json"
+SHOTS = Path("/tmp/shots-en17037")
+
+
+def _shown(window) -> np.ndarray:
+    """The values the view paints per patch (one triangle of each)."""
+    vp = window.viewport
+    values = np.zeros(window.doc.patches.n, np.float32)
+    values[vp.tri_patch] = vp.mesh.cell_data["value"]
+    return values
+
+
+@pytest.mark.slow
+def test_en17037_provision_at_least_medium_by_clicks(qtbot, window, tmp_path):
+    path = tmp_path / "office.json"
+    shutil.copy(PROJECT, path)
+    u.answer(lambda: u.menu(window, "File", "Open project..."), u.file_name(path))
+    wait_for_operator(qtbot, window, timeout=120_000)
+    window.resize(1366, 768)
+    d = window.doc
+
+    def as_en17037(dialog: QtWidgets.QWidget) -> None:
+        u.type_text(u.field(dialog, "Name"), "EN 17037")
+        u.choose(u.field(dialog, "Quantity"), "EN 17037 daylight provision")
+        # The bounds give way to a level list (its min).
+        for label in ("Minimum", "Maximum", "Average at least"):
+            with pytest.raises(AssertionError):
+                u.field(dialog, label)
+        u.choose(u.field(dialog, "Level at least"), "medium")
+        u.screenshot(dialog, SHOTS, "intention-dialog-en17037")
+        u.ok(dialog)
+
+    u.click_tree(window.tree, "wp")
+    item = u.tree_item(window.tree, "wp")
+    rect = window.tree.visualItemRect(item)
+    u.answer(lambda: u.double_click(window.tree.viewport(), rect.center()), as_en17037)
+    (it,) = [i for i in d.design.intentions if i.quantity == "en17037"]
+    assert (it.name, it.grid, it.min, it.scenario) == ("EN 17037", "wp", 2.0, "annual")
+    assert it.max is None and it.average is None and it.uniformity is None
+
+    # Its value in the Achieved tab: the score with the level's name.
+    u.tab(window, "Achieved")
+    table = window.achieved_panel.findChild(QtWidgets.QTableWidget)
+    levels = ("none", "minimum", "medium", "high")
+    assert u.wait_for(lambda: any(
+        table.item(r, c) is not None and table.item(r, c).text().endswith(")")
+        and table.item(r, c).text().split("(")[-1].rstrip(")") in levels
+        for r in range(table.rowCount()) for c in range(4, 5)
+    ), 60_000)  # fmt: skip
+    assert u.table_cell(table, "2.00 (medium)")  # the level required
+    u.screenshot(window, SHOTS, "achieved-en17037")
+
+    # The per-point map of the daylight hours with 300 lux (E_T of the minimum level).
+    u.tab(window, "Properties")
+    u.tab(window, "Materials and view")
+    colour = u.reveal(window.view_options.colour_by)
+    u.choose(colour, "EN 17037: share of the daylight hours with 300 lux")
+    assert colour.currentData() == "en17037_300"
+    ld = d.layout_daylight(shown=True)
+    want = 100.0 * ld.patches.en17037_reach(slice(None), 300.0)[:, 0]
+    assert u.wait_for(lambda: np.allclose(_shown(window), want, rtol=1e-5, atol=1e-3), 60_000)
+    assert 0.0 < want.max() <= 100.0
+    assert "daylight hours" in window.viewport.caption
+    u.screenshot(window, SHOTS, "map-en17037-300")
