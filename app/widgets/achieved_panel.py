@@ -18,7 +18,6 @@ from PySide6 import QtGui, QtWidgets
 
 from app.document import Document
 from app.widgets.numbers import distinct
-from lightinv_core.climate.weather import WeatherError
 from lightinv_core.errors import LightInvError
 from lightinv_core.kinds import Bound, Scenario
 from lightinv_core.quantities import level_name, quantity_spec
@@ -88,11 +87,10 @@ class AchievedPanel(QtWidgets.QWidget):
         for it in d.design.intentions:
             try:
                 checks = ld.checks(it)
-            except WeatherError as exc:  # an annual metric without a readable weather year
+            except LightInvError as exc:  # e.g. no readable weather year, no solar altitude,
+                # its plane not in this scene: a grey row that says why, not a silent gap
                 out.append(Row(it.name, "-", "-", str(exc), "", None, str(it.scenario)))
                 continue
-            except LightInvError:
-                continue  # its patches or plane are not in this scene (the tree says why)
             for chk in checks:
                 achieved, required = distinct(float(chk.value[0]), float(chk.limit))
                 spec = quantity_spec(it.quantity)

@@ -36,6 +36,8 @@ from lightinv_core.editing.climate import (
 )
 from lightinv_core.errors import LightInvError
 
+NO_ALTITUDE = -6.0  # the altitude box's "not set" (the project allows -5 degrees and up)
+
 WEATHER_FILTER = (
     "Weather files (*.epw *.csv *.tm2);;EnergyPlus weather (*.epw);;TMY3 (*.csv);;TMY2 (*.tm2)"
 )
@@ -79,6 +81,8 @@ class ClimatePanel(QtWidgets.QWidget):
             self.overcast,
             self.exterior_lux,
             self.transmittance,
+            self.sun_day,
+            self.sun_altitude,
             self.start,
             self.end,
             self.weekdays,
@@ -131,6 +135,23 @@ class ClimatePanel(QtWidgets.QWidget):
         self.transmittance = typed_number(0.0, 1.0, 0.05, 2)
         self.transmittance.setToolTip("Of the glazing, in every scenario")
         form.addRow("Transmittance", self.transmittance)
+        # EN 17037 sunlight exposure: the day it is counted on (1 February to 21 March)
+        # and the sun's least altitude for the site, which has no default: the standard
+        # sets it by country and latitude, and a sunlight intention waits for it.
+        self.sun_day = QtWidgets.QComboBox()  # the 49 days the standard allows, by name
+        day = QtCore.QDate(2001, 2, 1)
+        while day <= QtCore.QDate(2001, 3, 21):
+            self.sun_day.addItem(day.toString("d MMMM"), day.toString("MM-dd"))
+            day = day.addDays(1)
+        self.sun_day.setToolTip("EN 17037 sunlight exposure: the day the sun's hours are counted")
+        form.addRow("Sunlight day", self.sun_day)
+        self.sun_altitude = typed_number(NO_ALTITUDE, 89.0, 1.0, 1, "°")
+        self.sun_altitude.setSpecialValueText("not set")
+        self.sun_altitude.setToolTip(
+            "EN 17037 sunlight exposure: the sun counts above this altitude (the standard's "
+            "value for the site)"
+        )
+        form.addRow("Sun counts above", self.sun_altitude)
         self.browse_button.clicked.connect(lambda: self.browse())
         self.builtin_button.clicked.connect(lambda: self.set_weather("builtin"))
         self.north.valueChanged.connect(lambda v: self._set(north_deg=v))
@@ -138,6 +159,12 @@ class ClimatePanel(QtWidgets.QWidget):
         self.overcast.valueChanged.connect(lambda v: self._set(overcast_lux=v))
         self.exterior_lux.valueChanged.connect(lambda v: self._set(exterior_lux=v))
         self.transmittance.valueChanged.connect(lambda v: self._set(transmittance=v))
+        self.sun_day.activated.connect(
+            lambda _i: self._set(sunlight_date=self.sun_day.currentData())
+        )
+        self.sun_altitude.valueChanged.connect(
+            lambda v: self._set(sunlight_min_altitude=None if v <= NO_ALTITUDE else v)
+        )
         return group
 
     def _control_group(self) -> QtWidgets.QGroupBox:
@@ -240,6 +267,9 @@ class ClimatePanel(QtWidgets.QWidget):
             self.overcast.setValue(day.overcast_lux)
             self.exterior_lux.setValue(day.exterior_lux)
             self.transmittance.setValue(day.transmittance)
+            self.sun_day.setCurrentIndex(max(self.sun_day.findData(day.sunlight_date), 0))
+            alt = day.sunlight_min_altitude
+            self.sun_altitude.setValue(NO_ALTITUDE if alt is None else alt)
             self.start.setValue(day.occupancy[0])
             self.end.setValue(day.occupancy[1])
             self.weekdays.setChecked(day.weekdays)

@@ -139,7 +139,8 @@ class IntentEdits(DocumentState):
     def set_daylight(self, **fields) -> None:
         """Change the design's daylight and climate (weather, north_deg, occupancy,
         weekdays, ground_reflectance, overcast_lux, target_lux, min_level, standby_w,
-        workplane, exterior_lux, transmittance: ``design.model.Daylight``); DesignError on
+        workplane, exterior_lux, transmittance, sunlight_date, sunlight_min_altitude:
+        ``design.model.Daylight``); DesignError on
         a bad value, leaving the design unchanged. The weather file is not read here
         (``weather``)."""
         daylight = replace(self.design.daylight, **fields)

@@ -8,12 +8,14 @@ tests/core/test_en17037_design.py."""
 
 from __future__ import annotations
 
+import json
 import shutil
 from pathlib import Path
 
 import numpy as np
 import pytest
 from PySide6 import QtWidgets
+from PySide6.QtCore import Qt
 
 from tests.app import user as u
 from tests.app.conftest import wait_for_operator
@@ -82,3 +84,69 @@ def test_en17037_provision_at_least_medium_by_clicks(qtbot, window, tmp_path):
     assert 0.0 < want.max() <= 100.0
     assert "daylight hours" in window.viewport.caption
     u.screenshot(window, SHOTS, "map-en17037-300")
+
+
+@pytest.mark.slow
+def test_en17037_sunlight_at_an_eye_waits_for_the_sites_altitude(qtbot, window, tmp_path):
+    """An observer and a sunlight intention at it (Design menu); the Achieved tab says
+    the site's least solar altitude is missing until it is typed in the Climate tab,
+    then rates the hours of sun; the day and the altitude are saved with the project."""
+    path = tmp_path / "office.json"
+    shutil.copy(PROJECT, path)
+    u.answer(lambda: u.menu(window, "File", "Open project..."), u.file_name(path))
+    wait_for_operator(qtbot, window, timeout=120_000)
+    window.resize(1366, 768)
+
+    def eye(dialog: QtWidgets.QWidget) -> None:
+        u.type_text(u.field(dialog, "Name"), "desk")
+        u.type_text(u.field(dialog, "x (m)"), "4")
+        u.type_text(u.field(dialog, "y (m)"), "3")
+        tick = u.field(dialog, "UGR at most")
+        u.press(tick, Qt.Key_Space)  # no glare limit: only the sun is asked for here
+        assert not tick.isChecked()
+        u.ok(dialog)
+
+    u.answer(lambda: u.menu(window, "Design", "Add observer (glare, UGR)..."), eye)
+
+    def sun(dialog: QtWidgets.QWidget) -> None:
+        u.choose(u.field(dialog, "Quantity"), "EN 17037 sunlight exposure")
+        u.type_text(u.field(dialog, "Name"), "sun at desk")
+        u.choose(u.field(dialog, "Level at least"), "minimum")
+        u.ok(dialog)
+
+    u.answer(lambda: u.menu(window, "Design", "Add UGR limit at the observers..."), sun)
+    u.tab(window, "Achieved")
+    panel = window.achieved_panel
+
+    def row() -> list[str]:
+        try:
+            r = u.table_cell(panel.table, "sun at desk").row()
+        except AssertionError:
+            return []
+        return [panel.table.item(r, c).text() for c in range(panel.table.columnCount())]
+
+    listed = u.wait_for(lambda: bool(row()), 60_000)
+    u.screenshot(window, SHOTS, "sunlight-achieved")
+    assert listed, [i.name for i in window.doc.design.intentions]
+    # No altitude yet: nothing is rated, and the window says what is missing.
+    assert u.wait_for(lambda: "altitude" in " ".join(row()) + panel_text(panel), 60_000), row()
+    u.screenshot(window, SHOTS, "sunlight-no-altitude")
+
+    u.tab(window, "Climate")
+    altitude = u.reveal(u.field(window.climate_panel, "Sun counts above"))
+    assert altitude.text() == "not set"
+    u.type_text(altitude, "12")
+    u.press(altitude, Qt.Key_Return)
+    u.choose(u.field(window.climate_panel, "Sunlight day"), "1 March")
+    u.tab(window, "Achieved")
+    assert u.wait_for(lambda: any(c.endswith(" h") or "(" in c for c in row()[4:5]), 60_000), row()
+    u.screenshot(window, SHOTS, "sunlight-rated")
+
+    u.menu(window, "File", "Save")
+    saved = json.loads(path.read_text())["daylight"]
+    assert saved["sunlight_min_altitude"] == 12.0 and saved["sunlight_date"] == "03-01"
+
+
+def panel_text(panel: QtWidgets.QWidget) -> str:
+    """Every label's text in ``panel`` (where the Achieved tab writes its messages)."""
+    return " ".join(lab.text() for lab in panel.findChildren(QtWidgets.QLabel))
