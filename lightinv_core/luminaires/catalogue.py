@@ -298,6 +298,26 @@ def _office_products() -> list[tuple[str, Photometry, tuple[str, ...], str]]:
     ]
 
 
+STATED_LAMPS = {
+    "panel-600-recessed-3400lm": ("4000", "80"),
+    "linear-direct-indirect-4800lm": ("4000", "80"),
+    "downlight-150-reflector-1800lm": ("3000", "90"),
+}
+"""(colour temperature K, Ra) the office products' EULUMDAT files state (the lamp set's
+lines 30-31), as LED products of each type commonly do; EN 12464-1's Ra criterion reads
+the Ra (``luminaires/rendering.py``)."""
+
+
+def _state_lamp(path: Path, cct: str, ra: str) -> None:
+    """Write the colour temperature and Ra into the first lamp set of a EULUMDAT file
+    that ``write_ldt`` wrote (it leaves both empty)."""
+    lines = path.read_text(encoding="latin-1").split("\n")
+    # 1-based lines 30 and 31 (rendering.LDT_RA_LINE, which imports this module).
+    lines[29], lines[30] = cct, ra
+    with atomic_writer(path, "w", encoding="latin-1", newline="\n") as fh:
+        fh.write("\n".join(lines))
+
+
 def format_catalogue(entries: list[dict]) -> str:
     """The catalogue file's text (stable: the same entries give the same bytes)."""
     doc = {"format": FORMAT, "version": VERSION, "luminaires": entries}
@@ -314,6 +334,8 @@ def generate_builtin(folder: str | os.PathLike) -> list[Path]:
         for fmt in formats:
             target = out / f"{stem}.{fmt}"
             write_photometry(ph, target)
+            if fmt == "ldt" and stem in STATED_LAMPS:
+                _state_lamp(target, *STATED_LAMPS[stem])
             written.append(target)
         entries.append(
             {
