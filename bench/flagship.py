@@ -28,6 +28,7 @@ from dataclasses import replace
 from pathlib import Path
 
 from lightinv_core.design.en12464 import ra_warnings
+from lightinv_core.optimize.fronts import front_pair
 from lightinv_core.optimize.quality import front_quality, front_scales
 from lightinv_core.project import load_project
 from lightinv_core.report.criteria import status_table, workplane_criteria
@@ -82,7 +83,8 @@ def main() -> None:
     c0 = time.process_time()
     t0 = time.perf_counter()
     prepared = prepare(project)
-    scales = front_scales(project.design, prepared.light)
+    pair = front_pair(project.design)  # (least annual energy, least installed power)
+    scales = front_scales(project.design, prepared.light, pair)
     runs, first = [], None
     for seed in range(args.seeds):
         t1, c1 = time.perf_counter(), time.process_time()
@@ -107,7 +109,7 @@ def main() -> None:
                 ),
                 "every_criterion_met": bool(front) and not failed,
                 "failures": sorted(set(failed))[:10],
-                "hypervolume": front_quality(front, scales).hypervolume if front else 0.0,
+                "hypervolume": front_quality(front, scales, pair).hypervolume if front else 0.0,
                 "evaluations": result.evaluations,
                 "seconds": seconds,
                 "cpu_seconds": cpu,
