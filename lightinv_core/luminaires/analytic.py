@@ -222,6 +222,4 @@ def direct_indirect_linear(
     up[g <= 90.0] = 0.0
     cd += (up_share * lumens / math.pi) * up[None, :]
     label = name or f"Direct/indirect linear {lumens:g} lm"
-    return _photometry(
-        down.c_angles, g, cd, float(lumens), watts, size_m, label, catalogue_number
-    )
+    return _photometry(down.c_angles, g, cd, float(lumens), watts, size_m, label, catalogue_number)
