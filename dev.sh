@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # LightInv set-up and the two jobs, for a fresh Debian/Ubuntu machine with Python 3.11+.
 #
-#   ./dev.sh demo   install everything, then open the GUI on the built-in demo project (office);
-#                   without a display, its headless equivalent: optimise the demo project
+#   ./dev.sh demo   install everything, then open the GUI on the flagship project (an open-plan
+#                   office to EN 12464-1:2021 by night and daylight by day, least energy);
+#                   without a display, its headless equivalent: optimise the flagship project
 #   ./dev.sh test   install everything, then lint and run the whole test suite
 #   ./dev.sh setup  install everything only
 #
@@ -64,11 +65,11 @@ case "${1:-}" in
   demo)
     setup
     if [ -n "${DISPLAY:-}" ] || [ -n "${WAYLAND_DISPLAY:-}" ]; then
-      say "opening the LightInv window on the integrated office demo project"
-      exec .venv/bin/lightinv resources/projects/office-integrated.json
+      say "opening the LightInv window on the flagship office project"
+      exec .venv/bin/lightinv resources/projects/office-flagship.json
     fi
-    say "no display: optimising the integrated office demo headless (lightinv-cli solve)"
-    exec .venv/bin/lightinv-cli solve resources/projects/office-integrated.json
+    say "no display: optimising the flagship office headless (lightinv-cli solve)"
+    exec .venv/bin/lightinv-cli solve resources/projects/office-flagship.json
     ;;
   test)
     setup

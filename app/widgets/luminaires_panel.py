@@ -220,6 +220,10 @@ class LuminairesPanel(QtWidgets.QWidget):
                 self.catalogue.selectRow(i)
         self.catalogue.blockSignals(blocked)
         self.catalogue.resizeColumnsToContents()
+        if self.catalogue.currentItem() is not None:
+            # Refilled, the list keeps its scroll position: keep the chosen row in view
+            # (it may lie below the first rows now that the catalogue has six products).
+            self.catalogue.scrollToItem(self.catalogue.currentItem())
         if selected is not None:
             self._show_product()
 

@@ -12,6 +12,9 @@ rated "lamp" flux is the luminaire flux (light output ratio 100%).
   cos^2 along the luminaire (C0 plane), a batwing across it (C90 plane) peaking at
   gamma_p where sin^2(gamma_p) = (a - 1) / (2a), blended by sin^2(C) in between;
   Phi = (2 pi / 3) I0 (1 + a / 5).
+- ``direct_indirect_linear``: the batwing below (share 1 - u of the flux) and a
+  Lambertian uplight above, I = I_up cos(180 - gamma) for gamma >= 90 (share u);
+  each part scaled in closed form: Phi_down = (2 pi / 3) I0 (1 + a / 5), Phi_up = pi I_up.
 """
 
 from __future__ import annotations
@@ -183,3 +186,40 @@ def batwing_linear(
     cd = i0 * _cos_lower(g)[None, :] ** 2 * (1.0 + a * sin2c * sin2g)
     label = name or f"Batwing linear {lumens:g} lm"
     return _photometry(c, g, cd, float(lumens), watts, size_m, label, catalogue_number)
+
+
+def direct_indirect_linear(
+    lumens: float,
+    up_share: float = 0.3,
+    *,
+    watts: float | None = None,
+    size_m: tuple[float, float, float] = (0.2, 1.5, 0.0),
+    peak_deg: float = 30.0,
+    c_step_deg: float = 15.0,
+    gamma_step_deg: float = 2.5,
+    name: str = "",
+    catalogue_number: str = "",
+) -> Photometry:
+    """A suspended linear direct/indirect luminaire (length along C0): ``batwing_linear``
+    below with flux (1 - ``up_share``) Phi and a Lambertian uplight of ``up_share`` Phi
+    above, I_up = up_share Phi / pi cd at the zenith (module docstring)."""
+    _check("lumens", lumens, 1e-6, 1e10)
+    _check("up_share", up_share, 0.0, 1.0)
+    down = batwing_linear(
+        (1.0 - up_share) * lumens if up_share < 1.0 else 1.0,
+        size_m=size_m,
+        peak_deg=peak_deg,
+        c_step_deg=c_step_deg,
+        gamma_step_deg=gamma_step_deg,
+    )
+    g = _angles(gamma_step_deg, 180.0)
+    n_down = down.gamma_angles.size
+    cd = np.zeros((down.c_angles.size, g.size))
+    if up_share < 1.0:
+        cd[:, :n_down] = down.candela
+    # Above the horizontal: cos(180 - gamma), exactly 0 at 90 (the batwing is 0 there too).
+    up = np.clip(-np.cos(np.radians(g)), 0.0, 1.0)
+    up[g <= 90.0] = 0.0
+    cd += (up_share * lumens / math.pi) * up[None, :]
+    label = name or f"Direct/indirect linear {lumens:g} lm"
+    return _photometry(down.c_angles, g, cd, float(lumens), watts, size_m, label, catalogue_number)

@@ -26,7 +26,12 @@ from pathlib import Path
 
 from lightinv_core.atomic import atomic_writer
 from lightinv_core.errors import LightInvError
-from lightinv_core.luminaires.analytic import batwing_linear, downlight, lambertian_panel
+from lightinv_core.luminaires.analytic import (
+    batwing_linear,
+    direct_indirect_linear,
+    downlight,
+    lambertian_panel,
+)
 from lightinv_core.luminaires.formats import (
     file_facts,
     file_products,
@@ -237,7 +242,80 @@ def _builtin_products() -> list[tuple[str, Photometry, tuple[str, ...], str]]:
             ("ldt",),
             "Lambertian LED panel 0.6 x 0.6 m, I = I0 cos(gamma)",
         ),
+        *_office_products(),
     ]
+
+
+def _office_products() -> list[tuple[str, Photometry, tuple[str, ...], str]]:
+    """The flagship office's products (issue #34): generated from analytic distributions,
+    not measured (no manufacturer file with a licence to redistribute was found); sizes,
+    fluxes and powers are those of common LED products of each type, their UGR (CIE
+    190, 4H x 8H, 70/50/20) below EN 12464-1's 19 for offices."""
+    return [
+        (
+            "panel-600-recessed-3400lm",
+            downlight(
+                3400.0,
+                1.8,
+                watts=27.0,
+                size_m=(0.6, 0.6, 0.0),
+                name="Recessed panel 600 x 600 3400 lm 27 W",
+                catalogue_number="LI-RP-3400",
+            ),
+            ("ldt", "ies"),
+            "Recessed LED panel 0.6 x 0.6 m with a micro-prismatic diffuser, "
+            "I = I0 cos^1.8(gamma) (analytic, not measured); UGR 4H8H 18.0",
+        ),
+        (
+            "linear-direct-indirect-4800lm",
+            direct_indirect_linear(
+                4800.0,
+                0.3,
+                watts=36.0,
+                size_m=(0.2, 1.5, 0.0),
+                peak_deg=20.0,
+                name="Linear direct/indirect 1500 mm 4800 lm 36 W",
+                catalogue_number="LI-DI-4800",
+            ),
+            ("ldt", "ies"),
+            "Suspended linear 1.5 x 0.2 m, 70% down (batwing across, peak 20 deg, cos^2 "
+            "along), 30% up (Lambertian) (analytic, not measured); UGR 4H8H 15.0 / 18.2",
+        ),
+        (
+            "downlight-150-reflector-1800lm",
+            downlight(
+                1800.0,
+                6.0,
+                watts=16.0,
+                size_m=(0.15, 0.15, 0.0),
+                name="Downlight 150 mm reflector 1800 lm 16 W",
+                catalogue_number="LI-DR-1800",
+            ),
+            ("ldt", "ies"),
+            "LED downlight 0.15 x 0.15 m with a reflector, I = I0 cos^6(gamma), half "
+            "intensity at 27 deg (analytic, not measured); UGR 4H8H 17.0",
+        ),
+    ]
+
+
+STATED_LAMPS = {
+    "panel-600-recessed-3400lm": ("4000", "80"),
+    "linear-direct-indirect-4800lm": ("4000", "80"),
+    "downlight-150-reflector-1800lm": ("3000", "90"),
+}
+"""(colour temperature K, Ra) the office products' EULUMDAT files state (the lamp set's
+lines 30-31), as LED products of each type commonly do; EN 12464-1's Ra criterion reads
+the Ra (``luminaires/rendering.py``)."""
+
+
+def _state_lamp(path: Path, cct: str, ra: str) -> None:
+    """Write the colour temperature and Ra into the first lamp set of a EULUMDAT file
+    that ``write_ldt`` wrote (it leaves both empty)."""
+    lines = path.read_text(encoding="latin-1").split("\n")
+    # 1-based lines 30 and 31 (rendering.LDT_RA_LINE, which imports this module).
+    lines[29], lines[30] = cct, ra
+    with atomic_writer(path, "w", encoding="latin-1", newline="\n") as fh:
+        fh.write("\n".join(lines))
 
 
 def format_catalogue(entries: list[dict]) -> str:
@@ -256,6 +334,8 @@ def generate_builtin(folder: str | os.PathLike) -> list[Path]:
         for fmt in formats:
             target = out / f"{stem}.{fmt}"
             write_photometry(ph, target)
+            if fmt == "ldt" and stem in STATED_LAMPS:
+                _state_lamp(target, *STATED_LAMPS[stem])
             written.append(target)
         entries.append(
             {

@@ -320,9 +320,12 @@ def run_blocks(ctx: Context) -> list[Block]:
     if project.pareto is not None and project.pareto.solutions:
         quality = None
         # Measured (hypervolume, spacing) when the front is of the design's own pair.
-        if set(project.pareto.objectives) == set(map(str, front_pair(project.design))):
-            scales = front_scales(project.design, ctx.prepared.light)
-            quality = front_quality(project.pareto.solutions, scales)
+        pair = front_pair(project.design)
+        if set(project.pareto.objectives) == set(map(str, pair)):
+            # The pair given: a front of another pair (energy against installed power,
+            # the flagship's) has no default to fall back on.
+            scales = front_scales(project.design, ctx.prepared.light, pair)
+            quality = front_quality(project.pareto.solutions, scales, pair)
         blocks.append(
             drawing(5.5, lambda sf: pareto_figure(project.pareto, sol, quality, fig=sf), "pareto")
         )

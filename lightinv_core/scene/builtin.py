@@ -1,5 +1,5 @@
-"""Built-in parametric scenes: cornell, office, patio, corridor, building, and the two
-daylight rooms sidelit and toplit.
+"""Built-in parametric scenes: cornell, office, patio, corridor, building, the two
+daylight rooms sidelit and toplit, and the flagship office (``scene/flagship.py``).
 
 Each takes ``resolution`` (target patch edge in metres; ``None`` for the
 scene's default) and returns a closed ``Scene`` with named groups and emitter
@@ -25,6 +25,7 @@ from lightinv_core.scene.builders import (
     split_rect,
 )
 from lightinv_core.scene.building import building
+from lightinv_core.scene.flagship import flagship_office
 from lightinv_core.scene.model import EmitterZone, Rect, Scene, Surface, check_resolution
 
 FLOOR, WALL, CEILING = 0.3, 0.6, 0.8
@@ -261,6 +262,7 @@ BUILTIN_SCENES: dict[str, Callable[..., Scene]] = {
     "building": building,  # scene/building.py: 4 storeys, ~200,000 patches
     "sidelit": sidelit,
     "toplit": toplit,
+    "flagship": flagship_office,  # scene/flagship.py: the flagship office (issue #34)
 }
 
 

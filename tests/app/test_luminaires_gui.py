@@ -9,6 +9,7 @@ import pytest
 
 from app.dialogs.array_dialog import ArrayDialog
 from app.dialogs.workplane_dialog import WorkplaneDialog
+from lightinv_core.luminaires import builtin_catalogue
 from tests.app.conftest import wait_for_operator
 
 
@@ -20,7 +21,7 @@ def _arrays_window(qtbot, window):
 
 def test_catalogue_shows_each_products_polar_curves(qtbot, window):
     panel = window.luminaires_panel
-    assert panel.catalogue.rowCount() == 3
+    assert panel.catalogue.rowCount() == len(builtin_catalogue())
     panel.catalogue.selectRow(1)
     assert "batwing" in panel.polar.getPlotItem().titleLabel.text.lower()
     c0, c90 = panel.polar.curves["C0"], panel.polar.curves["C90"]

@@ -53,6 +53,7 @@ def test_scenes_lists_the_builtin_scenes(capsys):
         "building",
         "sidelit",
         "toplit",
+        "flagship",
     ]
     for s in scenes:
         assert isinstance(s["patches"], int) and s["patches"] > 0

@@ -52,6 +52,7 @@ def test_all_example_projects_load():
         "experiment5-twostep",
         "office-arrays",
         "office-demo",
+        "office-flagship",
         "office-integrated",
     ]
     for n in names:

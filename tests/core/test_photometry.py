@@ -973,13 +973,18 @@ def test_shipped_catalogue_matches_its_files():
         "Downlight 2000 lm 20 W",
         "Linear batwing 4000 lm 32 W",
         "Panel 600 x 600 3600 lm 30 W",
+        "Recessed panel 600 x 600 3400 lm 27 W",
+        "Linear direct/indirect 1500 mm 4800 lm 36 W",
+        "Downlight 150 mm reflector 1800 lm 16 W",
     ]
     for e in entries:
         ph = e.photometry()
         assert ph.flux() == pytest.approx(e.lumens, rel=0.005)
         assert ph.input_watts == e.watts and ph.opening == e.size
         assert e.efficacy == pytest.approx(e.lumens / e.watts)
-    assert [e.efficacy for e in entries] == [100.0, 125.0, 120.0]
+    assert [e.efficacy for e in entries] == pytest.approx(
+        [100.0, 125.0, 120.0, 3400 / 27, 4800 / 36, 1800 / 16]
+    )
     twin = read_photometry(BUILTIN_FOLDER / "downlight-2000lm.ies")
     _same(entries[0].photometry(), twin)
 
@@ -1009,7 +1014,7 @@ def test_the_module_command_regenerates_the_files(tmp_path):
         cwd=ROOT,
     )
     assert out.returncode == 0, out.stderr
-    assert len(out.stdout.splitlines()) == 5 and (tmp_path / "catalogue.json").is_file()
+    assert len(out.stdout.splitlines()) == 11 and (tmp_path / "catalogue.json").is_file()
 
 
 def _catalogue(tmp_path, entries) -> Path:

@@ -608,7 +608,7 @@ ERRORS = [
     (
         _set("scene.builtin", "coridor"),
         "scene.builtin: expected one of 'cornell', 'office', 'patio', 'corridor', 'building', "
-        "'sidelit', 'toplit', got string 'coridor'",
+        "'sidelit', 'toplit', 'flagship', got string 'coridor'",
     ),
     (
         _set("scene", {"obj": "room.3ds"}),

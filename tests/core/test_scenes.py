@@ -20,6 +20,7 @@ TARGETS = {
     "building": 200_000,
     "sidelit": 2900,  # the docstrings' "~2,900" and "~4,100"
     "toplit": 4100,
+    "flagship": 5800,  # scene/flagship.py: "~5,800 patches at the default 0.3 m"
 }
 
 
@@ -31,7 +32,14 @@ def test_default_patch_counts(name):
 
 @pytest.mark.parametrize(
     "name,res",
-    [("cornell", 0.3), ("office", 0.6), ("patio", 1.0), ("corridor", 0.8), ("building", 1.0)],
+    [
+        ("cornell", 0.3),
+        ("office", 0.6),
+        ("patio", 1.0),
+        ("corridor", 0.8),
+        ("building", 1.0),
+        ("flagship", 0.6),
+    ],
 )
 def test_builtin_scenes_are_closed_and_consistent(name, res):
     scene = builtin_scene(name, res)
