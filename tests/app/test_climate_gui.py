@@ -390,10 +390,10 @@ def test_the_integrated_demo_from_run_to_report(qtbot, window, tmp_path):
     from dataclasses import replace
     from pathlib import Path
 
-    from app.__main__ import DEMO
+    from app.__main__ import INTEGRATED
     from lightinv_core.project import OperatorSettings, load_project
 
-    project = load_project(DEMO)
+    project = load_project(INTEGRATED)
     project = replace(
         project,
         scene=replace(project.scene, resolution=0.5),

@@ -13,7 +13,7 @@ import numpy as np
 import pytest
 from PySide6 import QtCore, QtGui, QtTest, QtWidgets
 
-from app.__main__ import DEMO
+from app.__main__ import INTEGRATED as DEMO  # the window tests open the climate demo
 from app.dialogs import ask
 from tests.app.conftest import wait_for_operator
 
