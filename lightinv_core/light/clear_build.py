@@ -77,12 +77,22 @@ def clear_light(light, design: Design) -> ClearDesignLight | None:
     sources = clear_sources(design)
     if not sources:
         return None
-    key = (sources, tuple(design.workplanes), design.daylight)
+    key = (sources, tuple(design.workplanes), _traced(design.daylight))
     memo = _CACHE.setdefault(light.op, {})
     if key not in memo:
         memo.clear()  # one clear glazing at a time per operator
         memo[key] = _build(light, design, sources)
     return memo[key]
+
+
+def _traced(d: Daylight) -> Daylight:
+    """``d`` without the fields the build does not read (the dimming's target, least
+    level and standby, EN 17037's sunlight day and altitude): editing them in the
+    Climate tab must not trace the glazing again (about 20 s on the flagship office)."""
+    return replace(
+        d, target_lux=0.0, min_level=0.0, standby_w=0.0, sunlight_date="03-21",
+        sunlight_min_altitude=None,
+    )  # fmt: skip
 
 
 def clear_glass(light, sources, tau: float) -> Glass:
