@@ -44,7 +44,7 @@ from lightinv_core.light.arrays import ArrayLight, array_light, array_shapes, re
 from lightinv_core.light.clear_build import clear_light
 from lightinv_core.light.daylight_year import sky_groups
 from lightinv_core.light.glare import Glare
-from lightinv_core.light.grids import DesignGrids, design_grids
+from lightinv_core.light.grids import DesignGrids, design_receivers
 from lightinv_core.light.intentions import FEASIBILITY_TOL, intention_patches
 from lightinv_core.light.model import LightModel
 from lightinv_core.optimize.candidate_light import CandidateLight, Lit
@@ -158,9 +158,7 @@ class DesignProblem:
         self.zone_size = self.vars.zone_size
         outlines = [self.patches.zone_outline(s.zone) for s in sources]
         self.outlines = tuple(outlines) if any(o is not None for o in outlines) else ()
-        self.grids: DesignGrids | None = (
-            design_grids(light, design.workplanes) if design.workplanes else None
-        )
+        self.grids: DesignGrids | None = design_receivers(light, design)
         # Glare at the design's observers (UGR intentions, ``light/glare.py``).
         self.glare = Glare(light, design) if any(i.observers for i in design.intentions) else None
         # Grid intentions read points, not patches: no patch set. An intention at
@@ -230,7 +228,7 @@ class DesignProblem:
                 self.light.op,
                 self.design.arrays,
                 self._patch_rows(),
-                None if self.grids is None else self.grids.points,
+                None if self.grids is None else self.grids.samples,
                 progress,
                 cancel,
             )

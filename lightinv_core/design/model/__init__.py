@@ -1,6 +1,6 @@
 """The inverse design problem as data: sources, geometric rules, lighting intentions,
-luminaire arrays, work planes, observers, daylight and goals, each a frozen dataclass that declares
-its project-file fields once.
+luminaire arrays, work planes, calculation objects, observers, daylight and goals, each a
+frozen dataclass that declares its project-file fields once.
 
 Every field is declared in its class with ``fields.declare``: its typed check (which
 also gives the docs' type and the JSON Schema), default, meaning with units, and how it
@@ -30,6 +30,16 @@ from lightinv_core.design.model.array import (
     ROTATIONS,
     LuminaireArray,
     new_array,
+)
+from lightinv_core.design.model.calc_kinds import RING
+from lightinv_core.design.model.calc_object import (
+    CALC_FIELDS,
+    CalcKind,
+    CalcObject,
+    calc_kind,
+    calc_kind_names,
+    register_calc_kind,
+    unregister_calc_kind,
 )
 from lightinv_core.design.model.daylight import (
     DAYLIGHT_FIELDS,
@@ -67,6 +77,7 @@ __all__ = [
     "ARRAY_RULES",
     "ARRAY_VARIABLES",
     "AXES",
+    "CALC_FIELDS",
     "CORNERS",
     "DAYLIGHT_FIELDS",
     "GOALS",
@@ -79,6 +90,7 @@ __all__ = [
     "MAX_WATTS",
     "NEW_ARRAY_FREE",
     "OBSERVER_FIELDS",
+    "RING",
     "ROTATIONS",
     "RULE_FIELDS",
     "RULE_SOURCES",
@@ -88,6 +100,8 @@ __all__ = [
     "SOURCE_KINDS",
     "VARIABLES",
     "WORKPLANE_FIELDS",
+    "CalcKind",
+    "CalcObject",
     "Daylight",
     "Design",
     "DesignError",
@@ -98,6 +112,10 @@ __all__ = [
     "Rule",
     "Source",
     "Workplane",
+    "calc_kind",
+    "calc_kind_names",
     "new_array",
+    "register_calc_kind",
     "source_kind",
+    "unregister_calc_kind",
 ]
