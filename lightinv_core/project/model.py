@@ -44,6 +44,7 @@ from lightinv_core.project.scene import SCENE, ZONE, SceneSpec, resolve_path
 from lightinv_core.project.source_kinds import check_source_kinds
 from lightinv_core.project.specs import (
     ARRAY,
+    CALC,
     DAYLIGHT,
     GOAL,
     INTENTION,
@@ -52,6 +53,7 @@ from lightinv_core.project.specs import (
     SOURCE,
     WORKPLANE,
     read_arrays,
+    read_calc_objects,
     read_daylight,
     read_goals,
     read_intentions,
@@ -209,6 +211,16 @@ TOP = ObjectSpec(
             many=True,
         ),
         Field(
+            "calc_objects",
+            read_calc_objects,
+            (),
+            "list",
+            _see("calc_objects", "calculation objects")
+            + ": task areas, wall and ceiling surfaces, cylindrical and free points",
+            of=CALC,
+            many=True,
+        ),
+        Field(
             "rules",
             read_rules,
             (),
@@ -271,6 +283,7 @@ FILE_SPECS = (
     ARRAY,
     WORKPLANE,
     OBSERVER,
+    CALC,
     RULE,
     INTENTION,
     GOAL,
@@ -298,6 +311,7 @@ def project_from_values(values: Mapping[str, Any]) -> Project:
             values["arrays"],
             values["workplanes"],
             values["observers"],
+            values["calc_objects"],
         )
     results = values["results"] or {}
     return Project(
@@ -332,6 +346,7 @@ def project_values(p: Project) -> dict[str, Any]:
         "arrays": d.arrays,
         "workplanes": d.workplanes,
         "observers": d.observers,
+        "calc_objects": d.calc_objects,
         "rules": d.rules,
         "intentions": d.intentions,
         "goals": d.goals,

@@ -17,6 +17,7 @@ from typing import Any
 from lightinv_core.design.model import (
     ARRAY_FIELDS,
     ARRAY_RULES,
+    CALC_FIELDS,
     DAYLIGHT_FIELDS,
     GOAL_FIELDS,
     INTENTION_FIELDS,
@@ -24,6 +25,7 @@ from lightinv_core.design.model import (
     RULE_FIELDS,
     SOURCE_FIELDS,
     WORKPLANE_FIELDS,
+    CalcObject,
     Daylight,
     Goal,
     Intention,
@@ -49,6 +51,7 @@ DAYLIGHT = DAYLIGHT_FIELDS
 ARRAY = ARRAY_FIELDS
 WORKPLANE = WORKPLANE_FIELDS
 OBSERVER = OBSERVER_FIELDS
+CALC = CALC_FIELDS
 
 
 def _source(v: Any, path: str) -> Source:
@@ -76,6 +79,12 @@ def read_workplanes(v: Any, path: str) -> tuple[Workplane, ...]:
 def read_observers(v: Any, path: str) -> tuple[Observer, ...]:
     """The observers listed at ``path``, names unique."""
     return _unique_names(_list(v, path, partial(OBSERVER.build, Observer), "observers"), path)
+
+
+def read_calc_objects(v: Any, path: str) -> tuple[CalcObject, ...]:
+    """The calculation objects listed at ``path``, names unique."""
+    items = _list(v, path, partial(CALC.build, CalcObject), "calculation objects")
+    return _unique_names(items, path)
 
 
 def _unique_names(items: tuple, path: str) -> tuple:

@@ -255,8 +255,8 @@ SAVED = {
     "experiment5-twostep": "7962957b9cd8336277433827cc5944732dfa06e067a9b3eee0c9f614db7e11f0",
     "experiment5": "52e2dde92ed16508302ee42d8709f2cbc8e446066f75bfb6b45575cb08580bee",
     "office-demo": "cbaaf5377b272f4a4fb6582e23fdb0c42bc9be5cef733652e43804c9c123af9b",
-    "with_results": "0d555cc27083ed573d0b7ea43bd79b9ddc51ba0a03e51e99cc6497c80e50a352",
-    "zones": "381b47e0b8a4bf2a579e2e0c777d73df955d9ef5dcb6099081a19d38b8641f5f",
+    "with_results": "dc03d2d1e39fb4bdbbea32f35d44701b55057bbb45ab9373e342fd32f37737c2",
+    "zones": "10ef8a00c24423885deb8af926cfc2f7752e1ee2c8c01e2aaa5fa0337cdd677b",
 }
 
 

@@ -109,6 +109,10 @@ VALID: dict = {
     "observers": [
         {"name": "desk", "position": [2.0, 1.0], "height": 1.2, "azimuth": 90.0, "group": "floor"}
     ],
+    "calc_objects": [
+        {"name": "task", "kind": "task_area", "corners": [[1, 1], [3, 1], [3, 2], [1, 2]]},
+        {"name": "faces", "kind": "cylindrical", "positions": [[2.0, 2.0]], "height": 1.2},
+    ],
     "rules": [
         {"kind": "area", "sources": ["S1"], "min": 1, "max": 4},
         {"kind": "aspect", "sources": ["S1", "S2"], "max": 3},
