@@ -207,3 +207,25 @@ def test_vertical_wall_points_match_radiance_rtrace():
     )  # fmt: skip
     assert theirs.min() > 100.0
     np.testing.assert_allclose(res.points_lux, theirs, rtol=0.02)
+
+
+def test_the_editing_model_adds_renames_and_removes_objects_with_their_intentions():
+    from pathlib import Path
+
+    from lightinv_core.editing.document import DocumentModel
+
+    root = Path(__file__).resolve().parents[2]
+    doc = DocumentModel()
+    doc.set_project(
+        project_from_dict(json.loads((root / "resources/projects/office-arrays.json").read_text()))
+    )
+    it = Intention("faces (Ez)", grid="faces", average=100.0)
+    doc.add_calc_object(FACES, it)
+    assert doc.design.calc_objects == (FACES,) and doc.design.intentions[-1] == it
+    doc.replace_calc_object("faces", CalcObject("eyes", "cylindrical", positions=((1, 1),)))
+    assert doc.design.intentions[-1].grid == "eyes"
+    with pytest.raises(Exception, match="names must be unique"):
+        doc.add_calc_object(CalcObject("wp", "points", points=((1, 1, 1),)))
+    doc.remove_calc_object("eyes")
+    assert not doc.design.calc_objects
+    assert all(i.grid != "eyes" for i in doc.design.intentions)
