@@ -199,9 +199,8 @@ class _Lattice:
 
 
 class ArrayLight:
-    """Responses of a design's arrays at receiver patches ``rows`` and ``points`` (q, 3)
-    facing up, or a ``PointSet``'s values, and the light of candidate array layouts
-    there (see the module)."""
+    """Responses of a design's arrays at receiver patches ``rows`` and ``points`` (up
+    facing (q, 3), or a ``PointSet``), and the light of candidate layouts there."""
 
     def __init__(
         self,
@@ -443,8 +442,7 @@ def arrays_field(
     cancel: Callable[[], bool] | None = None,
 ) -> tuple[np.ndarray, np.ndarray]:
     """Illuminance (lux) of the arrays as written, placed exactly (no lattice), on every
-    patch (n,) and at ``points`` (q,; facing up, or a ``PointSet``'s values): for views,
-    reports and judging."""
+    patch (n,) and at ``points`` (q,; up, or a ``PointSet``'s values): views, judging."""
     lums, scale = [], []
     for a, _, ps in array_luminaires(patches, arrays):
         for p in ps:

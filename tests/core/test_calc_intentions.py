@@ -94,6 +94,7 @@ def test_cylindrical_and_wall_values_match_the_reference_solver(office):
     assert len(got) == 3 + len(grids.points[grids.calc_spans["board"]])
 
 
+@pytest.mark.slow  # two optimisations of 2,500 evaluations with arrays' responses
 def test_the_optimiser_meets_an_ez_bound_the_unbounded_optimum_breaks(office):
     def run(design):
         pb = DesignProblem(design, office)
