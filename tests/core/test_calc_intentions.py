@@ -230,3 +230,22 @@ def test_the_editing_model_adds_renames_and_removes_objects_with_their_intention
     doc.remove_calc_object("eyes")
     assert not doc.design.calc_objects
     assert all(i.grid != "eyes" for i in doc.design.intentions)
+
+
+def test_the_cli_solve_text_prints_each_calculation_object():
+    from lightinv_core.cli.solve_text import solve_text
+
+    out = {
+        "project": "p",
+        "status": "feasible",
+        "method": "auto",
+        "evaluations": 10,
+        "seconds": 1.0,
+        "precompute_seconds": 0.1,
+        "calc_objects": {
+            "faces": {"points": 3, "Em": 120.4, "Emin": 98.2, "Emax": 140.0, "U0": 0.8156},
+        },
+    }
+    out["calc_objects"]["faces"]["symbol"] = "Ez"
+    text = solve_text(out)
+    assert "  faces: Ez mean 120 lux, min 98 lux, max 140 lux, U0 0.816 (3 points)" in text
