@@ -23,7 +23,9 @@ INTEGRATED = PROJECTS / "office-integrated.json"  # the paper-style climate demo
 
 def parse_args(argv: list[str]) -> argparse.Namespace:
     ap = argparse.ArgumentParser(prog="lightinv", description="LightInv inverse lighting design")
-    ap.add_argument("project", nargs="?", help="project file to open (default: the flagship office)")
+    ap.add_argument(
+        "project", nargs="?", help="project file to open (default: the flagship office)"
+    )
     ap.add_argument("--scene", help="start a new project on this built-in scene")
     ap.add_argument("--resolution", type=float, help="patch size (m) for --scene")
     ap.add_argument(

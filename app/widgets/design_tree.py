@@ -44,6 +44,8 @@ class DesignTree(QtWidgets.QTreeWidget):
     observerActivated = QtCore.Signal(str)  # edit it
     observerChosen = QtCore.Signal(str)  # clicked: picked, as in the view
     observerDeleted = QtCore.Signal(str)
+    calcActivated = QtCore.Signal(str)  # edit a calculation object
+    calcDeleted = QtCore.Signal(str)
 
     def __init__(self, doc: Document, parent: QtWidgets.QWidget | None = None):
         super().__init__(parent)
@@ -119,6 +121,12 @@ class DesignTree(QtWidgets.QTreeWidget):
                     eyes,
                     [o.name, f"({o.position[0]:g}, {o.position[1]:g}), eye {o.height:g} m, {view}"],
                 ).setData(0, 256, ("observer", o.name))
+        if d.design.calc_objects:
+            objs = d.design.calc_objects
+            calcs = QtWidgets.QTreeWidgetItem(self, ["Calculation objects", str(len(objs))])
+            for c in objs:
+                about = f"{c.spec.label} ({c.spec.symbol}): {c.spec.describe(c)}"
+                QtWidgets.QTreeWidgetItem(calcs, [c.name, about]).setData(0, 256, ("calc", c.name))
         rules_item = QtWidgets.QTreeWidgetItem(self, ["Rules", str(len(d.design.rules))])
         for k, rule in enumerate(d.design.rules):
             what, bounds = rule_text(rule)
@@ -149,6 +157,8 @@ class DesignTree(QtWidgets.QTreeWidget):
             self.observerActivated.emit(data[1])
         elif data and data[0] == "workplane":
             self.workplaneActivated.emit(data[1])
+        elif data and data[0] == "calc":
+            self.calcActivated.emit(data[1])
 
     def select_observer(self, name: str) -> None:
         """Make observer ``name``'s row the current one (picked in the view)."""
@@ -169,6 +179,11 @@ class DesignTree(QtWidgets.QTreeWidget):
         data = item.data(0, 256) if item is not None else None
         if data and data[0] == "intention":
             self.intention_menu(data[1]).exec(self.viewport().mapToGlobal(pos))
+        elif data and data[0] == "calc":
+            menu = QtWidgets.QMenu(self)
+            menu.addAction("Edit...", lambda: self.calcActivated.emit(data[1]))
+            menu.addAction("Delete", lambda: self.calcDeleted.emit(data[1]))
+            menu.exec(self.viewport().mapToGlobal(pos))
         elif data and data[0] == "rule":
             menu = QtWidgets.QMenu(self)
             menu.addAction("Delete", lambda: self.ruleDeleted.emit(data[1]))
@@ -196,6 +211,9 @@ class DesignTree(QtWidgets.QTreeWidget):
         deleting = event.key() in (QtCore.Qt.Key_Delete, QtCore.Qt.Key_Backspace)
         if deleting and data and data[0] == "intention":
             self.intentionDeleted.emit(data[1])
+            return
+        if deleting and data and data[0] == "calc":
+            self.calcDeleted.emit(data[1])
             return
         if deleting and data and data[0] == "rule":
             self.ruleDeleted.emit(data[1])

@@ -172,6 +172,10 @@ def design_menu(win, bar: QtWidgets.QMenuBar) -> None:
         win, "Add UGR &limit at the observers...", lambda _=False: win.edits.add_glare_limit()
     )
     design.addAction(win.act_glare_limit)
+    win.act_add_calc = action(
+        win, "Add &calculation object...", lambda _=False: win.edits.add_calc_object()
+    )
+    design.addAction(win.act_add_calc)
     # Two goals make a Pareto front: both power goals, or annual energy and glazing area.
     # Every registered goal is offered; one the design cannot take (a match without a
     # target lighting) is refused with the model's reason.

@@ -16,6 +16,7 @@ import numpy as np
 from PySide6 import QtCore
 
 from app.dialogs import ask
+from app.dialogs.calc_dialog import CalcObjectDialog
 from app.dialogs.intention_dialog import IntentionDialog, intention_target
 from app.dialogs.observer_dialog import ObserverDialog
 from app.dialogs.rule_dialog import RuleDialog
@@ -271,6 +272,50 @@ class DesignEdits(QtCore.QObject):
             ask.warn(self.win, str(exc))
             return False
         return True
+
+    def add_calc_object(self, dialog: CalcObjectDialog | None = None) -> bool:
+        """Ask for a calculation object (a task area, a wall or ceiling surface,
+        cylindrical or free points) and, ticked, an intention on it; add both."""
+        if self.doc.project is None:
+            return False
+        d = self.doc.design
+        if dialog is None:
+            patches = self.doc.patches
+            groups = list(patches.group_names) if patches is not None else ["floor"]
+            taken = {c.name for c in d.calc_objects} | {w.name for w in d.workplanes}
+            name = next(f"object {k}" for k in range(1, 999) if f"object {k}" not in taken)
+            dialog = CalcObjectDialog(groups, name, self.win)
+        if not ask.accepted(dialog):
+            return False
+        try:
+            taken = {i.name for i in d.intentions}
+            self.doc.add_calc_object(dialog.calc_object(), dialog.intention(taken))
+        except LightInvError as exc:
+            ask.warn(self.win, str(exc))
+            return False
+        return True
+
+    def edit_calc_object(self, name: str, dialog: CalcObjectDialog | None = None) -> bool:
+        """Ask again for calculation object ``name`` (its dialog filled) and replace it."""
+        old = next((c for c in self.doc.design.calc_objects if c.name == name), None)
+        if old is None:
+            return False
+        if dialog is None:
+            groups = list(self.doc.patches.group_names)
+            dialog = CalcObjectDialog(groups, name, self.win, old)
+        if not ask.accepted(dialog):
+            return False
+        try:
+            self.doc.replace_calc_object(name, dialog.calc_object())
+        except LightInvError as exc:
+            ask.warn(self.win, str(exc))
+            return False
+        return True
+
+    def delete_calc_object(self, name: str) -> None:
+        """Remove a calculation object and its intentions (Edit > Undo brings them back)."""
+        self.doc.remove_calc_object(name)
+        self._say(f"Deleted calculation object {name} (Edit > Undo to restore)", 6000)
 
     def add_glare_limit(self, dialog: IntentionDialog | None = None) -> bool:
         """Ask for a UGR limit at every observer of the design (the intention dialog,

@@ -229,6 +229,8 @@ class MainWindow(QtWidgets.QMainWindow):
         self.tree.intentionActivated.connect(e.edit_intention)
         self.tree.intentionDeleted.connect(e.delete_intention)
         self.tree.ruleDeleted.connect(e.delete_rule)
+        self.tree.calcActivated.connect(e.edit_calc_object)
+        self.tree.calcDeleted.connect(e.delete_calc_object)
         d.designChanged.connect(lambda: actions.check_goals(self))
         self.run_panel.runRequested.connect(self.runs.start)
         self.run_panel.cancelRequested.connect(self.runs.cancel)

@@ -13,7 +13,7 @@ import time
 import numpy as np
 from PySide6 import QtCore
 
-from app.view import luminaire_overlay, observer_overlay
+from app.view import calc_overlay, luminaire_overlay, observer_overlay
 from app.view.daylight_maps import design_caption, map_values, maps
 from lightinv_core.editing.next_step import document_next_step
 from lightinv_core.editing.results import result_label
@@ -75,6 +75,7 @@ class ViewColouring(QtCore.QObject):
             luminaire_overlay.draw(self.viewport.plotter, d.patches, d.design.arrays)
             picked = self.win.edits.current_observer
             observer_overlay.draw(self.viewport.plotter, d.patches, d.design.observers, picked)
+            calc_overlay.draw(self.viewport.plotter, d.patches, d.design.calc_objects)
             self._luminaire_warnings(d.patches, d.design.arrays)
         self.update_hint()
         if field is None or not np.any(field.illuminance > 0):

@@ -76,6 +76,18 @@ def build_parser() -> argparse.ArgumentParser:
     )
     sim.add_argument("--grid-csv", metavar="FILE", help="work plane: write x,y,z,lux per point")
     sim.add_argument(
+        "--edition",
+        choices=("2011", "2021"),
+        default="2021",
+        help="work plane: the EN 12464-1 edition whose grid rule lays the points (default 2021)",
+    )
+    sim.add_argument(
+        "--points",
+        metavar="CSV",
+        help="illuminance at free points: rows x,y,z[,nx,ny,nz] (m; facing up without a "
+        "normal; a header line allowed)",
+    )
+    sim.add_argument(
         "--sky",
         choices=("cie-overcast", "cie-clear"),
         help="light the glazing groups with this sky (docs/daylight.md); cie-overcast adds "

@@ -14,6 +14,7 @@ from lightinv_core.operator.settings import OperatorSettings
 from lightinv_core.sources.luminaire_csv import read_luminaire_csv
 from lightinv_core.study import SimulationResult, SimulationSpec, simulate
 from lightinv_core.transport.photometry import write_patch_csv
+from lightinv_core.transport.point_sets import UP, PointSet, read_points_csv
 from lightinv_core.transport.scene_light import write_grid_csv
 from lightinv_core.transport.workplane import DEFAULT_BORDER, WorkPlane
 
@@ -60,6 +61,11 @@ def check_args(args) -> None:
         raise LightInvError(
             "glare and sunlight exposure need clear glazing: give --glazing GROUP=TAU:clear"
         )
+    if args.points and any(kind == "clear" for _, _, kind in args.glazing):
+        raise LightInvError(
+            "--points reads the light of luminaires, emitting groups and diffusing glazing; "
+            "clear glazing's view of the sky at free points is not done: use a work plane"
+        )
     if args.workplane is None and (args.grid_csv or args.border is not None):
         raise LightInvError("--grid-csv and --border describe a work plane: add --workplane 0.8")
 
@@ -72,6 +78,10 @@ def spec_of(args) -> SimulationSpec:
     if args.workplane is not None:
         border = DEFAULT_BORDER if args.border is None else args.border
         plane = WorkPlane(args.workplane, border, args.workplane_group)
+    points = None
+    if args.points:
+        pts, normals = read_points_csv(args.points)
+        points = PointSet(pts, UP if normals is None else normals)
     annual = None
     if args.weather is not None:
         annual = Daylight(
@@ -104,6 +114,8 @@ def spec_of(args) -> SimulationSpec:
         exterior_lux=args.exterior_lux,
         ground_reflectance=args.ground_reflectance,
         workplane=plane,
+        edition=f"EN 12464-1:{args.edition}",
+        points=points,
         annual=annual,
         rays=args.rays,
         seed=args.seed,

@@ -92,6 +92,9 @@ def reference_payload(res: SimulationResult, spec: SimulationSpec) -> tuple[dict
     if res.grid is not None:
         payload["grid"] = grid_payload(res, spec)
         lines += grid_lines(payload["grid"], spec)
+    if res.points_lux is not None:
+        payload["points"] = points_payload(res, spec)
+        lines += points_lines(payload["points"])
     if res.clear_year is not None:
         payload["annual"] = clear_payload(res, spec)
         lines += clear_lines(payload["annual"])
@@ -133,6 +136,7 @@ def grid_payload(res: SimulationResult, spec: SimulationSpec) -> dict:
         "height_m": plane.height,
         "border_m": plane.border,
         "group": plane.group,
+        "edition": str(spec.edition),
         "spacing_m": list(grid.spacing),
         "rule_spacing_m": grid.rule_spacing,
         "counts": list(grid.counts),
@@ -149,7 +153,7 @@ def grid_lines(g: dict, spec: SimulationSpec) -> list[str]:
     lines = [
         f"work plane {g['height_m']:g} m over {g['group']!r}, border {g['border_m']:g} m: "
         f"{g['points']} points ({g['spacing_m'][0]:.2f} x {g['spacing_m'][1]:.2f} m; "
-        f"EN 12464-1 p = {g['rule_spacing_m']:.2f} m)",
+        f"{g['edition']} p = {g['rule_spacing_m']:.2f} m)",
         f"Em {g['Em']:.1f} lux, Emin {g['Emin']:.1f} lux, Emax {g['Emax']:.1f} lux, "
         f"U0 {u0_text(g['U0'])}",
     ]
@@ -159,6 +163,39 @@ def grid_lines(g: dict, spec: SimulationSpec) -> list[str]:
             f"daylight factor (CIE overcast, {spec.exterior_lux:g} lux outside): mean "
             f"{d['mean']:.2f}%, median {d['median']:.2f}%, min {d['min']:.2f}%"
         )
+    return lines
+
+
+def points_payload(res: SimulationResult, spec: SimulationSpec) -> dict:
+    """The free points' illuminance (lux), each with its place and normal, and their
+    statistics (mean, min, max, U0 = min / mean)."""
+    ps, lux = spec.points, res.points_lux
+    mean = float(lux.mean())
+    return {
+        "count": len(lux),
+        "Em": mean,
+        "Emin": float(lux.min()),
+        "Emax": float(lux.max()),
+        "U0": float(lux.min() / mean) if mean > 0 else 0.0,
+        "points": [
+            {"x": float(p[0]), "y": float(p[1]), "z": float(p[2]), "normal": n.tolist(), "lux": e}
+            for p, n, e in zip(ps.points, ps.normals, lux.tolist(), strict=True)
+        ],
+    }
+
+
+def points_lines(g: dict) -> list[str]:
+    """One line per free point, then their statistics."""
+    lines = [f"points: {g['count']}"]
+    for k, p in enumerate(g["points"], 1):
+        n = ", ".join(f"{v:.3g}" for v in p["normal"])
+        lines.append(
+            f"  {k}: ({p['x']:g}, {p['y']:g}, {p['z']:g}) facing ({n}): {p['lux']:.1f} lux"
+        )
+    lines.append(
+        f"points: mean {g['Em']:.1f} lux, min {g['Emin']:.1f} lux, max {g['Emax']:.1f} lux, "
+        f"U0 {u0_text(g['U0'])}"
+    )
     return lines
 
 

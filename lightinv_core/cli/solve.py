@@ -154,8 +154,13 @@ def cmd_solve(args) -> int:
         )
         if "match" in best.objectives:
             summary["error"] = best.objectives["match"]
+        light = solution_light(prepared, project.design, best)
+        if project.design.calc_objects:
+            symbols = {c.name: c.spec.symbol for c in project.design.calc_objects}
+            summary["calc_objects"] = {
+                n: {**v, "symbol": symbols[n]} for n, v in light.calc_stats.items()
+            }
         if project.design.workplanes:
-            light = solution_light(prepared, project.design, best)
             summary["workplanes"] = light.grid_stats
             if daylit(best.sources):
                 summary["daylight"] = daylight_summary(prepared.light, project.design, best)

@@ -28,6 +28,12 @@ def solve_text(out: dict) -> str:
             f"Emax {g['Emax']:.0f} lux, U0 {u0_text(g['U0'])} ({g['points']} points; luminaires "
             "placed exactly; skylights at the design exterior lux)"
         )
+    for name, g in out.get("calc_objects", {}).items():
+        s = g["symbol"]
+        lines.append(
+            f"  {name}: {s} mean {g['Em']:.0f} lux, min {g['Emin']:.0f} lux, max "
+            f"{g['Emax']:.0f} lux, U0 {u0_text(g['U0'])} ({g['points']} points)"
+        )
     if out.get("ugr"):
         each = ", ".join(f"{v:.1f} at {name}" for name, v in out["ugr"].items())
         lines.append(f"  glare: UGR {each} (CIE 117; luminaires placed exactly, as new)")

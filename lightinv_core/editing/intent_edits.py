@@ -10,7 +10,7 @@ from __future__ import annotations
 from dataclasses import replace
 
 from lightinv_core.climate.weather import Weather
-from lightinv_core.design.model import Intention, Observer
+from lightinv_core.design.model import CalcObject, Intention, Observer
 from lightinv_core.editing import rules
 from lightinv_core.editing.climate import weather_of
 from lightinv_core.editing.state import DocumentState
@@ -134,6 +134,39 @@ class IntentEdits(DocumentState):
         moved = replace(ob, position=(round(x + dx, 4), round(y + dy, 4)))
         obs = tuple(moved if o.name == name else o for o in self.design.observers)
         self._set_design(replace(self.design, observers=obs), f"move observer {name}")
+
+    # -- calculation objects --------------------------------------------------------------------
+    def add_calc_object(self, obj: CalcObject, intention: Intention | None = None) -> None:
+        """Append a calculation object and, given, an intention on it (one undo step;
+        DesignError if a name is taken)."""
+        its = self.design.intentions + ((intention,) if intention is not None else ())
+        self._set_design(
+            replace(self.design, calc_objects=(*self.design.calc_objects, obj), intentions=its),
+            f"add calculation object {obj.name}",
+        )
+
+    def replace_calc_object(self, name: str, obj: CalcObject) -> None:
+        """Put ``obj`` in place of the object called ``name``; intentions on it follow a
+        new name (one undo step)."""
+        if name not in {c.name for c in self.design.calc_objects}:
+            raise DesignError(f"no calculation object {name!r}")
+        objs = tuple(obj if c.name == name else c for c in self.design.calc_objects)
+        its = tuple(
+            replace(i, grid=obj.name) if i.grid == name else i for i in self.design.intentions
+        )
+        self._set_design(
+            replace(self.design, calc_objects=objs, intentions=its),
+            f"edit calculation object {name}",
+        )
+
+    def remove_calc_object(self, name: str) -> None:
+        """Delete a calculation object and the intentions on it."""
+        objs = tuple(c for c in self.design.calc_objects if c.name != name)
+        its = tuple(i for i in self.design.intentions if i.grid != name)
+        self._set_design(
+            replace(self.design, calc_objects=objs, intentions=its),
+            f"remove calculation object {name}",
+        )
 
     # -- daylight and climate -------------------------------------------------------------------
     def set_daylight(self, **fields) -> None:

@@ -94,7 +94,7 @@ class LightView(DocumentState):
             except LightInvError:
                 continue  # a metric that cannot be had (no weather): judged elsewhere
             stats = intention_stats(q[:, None], w)
-            first = ld.grids.spans[it.grid].start
+            first = ld.grids.span(it.grid).start
             for check in bound_checks(it, stats):
                 if not check.met[0]:
                     mask = offending(check, q, float(stats.average[0]))

@@ -24,7 +24,7 @@ from lightinv_core.errors import LightInvError
 from lightinv_core.light.arrays import arrays_field
 from lightinv_core.light.clear_build import clear_light
 from lightinv_core.light.field import LightField
-from lightinv_core.light.grids import DesignGrids, design_grids
+from lightinv_core.light.grids import DesignGrids, design_receivers
 from lightinv_core.light.model import LightModel
 from lightinv_core.transport.workplane import grid_statistics
 
@@ -54,7 +54,7 @@ class ShownLight:
             self.field = self.model.field(preview, design.daylight)
         else:
             self.field = self.model.design_field(design)
-        self.grids = design_grids(self.model, design.workplanes) if design.workplanes else None
+        self.grids = design_receivers(self.model, design)
         self.grid_lux = None
         if self.grids is not None:
             lux = self.grids.Phi.astype(float) @ self.field.emission[self.model.op.zone_patches]
@@ -80,7 +80,7 @@ class ShownLight:
         # dataclass of numpy arrays compared with == raised once a second plane was added.
         kept = self._arrays
         if kept is None or kept[0] != arrays or kept[1] is not self.grids:
-            points = None if self.grids is None else self.grids.points
+            points = None if self.grids is None else self.grids.samples
             H, at_points = arrays_field(self.model.patches, self.model.op, arrays, points)
             self._arrays = (arrays, self.grids, H, at_points)
         return self._arrays[2], self._arrays[3]

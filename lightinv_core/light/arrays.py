@@ -39,6 +39,7 @@ from lightinv_core.scene.zone_grid import zone_grid
 from lightinv_core.transport.escape import luminaire_escape_warnings
 from lightinv_core.transport.formfactors import DEFAULT_RAYS, form_factor_matrix
 from lightinv_core.transport.luminaires import PlacedLuminaire
+from lightinv_core.transport.point_sets import PointSet, as_point_set
 from lightinv_core.transport.raycast import RayCaster
 
 LATTICE, LATTICE_MAX = 0.25, 0.5
@@ -198,8 +199,8 @@ class _Lattice:
 
 
 class ArrayLight:
-    """Responses of a design's arrays at receiver patches ``rows`` and ``points`` (q, 3),
-    and the light of candidate array layouts there (see the module)."""
+    """Responses of a design's arrays at receiver patches ``rows`` and ``points`` (up
+    facing (q, 3), or a ``PointSet``), and the light of candidate layouts there."""
 
     def __init__(
         self,
@@ -208,7 +209,7 @@ class ArrayLight:
         arrays: Sequence[LuminaireArray],
         free_rotation: Sequence[bool],
         rows: np.ndarray,
-        points: np.ndarray | None = None,
+        points: np.ndarray | PointSet | None = None,
         lattice: float = LATTICE,
         progress: Callable[[float], None] | None = None,
         cancel: Callable[[], bool] | None = None,
@@ -218,8 +219,9 @@ class ArrayLight:
         self.frames = [zone_frame(patches, a.zone) for a in self.arrays]
         self.outlines = tuple(patches.zone_outline(a.zone) for a in self.arrays)
         self.rows = np.asarray(rows, dtype=np.int64)
-        pts = np.zeros((0, 3)) if points is None else np.asarray(points, float).reshape(-1, 3)
-        self.n_points = len(pts)
+        ps = as_point_set(points)
+        pts = ps.at
+        self.n_points = ps.size
         placements: list[PlacedLuminaire] = []
         lattices: dict[tuple, _Lattice] = {}
         self._lattice: list[dict[int, _Lattice]] = []
@@ -245,7 +247,7 @@ class ArrayLight:
             op.lowrank,
             placements,
             self.rows,
-            pts,
+            ps,
             caster=caster_for(patches),
             rays=int(op.info.get("rays", DEFAULT_RAYS)),
             progress=progress,
@@ -383,7 +385,7 @@ def array_light(
     op: RadiosityOperator,
     arrays: Sequence[LuminaireArray],
     rows: np.ndarray,
-    points: np.ndarray | None = None,
+    points: np.ndarray | PointSet | None = None,
     progress: Callable[[float], None] | None = None,
     cancel: Callable[[], bool] | None = None,
 ) -> ArrayLight:
@@ -391,7 +393,7 @@ def array_light(
     designs that differ only in the arrays' variables, rules or goals (an epsilon sweep,
     a rerun) share one precompute."""
     free = [a.free.count("rotation") > 0 for a in arrays]
-    pts = np.zeros((0, 3)) if points is None else np.asarray(points, float).reshape(-1, 3)
+    pts = as_point_set(points)
     rows = np.asarray(rows, dtype=np.int64)
     key = (
         tuple(
@@ -399,7 +401,7 @@ def array_light(
         ),
         LATTICE,
         rows.tobytes(),
-        pts.tobytes(),
+        pts.key(),
     )
     memo = _RESPONSES.setdefault(op, {})
     found = memo.get(key)
@@ -435,20 +437,20 @@ def arrays_field(
     patches: Patches,
     op: RadiosityOperator,
     arrays: Sequence[LuminaireArray],
-    points: np.ndarray | None = None,
+    points: np.ndarray | PointSet | None = None,
     maintained: bool = True,
     cancel: Callable[[], bool] | None = None,
 ) -> tuple[np.ndarray, np.ndarray]:
     """Illuminance (lux) of the arrays as written, placed exactly (no lattice), on every
-    patch (n,) and at ``points`` (q,): for views, reports and judging."""
+    patch (n,) and at ``points`` (q,; up, or a ``PointSet``'s values): views, judging."""
     lums, scale = [], []
     for a, _, ps in array_luminaires(patches, arrays):
         for p in ps:
             lums.append(p)
             scale.append(a.dimming * (a.maintenance_factor if maintained else 1.0))
-    pts = np.zeros((0, 3)) if points is None else np.asarray(points, float).reshape(-1, 3)
+    pts = as_point_set(points)
     if not lums:
-        return np.zeros(patches.n), np.zeros(len(pts))
+        return np.zeros(patches.n), np.zeros(pts.size)
     # Responses at unit dimming, then weighted: one column per luminaire.
     undimmed = [PlacedLuminaire(p.name, p.position, p.photometry, p.aim, p.c0, 1.0) for p in lums]
     resp = luminaire_responses(

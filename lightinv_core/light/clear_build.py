@@ -45,7 +45,7 @@ from lightinv_core.light.clear_glazing import (
     clear_transmittance,
 )
 from lightinv_core.light.daylight_year import daylight_year, sky_groups
-from lightinv_core.light.grids import GRID_SEED_OFFSET, design_grids
+from lightinv_core.light.grids import GRID_SEED_OFFSET, design_receivers
 from lightinv_core.transport.clear_glazing import (
     MAX_CLEAR_TRANSMITTANCE,
     Glass,
@@ -233,7 +233,7 @@ def _build(light, design: Design, sources) -> ClearDesignLight:
     flat = np.concatenate([flat, np.asarray(op.F @ E_closed)], axis=1)
     got = flat + _reflected(light, rho, flat)
     lit_H, H_closed = got[:, :-G].reshape(patches.n, G, -1), got[:, -G:]
-    grids = design_grids(light, design.workplanes) if design.workplanes else None
+    grids = design_receivers(light, design)
     at_patches = np.zeros((patches.n, G * B + G))
     for g in range(G):
         block = np.concatenate([lit_H[:, g], H_sun[g]], axis=1)
@@ -243,8 +243,8 @@ def _build(light, design: Design, sources) -> ClearDesignLight:
     points_light, direct = None, np.zeros((G, 0, H), np.float32)
     at_points = None
     if grids is not None:
-        pts = grids.points
-        nrm = np.broadcast_to([0.0, 0.0, 1.0], pts.shape)
+        samples = grids.samples  # a cylinder's ring of vertical samples, reduced below
+        pts, nrm = samples.points, samples.normals
         rays = max(POINT_RAYS, int(op.info.get("rays", DEFAULT_RAYS)))
         seed = int(op.info.get("seed", 0)) + GRID_SEED_OFFSET
         Fp = receiver_factors(pts, nrm, caster, patches.n, rays, seed)
@@ -260,6 +260,8 @@ def _build(light, design: Design, sources) -> ClearDesignLight:
         if len(hours):
             exact = sun_on_points(pts, nrm, lit, glass, caster, to_scene(geo[hours], north))
             direct[:, :, hours] = exact * dn[hours]
+        at_points = samples.values(at_points)
+        direct = np.stack([samples.values(x) for x in direct]) if G else direct[:, : samples.size]
     closed = _blinds(design, grids, direct, H)
     every = np.zeros((G * B + G, H), np.float32)
     blinds = np.zeros_like(every)

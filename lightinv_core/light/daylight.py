@@ -288,9 +288,9 @@ class LayoutDaylight:
             q = self.at_eyes(intention)
             return q, np.ones(len(q))
         if intention.grid is not None:
-            if self.points is None or intention.grid not in self.grids.spans:
+            if self.points is None or not self.grids.has(intention.grid):
                 raise DesignError(f"intention {intention.name!r}: no work plane {intention.grid!r}")
-            span = self.grids.spans[intention.grid]
+            span = self.grids.span(intention.grid)
             q = self.points.quantity(intention, span)[:, 0]
             return q, np.ones(len(q))
         idx = intention_patches(intention, self.surface)
@@ -402,7 +402,7 @@ def layout_daylight(light, design: Design, sources=None, arrays=None) -> LayoutD
     from lightinv_core.light.control_groups import control_plan, group_light
     from lightinv_core.light.daylight_year import sky_groups
     from lightinv_core.light.glare import layout_glare
-    from lightinv_core.light.grids import design_grids, grid_light
+    from lightinv_core.light.grids import design_receivers, grid_light
 
     sources = light.layout(design) if sources is None else tuple(sources)
     arrays = design.arrays if arrays is None else tuple(arrays)
@@ -410,7 +410,7 @@ def layout_daylight(light, design: Design, sources=None, arrays=None) -> LayoutD
     lum = tuple(s for s in sources if not source_type(s.kind).daylit)
     unit = replace(design.daylight, exterior_lux=1.0)
     electric = light.field(lum, design.daylight).illuminance.copy()
-    grids = design_grids(light, design.workplanes) if design.workplanes else None
+    grids = design_receivers(light, design)
     if arrays:
         Hp, _ = arrays_field(light.patches, light.op, arrays)
         electric += Hp

@@ -42,6 +42,7 @@ from lightinv_core.transport.luminaires import (
     direct_at_points,
     direct_on_patches,
 )
+from lightinv_core.transport.point_sets import PointSet, as_point_set
 from lightinv_core.transport.raycast import RayCaster
 from lightinv_core.transport.receivers import receiver_factors
 
@@ -74,7 +75,7 @@ def luminaire_responses(
     lowrank: LowRank,
     placements: Sequence[PlacedLuminaire],
     rows: np.ndarray,
-    points: np.ndarray | None = None,
+    points: np.ndarray | PointSet | None = None,
     caster: RayCaster | None = None,
     rays: int = DEFAULT_RAYS,
     samples: int = BASIS_SAMPLES,
@@ -83,19 +84,20 @@ def luminaire_responses(
     progress: Callable[[float], None] | None = None,
     cancel: Callable[[], bool] | None = None,
 ) -> LuminaireResponses:
-    """Responses of ``placements`` at patch ``rows`` and upward-facing ``points`` (q, 3),
-    on the traced form factors ``F`` and the operator's ``lowrank`` part (see the module).
-    ``cancel()`` returning True raises ``CancelledError`` between chunks."""
+    """Responses of ``placements`` at patch ``rows`` and ``points`` (an array (q, 3):
+    facing up, a work plane's grid; or a ``PointSet``, its values), on the traced form
+    factors ``F`` and the operator's ``lowrank`` part (see the module). ``cancel()``
+    returning True raises ``CancelledError`` between chunks."""
     caster = caster or RayCaster(patches)
     rows = np.asarray(rows, dtype=np.int64)
-    pts = np.zeros((0, 3)) if points is None else np.asarray(points, dtype=float)
-    normals = np.broadcast_to([0.0, 0.0, 1.0], pts.shape)
+    ps = as_point_set(points)
+    pts, normals = ps.points, ps.normals
     Rp = receiver_factors(pts, normals, caster, patches.n, rays, seed + 1)
     F32 = sp.csr_matrix(F).astype(np.float32)
     rho32 = patches.rho.astype(np.float32)[:, None]
     L = len(placements)
     at_rows = np.zeros((len(rows), L), np.float32)
-    at_points = np.zeros((len(pts), L), np.float32)
+    at_points = np.zeros((ps.size, L), np.float32)
     for start in range(0, L, CHUNK):
         if cancel is not None and cancel():
             raise CancelledError("luminaire responses cancelled")
@@ -112,7 +114,7 @@ def luminaire_responses(
             direct = np.column_stack(
                 [direct_at_points(pts, normals, [lum], caster) for lum in chunk]
             )
-            at_points[:, cols] = direct + Rp @ (rho32 * H)
+            at_points[:, cols] = ps.values(direct + Rp @ (rho32 * H))
         if progress is not None:
             progress(min(1.0, (start + len(chunk)) / L))
     return LuminaireResponses(rows, at_rows, at_points, tuple(lum.name for lum in placements))

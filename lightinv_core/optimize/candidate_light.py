@@ -212,7 +212,7 @@ class CandidateLight:
         rect, flux, filt = p.vars.decode(x[None])
         if not p.design.arrays:
             return self.of(rect, flux, filt, lv, None)
-        points = None if p.grids is None else p.grids.points
+        points = None if p.grids is None else p.grids.samples
         Hp, Hq = arrays_field(p.patches, p.light.op, p.arrays_at(x), points)
         exact = np.concatenate([Hp[lv.rows], Hq])[:, None]
         lit = self.of(rect, flux, filt, lv, None, arrays_H=exact)

@@ -101,7 +101,7 @@ def build_level(problem: LevelSource, divisor: int) -> Level:
             pos.append(patch_pos.pop(0))
             weights.append(patch_w.pop(0))
         else:
-            span = problem.grids.spans[it.grid]
+            span = problem.grids.span(it.grid)
             pos.append(len(rows) + np.arange(span.start, span.stop))
             weights.append(np.ones(span.stop - span.start))
     got = receivers(problem.light, rows)

@@ -46,7 +46,7 @@ from lightinv_core.light.control_groups import GroupBatch, control_plan
 from lightinv_core.light.daylight_year import sky_groups
 from lightinv_core.light.en17037_sun import sunlight_values
 from lightinv_core.light.glare import Glare
-from lightinv_core.light.grids import DesignGrids, design_grids
+from lightinv_core.light.grids import DesignGrids, design_receivers
 from lightinv_core.light.intentions import FEASIBILITY_TOL, intention_patches
 from lightinv_core.light.model import LightModel
 from lightinv_core.optimize.candidate_light import CandidateLight, Lit
@@ -161,9 +161,7 @@ class DesignProblem:
         self.zone_size = self.vars.zone_size
         outlines = [self.patches.zone_outline(s.zone) for s in sources]
         self.outlines = tuple(outlines) if any(o is not None for o in outlines) else ()
-        self.grids: DesignGrids | None = (
-            design_grids(light, design.workplanes) if design.workplanes else None
-        )
+        self.grids: DesignGrids | None = design_receivers(light, design)
         # Glare at the design's observers (UGR intentions, ``light/glare.py``).
         ugr = any(i.observers and quantity_spec(i.quantity).from_glare for i in design.intentions)
         self.glare = Glare(light, design) if ugr else None
@@ -238,7 +236,7 @@ class DesignProblem:
                 self.light.op,
                 self.design.arrays,
                 self._patch_rows(),
-                None if self.grids is None else self.grids.points,
+                None if self.grids is None else self.grids.samples,
                 progress,
                 cancel,
             )

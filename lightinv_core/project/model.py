@@ -44,6 +44,7 @@ from lightinv_core.project.scene import SCENE, ZONE, SceneSpec, resolve_path
 from lightinv_core.project.source_kinds import check_source_kinds
 from lightinv_core.project.specs import (
     ARRAY,
+    CALC,
     CONTROL_GROUP,
     DAYLIGHT,
     GOAL,
@@ -53,6 +54,7 @@ from lightinv_core.project.specs import (
     SOURCE,
     WORKPLANE,
     read_arrays,
+    read_calc_objects,
     read_control_groups,
     read_daylight,
     read_goals,
@@ -221,6 +223,16 @@ TOP = ObjectSpec(
             many=True,
         ),
         Field(
+            "calc_objects",
+            read_calc_objects,
+            (),
+            "list",
+            _see("calc_objects", "calculation objects")
+            + ": task areas, wall and ceiling surfaces, cylindrical and free points",
+            of=CALC,
+            many=True,
+        ),
+        Field(
             "rules",
             read_rules,
             (),
@@ -284,6 +296,7 @@ FILE_SPECS = (
     WORKPLANE,
     OBSERVER,
     CONTROL_GROUP,
+    CALC,
     RULE,
     INTENTION,
     GOAL,
@@ -312,6 +325,7 @@ def project_from_values(values: Mapping[str, Any]) -> Project:
             values["workplanes"],
             values["observers"],
             values["control_groups"],
+            values["calc_objects"],
         )
     results = values["results"] or {}
     return Project(
@@ -347,6 +361,7 @@ def project_values(p: Project) -> dict[str, Any]:
         "workplanes": d.workplanes,
         "observers": d.observers,
         "control_groups": d.control_groups,
+        "calc_objects": d.calc_objects,
         "rules": d.rules,
         "intentions": d.intentions,
         "goals": d.goals,

@@ -17,6 +17,7 @@ from typing import Any
 from lightinv_core.design.model import (
     ARRAY_FIELDS,
     ARRAY_RULES,
+    CALC_FIELDS,
     CONTROL_GROUP_FIELDS,
     DAYLIGHT_FIELDS,
     GOAL_FIELDS,
@@ -25,6 +26,7 @@ from lightinv_core.design.model import (
     RULE_FIELDS,
     SOURCE_FIELDS,
     WORKPLANE_FIELDS,
+    CalcObject,
     ControlGroup,
     Daylight,
     Goal,
@@ -52,6 +54,7 @@ ARRAY = ARRAY_FIELDS
 WORKPLANE = WORKPLANE_FIELDS
 OBSERVER = OBSERVER_FIELDS
 CONTROL_GROUP = CONTROL_GROUP_FIELDS
+CALC = CALC_FIELDS
 
 
 def _source(v: Any, path: str) -> Source:
@@ -84,6 +87,12 @@ def read_observers(v: Any, path: str) -> tuple[Observer, ...]:
 def read_control_groups(v: Any, path: str) -> tuple[ControlGroup, ...]:
     """The daylight-linked control groups listed at ``path``, names unique."""
     items = _list(v, path, partial(CONTROL_GROUP.build, ControlGroup), "control groups")
+    return _unique_names(items, path)
+
+
+def read_calc_objects(v: Any, path: str) -> tuple[CalcObject, ...]:
+    """The calculation objects listed at ``path``, names unique."""
+    items = _list(v, path, partial(CALC.build, CalcObject), "calculation objects")
     return _unique_names(items, path)
 
 

@@ -154,11 +154,15 @@ def status_table(
     intentions' bounds, and the geometric rules in one row."""
     rows, flags = [], []
     planes = {p.name: p for p in design.workplanes}
+    calcs = {c.name: c for c in design.calc_objects}
     for it in design.intentions:
         plane = planes.get(it.grid) if it.grid is not None else None
         where = f"work plane {_plane_title(plane)}" if plane is not None else it.name
         if it.grid is not None and plane is None:
+            calc = calcs.get(it.grid)  # a calculation object: its kind and what it reads
             where = f"work plane {it.grid}"
+            if calc is not None:
+                where = f"{calc.spec.label.split(' (')[0].lower()} {it.grid} ({calc.spec.symbol})"
         if it.grid is None and it.group is not None:
             where = f"{it.name} ({'every surface' if it.group == '*' else 'group ' + it.group})"
         if it.weight == 0:
@@ -168,7 +172,10 @@ def status_table(
                 rows.append(row)
                 flags.append(_flag(row[-1]))
             continue
+        calc = calcs.get(it.grid) if it.grid is not None else None
         for crit, req, got, res in intention_rows(it, solution, daylight):
+            if calc is not None and calc.spec.symbol != "E" and crit.startswith("E"):
+                crit = calc.spec.symbol + crit[1:]  # Ezm, Ezmin: what the object reads
             rows.append((where, crit, req, got, res))
             flags.append(_flag(res))
     if rules is not None:

@@ -24,6 +24,7 @@ from lightinv_core.optimize.mop import front_pair
 from lightinv_core.optimize.quality import front_quality, front_scales
 from lightinv_core.project import Project
 from lightinv_core.report import daylight as dl
+from lightinv_core.report.calc_objects import calc_table
 from lightinv_core.report.chosen import Chosen
 from lightinv_core.report.criteria import status_table, workplane_criteria
 from lightinv_core.report.datasheet import (
@@ -189,13 +190,17 @@ def workplane_blocks(ctx: Context) -> list[Block]:
     grids, lux = light.grids, light.grid_lux
     if grids is None:
         return []
-    blocks = [heading("Work planes", "workplanes")]
+    title = "Work planes" if design.workplanes else "Calculation objects"
+    blocks = [heading(title, "workplanes")]
     crit = workplane_criteria(design, ctx.sol, light.daylight)
     if crit is not None:
         blocks.append(table_block(crit, "workplanes"))
     stats = grid_table(design, grids, lux, light.daylight)
     if stats is not None:
         blocks.append(table_block(stats, "workplanes"))
+    calc = calc_table(design, grids, lux, light.daylight)
+    if calc is not None:
+        blocks.append(table_block(calc, "workplanes"))
     outlines = _outlines(ctx)
     for name, span in grids.spans.items():
         pts = grids.points[span]

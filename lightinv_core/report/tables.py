@@ -329,9 +329,13 @@ def _measured(
         stats, checks = res.stats, list(res.checks)
     else:
         if it.grid is not None:
-            span = daylight.grids.spans.get(it.grid) if daylight.grids is not None else None
+            grids = daylight.grids
+            span = grids.span(it.grid) if grids is not None and grids.has(it.grid) else None
             n = "?" if span is None else str(len(daylight.grids.points[span]))
             where = f"grid {it.grid} ({n} points)"
+            calc = {o.name: o for o in daylight.design.calc_objects}.get(it.grid)
+            if calc is not None:  # a calculation object: what it reads, where
+                where = f"{calc.spec.symbol} at {it.grid} ({n} points)"
         elif it.observers is not None:
             where = "observers " + ", ".join(it.observers)
         else:

@@ -21,6 +21,7 @@ import scipy.sparse as sp
 
 from lightinv_core.design.model import Daylight
 from lightinv_core.errors import LightInvError
+from lightinv_core.kinds import Edition
 from lightinv_core.light.model import LightModel
 from lightinv_core.luminaires.photometry import light_warnings
 from lightinv_core.operator.cache import get_operator
@@ -50,13 +51,20 @@ from lightinv_core.transport.formfactors import (
     lost_fraction,
 )
 from lightinv_core.transport.glazing import black_inside, glazing_emission
-from lightinv_core.transport.luminaires import PlacedLuminaire
+from lightinv_core.transport.luminaires import PlacedLuminaire, direct_at_points
 from lightinv_core.transport.photometry import group_illuminance
+from lightinv_core.transport.point_sets import PointSet
 from lightinv_core.transport.raycast import RayCaster
 from lightinv_core.transport.receivers import receiver_factors
 from lightinv_core.transport.scene_light import SceneLight, light_grid, light_scene
 from lightinv_core.transport.solver import group_emission
-from lightinv_core.transport.workplane import Grid, WorkPlane, grid_statistics, work_plane_grid
+from lightinv_core.transport.workplane import (
+    GRID_RULES,
+    Grid,
+    WorkPlane,
+    grid_statistics,
+    work_plane_grid,
+)
 
 AUTO_LRR_PATCHES = 3000
 """Above this many patches, ``method="auto"`` evaluates plain group emission with the
@@ -93,10 +101,12 @@ class SimulationSpec:
     dy, dz) and EN 17037 sunlight exposure at ``sunlight_point`` on
     ``sunlight_date`` (month, day), the sun counted above ``sunlight_min_altitude``
     deg; the sky in Reinhart MF:``sky_mf`` patches); ``workplane``: an
-    EN 12464-1 grid read-out; ``annual``: the weather file, north bearing, occupancy
-    and ground reflectance of the year and the luminaires' daylight-linked dimming
-    (target lux, lowest level, standby watts): a ``Daylight``. ``rays`` per patch and
-    ``seed`` of the form factors; ``method`` "auto", "reference" or "lrr";
+    EN 12464-1 grid read-out by the grid rule of ``edition``; ``points``: free receiver
+    points (a ``PointSet``: a CSV's rows, ``--points``); ``annual``: the weather file,
+    north bearing, occupancy and ground reflectance of the year and the luminaires'
+    daylight-linked dimming (target lux, lowest level, standby watts): a ``Daylight``.
+    ``rays`` per patch and ``seed`` of the form factors; ``method`` "auto",
+    "reference" or "lrr";
     ``operator``, ``use_cache`` and ``scheduler`` for the low-rank operator.
     """
 
@@ -119,6 +129,8 @@ class SimulationSpec:
     sensors: dict[str, tuple[float, float, float, float]] = field(default_factory=dict)
     ground_reflectance: float = 0.2
     workplane: WorkPlane | None = None
+    edition: str = Edition.EN12464_2011
+    points: PointSet | None = None
     annual: Daylight | None = None
     rays: int = DEFAULT_RAYS
     seed: int = 0
@@ -130,7 +142,12 @@ class SimulationSpec:
     @property
     def plain(self) -> bool:
         """Only groups emit and nothing reads a work plane: the operator can do it."""
-        return not self.luminaires and self.workplane is None and not self.daylit
+        return (
+            not self.luminaires
+            and self.workplane is None
+            and self.points is None
+            and not self.daylit
+        )
 
     @property
     def daylit_now(self) -> bool:
@@ -173,6 +190,7 @@ class SimulationResult:
     grid: Grid | None = None
     grid_lux: np.ndarray | None = None
     grid_stats: dict | None = None
+    points_lux: np.ndarray | None = None
     df_grid: np.ndarray | None = None
     df_patches: np.ndarray | None = None
     annual: GridYear | None = None
@@ -239,7 +257,7 @@ def _simulate_reference(spec: SimulationSpec, p: Patches, E, progress) -> Simula
     light = light_scene(lit, F, caster, E, luminaires, seed=spec.seed)
     grid = factors = clear_light = None
     if spec.workplane is not None:
-        grid = work_plane_grid(p, caster, spec.workplane)
+        grid = work_plane_grid(p, caster, spec.workplane, GRID_RULES[spec.edition])
         factors = receiver_factors(grid.points, grid.normals, caster, p.n, spec.rays, spec.seed)
     if clear:
         pts = np.zeros((0, 3)) if grid is None else grid.points
@@ -274,11 +292,22 @@ def _simulate_reference(spec: SimulationSpec, p: Patches, E, progress) -> Simula
         result.df_patches = 100.0 * light.H / spec.exterior_lux
         for s in result.groups:
             s["avg_df"] = 100.0 * s["avg_lux"] / spec.exterior_lux
+    if spec.points is not None:
+        result.points_lux = points_light(spec, p, caster, light)
     if grid is not None:
         moment = (grid, factors, clear_points, clear_light, diffusing)
         _read_workplane(spec, result, F, caster, light, df, moment)
     result.photometry_warnings = list(light_warnings(x.photometry for x in luminaires))
     return result
+
+
+def points_light(spec: SimulationSpec, p: Patches, caster, light) -> np.ndarray:
+    """Illuminance (lux) at the spec's free points: each luminaire's photometry plus the
+    patches' light by the exact point factors."""
+    ps = spec.points
+    factors = receiver_factors(ps.points, ps.normals, caster, p.n, spec.rays, spec.seed)
+    direct = direct_at_points(ps.points, ps.normals, list(spec.luminaires), caster)
+    return ps.values(direct + factors @ light.B)
 
 
 def _read_workplane(spec, result: SimulationResult, F, caster, light, df: bool, moment) -> None:

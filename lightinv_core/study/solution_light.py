@@ -6,7 +6,8 @@ window: every figure they show comes from here, each computed once when first as
 - ``daylight``: the layout in every scenario (``light.daylight.LayoutDaylight``: DF,
   the weather year, dimming energy);
 - ``grids`` and ``grid_lux``: the work planes' EN 12464-1 grids and their illuminance;
-  ``grid_stats`` their Em, Emin, Emax and U0 per work plane.
+  ``grid_stats`` their Em, Emin, Emax and U0 per work plane; ``calc_stats`` the same
+  of each calculation object.
 """
 
 from __future__ import annotations
@@ -21,7 +22,7 @@ from lightinv_core.design.solution import Solution
 from lightinv_core.light.arrays import arrays_field
 from lightinv_core.light.daylight import LayoutDaylight, layout_daylight
 from lightinv_core.light.field import LightField
-from lightinv_core.light.grids import DesignGrids, design_grids, grid_light
+from lightinv_core.light.grids import DesignGrids, design_receivers, grid_light
 from lightinv_core.light.model import LightModel
 from lightinv_core.transport.workplane import grid_statistics
 
@@ -51,10 +52,8 @@ class SolutionLight:
 
     @cached_property
     def grids(self) -> DesignGrids | None:
-        """The design's work-plane grids (None without work planes)."""
-        if not self.design.workplanes:
-            return None
-        return design_grids(self.light, self.design.workplanes)
+        """The design's work-plane grids and calculation objects (None without any)."""
+        return design_receivers(self.light, self.design)
 
     @cached_property
     def grid_lux(self) -> np.ndarray | None:
@@ -69,6 +68,14 @@ class SolutionLight:
         if self.grids is None:
             return {}
         return {n: grid_statistics(self.grid_lux[s]) for n, s in self.grids.spans.items()}
+
+    @property
+    def calc_stats(self) -> dict[str, dict[str, float]]:
+        """The values of each calculation object in the design scenario: points, mean
+        ("Em"), min, max (lux: E, Ez or Esc as its kind reads) and U0 = min / mean."""
+        if self.grids is None:
+            return {}
+        return {n: grid_statistics(self.grid_lux[s]) for n, s in self.grids.calc_spans.items()}
 
 
 def solution_light(prepared, design: Design, solution: Solution) -> SolutionLight:

@@ -4,7 +4,7 @@ A work plane lies ``height`` m above a floor group (default 0.8 m, the usual des
 height) over that floor's extent less a ``border`` band along the walls (default
 0.5 m, the band EN 12464-1 leaves out of a room's calculation area). Its grid
 follows by default EN 12464-1:2011, 4.4 (another edition's rule is passed in as
-``counts``: ``light.grids.GRID_RULES``): the largest spacing is
+``counts``: ``GRID_RULES``): the largest spacing is
 
     p = 0.2 x 5^log10(d)    (m, and at most 10 m)
 
@@ -24,6 +24,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from lightinv_core.errors import LightInvError, SceneError
+from lightinv_core.kinds import Edition
 from lightinv_core.scene.patches import Patches
 from lightinv_core.transport.raycast import RayCaster
 
@@ -50,6 +51,24 @@ def grid_counts(width: float, depth: float) -> tuple[int, int, float]:
     d = short_side if long_side >= 2 * short_side else long_side
     p = en12464_spacing(d)
     return max(1, math.ceil(width / p - 1e-9)), max(1, math.ceil(depth / p - 1e-9)), p
+
+
+def grid_counts_2021(width: float, depth: float) -> tuple[int, int, float]:
+    """EN 12464-1:2021's points along each side of a ``width`` x ``depth`` m area and its
+    largest cell p (m): p from the longer side, side / p rounded (halves up), at least 1."""
+    p = en12464_spacing(max(width, depth))
+    return (
+        max(1, math.floor(width / p + 0.5)),
+        max(1, math.floor(depth / p + 0.5)),
+        p,
+    )
+
+
+GRID_RULES: dict[str, Callable[[float, float], tuple[int, int, float]]] = {
+    Edition.EN12464_2011: grid_counts,
+    Edition.EN12464_2021: grid_counts_2021,
+}
+"""Each edition's grid rule: (width, depth) m -> (points along x, along y, p m)."""
 
 
 @dataclass(frozen=True)
@@ -118,7 +137,7 @@ def work_plane_grid(
     counts: Callable[[float, float], tuple[int, int, float]] = grid_counts,
 ) -> Grid:
     """The EN 12464-1 grid of ``plane`` over its floor group (see the module); ``counts``
-    (width, depth m) -> (nx, ny, cell m) is the edition's rule (``light.grids.GRID_RULES``;
+    (width, depth m) -> (nx, ny, cell m) is the edition's rule (``GRID_RULES``;
     default the 2011 one, ``grid_counts``)."""
     try:
         idx = patches.group_index(plane.group)

@@ -255,8 +255,8 @@ SAVED = {
     "experiment5-twostep": "7962957b9cd8336277433827cc5944732dfa06e067a9b3eee0c9f614db7e11f0",
     "experiment5": "52e2dde92ed16508302ee42d8709f2cbc8e446066f75bfb6b45575cb08580bee",
     "office-demo": "cbaaf5377b272f4a4fb6582e23fdb0c42bc9be5cef733652e43804c9c123af9b",
-    "with_results": "fa8f871068efa0f0a8fb956d5b97b2bb6ca71419d2955a3f5d049f6ad05306df",
-    "zones": "b08aac1a8566217e17986f52e794e69112bdfbc2c9e0d8664344e472036f1f51",
+    "with_results": "a6ea34cdd46483f0433b8a1cf2e23d817f82172db1f1f77d39fb234cfc20df3d",
+    "zones": "7d77bc4f65ed18ad45b34e5f5b2cc14ad99e23bd484dc6eecc4e728f40395c2c",
 }
 
 

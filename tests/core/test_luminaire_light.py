@@ -188,6 +188,7 @@ def test_cli_simulates_luminaires_on_a_work_plane(tmp_path, capsys, monkeypatch)
     )
     argv = ["simulate", "office", "--resolution", "0.5", "--luminaires", str(tmp_path / "lums.csv")]
     argv += ["--workplane", "0.8", "--border", "0.5", "--grid-csv", str(tmp_path / "g.csv")]
+    argv += ["--edition", "2011"]  # its counts below are the 2011 rule's
     assert cli.main([*argv, "--json"]) == 0
     out = json.loads(capsys.readouterr().out)
     g = out["grid"]

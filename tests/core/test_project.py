@@ -115,6 +115,10 @@ VALID: dict = {
         {"name": "window row", "sensor": [0.0, 0.0, 2.0, 2.0], "min_level": 0.2},
         {"name": "inner", "workplane": "wp"},
     ],
+    "calc_objects": [
+        {"name": "task", "kind": "task_area", "corners": [[1, 1], [3, 1], [3, 2], [1, 2]]},
+        {"name": "faces", "kind": "cylindrical", "positions": [[2.0, 2.0]], "height": 1.2},
+    ],
     "rules": [
         {"kind": "area", "sources": ["S1"], "min": 1, "max": 4},
         {"kind": "aspect", "sources": ["S1", "S2"], "max": 3},

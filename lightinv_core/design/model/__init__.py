@@ -1,6 +1,6 @@
 """The inverse design problem as data: sources, geometric rules, lighting intentions,
-luminaire arrays, work planes, observers, daylight and goals, each a frozen dataclass that declares
-its project-file fields once.
+luminaire arrays, work planes, calculation objects, observers, daylight and goals, each a
+frozen dataclass that declares its project-file fields once.
 
 Every field is declared in its class with ``fields.declare``: its typed check (which
 also gives the docs' type and the JSON Schema), default, meaning with units, and how it
@@ -30,6 +30,16 @@ from lightinv_core.design.model.array import (
     ROTATIONS,
     LuminaireArray,
     new_array,
+)
+from lightinv_core.design.model.calc_kinds import RING
+from lightinv_core.design.model.calc_object import (
+    CALC_FIELDS,
+    CalcKind,
+    CalcObject,
+    calc_kind,
+    calc_kind_names,
+    register_calc_kind,
+    unregister_calc_kind,
 )
 from lightinv_core.design.model.control import (
     CONTROL_GROUP_FIELDS,
@@ -72,6 +82,7 @@ __all__ = [
     "ARRAY_RULES",
     "ARRAY_VARIABLES",
     "AXES",
+    "CALC_FIELDS",
     "CONTROL_GROUP_FIELDS",
     "CORNERS",
     "DAYLIGHT_FIELDS",
@@ -86,6 +97,7 @@ __all__ = [
     "MAX_WATTS",
     "NEW_ARRAY_FREE",
     "OBSERVER_FIELDS",
+    "RING",
     "ROTATIONS",
     "RULE_FIELDS",
     "RULE_SOURCES",
@@ -95,6 +107,8 @@ __all__ = [
     "SOURCE_KINDS",
     "VARIABLES",
     "WORKPLANE_FIELDS",
+    "CalcKind",
+    "CalcObject",
     "ControlGroup",
     "Daylight",
     "Design",
@@ -106,6 +120,10 @@ __all__ = [
     "Rule",
     "Source",
     "Workplane",
+    "calc_kind",
+    "calc_kind_names",
     "new_array",
+    "register_calc_kind",
     "source_kind",
+    "unregister_calc_kind",
 ]

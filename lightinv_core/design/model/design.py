@@ -8,6 +8,7 @@ import numbers
 from dataclasses import dataclass, field
 
 from lightinv_core.design.model.array import LuminaireArray
+from lightinv_core.design.model.calc_object import CalcObject
 from lightinv_core.design.model.control import DEFAULT_CONTROL_GROUP, ControlGroup
 from lightinv_core.design.model.daylight import Daylight, Workplane
 from lightinv_core.design.model.goal import Goal
@@ -47,6 +48,7 @@ class Design:
     workplanes: tuple[Workplane, ...] = ()
     observers: tuple[Observer, ...] = ()
     control_groups: tuple[ControlGroup, ...] = ()
+    calc_objects: tuple[CalcObject, ...] = ()
 
     def __post_init__(self) -> None:
         for name, cls in (
@@ -59,6 +61,7 @@ class Design:
             ("workplanes", Workplane),
             ("observers", Observer),
             ("control_groups", ControlGroup),
+            ("calc_objects", CalcObject),
         ):
             items = _items(getattr(self, name), "design", name)
             bad = [x for x in items if not isinstance(x, cls)]
@@ -79,7 +82,10 @@ class Design:
         for what, items in (
             ("source", names),
             ("source or array", names + array_names),
-            ("work plane", [w.name for w in self.workplanes]),
+            (
+                "work plane or calculation object",
+                [w.name for w in self.workplanes] + [c.name for c in self.calc_objects],
+            ),
             ("observer", [o.name for o in self.observers]),
             ("target source", [s.name for s in self.target_sources]),
             ("intention", [i.name for i in self.intentions]),
@@ -108,11 +114,17 @@ class Design:
                 hint = f" ({also} are arrays: they take shr and clearance rules)" if also else ""
                 raise DesignError(f"rule {r.kind!r} names unknown sources {missing}{hint}")
         planes = {w.name for w in self.workplanes}
+        readable = planes | {c.name for c in self.calc_objects}
         for it in self.intentions:
-            if it.grid is not None and it.grid not in planes:
+            if it.grid is not None and it.grid not in readable:
+                if not self.calc_objects:
+                    raise DesignError(
+                        f"intention {it.name!r}: no work plane {it.grid!r} "
+                        f"(work planes: {sorted(planes) or 'none'})"
+                    )
                 raise DesignError(
-                    f"intention {it.name!r}: no work plane {it.grid!r} "
-                    f"(work planes: {sorted(planes) or 'none'})"
+                    f"intention {it.name!r}: no work plane or calculation object {it.grid!r} "
+                    f"(they are: {sorted(readable)})"
                 )
         eyes = {o.name for o in self.observers}
         for it in self.intentions:

@@ -53,8 +53,8 @@ class Intention:
         default=None,
         metadata=declare(
             String(),
-            "a work plane's name: EN 12464-1 values over its grid points (lux only); "
-            "this, `group` or `patches`",
+            "a work plane's or calculation object's name: EN 12464-1 values over its "
+            "grid points (lux only); this, `group` or `patches`",
             nullable=True,
         ),
     )
