@@ -19,7 +19,6 @@ the selected plane's edition.
 
 from __future__ import annotations
 
-import textwrap
 from pathlib import Path
 
 from PySide6 import QtCore, QtWidgets
@@ -29,6 +28,7 @@ from app.dialogs.array_dialog import UGR_TIP, ArrayDialog, product_ugr
 from app.dialogs.workplane_dialog import WorkplaneDialog
 from app.document import Document
 from app.view.polar_plot import PolarPlot
+from app.widgets.compact_table import compact_table, product_title
 from app.widgets.elided_label import ElidedLabel
 from lightinv_core.design.en12464 import (
     DEFAULT_EDITION,
@@ -40,10 +40,10 @@ from lightinv_core.design.en12464 import (
 from lightinv_core.design.preset_glare import preset_glare_limit
 from lightinv_core.errors import LightInvError
 from lightinv_core.kinds import Scenario
-from lightinv_core.light.arrays import Product, resolve_product
+from lightinv_core.light.arrays import resolve_product
 from lightinv_core.luminaires import builtin_catalogue
 from lightinv_core.luminaires.catalogue import CatalogueEntry, file_entries
-from lightinv_core.luminaires.formats import is_photometry_reference, split_reference
+from lightinv_core.luminaires.formats import split_reference
 from lightinv_core.luminaires.photometry import light_warnings
 from lightinv_core.scenarios import scenario_spec
 from lightinv_core.sources.types import source_type
@@ -62,56 +62,6 @@ PLANE_COLUMNS = (
 )
 
 
-def product_title(product: str, p: Product) -> tuple[str, str]:
-    """(what the arrays table shows, its tooltip) of an array's ``product`` resolved as
-    ``p``: a catalogue product's name (catalogue number); a photometric file's maker and
-    catalogue number (its file name without one). An IES file's [LUMINAIRE] is a
-    description ("FROSTED TRANSLUCENT PLASTIC DIFFUSER, ...") and goes in the tooltip."""
-    ph = p.photometry
-    number = " ".join(ph.catalogue_number.split())
-    path = Path(product)
-    if is_photometry_reference(product):
-        maker = " ".join(ph.manufacturer.split())
-        title = " ".join(t for t in (maker, number) if t) or path.stem
-        about = (textwrap.fill(ph.name, 60), f"file {path.name}")  # a tooltip does not wrap
-    else:
-        title = f"{p.name} ({number})" if number else p.name
-        about = (ph.name if ph.name != p.name else "",)
-    rating = f"{p.lumens:,.0f} lm, {p.watts:g} W"
-    return title, "\n".join(t for t in (*about, rating) if t)
-
-
-class CompactTable(QtWidgets.QTableWidget):
-    """A table that asks for three rows' height: a word-wrapped warning makes the
-    panel's layout give a box its preferred height, and a table's usual one squeezed
-    the catalogue box below its minimum, cutting the polar curve off (1366 x 768)."""
-
-    ROWS = 3
-
-    def resizeEvent(self, event) -> None:
-        """Keep the chosen row in view when the panel's layout shrinks the table (it
-        shows one row at 1366 x 768 once the arrays and work planes fill in)."""
-        super().resizeEvent(event)
-        if self.currentItem() is not None:
-            self.scrollToItem(self.currentItem())
-
-    def sizeHint(self) -> QtCore.QSize:
-        rows = self.ROWS * self.verticalHeader().defaultSectionSize()
-        bar = self.horizontalScrollBar().sizeHint().height()
-        height = self.horizontalHeader().sizeHint().height() + rows + bar + 2 * self.frameWidth()
-        return QtCore.QSize(super().sizeHint().width(), height)
-
-
-def _table(columns: tuple[str, ...]) -> QtWidgets.QTableWidget:
-    """A read-only table selected by rows."""
-    table = CompactTable(0, len(columns))
-    table.setHorizontalHeaderLabels(columns)
-    table.setSelectionBehavior(QtWidgets.QAbstractItemView.SelectRows)
-    table.setEditTriggers(QtWidgets.QAbstractItemView.NoEditTriggers)
-    table.verticalHeader().hide()
-    return table
-
-
 class LuminairesPanel(QtWidgets.QWidget):
     """Catalogue, arrays and work planes of the open design (see the module)."""
 
@@ -121,7 +71,7 @@ class LuminairesPanel(QtWidgets.QWidget):
         lay = QtWidgets.QVBoxLayout(self)
         cat_box = QtWidgets.QGroupBox("Catalogue")
         cat = QtWidgets.QVBoxLayout(cat_box)
-        self.catalogue = _table(("product", "lm", "W", "lm/W", "UGR"))
+        self.catalogue = compact_table(("product", "lm", "W", "lm/W", "UGR"))
         self.catalogue.horizontalHeaderItem(4).setToolTip(UGR_TIP)
         self.catalogue.horizontalHeader().setStretchLastSection(True)
         self.catalogue.setMaximumHeight(130)
@@ -132,7 +82,7 @@ class LuminairesPanel(QtWidgets.QWidget):
 
         arr_box = QtWidgets.QGroupBox("Luminaire arrays")
         arr = QtWidgets.QVBoxLayout(arr_box)
-        self.arrays = _table(ARRAY_COLUMNS)
+        self.arrays = compact_table(ARRAY_COLUMNS)
         self.arrays.doubleClicked.connect(lambda _: self.edit_array())
         arr.addWidget(self.arrays)
         row = QtWidgets.QHBoxLayout()
@@ -156,7 +106,7 @@ class LuminairesPanel(QtWidgets.QWidget):
 
         wp_box = QtWidgets.QGroupBox("Work planes (EN 12464-1, maintained)")
         wp = QtWidgets.QVBoxLayout(wp_box)
-        self.planes = _table(PLANE_COLUMNS)
+        self.planes = compact_table(PLANE_COLUMNS)
         wp.addWidget(self.planes)
         row = QtWidgets.QHBoxLayout()
         self.add_plane_button = QtWidgets.QPushButton("Add work plane…")
