@@ -205,9 +205,9 @@ def first_day(qtbot, win, path: Path, model: Model, out: Path) -> None:
     u.tab(win, "Run")
     run_dock = win.findChild(QtWidgets.QDockWidget, "optimisation")
     budget = u.beside(run_dock, "Evaluations")
-    u.type_text(budget, "1500")
+    u.type_text(budget, "600")
     u.press(budget, QtCore.Qt.Key_Tab)
-    assert budget.value() == 1500
+    assert budget.value() == 600
     state = u.label(run_dock, "Ready")
     u.click(u.button(run_dock, "Run"))
     assert u.wait_for(lambda: state.text().startswith("Running"), 30_000), state.text()
@@ -215,7 +215,7 @@ def first_day(qtbot, win, path: Path, model: Model, out: Path) -> None:
     assert "evaluations" in state.text(), state.text()
     # The typed budget ended it (a run may pass its budget by the last batch).
     evaluations = int(re.search(r"([\d,]+) evaluations", state.text()).group(1).replace(",", ""))
-    assert evaluations < 2000, state.text()
+    assert evaluations < 1000, state.text()
     u.screenshot(win, shot, "04-run")
 
     # Load the best result from the Solutions table by clicking its row.
