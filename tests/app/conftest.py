@@ -64,3 +64,13 @@ def open_coarse_office(qtbot, win):
     assert win.load_project(project)
     wait_for_operator(qtbot, win)
     return project
+
+
+def open_by_menu(qtbot, win, path) -> None:
+    """File > Open project..., ``path`` typed into the file dialog and accepted; waits
+    for the operator, then shows the window at the laptop's 1366 x 768."""
+    from tests.app import user as u
+
+    u.answer(lambda: u.menu(win, "File", "Open project..."), u.file_name(path))
+    wait_for_operator(qtbot, win, timeout=120_000)
+    win.resize(1366, 768)

@@ -14,7 +14,7 @@ import pytest
 from PySide6 import QtWidgets
 
 from tests.app import user as u
-from tests.app.conftest import wait_for_operator
+from tests.app.conftest import open_by_menu
 
 PROJECT = Path(__file__).resolve().parents[2] / "resources" / "projects" / "office-integrated.json"
 SHOTS = Path("/tmp/shots-ase")
@@ -24,9 +24,7 @@ SHOTS = Path("/tmp/shots-ase")
 def test_ase_at_most_ten_percent_by_clicks(qtbot, window, tmp_path):
     path = tmp_path / "office.json"
     shutil.copy(PROJECT, path)
-    u.answer(lambda: u.menu(window, "File", "Open project..."), u.file_name(path))
-    wait_for_operator(qtbot, window, timeout=120_000)
-    window.resize(1366, 768)
+    open_by_menu(qtbot, window, path)
     d = window.doc
 
     u.click_tree(window.tree, "S1")

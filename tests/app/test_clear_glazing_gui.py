@@ -11,22 +11,17 @@ from pathlib import Path
 
 from PySide6 import QtCore, QtWidgets
 
-from app.dialogs import ask
 from tests.app import user as u
-from tests.app.conftest import wait_for_operator
-from tests.app.test_dialog_buttons import menu_action
+from tests.app.conftest import open_by_menu
 
 PROJECT = Path(__file__).resolve().parents[2] / "resources" / "projects" / "office-integrated.json"
 SHOTS = Path("/tmp/shots-cleardesign")
 
 
-def test_a_skylight_made_clear_by_clicks(qtbot, window, monkeypatch, tmp_path):
+def test_a_skylight_made_clear_by_clicks(qtbot, window, tmp_path):
     path = tmp_path / "office.json"
     shutil.copy(PROJECT, path)
-    monkeypatch.setattr(ask, "open_file", lambda *a, **k: str(path))
-    menu_action(window, "File/Open project...").trigger()
-    wait_for_operator(qtbot, window, timeout=120_000)
-    window.resize(1366, 768)
+    open_by_menu(qtbot, window, path)
     window.activateWindow()
     QtWidgets.QApplication.processEvents()
     d = window.doc

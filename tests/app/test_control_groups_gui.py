@@ -18,11 +18,9 @@ from pathlib import Path
 import pytest
 from PySide6 import QtCore, QtWidgets
 
-from app.dialogs import ask
 from lightinv_core.design.model import ControlGroup
 from tests.app import user as u
-from tests.app.conftest import wait_for_operator
-from tests.app.test_dialog_buttons import menu_action
+from tests.app.conftest import open_by_menu
 
 pytestmark = pytest.mark.slow
 
@@ -64,7 +62,7 @@ def _window_row(dialog: QtWidgets.QWidget) -> None:
     u.ok(dialog)
 
 
-def test_a_window_row_group_by_clicks(qtbot, window, monkeypatch, tmp_path):
+def test_a_window_row_group_by_clicks(qtbot, window, tmp_path):
     # The integrated demo as shipped, coarser and with a shorter sweep (a test's time).
     data = json.loads(PROJECT.read_text(encoding="utf-8"))
     data["scene"]["resolution"] = 0.7
@@ -72,10 +70,7 @@ def test_a_window_row_group_by_clicks(qtbot, window, monkeypatch, tmp_path):
     data["optimizer"].update(max_evals=1500, epsilon_count=2)
     path = tmp_path / "office.json"
     path.write_text(json.dumps(data), encoding="utf-8")
-    monkeypatch.setattr(ask, "open_file", lambda *a, **k: str(path))
-    menu_action(window, "File/Open project...").trigger()
-    wait_for_operator(qtbot, window, timeout=120_000)
-    window.resize(1366, 768)
+    open_by_menu(qtbot, window, path)
     window.activateWindow()
     QtWidgets.QApplication.processEvents()
     d = window.doc

@@ -18,7 +18,7 @@ from PySide6 import QtWidgets
 from PySide6.QtCore import Qt
 
 from tests.app import user as u
-from tests.app.conftest import wait_for_operator
+from tests.app.conftest import open_by_menu
 
 PROJECT = Path(__file__).resolve().parents[2] / "resources" / "projects" / "office-integrated.json"
 SHOTS = Path("/tmp/shots-en17037")
@@ -36,9 +36,7 @@ def _shown(window) -> np.ndarray:
 def test_en17037_provision_at_least_medium_by_clicks(qtbot, window, tmp_path):
     path = tmp_path / "office.json"
     shutil.copy(PROJECT, path)
-    u.answer(lambda: u.menu(window, "File", "Open project..."), u.file_name(path))
-    wait_for_operator(qtbot, window, timeout=120_000)
-    window.resize(1366, 768)
+    open_by_menu(qtbot, window, path)
     d = window.doc
 
     def as_en17037(dialog: QtWidgets.QWidget) -> None:
@@ -93,9 +91,7 @@ def test_en17037_sunlight_at_an_eye_waits_for_the_sites_altitude(qtbot, window, 
     then rates the hours of sun; the day and the altitude are saved with the project."""
     path = tmp_path / "office.json"
     shutil.copy(PROJECT, path)
-    u.answer(lambda: u.menu(window, "File", "Open project..."), u.file_name(path))
-    wait_for_operator(qtbot, window, timeout=120_000)
-    window.resize(1366, 768)
+    open_by_menu(qtbot, window, path)
 
     def eye(dialog: QtWidgets.QWidget) -> None:
         u.type_text(u.field(dialog, "Name"), "desk")

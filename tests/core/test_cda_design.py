@@ -10,13 +10,17 @@ import numpy as np
 import pytest
 
 from lightinv_core.climate.sun_metrics import continuous_da
-from lightinv_core.design.model import Daylight, Intention
+from lightinv_core.design.model import Intention
 from lightinv_core.light.daylight import layout_daylight
 from lightinv_core.optimize.problem import DesignProblem
-from lightinv_core.study import SimulationSpec, simulate
 from lightinv_core.study.clear_metrics import work_plane_metrics
-from lightinv_core.transport.workplane import WorkPlane
-from tests.core.test_clear_design import TAU, clear_window, sidelit, window_design  # noqa: F401
+from tests.core.test_clear_design import (  # noqa: F401 (fixtures)
+    TAU,
+    clear_window,
+    sidelit,
+    study,
+    window_design,
+)
 
 
 def test_a_diffusing_window_against_the_definition(sidelit):  # noqa: F811
@@ -38,16 +42,8 @@ def test_a_diffusing_window_against_the_definition(sidelit):  # noqa: F811
     assert problem.evaluate(x).G[0, -1] == pytest.approx((0.99 - got) / 0.99 - 1e-3)
 
 
-def test_a_clear_window_against_the_study(sidelit):  # noqa: F811
-    spec = SimulationSpec(
-        scene=sidelit.scene,
-        glazing={"window": TAU},
-        glazing_kinds={"window": "clear"},
-        workplane=WorkPlane(0.8, 0.5),
-        rays=512,
-        annual=Daylight(transmittance=TAU),
-    )
-    want = work_plane_metrics(simulate(spec).clear_year)[0]["cda300_mean"]
+def test_a_clear_window_against_the_study(sidelit, study):  # noqa: F811
+    want = work_plane_metrics(study.clear_year)[0]["cda300_mean"]
     pts = layout_daylight(sidelit, window_design(sidelit)).points
     got = float(pts.cda()[:, 0].mean())
     assert got == pytest.approx(want, abs=0.02)

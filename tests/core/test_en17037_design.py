@@ -16,17 +16,21 @@ from lightinv_core import cli
 from lightinv_core.cli.solve_text import solve_text
 from lightinv_core.climate.en17037 import daylight_hours, daylight_provision
 from lightinv_core.climate.weather import load_weather
-from lightinv_core.design.model import Daylight, DesignError, Goal, Intention, Source
+from lightinv_core.design.model import DesignError, Goal, Intention, Source
 from lightinv_core.light.daylight import layout_daylight
 from lightinv_core.light.daylight_year import weather_path
 from lightinv_core.light.en17037_plane import FLOOR, plane_figures, score_of, shortfall
 from lightinv_core.optimize.problem import DesignProblem
 from lightinv_core.quantities import level_name, quantity_spec
 from lightinv_core.report.en17037 import en17037_table, required_level
-from lightinv_core.study import SimulationSpec, simulate
 from lightinv_core.study.clear_metrics import work_plane_metrics
-from lightinv_core.transport.workplane import WorkPlane
-from tests.core.test_clear_design import TAU, clear_window, sidelit, window_design  # noqa: F401
+from tests.core.test_clear_design import (  # noqa: F401 (fixtures)
+    TAU,
+    clear_window,
+    sidelit,
+    study,
+    window_design,
+)
 
 LEVELS = ("minimum_300", "minimum_100", "medium_500", "medium_300", "high_750", "high_500")
 
@@ -35,19 +39,11 @@ def provision(level: float, name: str = "en") -> Intention:
     return Intention(name, grid="wp", quantity="en17037", min=level)
 
 
-def test_a_clear_window_gives_the_studys_provision(sidelit):  # noqa: F811
+def test_a_clear_window_gives_the_studys_provision(sidelit, study):  # noqa: F811
     """The plane fractions of every criterion and the level through the design's light
     model equal the forward study's (``study.clear_metrics``: the CLI's figures) within
     2 points; the score says the level reached."""
-    spec = SimulationSpec(
-        scene=sidelit.scene,
-        glazing={"window": TAU},
-        glazing_kinds={"window": "clear"},
-        workplane=WorkPlane(0.8, 0.5),
-        rays=512,
-        annual=Daylight(transmittance=TAU),
-    )
-    want = work_plane_metrics(simulate(spec).clear_year)[0]["en17037_provision"]
+    want = work_plane_metrics(study.clear_year)[0]["en17037_provision"]
     lay = layout_daylight(sidelit, window_design(sidelit))
     got = plane_figures(lay.points, lay.grids.spans["wp"])
     for key in LEVELS:
