@@ -28,15 +28,7 @@ def private_operator_cache(tmp_path_factory):
     """Operators built by the tests go to a temporary cache, never the user's; so do
     the window's autosaves."""
     saved = {k: os.environ.get(k) for k in ("LIGHTINV_CACHE_DIR", "LIGHTINV_AUTOSAVE_DIR")}
-    # One cache for every pytest-xdist worker of the run (their base folders share a
-    # parent): an operator one worker built, the others read instead of building it
-    # again. Two workers building the same one at once leave one whole file
-    # (tests/core/test_operator.py).
-    base = tmp_path_factory.getbasetemp()
-    shared = base.parent if os.environ.get("PYTEST_XDIST_WORKER") else base
-    cache = shared / "operator-cache"
-    cache.mkdir(exist_ok=True)
-    os.environ["LIGHTINV_CACHE_DIR"] = str(cache)
+    os.environ["LIGHTINV_CACHE_DIR"] = str(tmp_path_factory.mktemp("operator-cache"))
     os.environ["LIGHTINV_AUTOSAVE_DIR"] = str(tmp_path_factory.mktemp("autosave"))
     yield
     for key, old in saved.items():
