@@ -1,25 +1,45 @@
 """``auto``: the default method, a portfolio a user can leave on.
 
-By the problem's shape (decided from bench/optimizers.py, table in docs/design.md):
+By the problem's shape (decided from bench/optimizers.py, table in the README):
 
 - a design with both power goals gets a front of them: NSGA-II, which on experiment 5
   reaches the sweeps' hypervolume with a sixth of their evaluations;
 - any other design gets one best layout from two searches run interleaved, batch by
   batch, on one budget: CMA-ES with IPOP restarts (the fastest to a target on the
-  paper's experiments and the demos) and VNS restarted from diverse layouts (the
-  explorer: on deceptive matches every CMA-ES restart ends on one local optimum). The
-  next batch goes to the search that has used the least of its share (``COST``:
-  evaluations plus a fixed cost per batch, so the share is about CPU time yet the same
-  seed gives the same run on any machine). A search whose best has not improved by
-  ``GAIN`` (relative) for ``patience`` of its own evaluations is stagnating: CMA-ES's
-  share falls to ``STAGNANT_SHARE`` (its restarts keep ending in one basin) until it
-  improves again. VNS restarts when a whole sweep of its neighbourhoods finds nothing
-  better (a local optimum of every one), from the random valid layout farthest from
-  where its earlier runs ended. The answer is the best of both (search.better).
+  paper's patio experiments) and VNS restarted from diverse layouts (the fastest in
+  CPU time at the office's scale, and the explorer: on deceptive matches every CMA-ES
+  restart ends on one local optimum).
+
+The rule (a bandit over the two searches, by recent gain per unit of work):
+
+- each search's work is counted, not timed: its evaluations plus ``COST`` per batch
+  (``cma``'s ask and tell, a VNS batch's own overhead; measured in CPU with one BLAS
+  thread: a CMA-ES generation of 10-11 costs about as much as 56 evaluations on the
+  office demo and 69 on the patio). Counted, so the same project and seed give the same
+  run on any machine and under any load (docs/project-file.md promises it);
+- its **rate** is the relative fall of its best f + P (``relative_gain``; becoming
+  feasible counts ``FEASIBLE_GAIN``) over the most recent ``WINDOW`` of its own work,
+  divided by that work;
+- its **weight** is its rate over the best rate, at least ``FLOOR`` (so a search that
+  is behind keeps a sixth of the work and can overtake); both weigh 1 until each has
+  done ``PROBE`` of work (a cheap first phase that measures both);
+- the next batch goes to the search with the least work per weight;
+- a search whose best has not improved by ``GAIN`` for ``patience`` of its own
+  evaluations is stagnating and weighs ``FLOOR`` (CMA-ES's restarts ending in one
+  basin; a VNS run in a local optimum), whatever its rate (its small gains there lead
+  nowhere more often than not: measured, weighting them by their rate cost a run on
+  the three-luminaire match its success);
+- VNS restarts when a whole sweep of its neighbourhoods finds nothing better, or when
+  it stagnates, from the random valid layout farthest from where its earlier runs
+  ended.
+
+The answer is the best of both (search.better). Each search's own moves are those of
+the seed (it draws from its own generator, as it would alone).
 """
 
 from __future__ import annotations
 
+import bisect
 from dataclasses import dataclass, replace
 
 import numpy as np
@@ -36,15 +56,19 @@ from lightinv_core.optimize.termination import StopRule
 from lightinv_core.optimize.vns import VNSRun
 
 FRONT_GOALS = frozenset(OBJECTIVES)
-COST = {"cmaes": 50, "vns": 8}
-"""Fixed cost of one batch, in evaluations: ``cma``'s ask and tell and the batch's own
-overhead. Measured (CPU, one BLAS thread) with VNS's batch of 32 as 32 + 8: a CMA-ES
-generation of 10-11 costs as much as 56 evaluations on the office demo and 69 on the
-patio."""
 GAIN = 1e-3
 """A search improves when its best f + P falls by this share (or becomes feasible)."""
-STAGNANT_SHARE = 0.25
-"""CMA-ES's share while it stagnates (its restarts keep ending in one basin)."""
+FLOOR = 0.2
+"""Least weight of a search (behind, or stagnating): it keeps a sixth of the work."""
+WINDOW = 0.5
+"""A search's rate is measured over this share of its own work (the recent half)."""
+COST = {"cmaes": 50, "vns": 8}
+"""Work of one batch beside its evaluations, in evaluations (module docstring)."""
+PROBE = 300
+"""Work (evaluations) each search does before the rates move the shares (the first
+phase: a few CMA-ES generations, a few VNS batches)."""
+FEASIBLE_GAIN = 1.0
+"""The relative gain of becoming feasible (as large as any fall of f + P)."""
 RESTART_SEED = 104_729
 """Added to the run's seed for the VNS restarts' layouts. Each search draws from the
 run's seed as it would alone, so until VNS first restarts each is step for step the
@@ -68,19 +92,28 @@ def patience(nvar: int) -> int:
 def real_gain(value: float, penalty: float, value0: float, penalty0: float) -> bool:
     """Whether (value, penalty) improves on (value0, penalty0) by more than ``GAIN``:
     it becomes feasible, or its f + P falls by that share in the same class."""
+    return relative_gain(value, penalty, value0, penalty0) > GAIN
+
+
+def relative_gain(value: float, penalty: float, value0: float, penalty0: float) -> float:
+    """How much (value, penalty) improves on (value0, penalty0), at most 1: becoming
+    feasible counts ``FEASIBLE_GAIN``, else the fall of f + P over abs(value0)."""
     if (penalty == 0.0) != (penalty0 == 0.0):
-        return penalty == 0.0
+        return FEASIBLE_GAIN if penalty == 0.0 else 0.0
     if not np.isfinite(value0):
-        return bool(np.isfinite(value))
-    return value < value0 - GAIN * abs(value0)
+        return FEASIBLE_GAIN if np.isfinite(value) else 0.0
+    fall = (value0 - value) / max(abs(value0), 1e-12)
+    return float(min(max(fall, 0.0), 1.0))
 
 
 class _Arm:
-    """One search of the portfolio: its cost so far and its last real improvement."""
+    """One search of the portfolio: its work, its best after each of its steps and
+    its last real improvement."""
 
     def __init__(self, name: str, run):
         self.name, self.run = name, run
-        self.cost = 0.0
+        self.work = 0.0  # its evaluations plus COST per batch
+        self.trace: list[tuple[float, float, float]] = [(0.0, *run.budget.best[:2])]
         self.mark = (np.inf, np.inf)  # (value, penalty) at the last real gain
         self.mark_evals = 0
         self.ends: list[np.ndarray] = []  # VNS: where each run ended (unit cube)
@@ -89,15 +122,40 @@ class _Arm:
     def evals(self) -> int:
         return self.run.budget.evals
 
-    def step(self) -> None:
-        m = self.run.step()
-        self.cost += m + COST[self.name]
+    def step(self, before=None) -> None:
+        """One batch of the search (``before()`` first: a VNS restart's draws)."""
+        if before is not None:
+            before()
+        self.work += self.run.step() + COST[self.name]
         value, pen = self.run.budget.best[:2]
+        self.trace.append((self.work, value, pen))
         if real_gain(value, pen, *self.mark):
             self.mark, self.mark_evals = (value, pen), self.evals
 
     def stagnating(self, nvar: int) -> bool:
         return self.evals - self.mark_evals >= patience(nvar)
+
+    def rate(self) -> float:
+        """Relative gain per unit of work over the most recent ``WINDOW`` of its work."""
+        span = WINDOW * self.work
+        if span <= 0.0:
+            return 0.0
+        times = [t for t, _, _ in self.trace]
+        i = max(bisect.bisect_right(times, self.work - span) - 1, 0)
+        _, v0, p0 = self.trace[i]
+        _, v1, p1 = self.trace[-1]
+        return relative_gain(v1, p1, v0, p0) / span
+
+
+def weights(arms: list[_Arm], nvar: int) -> list[float]:
+    """Each search's weight (module docstring): 1 each while probing, else its rate
+    over the best rate, at least ``FLOOR``; ``FLOOR`` while it stagnates."""
+    if any(a.work < PROBE for a in arms):
+        return [1.0 for _ in arms]
+    rates = [a.rate() for a in arms]
+    top = max(rates)
+    w = [max(FLOOR, r / top) if top > 0.0 else 1.0 for r in rates]
+    return [FLOOR if a.stagnating(nvar) else x for a, x in zip(arms, w, strict=True)]
 
 
 def _restart_vns(problem: DesignProblem, arm: _Arm, rng: np.random.Generator) -> None:
@@ -122,11 +180,13 @@ def _stalled(arms: list[_Arm], stall: int | None) -> str | None:
 
 
 def interleaved(
-    problem: DesignProblem, context: RunContext, trials: int = 32
+    problem: DesignProblem, context: RunContext, trials: int = 32, log: list | None = None
 ) -> tuple[SearchResult, dict[str, int]]:
     """CMA-ES and VNS interleaved on one budget (module docstring), with the context's
     seed, stop rule and hooks; returns the best over both and each search's
-    evaluations. Progress and history follow the best so far over both."""
+    evaluations. Progress and history follow the best so far over both. ``log``, when
+    given, gets one row per batch: (search stepped, each search's work so far,
+    the weights that chose it, each search's evaluations so far)."""
     quiet = RunContext(stop=StopRule(max_evals=None), seed=context.seed)
     arms = [
         _Arm("cmaes", CMAESRun(problem, quiet)),
@@ -154,11 +214,17 @@ def interleaved(
 
     absorb()
     while (why := total.why() or _stalled(arms, stall)) is None:
-        share = {"cmaes": STAGNANT_SHARE if arms[0].stagnating(nvar) else 1.0, "vns": 1.0}
-        arm = min(arms, key=lambda a: a.cost / share[a.name])
+        w = weights(arms, nvar)
+        k = min(range(len(arms)), key=lambda i: arms[i].work / w[i])
+        arm = arms[k]
+        before = None
         if arm.name == "vns" and (arm.run.stuck or arm.stagnating(2 * nvar)):
-            _restart_vns(problem, arm, rng)
-        arm.step()
+            before = lambda arm=arm: _restart_vns(problem, arm, rng)  # noqa: E731
+        arm.step(before)
+        if log is not None:
+            log.append(
+                (arm.name, tuple(a.work for a in arms), tuple(w), tuple(a.evals for a in arms))
+            )
         iterations += 1
         absorb()
         if context.progress is not None:

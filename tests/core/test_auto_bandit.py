@@ -1,0 +1,97 @@
+"""``auto``'s bandit: the shares of work (evaluations plus a cost per batch) of CMA-ES
+and VNS follow their recent gain per unit of work, and a search that stagnates gives its
+share to the other; counted, so the same seed gives the same run."""
+
+from __future__ import annotations
+
+from types import SimpleNamespace
+
+import pytest
+
+from lightinv_core.design.model import CORNERS, Design, Goal, Source
+from lightinv_core.light.model import LightModel
+from lightinv_core.operator.build import build_operator
+from lightinv_core.operator.settings import OperatorSettings
+from lightinv_core.optimize import portfolio
+from lightinv_core.optimize.method import RunContext
+from lightinv_core.optimize.portfolio import FLOOR, PROBE, _Arm, interleaved, weights
+from lightinv_core.optimize.problem import DesignProblem
+from lightinv_core.optimize.termination import StopRule
+from lightinv_core.scene.builtin import builtin_scene
+from lightinv_core.scene.patches import mesh_patches
+
+
+def arm(trace: list[tuple[float, float]], evals: int = 100, mark_evals: int = 100) -> _Arm:
+    """An arm whose own best after each step was trace[i] = (work, f + P), feasible."""
+    run = SimpleNamespace(budget=SimpleNamespace(best=(trace[0][1], 0.0, 0.0), evals=evals))
+    a = _Arm("x", run)
+    a.trace = [(t, v, 0.0) for t, v in trace]
+    a.work = trace[-1][0]
+    a.mark_evals = mark_evals
+    return a
+
+
+def test_the_faster_gaining_search_gets_the_weight_and_the_other_the_floor():
+    # Both did 2,000 of work; over their recent 1,000 one halved its f + P, the other
+    # fell 1%.
+    fast = arm([(0.0, 1.0), (1000.0, 0.5), (2000.0, 0.25)])
+    slow = arm([(0.0, 1.0), (1000.0, 0.5), (2000.0, 0.495)])
+    assert weights([fast, slow], nvar=4) == [1.0, FLOOR]
+    # Half the gain per unit of work weighs half.
+    half = arm([(0.0, 1.0), (1000.0, 0.5), (2000.0, 0.375)])
+    assert weights([fast, half], nvar=4) == pytest.approx([1.0, 0.5])
+    # While either has not done PROBE of work both weigh 1 (the first phase).
+    new = arm([(0.0, 1.0), (PROBE / 2, 0.99)])
+    assert weights([fast, new], nvar=4) == [1.0, 1.0]
+
+
+def test_a_stagnating_search_weighs_the_floor_whatever_its_rate():
+    gaining = arm([(0.0, 1.0), (1000.0, 0.5), (2000.0, 0.25)])
+    # The same recent gain, but no real gain in patience(4) = 500 of its evaluations.
+    stagnant = arm([(0.0, 1.0), (1000.0, 0.5), (2000.0, 0.25)], evals=2000, mark_evals=1000)
+    assert weights([gaining, stagnant], nvar=4) == [1.0, FLOOR]
+
+
+@pytest.fixture(scope="module")
+def light():
+    scene = builtin_scene("office", 0.6)
+    patches = mesh_patches(scene)
+    return LightModel(scene, patches, build_operator(patches, OperatorSettings(rank=100, rays=256)))
+
+
+def deceptive(light) -> DesignProblem:
+    """Three luminaires matching three targets (bench/optimizers.py's
+    ``three-luminaires``): CMA-ES's restarts end with one luminaire over two targets."""
+    targets = (
+        Source("t1", "lum_west", "luminaire", (0.2, 0.5, 0.9, 2.0), flux=4000.0),
+        Source("t2", "lum_west", "luminaire", (0.3, 3.0, 1.2, 4.2), flux=4000.0),
+        Source("t3", "lum_east", "luminaire", (0.5, 1.0, 1.4, 3.0), flux=4000.0),
+    )
+    free = tuple(
+        Source(f"L{i}", t.zone, "luminaire", (0, 0, 0.3, 0.3), free=CORNERS, flux=4000.0)
+        for i, t in enumerate(targets)
+    )
+    return DesignProblem(Design(free, (Goal("match"),), target_sources=targets), light)
+
+
+def test_when_cmaes_stagnates_vns_gets_most_of_the_work(light, monkeypatch):
+    """On the deceptive match, once CMA-ES weighs the floor (stagnating, or gaining far
+    less per unit of work) the batches go to VNS until it has about 1 / FLOOR times
+    CMA-ES's work: far more than the equal shares of a portfolio without the rule; and
+    the same seed gives the same run, batch for batch."""
+    # No VNS restarts: its path is VNS's alone, so the shares are the rule's only.
+    monkeypatch.setattr(portfolio, "_restart_vns", lambda *a: None)
+    log: list = []
+    res, used = interleaved(deceptive(light), RunContext(seed=0, stop=StopRule(6000)), log=log)
+    assert res.evaluations == used["cmaes"] + used["vns"] >= 6000
+    floored = [i for i, row in enumerate(log) if row[2] == (FLOOR, 1.0)]
+    assert len(floored) >= 20  # CMA-ES fell to the floor and stayed there a while
+    # The work each search did in the batches chosen under those weights.
+    spent = [0.0, 0.0]
+    for i in floored:
+        for k in (0, 1):
+            spent[k] += log[i][1][k] - log[i - 1][1][k]
+    assert spent[1] / sum(spent) >= 0.7
+    again: list = []
+    interleaved(deceptive(light), RunContext(seed=0, stop=StopRule(6000)), log=again)
+    assert again == log
