@@ -14,7 +14,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from lightinv_core.design.model import CORNERS, Design, Goal, Intention, Rule, Source
+from lightinv_core.design.model import CORNERS, Design, Goal, Intention, Source
 from lightinv_core.light.model import LightModel
 from lightinv_core.operator.build import build_operator
 from lightinv_core.operator.radiosity import RadiosityOperator
@@ -29,6 +29,7 @@ from lightinv_core.project import Project, SceneSpec
 from lightinv_core.scene.builtin import builtin_scene
 from lightinv_core.scene.patches import mesh_patches
 from lightinv_core.study import Prepared, solve
+from tests.core.test_optimizers import desk_design
 
 
 @pytest.fixture(scope="module")
@@ -37,20 +38,6 @@ def office():
     patches = mesh_patches(scene)
     op = build_operator(patches, OperatorSettings(rank=100, rays=256))
     return scene, patches, op
-
-
-def design(both_goals: bool) -> Design:
-    lum = Source("L", "lum_west", "luminaire", (0, 0, 1, 1), free=(*CORNERS, "flux"), flux=4e3)
-    sky = Source("S", "skylight", "skylight", (0, 0, 1, 1), free=CORNERS)
-    goals = (Goal("min_electric_power"),)
-    if both_goals:
-        goals += (Goal("max_light_power"),)
-    return Design(
-        (lum, sky),
-        goals,
-        (Rule("area", ("S",), max=3.0),),
-        (Intention("desks", "desks", min=60.0),),
-    )
 
 
 @pytest.fixture
@@ -90,7 +77,7 @@ def test_every_method_reports_every_evaluation_within_its_total_budget(
     office, counted, name, both_goals
 ):
     scene, patches, op = office
-    d = design(both_goals)
+    d = desk_design(60.0, both_goals)
     method = registry.get_method(name)
     if method.refusal(d) is not None:
         pytest.skip(f"{name} does not apply: {method.refusal(d)}")
@@ -104,7 +91,7 @@ def test_every_method_reports_every_evaluation_within_its_total_budget(
 
 def test_the_sweeps_share_one_budget_where_they_used_one_per_run(office, counted):
     scene, patches, op = office
-    problem = DesignProblem(design(True), LightModel(scene, patches, op))
+    problem = DesignProblem(desk_design(60.0, True), LightModel(scene, patches, op))
     eps = registry.get_method("epsilon")
     res = eps.run(problem, RunContext(SETTINGS, StopRule(max_evals=BUDGET), seed=2))
     # Five sub-runs (two range runs, three bounds) share the budget: before, each had
