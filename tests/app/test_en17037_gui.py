@@ -134,6 +134,7 @@ def test_en17037_sunlight_at_an_eye_waits_for_the_sites_altitude(qtbot, window, 
     u.type_text(altitude, "12")
     u.press(altitude, Qt.Key_Return)
     u.choose(u.field(window.climate_panel, "Sunlight day"), "1 March")
+    u.screenshot(window, SHOTS, "climate-sunlight-fields")
     u.tab(window, "Achieved")
     assert u.wait_for(lambda: any(c.endswith(" h") or "(" in c for c in row()[4:5]), 60_000), row()
     u.screenshot(window, SHOTS, "sunlight-rated")
