@@ -12,8 +12,11 @@ grid with a 0.5 m border) and the same weather year are computed by
   (``study.clear_year``: Tregenza daylight coefficients with the Perez all-weather sky,
   the sun traced hour by hour, its reflections by sun-position bins);
 - **Radiance**: the two-phase daylight-coefficient method (``rfluxmtx`` with a Reinhart
-  MF:4 sky, ``gendaymtx``, ``dctimestep``) for the total, and the sun alone with no
-  bounces for ASE (the harness in ``tests/radiance``).
+  MF:4 sky, ``gendaymtx``, ``dctimestep``) for the total; for ASE the five-phase
+  method's sun step (solar discs of 0.533 degrees at the Reinhart MF:6 patch centres
+  through the black room, ``rcontrib -ab 0``, ``gendaymtx -5 0.533 -d``), and, for
+  comparison, the two-phase sun alone (spread over its MF:4 patch of about 3 degrees)
+  (the harness in ``tests/radiance``).
 
 Also one moment, point by point (``tests.radiance.compare``): the work planes of the
 two daylight rooms under the sun alone, the CIE clear sky alone and both with the
@@ -95,15 +98,18 @@ def lightinv(room: str, group: str, weather: Path, resolution: float):
 
 
 def radiance(patches, group: str, grid, weather: Path):
-    """Radiance's year at the same points: (hourly lux, direct sun lux, cpu s)."""
-    from tests.radiance.run import annual_lux
+    """Radiance's year at the same points: (hourly lux, direct sun lux by solar discs,
+    direct sun lux by the two-phase patches, cpu s of the first two)."""
+    from tests.radiance.run import annual_lux, annual_sun_discs
 
     t0 = cpu()
     lux = annual_lux(patches, {group: TAU}, grid.points, grid.normals, weather)
-    sun = annual_lux(
+    discs = annual_sun_discs(patches, {group: TAU}, grid.points, grid.normals, weather)
+    spent = cpu() - t0
+    spread = annual_lux(
         patches, {group: TAU}, grid.points, grid.normals, weather, direct_sun_only=True
     )
-    return lux, sun, cpu() - t0
+    return lux, discs, spread, spent
 
 
 def main() -> None:
@@ -133,8 +139,10 @@ def main() -> None:
         for room, group in ROOMS.items():
             t = time.perf_counter()
             grid, patches, lux, sun, occ, cpu_li = lightinv(room, group, weather, args.resolution)
-            r_lux, r_sun, cpu_rad = radiance(patches, group, grid, weather)
+            r_lux, r_sun, r_spread, cpu_rad = radiance(patches, group, grid, weather)
             ours, theirs = metrics(lux, sun, occ), metrics(r_lux, r_sun, occ)
+            spread_ase = float(ase(r_spread[:, occ]).share)
+            lit = occ & (r_sun.max(axis=0) > 0)
             day = occ & (r_lux.mean(axis=0) > 50)
             rel = np.abs(lux[:, day].sum(axis=1) / np.maximum(r_lux[:, day].sum(axis=1), 1e-9) - 1)
             out["rooms"][room] = {
@@ -144,6 +152,8 @@ def main() -> None:
                 "radiance": theirs,
                 "difference_points": {k: 100 * (ours[k] - theirs[k]) for k in ours},
                 "annual_lux_mean_rel_error": float(rel.mean()),
+                "radiance_ase_two_phase_sun": spread_ase,
+                "direct_sun_sum_ratio": float(sun[:, lit].sum() / r_sun[:, lit].sum()),
                 "lightinv_cpu_s": cpu_li,
                 "radiance_cpu_s": cpu_rad,
                 "cpu_ratio_radiance_over_lightinv": cpu_rad / cpu_li,

@@ -254,3 +254,64 @@ def annual_lux(
         raise RuntimeError(f"daylight matrix {dc.shape} and sky matrix {sky.shape} disagree")
     rgb = np.einsum("qpc,ptc->qtc", dc, sky)
     return rgb @ RGB_TO_LUX
+
+
+SUN_DISC_DEG = 0.533
+"""The sun's apparent diameter, degrees (the five-phase method's solar discs)."""
+
+
+def annual_sun_discs(
+    patches: Patches,
+    glazing: dict[str, float],
+    points: np.ndarray,
+    normals: np.ndarray,
+    weather_path: str | Path,
+    *,
+    north_deg: float = 0.0,
+    mf: int = 6,
+    openings: set[str] | frozenset[str] = frozenset(),
+) -> np.ndarray:
+    """The sun's direct light (lux, (q, hours)) for ASE by the five-phase method's sun
+    step: solar discs of ``SUN_DISC_DEG`` at the Reinhart MF:``mf`` patch centres
+    (``reinsrc.cal``), their coefficients at the points through the black scene by
+    ``rcontrib -ab 0`` (shadow rays only, through the glass), and the sun matrix
+    ``gendaymtx -5 0.533 -d`` (each hour's sun radiance for a disc, in its nearest
+    patch). Unlike ``annual_lux(direct_sun_only=True)``, whose sun is spread over a
+    patch of about 3 degrees, the beam's edge stays sharp. Only the discs some hour uses
+    are traced."""
+    turn = np.radians(-north_deg)
+    rot = np.array(
+        [[math.cos(turn), -math.sin(turn), 0], [math.sin(turn), math.cos(turn), 0], [0, 0, 1]]
+    )
+    p = np.asarray(points, float).reshape(-1, 3) @ rot.T
+    n = np.asarray(normals, float).reshape(-1, 3) @ rot.T
+    with tempfile.TemporaryDirectory(prefix="lightinv-rad-") as d:
+        tmp = Path(d)
+        epw = _epw(Path(weather_path), tmp)
+        _run(["epw2wea", epw.name, "weather.wea"], tmp)
+        sky = ["gendaymtx", "-5", f"{SUN_DISC_DEG:g}", "-d", "-m", str(mf), "-O0", "-of"]
+        _run([*sky, "weather.wea"], tmp, out=tmp / "sun.smx")
+        sun = read_matrix(tmp / "sun.smx")  # (1 + patches, hours, 3), row 0 the ground
+        bins = np.flatnonzero(sun[1:].any(axis=(1, 2))) + 1
+        where = _run(
+            ["rcalc", "-e", f"MF:{mf}", "-f", "reinsrc.cal", "-e", "Rbin=$1",
+             "-o", "${Dx} ${Dy} ${Dz}"],
+            tmp, stdin="".join(f"{b}\n" for b in bins).encode(),
+        )  # fmt: skip
+        dirs = np.array(where.split(), dtype=float).reshape(-1, 3)
+        discs = "".join(
+            f"void light solar{b}\n0\n0\n3 1 1 1\n\nsolar{b} source sun{b}\n0\n0\n"
+            f"4 {x:.9g} {y:.9g} {z:.9g} {SUN_DISC_DEG:g}\n\n"
+            for b, (x, y, z) in zip(bins, dirs, strict=True)
+        )
+        (tmp / "mods.txt").write_text("".join(f"solar{b}\n" for b in bins))
+        oct_ = _octree(
+            tmp, patches, glazing, frozenset(), discs, openings=openings, black=True,
+            turn_scene_deg=-north_deg,
+        )  # fmt: skip
+        args = ["rcontrib", "-I+", "-y", str(len(p)), "-faf", "-ab", "0", "-dc", "1"]
+        args += ["-dt", "0", "-dj", "0", "-ds", "0", "-lw", "1e-6", "-M", "mods.txt"]
+        _run([*args, oct_.name], tmp, stdin=_rays(p, n), out=tmp / "dc.mtx")
+        dc = read_matrix(tmp / "dc.mtx")  # (q, discs, 3)
+    rgb = np.einsum("qpc,ptc->qtc", dc, sun[bins])
+    return rgb @ RGB_TO_LUX
