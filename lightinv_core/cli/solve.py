@@ -94,6 +94,8 @@ def daylight_summary(light: LightModel, design: Design, sol: Solution) -> dict:
     out["en17037_provision"] = plane_figures(lay.points, span)
     if lay.sunlit:  # EN 17037 sunlight exposure at the observers its intentions name
         out["en17037_sunlight"] = lay.sunlit
+    if lay.glared:  # simplified DGP at the observers its intentions name
+        out["dgp_observers"] = lay.glared
     if lay.points.clear is not None:  # clear glazing lets the sun's beam in
         from lightinv_core.kinds import Quantity
         from lightinv_core.quantities import quantity_spec

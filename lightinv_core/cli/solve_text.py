@@ -74,6 +74,12 @@ def solve_text(out: dict) -> str:
                     f"  EN 17037 sunlight exposure at {name} on {sun['date']}: "
                     f"{sun['hours']:.2f} h ({sun['level']})"
                 )
+            for name, g in d.get("dgp_observers", {}).items():
+                lines.append(
+                    f"  simplified DGP at {name}: above {g['limit']:.2f} in "
+                    f"{100 * g['exceedance']:.1f}% of the {g['hours']:,} occupied hours "
+                    f"(max {g['dgp_max']:.2f}); EN 17037 glare protection {g['en17037_glare']}"
+                )
     for v in out.get("violations", []):
         lines.append(
             f"  violated: {v['name']} {v['constraint']} by {100 * v['amount']:.1f}% "

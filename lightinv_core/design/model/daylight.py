@@ -171,6 +171,14 @@ class Daylight:
             nullable=True,
         ),
     )
+    dgp_limit: float = field(
+        default=0.40,
+        metadata=declare(
+            Number(gt=0.184, hi=1.0),
+            "simplified DGP at observers (`dgp` intentions): the limit whose exceedance "
+            "is counted, 0.40 (EN 17037's medium glare protection; 0.45 minimum, 0.35 high)",
+        ),
+    )
 
     def __post_init__(self) -> None:
         DAYLIGHT_FIELDS.check_fields(self, "daylight")
