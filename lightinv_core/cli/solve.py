@@ -18,6 +18,7 @@ from lightinv_core.errors import LightInvError
 from lightinv_core.light.en17037_plane import plane_figures
 from lightinv_core.light.glare import layout_glare
 from lightinv_core.light.model import LightModel
+from lightinv_core.quantities import quantity_spec
 from lightinv_core.sources.types import daylit
 from lightinv_core.study import SolutionLight, solution_light
 from lightinv_core.value_text import source_summary
@@ -166,7 +167,8 @@ def cmd_solve(args) -> int:
             summary["workplanes"] = light.grid_stats
             if daylit(best.sources):
                 summary["daylight"] = daylight_summary(prepared.light, project.design, best)
-        if project.design.observers and any(i.observers for i in project.design.intentions):
+        rated = [i for i in project.design.intentions if i.observers]
+        if any(quantity_spec(i.quantity).from_glare for i in rated):  # UGR, not DGP or sun
             summary["ugr"] = layout_glare(prepared.light, project.design, best.sources, best.arrays)
     if result.pareto is not None:
         summary["pareto"] = [

@@ -11,6 +11,7 @@ none does.
 from __future__ import annotations
 
 from lightinv_core.climate.en17037 import F_TIME
+from lightinv_core.climate.sun_metrics import GLARE_LEVELS
 from lightinv_core.design.model import Design
 from lightinv_core.errors import LightInvError
 from lightinv_core.kinds import Quantity
@@ -68,6 +69,9 @@ def en17037_table(lay: LayoutDaylight) -> Table | None:
     for name, got in (lay.sunlit or {}).items():
         rows.append(sunlight_row(lay.design, name, got))
         flags.append("pass" if rows[-1][-1] == PASS else "fail")
+    for name, got in (lay.glared or {}).items():
+        rows.append(glare_row(name, got))
+        flags.append("pass" if rows[-1][-1] == PASS else "fail")
     if not rows:
         return None
     hours = planes[0][1]["daylight_hours"] if planes else 0
@@ -80,7 +84,10 @@ def en17037_table(lay: LayoutDaylight) -> Table | None:
         "horizontal): E_T over 95%. The score is the level met plus the progress towards "
         "the next (what the optimiser follows). Sunlight exposure at an observer's eye: "
         "the hours of the day the sun, above the stated altitude, is seen through clear "
-        "glazing (levels 1.5, 3 and 4 h)."
+        "glazing (levels 1.5, 3 and 4 h). Glare protection at an observer's eye: the "
+        "simplified DGP of each occupied hour's vertical eye illuminance (daylight, sun "
+        "included, the LM-83 blinds), a level met when its limit (0.45, 0.40, 0.35) is "
+        "exceeded in no more than 5% of the hours."
     )
     return Table(
         "EN 17037 daylight provision",
@@ -105,6 +112,19 @@ def sunlight_row(design: Design, name: str, got: dict) -> tuple[str, ...]:
     value = f"{got['hours']:.2f} h ({got['level']})"
     required = f"≥ {need:g} h ({level_name(spec, need)})"
     return (f"observer {name}", what, value, required, _result(got["hours"] >= need - 1e-9))
+
+
+def glare_row(name: str, got: dict) -> tuple[str, ...]:
+    """One observer's EN 17037 glare protection (``light.dgp_observers.observer_dgp``):
+    the shares of the hours above each level's DGP limit and the level met, against
+    the level of the design's ``dgp_limit`` (0.45 minimum, 0.40 medium, 0.35 high)."""
+    shares = "/".join(f"{100 * got[f'dgp_over_{lim:.2f}']:.1f}" for _, lim in GLARE_LEVELS)
+    limits = "/".join(f"{lim:.2f}" for _, lim in GLARE_LEVELS)
+    what = f"glare protection: DGPs above {limits} in ≤ 5% of the hours"
+    need = next((n for n, lim in GLARE_LEVELS if abs(lim - got["limit"]) < 1e-9), "minimum")
+    ok = ORDER.index(got["en17037_glare"]) >= ORDER.index(need)
+    value = f"{got['en17037_glare']} ({shares}%)"
+    return (f"observer {name}", what, value, f"{need} or better", _result(ok))
 
 
 def _result(ok: bool) -> str:

@@ -164,3 +164,62 @@ def test_what_is_refused(sidelit):  # noqa: F811
     lay = layout_daylight(sidelit, outside)  # the rest of the light stands
     with pytest.raises(DesignError, match="outside the room"):
         lay.quantity(it)
+
+
+@pytest.mark.filterwarnings("ignore::DeprecationWarning")
+def test_the_report_rows(sidelit):  # noqa: F811
+    """The status table's row per eye of the intention (criterion, required, achieved,
+    pass/FAIL) and the EN 17037 table's glare protection row per eye."""
+    from lightinv_core.report.en17037 import en17037_table
+    from lightinv_core.report.glare import observer_rows
+
+    it = Intention("glare", observers=("near", "back"), quantity="dgp", max=0.05)
+    lay = layout_daylight(sidelit, dgp_design(sidelit, (it,)))
+    got = lay.glared
+    near, back = observer_rows(it, None, lay)
+    assert near[:3] == ("observer near (glare)", "DGPs > 0.40 (share of occupied hours)", "≤ 5%")
+    assert near[3].startswith(f"{100 * got['near']['exceedance']:.1f}% (max DGPs 1.00)")
+    assert (near[4], back[4]) == ("FAIL", "pass")
+    rows = {r[0]: r for r in en17037_table(lay).rows if r[0].startswith("observer")}
+    shares = "/".join(f"{100 * got['near'][f'dgp_over_{x}']:.1f}" for x in ("0.45", "0.40", "0.35"))
+    assert rows["observer near"][2:] == (f"none ({shares}%)", "medium or better", "FAIL")
+    assert rows["observer back"][2].startswith("high (0.0/0.0/0.0%)")
+    assert rows["observer back"][-1] == "pass"
+
+
+@pytest.mark.filterwarnings("ignore::DeprecationWarning")
+def test_solve_chooses_the_filter_that_keeps_the_glare_under_five_percent(tmp_path, capsys):
+    """``lightinv-cli solve`` on a side-lit room whose diffusing window's filter is free,
+    for the most sDA300/50% with the near eye's DGPs above 0.40 in at most 5% of the
+    hours: the answer meets it on its edge (more filter, more glare), and ``--json`` and
+    the text carry the eye's figures."""
+    import json
+
+    from lightinv_core.cli import main
+    from lightinv_core.design.model import Design, Goal, Source, Workplane
+    from lightinv_core.optimize.settings import OptimizerSettings
+    from lightinv_core.project import OperatorSettings, Project, SceneSpec, save_project
+
+    window = Source("W1", "window", "window", (0.0, 0.0, 1.6, 4.8), free=("filter",), filter=0.5)
+    it = Intention("glare by the window", observers=("near",), quantity="dgp", max=0.05)
+    design = Design(
+        sources=(window,),
+        goals=(Goal("max_sda"),),
+        workplanes=(Workplane("wp", 0.8, 0.5),),
+        daylight=Daylight(transmittance=TAU),
+        observers=(Observer("near", (3.0, 1.5), azimuth=-90.0),),
+        intentions=(it,),
+    )
+    path = tmp_path / "p.json"
+    settings = OptimizerSettings(method="vns", max_evals=3000)
+    scene = SceneSpec(builtin="sidelit", resolution=0.5)
+    save_project(Project("dgp", scene, design, OperatorSettings(rays=512), settings), path)
+    assert main(["solve", str(path), "--json"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    got = out["daylight"]["dgp_observers"]["near"]
+    assert out["feasible"] and "ugr" not in out
+    assert 0.04 < got["exceedance"] <= 0.05  # on the bound: the filter is as high as it may be
+    assert got["en17037_glare"] == "medium" and got["limit"] == 0.4
+    assert main(["solve", str(path)]) == 0
+    text = capsys.readouterr().out
+    assert f"simplified DGP at near: above 0.40 in {100 * got['exceedance']:.1f}% of" in text
