@@ -31,7 +31,7 @@ Ev is a sum of parts, each the light model's:
 from __future__ import annotations
 
 import weakref
-from dataclasses import dataclass, replace
+from dataclasses import dataclass, field, replace
 from types import SimpleNamespace
 
 import numpy as np
@@ -99,6 +99,7 @@ class EyeDaylight:
     receivers: object
     light: object
     clear_light: ClearLight | None = None
+    _memo: dict = field(default_factory=dict, repr=False)
 
     @property
     def index(self) -> dict[str, int]:
@@ -131,24 +132,45 @@ class EyeDaylight:
 
     def exceedance(self, V: np.ndarray | None = None, limit: float | None = None) -> np.ndarray:
         """(k, m) share of the occupied hours with DGPs above ``limit`` (default the
-        design's ``dgp_limit``), chunked over the candidates."""
+        design's ``dgp_limit``): Ev above ``ev_limit(limit)``."""
         limit = self.daylight.dgp_limit if limit is None else limit
         lux = ev_limit(limit)
         k, T = self.clear.shape
         m = 1 if V is None else V.shape[1]
-        if limit >= 1.0:  # DGPs is capped at 1: never above
+        if limit >= 1.0 or T == 0:  # DGPs is capped at 1: never above; or no hours
             return np.zeros((k, m))
         if V is None or not len(self.cols):
             share = (self.clear > lux).mean(axis=1)
             return np.repeat(share[:, None], m, axis=1)
         sky = self.sky_at_eyes(V)
+        if len(self.cols) == 1:
+            return self._one_group(sky[0], lux)
         out = np.empty((k, m))
-        step = max(1, BATCH_BYTES // max(8 * k * max(T, 1), 1))
+        step = max(1, BATCH_BYTES // (8 * k * T))
         for a in range(0, m, step):
             ev = self.clear[:, None, :] + np.einsum("gkm,gt->kmt", sky[:, :, a : a + step],
                                                     self.exterior)  # fmt: skip
-            out[:, a : a + step] = (ev > lux).mean(axis=2) if T else 0.0
+            out[:, a : a + step] = (ev > lux).mean(axis=2)
         return out
+
+    def _one_group(self, sky: np.ndarray, lux: float) -> np.ndarray:
+        """``exceedance`` with one sky group, sky (k, m) lux per exterior lux at the
+        eyes: an hour t of exterior lux x_t > 0 counts when clear_t + s x_t > lux, i.e.
+        when s > (lux - clear_t) / x_t, so the hours are counted by a binary search in
+        those thresholds, sorted once per eye (O(m log T), not O(m T)); an hour without
+        exterior light counts when the clear glazing alone exceeds."""
+        key = ("one_group", lux)
+        if key not in self._memo:
+            x = self.exterior[0]
+            lit = x > 0
+            always = (self.clear[:, ~lit] > lux).sum(axis=1)
+            thresholds = np.sort((lux - self.clear[:, lit]) / x[lit], axis=1)
+            self._memo[key] = (always, thresholds)
+        always, thresholds = self._memo[key]
+        counts = np.stack(
+            [np.searchsorted(thr, s, side="left") for thr, s in zip(thresholds, sky, strict=True)]
+        )
+        return (always[:, None] + counts) / self.clear.shape[1]
 
     def values_of(self, lit) -> np.ndarray:
         """(k, m) the share of hours above the design's limit at every eye for a

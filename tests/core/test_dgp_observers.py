@@ -85,6 +85,48 @@ def test_eye_illuminance_through_a_clear_window_against_rtrace(sidelit):  # noqa
     assert err.max() < 0.06, (ours, theirs)
 
 
+def test_eye_illuminance_through_a_diffusing_window_against_rtrace():
+    """The Radiance bench office (4 x 6 x 3 m, a 3 x 1.5 m window of reflectance 0) with
+    the window diffusing (0.7; Radiance's ``trans``) under the CIE overcast sky of
+    10,000 lux: each eye's Ev per exterior lux of the sky group (the eyes' form factors
+    to the glowing panes and the room's reflections of them, ``sky_at_eyes``) times the
+    window plane's exterior lux, within 4% of ``rtrace -ab 8 -ad 32768`` (measured
+    0-1.4% in five runs; at -ad 16384 rtrace's own spread reached 2.5%)."""
+    from lightinv_core.design.model import Design, Goal, Source, Workplane
+    from lightinv_core.light.daylight_year import sky_groups
+    from lightinv_core.light.model import LightModel
+    from lightinv_core.operator.build import build_operator
+    from lightinv_core.operator.settings import OperatorSettings
+    from lightinv_core.scene.patches import mesh_patches
+    from lightinv_core.sources.emission import source_stack
+    from tests.radiance.rooms import box_room
+    from tests.radiance.run import point_lux
+    from tests.radiance.scene import sky_cie_overcast
+
+    scene = box_room((4.0, 6.0, 3.0), window=(0.5, 0.9, 3.5, 2.4), resolution=0.5)
+    patches = mesh_patches(scene)
+    light = LightModel(scene, patches, build_operator(patches, OperatorSettings(rays=512)))
+    window = Source("W1", "window", "window", (0.0, 0.0, *light.zone_size("window")))
+    eyes = {"near": (2.0, 1.5, -90.0), "side": (1.0, 3.0, 0.0), "back": (2.0, 5.0, -90.0)}
+    design = Design(
+        sources=(window,),
+        goals=(Goal("min_electric_power"),),
+        workplanes=(Workplane("wp", 0.8, 0.5),),
+        daylight=Daylight(transmittance=TAU),
+        observers=tuple(Observer(n, (x, y), azimuth=a) for n, (x, y, a) in eyes.items()),
+    )
+    at = eye_daylight(light, design)
+    unit = replace(design.daylight, exterior_lux=1.0)
+    V = light.zone_emission(design.sources, *source_stack(design.sources), unit)
+    ours = at.sky_at_eyes(V)[0, :, 0] * sky_groups(light, design).overcast[0] * 10000.0
+    theirs = point_lux(
+        patches, {"window": TAU}, sky_cie_overcast(10000.0, 0.2), at.eyes.points,
+        at.eyes.views, diffusing={"window"}, ab=8, params="-aa 0 -ad 32768 -lw 1e-6",
+    )  # fmt: skip
+    assert theirs.min() > 150.0
+    np.testing.assert_allclose(ours, theirs, rtol=0.04)
+
+
 @pytest.mark.filterwarnings("ignore::DeprecationWarning")
 def test_the_project_agrees_with_the_forward_studys_views(sidelit):  # noqa: F811
     """The same room, glass and year through ``lightinv-cli simulate --view`` (its own
@@ -150,7 +192,24 @@ def test_the_optimiser_follows_a_diffusing_windows_filter(sidelit):  # noqa: F81
         layout = replace(design.sources[0], filter=float(f), free=())
         lay = layout_daylight(sidelit, replace(design, sources=(layout,)))
         assert lay.quantity(it)[0][0] == pytest.approx(s, abs=1e-9)
-        assert lay.glared["near"]["exceedance"] == pytest.approx(s, abs=1e-9)
+        # The layout's figures count the hours one by one (the batch by a binary
+        # search): the same but for a tie rounded the other way (one hour).
+        hour = 1 / lay.glared["near"]["hours"]
+        assert lay.glared["near"]["exceedance"] == pytest.approx(s, abs=hour + 1e-12)
+    # The binary search against the hour-by-hour count, over 41 filters.
+    eyes = eye_daylight(sidelit, design)
+    from lightinv_core.light.dgp_observers import ev_limit
+    from lightinv_core.sources.emission import source_stack
+
+    rect, flux, filt = source_stack(design.sources)
+    filt = np.linspace(0.0, 1.0, 41)[:, None]
+    rect, flux = np.repeat(rect, 41, axis=0), np.repeat(flux, 41, axis=0)
+    unit = replace(design.daylight, exterior_lux=1.0)
+    V = sidelit.zone_emission(design.sources, rect, flux, filt, unit)
+    fast = eyes.exceedance(V)
+    slow = (eyes.ev(V) > ev_limit(0.40)).mean(axis=2)
+    assert np.abs(fast - slow).max() <= 1 / eyes.clear.shape[1] + 1e-12
+    assert np.mean(fast == slow) > 0.95
 
 
 def test_what_is_refused(sidelit):  # noqa: F811
