@@ -87,7 +87,10 @@ class EyeDaylight:
     columns; ``direct`` (k, nz) the eyes' form factors to the zone patches (their
     exitance seen directly), ``taps`` (k, s) form factors x reflectance to the patches
     ``receivers.rows`` the eyes see (the room's reflections); ``clear_light`` the clear
-    glazing's columns at the eyes (None without), every hour and blinds state."""
+    glazing's columns at the eyes (None without), every hour and blinds state; ``rows``
+    (k, nz) the two together per unit exitance of each zone patch (None when the zone
+    basis's rows at the patches seen would not fit: then each batch is lit from
+    ``receivers``); ``seen`` the patches the eyes see (the columns of ``taps``)."""
 
     eyes: Eyes
     daylight: Daylight
@@ -99,6 +102,8 @@ class EyeDaylight:
     receivers: object
     light: object
     clear_light: ClearLight | None = None
+    rows: np.ndarray | None = None
+    seen: np.ndarray | None = None
     _memo: dict = field(default_factory=dict, repr=False)
 
     @property
@@ -108,12 +113,17 @@ class EyeDaylight:
 
     def sky_at_eyes(self, V: np.ndarray) -> np.ndarray:
         """(G, k, m) lux at each eye per exterior lux of each sky group, for diffusing
-        glazing emitting V (nz, m) lm/m² per exterior lux (every sky group's zones)."""
+        glazing emitting V (nz, m) lm/m² per exterior lux (every sky group's zones).
+        With ``rows`` (the eyes' light per unit exitance of each zone patch, made once)
+        a batch costs k x (the group's emitting patches) x m."""
         V = np.asarray(V, dtype=np.float32)
         out = np.zeros((len(self.cols), len(self.eyes.names), V.shape[1]))
         for g, cols in enumerate(self.cols):
             on = cols[np.any(V[cols] != 0, axis=1)]
             if not len(on):
+                continue
+            if self.rows is not None:
+                out[g] = self.rows[:, on] @ V[on].astype(float)
                 continue
             Vg = np.zeros_like(V)
             Vg[on] = V[on]
@@ -243,9 +253,15 @@ def _build(light, design: Design) -> EyeDaylight:
     rho = op.rho
     taps = np.asarray(F[:, seen].multiply(rho[seen][None, :]).todense())
     direct = np.asarray(F[:, op.zone_patches].todense())
+    receivers, rows = None, None
+    if groups.count:
+        receivers = light.receivers(seen)
+        if receivers.Phi_rows is not None:  # the eyes' rows of the zone basis, once
+            rows = direct + taps @ receivers.Phi_rows.astype(float)
+            receivers = None  # (seen x nz: not kept)
     return EyeDaylight(
-        eyes, d, clear, exterior, tuple(groups.cols), direct, taps, light.receivers(seen),
-        light, at_eyes,
+        eyes, d, clear, exterior, tuple(groups.cols), direct, taps, receivers, light,
+        at_eyes, rows, seen,
     )  # fmt: skip
 
 
