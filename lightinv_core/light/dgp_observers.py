@@ -217,7 +217,7 @@ def eye_daylight(light, design: Design) -> EyeDaylight:
     memo = _CACHE.setdefault(light.op, {})
     glazing = tuple((s.kind, s.zone, s.glazing) for s in design.sources)
     key = (design.observers, glazing, clear_sources(design), tuple(design.workplanes),
-           replace(design.daylight, dgp_limit=0.4))  # fmt: skip
+           replace(design.daylight, dgp_limit=0.4, en17037_basis="points"))  # fmt: skip
     if key not in memo:
         memo.clear()
         memo[key] = _build(light, design)
