@@ -133,6 +133,11 @@ def test_one_diffusing_group_scores_the_same_on_both_bases(sidelit):  # noqa: F8
     assert got["hours"]["score"] == pytest.approx(got["points"]["score"], abs=1e-12)
     assert 2.0 < got["hours"]["score"] < 3.0
     assert any(abs(got["hours"][k] - got["points"][k]) > 0.05 for k in LEVELS)
+    # The optimiser scores this case on the points basis's path: the same value.
+    it = Intention("en", grid="wp", quantity="en17037", min=3.0)
+    problem = DesignProblem(replace(design, intentions=(it,)), sidelit)
+    g = problem.evaluate(problem.vars.initial()[None]).G[0, -1]
+    assert g == pytest.approx((3.0 - got["hours"]["score"]) / 3.0 - 1e-3, abs=1e-9)
 
 
 def test_the_field():
