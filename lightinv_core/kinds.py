@@ -88,6 +88,7 @@ class Quantity(Kind):
     EN17037 = "en17037"  # EN 17037 daylight provision of a work plane: a level score 0-3
     SUNLIGHT = "sunlight"  # EN 17037 sunlight exposure at observers: hours of sun on a day
     CDA = "cda"  # continuous daylight autonomy cDA300: mean of min(E / 300, 1) over the hours
+    DGP = "dgp"  # share of occupied hours with simplified DGP above the limit, at observers
 
 
 MAX_LUX = 1e6

@@ -87,7 +87,11 @@ class QuantitySpec:
     ``at_observers``: measured at the design's observers, not at patches or grid points
     (an intention on it names ``observers`` and sets ``max`` only); ``from_glare(total,
     background)``: its value from the glare sum ``sum L² omega / p²`` (cd²/m⁴ sr) and
-    the background luminance (cd/m²) at each eye, arrays broadcast like numpy.
+    the background luminance (cd/m²) at each eye, arrays broadcast like numpy;
+    ``from_eyes(eyes, lit)``: its value from the daylight at the eyes over the year
+    (``light.dgp_observers.EyeDaylight``) for a batch's light ``lit``, (observers, m).
+    An observer quantity with neither is a figure of the fixed glazing (EN 17037
+    sunlight exposure).
     """
 
     name: str
@@ -113,6 +117,7 @@ class QuantitySpec:
     plane: bool = False
     levels: tuple[tuple[str, float], ...] = ()
     point_maps: tuple[tuple[str, str, Callable[[Any, Any], Any]], ...] = ()
+    from_eyes: Callable[[Any, Any], Any] | None = None
 
     @property
     def daylight(self) -> bool:
@@ -361,6 +366,21 @@ for _spec in (
         scenario=Scenario.ANNUAL,
         from_scenarios=lambda light, idx: light.cda(idx),
         uniformity=False,
+    ),
+    QuantitySpec(
+        Quantity.DGP,
+        "simplified DGP exceedance",
+        "simplified DGP at observers: share of occupied hours above the limit (0-1)",
+        "",
+        "a fraction of the occupied hours",
+        *_FRACTION,
+        3,
+        (0.0, 0.05, 0.05, 0.0),
+        metric="DGPs exceedance",
+        scenario=Scenario.ANNUAL,
+        uniformity=False,
+        at_observers=True,
+        from_eyes=lambda eyes, lit: eyes.values_of(lit),
     ),
 ):
     register_quantity(_spec)

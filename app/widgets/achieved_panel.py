@@ -18,6 +18,7 @@ from PySide6 import QtGui, QtWidgets
 
 from app.document import Document
 from app.widgets.numbers import distinct
+from app.widgets.observer_dgp_box import ObserverDgpBox
 from lightinv_core.errors import LightInvError
 from lightinv_core.kinds import Bound, Scenario
 from lightinv_core.quantities import level_name, quantity_spec
@@ -63,6 +64,11 @@ class AchievedPanel(QtWidgets.QWidget):
         self.table.setEditTriggers(QtWidgets.QAbstractItemView.NoEditTriggers)
         self.table.verticalHeader().hide()
         lay.addWidget(self.table)
+        self.observer_dgp = ObserverDgpBox()  # per eye, when a dgp intention asks
+        lay.addWidget(self.observer_dgp)
+        self._below = QtWidgets.QSpacerItem(0, 0)  # takes the rest while the box shows
+        lay.addItem(self._below)
+        self._daylight = None  # the layout's light the rows were read from
         # Every design edit relights once an operator exists (lightingChanged follows
         # designChanged); before it, only the scene's arrival matters.
         doc.lightingChanged.connect(self.refresh)
@@ -81,6 +87,7 @@ class AchievedPanel(QtWidgets.QWidget):
                 ld = d.layout_daylight()
             except LightInvError:
                 ld = None
+        self._daylight = ld
         if ld is None:
             return []
         out = []
@@ -112,7 +119,9 @@ class AchievedPanel(QtWidgets.QWidget):
         return out
 
     def refresh(self) -> None:
+        self._daylight = None
         rows = self.rows()
+        self.observer_dgp.show_figures(getattr(self._daylight, "glared", None))
         d = self.doc
         if d.project is None or d.design_field() is None:
             self.summary.setText("Lighting appears once the radiosity operator is ready.")
@@ -159,6 +168,14 @@ class AchievedPanel(QtWidgets.QWidget):
                 item.setBackground(colours[row.met])
                 self.table.setItem(r, c, item)
         self.table.resizeColumnsToContents()
+        # With the glare box below, the intentions take only their rows' height.
+        fit = self.table.horizontalHeader().height() + 4
+        fit += sum(self.table.rowHeight(r) for r in range(self.table.rowCount()))
+        boxed = self.observer_dgp.isVisibleTo(self)
+        self.table.setMaximumHeight(fit if boxed else 16777215)
+        grow = QtWidgets.QSizePolicy.Expanding if boxed else QtWidgets.QSizePolicy.Minimum
+        self._below.changeSize(0, 0, QtWidgets.QSizePolicy.Minimum, grow)
+        self.layout().invalidate()
 
     def _name_columns(self, rows: list[Row]) -> None:
         """Head the achieved column with the scenario its values are in: the desk's

@@ -18,6 +18,7 @@ from lightinv_core.errors import LightInvError
 from lightinv_core.light.en17037_plane import plane_figures
 from lightinv_core.light.glare import layout_glare
 from lightinv_core.light.model import LightModel
+from lightinv_core.quantities import quantity_spec
 from lightinv_core.sources.types import daylit
 from lightinv_core.study import SolutionLight, solution_light
 from lightinv_core.value_text import source_summary
@@ -94,6 +95,8 @@ def daylight_summary(light: LightModel, design: Design, sol: Solution) -> dict:
     out["en17037_provision"] = plane_figures(lay.points, span)
     if lay.sunlit:  # EN 17037 sunlight exposure at the observers its intentions name
         out["en17037_sunlight"] = lay.sunlit
+    if lay.glared:  # simplified DGP at the observers its intentions name
+        out["dgp_observers"] = lay.glared
     if lay.points.clear is not None:  # clear glazing lets the sun's beam in
         from lightinv_core.kinds import Quantity
         from lightinv_core.quantities import quantity_spec
@@ -164,7 +167,8 @@ def cmd_solve(args) -> int:
             summary["workplanes"] = light.grid_stats
             if daylit(best.sources):
                 summary["daylight"] = daylight_summary(prepared.light, project.design, best)
-        if project.design.observers and any(i.observers for i in project.design.intentions):
+        rated = [i for i in project.design.intentions if i.observers]
+        if any(quantity_spec(i.quantity).from_glare for i in rated):  # UGR, not DGP or sun
             summary["ugr"] = layout_glare(prepared.light, project.design, best.sources, best.arrays)
     if result.pareto is not None:
         summary["pareto"] = [

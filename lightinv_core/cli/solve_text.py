@@ -63,16 +63,25 @@ def solve_text(out: dict) -> str:
                 )
             p = d.get("en17037_provision")
             if p:
+                where = "of the plane in half the daylight hours"
+                if p.get("basis") == "hours":
+                    where = "of the daylight hours on half the plane (the hours basis)"
                 lines.append(
                     f"  EN 17037 daylight provision on {d['workplane']}: {p['level']} (score "
                     f"{p['score']:.2f}; E_T 300/500/750 lux reached on "
                     f"{100 * p['minimum_300']:.0f}/{100 * p['medium_500']:.0f}/"
-                    f"{100 * p['high_750']:.0f}% of the plane in half the daylight hours)"
+                    f"{100 * p['high_750']:.0f}% {where})"
                 )
             for name, sun in d.get("en17037_sunlight", {}).items():
                 lines.append(
                     f"  EN 17037 sunlight exposure at {name} on {sun['date']}: "
                     f"{sun['hours']:.2f} h ({sun['level']})"
+                )
+            for name, g in d.get("dgp_observers", {}).items():
+                lines.append(
+                    f"  simplified DGP at {name}: above {g['limit']:.2f} in "
+                    f"{100 * g['exceedance']:.1f}% of the {g['hours']:,} occupied hours "
+                    f"(max {g['dgp_max']:.2f}); EN 17037 glare protection {g['en17037_glare']}"
                 )
     for v in out.get("violations", []):
         lines.append(

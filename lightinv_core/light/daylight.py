@@ -35,6 +35,7 @@ from lightinv_core.light.daylight_year import (
     daylight_year,
     dimming_levels,
 )
+from lightinv_core.light.dgp_observers import eyed_values, layout_eye_daylight
 from lightinv_core.light.en17037_plane import plane_score, reach_shares
 from lightinv_core.light.en17037_sun import observer_sunlight
 from lightinv_core.light.intentions import (
@@ -258,6 +259,9 @@ class LayoutDaylight:
     groups_error: str = ""  # why the control groups cannot be read (a sensor on no point)
     sunlit: dict | None = None  # {observer: EN 17037 sunlight figures}, None without
     sunlit_error: str = ""  # why the sunlight could not be counted (no minimum altitude)
+    glared: dict | None = None  # {observer: simplified DGP figures}, ``light.dgp_observers``
+    glared_error: str = ""  # why the DGP could not be computed (an eye outside the room)
+    eyed: dict | None = None  # {quantity: {observer: value}} of the ``from_eyes`` quantities
 
     @cached_property
     def _levels(self) -> np.ndarray:
@@ -269,8 +273,12 @@ class LayoutDaylight:
 
     def at_eyes(self, intention: Intention) -> np.ndarray:
         """(k,) the intention's quantity at its observers: UGR, or the hours of sun
-        (EN 17037 sunlight exposure, ``light.en17037_sun``)."""
-        if quantity_spec(intention.quantity).from_glare is None:
+        (EN 17037 sunlight exposure, ``light.en17037_sun``), or a figure of the daylight
+        at the eyes (simplified DGP exceedance, ``light.dgp_observers``)."""
+        spec = quantity_spec(intention.quantity)
+        if spec.from_eyes is not None:
+            return eyed_values(self.eyed, self.glared_error, intention)
+        if spec.from_glare is None:
             if self.sunlit is None:
                 why = self.sunlit_error or "no sunlight was counted"
                 raise DesignError(f"intention {intention.name!r}: {why}")
@@ -464,7 +472,8 @@ def layout_daylight(light, design: Design, sources=None, arrays=None) -> LayoutD
         except DesignError as exc:  # the rest of the light stands; the glare says why
             observed_error = str(exc)
     sunlit_error = ""
-    if any(quantity_spec(it.quantity).from_glare is None for it in eyes):
+    specs = [quantity_spec(it.quantity) for it in eyes]
+    if any(q.from_glare is None and q.from_eyes is None for q in specs):
         try:
             sunlit = observer_sunlight(light, design)
         except LightInvError as exc:  # the rest of the light stands; the intention says why
@@ -484,4 +493,5 @@ def layout_daylight(light, design: Design, sources=None, arrays=None) -> LayoutD
         groups_error,
         sunlit,
         sunlit_error,
+        *layout_eye_daylight(light, design, sources, specs),  # glared, its error, eyed
     )

@@ -44,6 +44,7 @@ from lightinv_core.light.arrays import ArrayLight, array_light, array_shapes, re
 from lightinv_core.light.clear_build import clear_light
 from lightinv_core.light.control_groups import GroupBatch, control_plan
 from lightinv_core.light.daylight_year import sky_groups
+from lightinv_core.light.dgp_observers import eye_daylight
 from lightinv_core.light.en17037_sun import sunlight_values
 from lightinv_core.light.glare import Glare
 from lightinv_core.light.grids import DesignGrids, design_receivers
@@ -254,6 +255,8 @@ class DesignProblem:
         """UGR (observers, m) at an intention's observers for a batch's light, or a
         figure of the fixed glazing there (EN 17037 sunlight exposure, the same for
         every candidate)."""
+        if quantity_spec(intention.quantity).from_eyes is not None:  # simplified DGP
+            return eye_daylight(self.light, self.design).values(intention, lit)
         if quantity_spec(intention.quantity).from_glare is None:
             hours = sunlight_values(self.light, self.design, intention.observers)
             return np.repeat(hours[:, None], lit.V.shape[1], axis=1)

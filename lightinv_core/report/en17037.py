@@ -11,6 +11,7 @@ none does.
 from __future__ import annotations
 
 from lightinv_core.climate.en17037 import F_TIME
+from lightinv_core.climate.sun_metrics import GLARE_LEVELS
 from lightinv_core.design.model import Design
 from lightinv_core.errors import LightInvError
 from lightinv_core.kinds import Quantity
@@ -55,9 +56,13 @@ def en17037_table(lay: LayoutDaylight) -> Table | None:
             for lux, share in crits:
                 value = got[f"{level}_{int(lux)}"]
                 text = f"{level}: {lux:.0f} lux in {100 * F_TIME:.0f}% of the daylight hours"
-                ok = value >= share
+                need = share
+                if got.get("basis") == "hours":  # the share of hours, not of the plane
+                    text = f"{level}: {lux:.0f} lux on {100 * share:.0f}% of the plane"
+                    need = F_TIME
+                ok = value >= need
                 rows.append(
-                    (name, text, f"{100 * value:.1f}%", f"≥ {100 * share:.0f}%", _result(ok))
+                    (name, text, f"{100 * value:.1f}%", f"≥ {100 * need:.0f}%", _result(ok))
                 )
                 flags.append("pass" if ok else "fail")
         need = required_level(lay.design, name)
@@ -68,19 +73,31 @@ def en17037_table(lay: LayoutDaylight) -> Table | None:
     for name, got in (lay.sunlit or {}).items():
         rows.append(sunlight_row(lay.design, name, got))
         flags.append("pass" if rows[-1][-1] == PASS else "fail")
+    for name, got in (lay.glared or {}).items():
+        rows.append(glare_row(name, got))
+        flags.append("pass" if rows[-1][-1] == PASS else "fail")
     if not rows:
         return None
     hours = planes[0][1]["daylight_hours"] if planes else 0
+    basis = (
+        "the 'points' basis: the share of the plane's points that reach the illuminance "
+        "in at least half of"
+        if lay.design.daylight.en17037_basis == "points"
+        else "the 'hours' basis: the share of the hours in which the plane fraction "
+        "reaches the illuminance, at least half of"
+    )
     note = (
-        "EN 17037 daylight provision (Annex A, hourly illuminance; the 'points' basis): "
-        "the share of the plane's points that reach the illuminance in at least half of "
+        f"EN 17037 daylight provision (Annex A, hourly illuminance; {basis} "
         f"the {hours:,} daylight hours (the year's brightest half by diffuse horizontal "
         "illuminance), every blind open. Vertical and inclined openings: E_T over 50% "
         "and E_TM over 95% of the plane; rooflights only (every pane within 10° of "
         "horizontal): E_T over 95%. The score is the level met plus the progress towards "
         "the next (what the optimiser follows). Sunlight exposure at an observer's eye: "
         "the hours of the day the sun, above the stated altitude, is seen through clear "
-        "glazing (levels 1.5, 3 and 4 h)."
+        "glazing (levels 1.5, 3 and 4 h). Glare protection at an observer's eye: the "
+        "simplified DGP of each occupied hour's vertical eye illuminance (daylight, sun "
+        "included, the LM-83 blinds), a level met when its limit (0.45, 0.40, 0.35) is "
+        "exceeded in no more than 5% of the hours."
     )
     return Table(
         "EN 17037 daylight provision",
@@ -105,6 +122,19 @@ def sunlight_row(design: Design, name: str, got: dict) -> tuple[str, ...]:
     value = f"{got['hours']:.2f} h ({got['level']})"
     required = f"≥ {need:g} h ({level_name(spec, need)})"
     return (f"observer {name}", what, value, required, _result(got["hours"] >= need - 1e-9))
+
+
+def glare_row(name: str, got: dict) -> tuple[str, ...]:
+    """One observer's EN 17037 glare protection (``light.dgp_observers.observer_dgp``):
+    the shares of the hours above each level's DGP limit and the level met, against
+    the level of the design's ``dgp_limit`` (0.45 minimum, 0.40 medium, 0.35 high)."""
+    shares = "/".join(f"{100 * got[f'dgp_over_{lim:.2f}']:.1f}" for _, lim in GLARE_LEVELS)
+    limits = "/".join(f"{lim:.2f}" for _, lim in GLARE_LEVELS)
+    what = f"glare protection: DGPs above {limits} in ≤ 5% of the hours"
+    need = next((n for n, lim in GLARE_LEVELS if abs(lim - got["limit"]) < 1e-9), "minimum")
+    ok = ORDER.index(got["en17037_glare"]) >= ORDER.index(need)
+    value = f"{got['en17037_glare']} ({shares}%)"
+    return (f"observer {name}", what, value, f"{need} or better", _result(ok))
 
 
 def _result(ok: bool) -> str:

@@ -12,6 +12,7 @@ from lightinv_core.fields import (
     Numbers,
     ObjectSpec,
     String,
+    choice_of,
     declare,
 )
 from lightinv_core.kinds import MAX_LUX, Edition
@@ -169,6 +170,23 @@ class Daylight:
             "EN 17037 sunlight exposure: the sun counts above this altitude, degrees (the "
             "standard's value for the site; a sunlight intention needs it)",
             nullable=True,
+        ),
+    )
+    en17037_basis: str = field(
+        default="points",
+        metadata=declare(
+            choice_of("points", "hours"),
+            "EN 17037 daylight provision: `points` (each point reaches the illuminance in "
+            "half the daylight hours, over the plane fraction; Honeybee) or `hours` (each "
+            "hour the plane fraction reaches it, in half the daylight hours; ClimateStudio)",
+        ),
+    )
+    dgp_limit: float = field(
+        default=0.40,
+        metadata=declare(
+            Number(gt=0.184, hi=1.0),
+            "simplified DGP at observers (`dgp` intentions): the limit whose exceedance "
+            "is counted, 0.40 (EN 17037's medium glare protection; 0.45 minimum, 0.35 high)",
         ),
     )
 

@@ -62,7 +62,8 @@ class Intention:
         default=None,
         metadata=declare(
             ListOf(String(), "observer names", 1, unique=True, name="list of observer names"),
-            "the design's observers (at least one): UGR (`quantity` `ugr`) at each eye; "
+            "the design's observers (at least one): UGR (`quantity` `ugr`), sunlight "
+            "exposure or simplified DGP at each eye; "
             "this, `group`, `patches` or `grid`",
             nullable=True,
         ),
@@ -79,8 +80,10 @@ class Intention:
             "mean of min(E / 300 lux, 1) over the occupied hours), `en17037` (a "
             "work plane's EN 17037 daylight provision as a level score: `min` 1, 2 or 3 "
             "asks at least the minimum, medium or high level); or the glare "
-            "rating `ugr` (CIE 117) or the EN 17037 sunlight exposure `sunlight` (hours of "
+            "rating `ugr` (CIE 117), the EN 17037 sunlight exposure `sunlight` (hours of "
             "sun on `daylight.sunlight_date` through clear glazing; `min` 1.5, 3 or 4 h) "
+            "or the simplified DGP `dgp` (the share of the occupied hours whose DGPs "
+            "exceeds `daylight.dgp_limit`; `max` 0.05 as EN 17037's glare protection) "
             "at `observers`",
             always=True,
         ),
