@@ -97,9 +97,14 @@ class CMAESRun:
             self.restarts += 1
             self.lam = min(2 * self.lam, MAX_POPSIZE_FACTOR * self.lam0)
         start = self.x0 if self.restarts == 0 else random_start(self.problem, self.rng)
+        z0 = (start - self.lo) / self.span
+        if len(z0) == 1:
+            # cma refuses one dimension: a second coordinate that no layout reads (step
+            # drops it) keeps a design with one free variable searchable.
+            z0 = np.append(z0, 0.5)
         rng = self.rng
         return cma.CMAEvolutionStrategy(
-            (start - self.lo) / self.span,
+            z0,
             SIGMA0,
             {
                 "bounds": [0.0, 1.0],
@@ -122,7 +127,7 @@ class CMAESRun:
             self.es = self._new_run()
         es, budget, problem = self.es, self.budget, self.problem
         Z = np.asarray(es.ask())
-        X = self.lo + np.clip(Z, 0.0, 1.0) * self.span
+        X = self.lo + np.clip(Z[:, : len(self.lo)], 0.0, 1.0) * self.span
         ev = problem.evaluate(X, self.level)
         es.tell(list(Z), ranking_fitness(ev).tolist())
         budget.evals += ev.evaluated

@@ -254,3 +254,17 @@ def test_front_quality_of_a_run(light):
     q = front_quality(res.front.solutions, front_scales(d, light))
     assert 0.0 < q.hypervolume < 1.0 and q.points == len(res.front.solutions)
     assert q.to_dict()["reference"] == [1.0, 0.0]
+
+
+@pytest.mark.parametrize("method", ["cmaes", "auto"])
+def test_a_design_with_one_free_variable_is_searched(light, method):
+    # cma refuses one dimension; the flux alone free must still be optimised. The desks'
+    # least illuminance is linear in the flux: 10 lux needs 10 / (E at 1 lm).
+    lum = Source("L", "lum_west", "luminaire", (0, 0, 1, 1), free=("flux",), flux=4e3)
+    desks = (Intention("desks", "desks", min=10.0),)
+    p = DesignProblem(Design((lum,), (Goal("min_electric_power"),), (), desks), light)
+    assert p.vars.n == 1
+    per_lumen = p.solution(np.array([1e3])).violations[0].value / 1e3
+    res = get_method(method).run(p, RunContext(stop=StopRule(max_evals=3000), seed=1))
+    assert res.status == "feasible"
+    assert 0.995 <= res.best.sources[0].flux * per_lumen / 10.0 < 1.02  # within tolerance
