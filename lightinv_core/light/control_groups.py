@@ -345,3 +345,65 @@ def exact_arrays_at_sensors(light, plan: ControlPlan, grids, arrays) -> np.ndarr
             at = arrays_field(light.patches, light.op, mine, grids.points[plan.sensors[k]])[1]
             out[k] = float(at.mean())
     return out
+
+
+# -- where the sensors are (the window draws them) -------------------------------------------
+
+
+@dataclass(frozen=True)
+class SensorOutline:
+    """Where control group ``name`` reads: ``corners`` (4, 3) m, its plan rectangle on
+    the work plane ``workplane`` at that plane's height (the plane's grid extent when it
+    reads the whole plane), and whether it is ``whole``."""
+
+    name: str
+    workplane: str
+    corners: np.ndarray
+    whole: bool
+
+
+def sensor_outlines(design: Design, patches, grids=None) -> tuple[SensorOutline, ...]:
+    """The sensor of every control group of ``design`` (the declared ones in order, then
+    the default group when it holds luminaires); none for a design that keeps the one
+    default group (``default_only``). The height and a whole plane's extent come from the
+    work plane's grid points (``grids``, ``light.grids.DesignGrids``) when given, else
+    from its floor group's patches (the height above their median, their plan extent
+    less the border); a group on a plane that cannot be placed is left out."""
+    if default_only(design) or design.control_plane is None:
+        return ()
+    groups = list(design.control_groups)
+    names = {g.name for g in groups}
+    lums = [s for s in design.sources if source_type(s.kind).electric]
+    members = {x.control_group for x in (*lums, *design.arrays)}
+    if DEFAULT_CONTROL_GROUP not in names and DEFAULT_CONTROL_GROUP in members:
+        groups.append(ControlGroup(DEFAULT_CONTROL_GROUP))
+    planes = {w.name: w for w in design.workplanes}
+    out = []
+    for g in groups:
+        wp = planes.get(g.workplane or design.control_plane.name)
+        extent = None if wp is None else _plane_extent(wp, patches, grids)
+        if extent is None:
+            continue
+        x0, y0, x1, y1, z = extent
+        if g.sensor is not None:
+            x0, y0, x1, y1 = g.sensor
+        xy = np.array([[x0, y0], [x1, y0], [x1, y1], [x0, y1]], dtype=float)
+        corners = np.column_stack([xy, np.full(4, z)])
+        out.append(SensorOutline(g.name, wp.name, corners, g.sensor is None))
+    return tuple(out)
+
+
+def _plane_extent(wp, patches, grids) -> tuple[float, float, float, float, float] | None:
+    """(x0, y0, x1, y1, z) m of work plane ``wp``: its grid's extent and height, or its
+    floor group's (None when the group is not in the scene)."""
+    if grids is not None and wp.name in grids.spans:
+        pts = grids.points[grids.spans[wp.name]]
+        if len(pts):
+            lo, hi = pts[:, :2].min(axis=0), pts[:, :2].max(axis=0)
+            return (*lo, *hi, float(np.median(pts[:, 2])))
+    if wp.group not in patches.group_names:
+        return None
+    c = patches.centroid[patches.group_index(wp.group)]
+    lo, hi = c[:, :2].min(axis=0) + wp.border, c[:, :2].max(axis=0) - wp.border
+    lo, hi = np.minimum(lo, hi), np.maximum(lo, hi)
+    return (*lo, *hi, float(np.median(c[:, 2])) + wp.height)
