@@ -85,6 +85,12 @@ class BackgroundTasks(QtCore.QObject):
         if self.worker.warnings:
             self._say(self.worker.warnings[0], 8000)
 
+    def waited_for(self) -> str:
+        """What work in the background the design's light waits for, in words."""
+        if isinstance(self.worker, ClearLightWorker):
+            return "the clear glazing's trace (the status bar shows how far)"
+        return "the radiosity operator (Compute > Precompute)"
+
     # -- the clear glazing's light ---------------------------------------------------------
     def start_clear_trace(self) -> bool:
         """Trace the clear glazing's light of the design shown in a worker if it needs
@@ -143,7 +149,7 @@ class BackgroundTasks(QtCore.QObject):
         user has been told why not (no operator yet, work running, a bad design)."""
         d = self.doc
         if d.operator is None or self.worker is not None:
-            ask.inform(self.win, "Wait for the radiosity operator first.")
+            ask.inform(self.win, f"Wait for {self.waited_for()} first.")
             return None
         try:
             return d.design_solution()
