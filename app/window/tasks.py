@@ -119,10 +119,13 @@ class BackgroundTasks(QtCore.QObject):
         self._start(worker)
         return True
 
-    def _clear_traced(self, seconds: float) -> None:
+    def _clear_traced(self, got: tuple) -> None:
+        seconds, daylight = got
         self.win.set_warnings("clear glazing", [])
         if self.doc.light is not None:
-            self.doc.clear_light_changed()  # relights: every view reads it again
+            # Relights, and keeps the worker's light in every scenario if the design is
+            # still the one traced: the views read it without building it again.
+            self.doc.clear_light_changed(daylight=daylight)
         self._say(f"Clear glazing traced in {seconds:.1f} s", 6000)
 
     def _clear_missed(self, worker: ClearLightWorker, message: str) -> None:

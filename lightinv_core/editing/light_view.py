@@ -50,13 +50,17 @@ class LightView(DocumentState):
             and not clear_light_ready(self.light, self.design)
         )
 
-    def clear_light_changed(self, note: str = "") -> None:
+    def clear_light_changed(self, note: str = "", daylight: LayoutDaylight | None = None) -> None:
         """The clear glazing's light was built (a worker's ``clear_light`` on this
         operator), or its trace given up (``note`` says why, in what raises while it is
-        pending): light the design again and let every view read it again."""
+        pending): light the design again and let every view read it again. ``daylight``:
+        the design's light in every scenario, made by the same worker (kept when it is
+        of the design as it is now: the views need not build it here)."""
         self.clear_note = note
         self._problem = None
         self._daylight.clear()
+        if daylight is not None and daylight.design is self.design and self.light is not None:
+            self._daylight.put(self.light, self.design, daylight)
         self._relight()
 
     def set_operator(self, operator: RadiosityOperator) -> None:

@@ -16,6 +16,7 @@ from lightinv_core.design.model import Daylight, Design, DesignError, Goal, Sour
 from lightinv_core.editing import DocumentModel, blank_project
 from lightinv_core.errors import CancelledError
 from lightinv_core.light.clear_build import clear_light, clear_light_key, clear_light_ready
+from lightinv_core.light.daylight import layout_daylight
 from lightinv_core.light.model import LightModel
 from lightinv_core.operator.build import build_operator
 from lightinv_core.operator.settings import OperatorSettings
@@ -68,11 +69,16 @@ def test_the_clear_light_built_elsewhere_is_waited_for_then_shown():
     assert not doc.clear_pending()
     events: list = []
     doc.events.connect("lighting", events.append)
-    doc.clear_light_changed()
-    assert len(events) == 1
+    # The worker's light in every scenario, made on its own light model, is kept.
+    made = layout_daylight(worker_light, doc.design)
+    doc.clear_light_changed(daylight=made)
+    assert len(events) == 1 and doc.layout_daylight() is made
     lit = doc.lighting()
     assert (lit - dark).max() > 50.0  # lux: the window's daylight in the design scenario
-    assert doc.layout_daylight() is not None and doc.problem() is not None
+    assert doc.problem() is not None
+    # Made for a design no longer shown, it is not kept.
+    doc.clear_light_changed(daylight=layout_daylight(worker_light, replace(doc.design)))
+    assert doc.layout_daylight() is not made
 
     # The same light as a document that builds it itself (the default, as before).
     own = _document(elsewhere=False, operator=doc.operator)
