@@ -6,7 +6,8 @@ groups' modes and own targets do to the flagship office's energy. Prints JSON.
 ``trace``: the first ``clear_light`` of the project as shipped (its five clear windows,
 its work plane, Greensboro TMY3), with the operator loaded first (from the cache, or
 built); wall and CPU seconds, and the wall time at which each progress step the window
-shows was reported (the longest gap is how long a Cancel may wait).
+shows was reported (the longest gap is how long a Cancel may wait); then
+``layout_daylight``, the design's light in every scenario the worker makes next.
 
 ``modes``: the design as written (its arrays as laid out in the file, not optimised),
 its year by ``layout_daylight(...).energy()``: each group's kWh, mean level and the
@@ -77,6 +78,13 @@ def main() -> None:
     }
     design = project.design
     out["trace"] = trace(prepared, design)
+    # What the window's worker makes next: the design's light in every scenario.
+    t0, c0 = time.perf_counter(), time.process_time()
+    layout_daylight(prepared.light, design)
+    out["layout_daylight"] = {
+        "wall_s": round(time.perf_counter() - t0, 2),
+        "cpu_s": round(time.process_time() - c0, 2),
+    }
     row, inner = design.control_groups[:2]
     variants = {
         "as shipped (dimming, 500 lux)": design.control_groups,
