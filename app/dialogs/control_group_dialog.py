@@ -1,6 +1,8 @@
 """The dialog of one daylight-linked control group: its name, the work plane its sensor
-reads, the plan rectangle of that plane's points it reads (or the whole plane) and the
-lowest level its luminaires dim to (or the daylight's)."""
+reads, the plan rectangle of that plane's points it reads (or the whole plane), how its
+luminaires follow the sensor (a control mode of ``climate.control_modes``: dimming or
+switching), the illuminance it keeps (its own target, or the daylight's) and the lowest
+level its luminaires dim to (or the daylight's)."""
 
 from __future__ import annotations
 
@@ -8,6 +10,7 @@ from PySide6 import QtWidgets
 
 from app.dialogs import ask
 from app.dialogs.fields import number_box, ok_cancel, optional_number
+from lightinv_core.climate.control_modes import control_mode, control_mode_names
 from lightinv_core.design.model import ControlGroup
 from lightinv_core.errors import LightInvError
 
@@ -26,6 +29,7 @@ class ControlGroupDialog(QtWidgets.QDialog):
         bounds: tuple[float, float, float, float] = (0.0, 0.0, 1.0, 1.0),
         min_level: float = 0.1,
         parent: QtWidgets.QWidget | None = None,
+        target_lux: float = 500.0,
     ):
         super().__init__(parent)
         self.setWindowTitle("Control group")
@@ -49,6 +53,19 @@ class ControlGroupDialog(QtWidgets.QDialog):
             box.setEnabled(base.sensor is not None)
             self.whole.toggled.connect(lambda on, b=box: b.setEnabled(not on))
         form.addRow("Region x0 y0 x1 y1 (m)", row)
+        self.mode = QtWidgets.QComboBox()
+        for name in control_mode_names():
+            self.mode.addItem(control_mode(name).label, name)
+        self.mode.setCurrentIndex(max(0, self.mode.findData(base.mode)))
+        self.mode.setToolTip(
+            "dimming: continuously, to top the daylight up to the target; switching: off "
+            "while the daylight alone meets the target, else full output"
+        )
+        form.addRow("Control", self.mode)
+        own = target_lux if base.target_lux is None else base.target_lux
+        self.own_target, self.target = optional_number(form, "Own target (lux)", own, 1e5, 0)
+        self.own_target.setChecked(base.target_lux is not None)
+        self.target.setSingleStep(50)
         self.own_floor, self.floor = optional_number(
             form, "Own lowest level", min_level if base.min_level is None else base.min_level, 1.0
         )
@@ -73,4 +90,6 @@ class ControlGroupDialog(QtWidgets.QDialog):
             sensor=sensor,
             workplane=self.plane.currentData(),
             min_level=self.floor.value() if self.own_floor.isChecked() else None,
+            mode=self.mode.currentData(),
+            target_lux=self.target.value() if self.own_target.isChecked() else None,
         )

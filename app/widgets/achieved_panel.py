@@ -80,13 +80,14 @@ class AchievedPanel(QtWidgets.QWidget):
         scenario (``LayoutDaylight.checks``)."""
         d = self.doc
         ld = None
+        self._missing = ""  # why the light to judge them is not there (refresh says it)
         if d.project is None or not d.design.intentions:
             return []
         if d.design_field() is not None:
             try:
                 ld = d.layout_daylight()
-            except LightInvError:
-                ld = None
+            except LightInvError as exc:  # e.g. the clear glazing's light still being traced
+                ld, self._missing = None, str(exc)
         self._daylight = ld
         if ld is None:
             return []
@@ -129,6 +130,8 @@ class AchievedPanel(QtWidgets.QWidget):
             self.summary.setText(
                 "No lighting intentions yet: double-click a group in the tree to add one."
             )
+        elif not rows and self._missing:
+            self.summary.setText(f"The intentions cannot be judged yet: {self._missing}.")
         else:
             bad = sum(r.met is False for r in rows)
             unknown = sum(r.met is None for r in rows)

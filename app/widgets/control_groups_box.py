@@ -1,6 +1,7 @@
 """The Climate tab's "Control groups" box: the design's daylight-linked control groups
-(each a set of luminaires dimmed by its own sensor region), added, edited (renamed, its
-sensor's work plane and rectangle, its lowest level) and removed through
+(each a set of luminaires dimmed or switched by its own sensor region), added, edited
+(renamed, its sensor's work plane and rectangle, its control mode, its own target, its
+lowest level) and removed through
 ``ControlGroupDialog``; every change an undoable edit of the document. A luminaire joins
 a group in Properties > Source (or the array's dialog)."""
 
@@ -11,6 +12,7 @@ from PySide6 import QtCore, QtWidgets
 from app.dialogs import ask
 from app.dialogs.control_group_dialog import ControlGroupDialog
 from app.document import Document
+from lightinv_core.climate.control_modes import DIMMING
 from lightinv_core.design.model import DEFAULT_CONTROL_GROUP, ControlGroup
 from lightinv_core.editing.control_edits import new_group_name
 from lightinv_core.errors import LightInvError
@@ -25,7 +27,10 @@ def group_text(group: ControlGroup, members: list[str]) -> str:
         where = f"x {x0:g}-{x1:g}, y {y0:g}-{y1:g} m"
     plane = group.workplane or "control plane"
     who = ", ".join(members) if members else "no luminaires yet"
-    return f"{group.name}: {plane}, {where}; {who}"
+    how = "" if group.mode == DIMMING else f"; {group.mode}"
+    if group.target_lux is not None:
+        how += f"; {group.target_lux:g} lux"
+    return f"{group.name}: {plane}, {where}{how}; {who}"
 
 
 class ControlGroupsBox(QtWidgets.QGroupBox):
@@ -98,7 +103,14 @@ class ControlGroupsBox(QtWidgets.QGroupBox):
         if grids is not None and len(grids.points):
             lo, hi = grids.points[:, :2].min(axis=0), grids.points[:, :2].max(axis=0)
             bounds = (float(lo[0]), float(lo[1]), float(hi[0]) + 0.01, float(hi[1]) + 0.01)
-        return ControlGroupDialog(planes, base, bounds, d.daylight.min_level, parent=self)
+        return ControlGroupDialog(
+            planes,
+            base,
+            bounds,
+            d.daylight.min_level,
+            parent=self,
+            target_lux=d.daylight.target_lux,
+        )
 
     def add_group(self) -> bool:
         """Ask for a new group and add it."""
@@ -108,7 +120,7 @@ class ControlGroupsBox(QtWidgets.QGroupBox):
         return self._guard(lambda: self.doc.add_control_group(dialog.group()))
 
     def edit_group(self) -> bool:
-        """Edit the selected group (rename, sensor, lowest level)."""
+        """Edit the selected group (rename, sensor, mode, target, lowest level)."""
         name = self.current()
         if name is None:
             return False
@@ -117,7 +129,8 @@ class ControlGroupsBox(QtWidgets.QGroupBox):
         if not ask.accepted(dialog):
             return False
         new = dialog.group()
-        fields = {k: getattr(new, k) for k in ("name", "sensor", "workplane", "min_level")}
+        keys = ("name", "sensor", "workplane", "min_level", "mode", "target_lux")
+        fields = {k: getattr(new, k) for k in keys}
         return self._guard(lambda: self.doc.update_control_group(name, **fields))
 
     def remove_group(self) -> None:

@@ -49,7 +49,8 @@ class EnergyBox(QtWidgets.QGroupBox):
             f"mean level {100 * e.mean_level:.0f}%\n"
             f"{ld.installed_w:,.0f} W installed, dimmed on work plane {ld.control}"
             + "".join(
-                f"\ngroup {g.name}: {g.watts:,.0f} W, {g.energy_kwh:,.1f} kWh, "
+                f"\ngroup {g.name} ({g.mode} to {g.target_lux:,.0f} lux): {g.watts:,.0f} W, "
+                f"{g.energy_kwh:,.1f} kWh, "
                 f"LENI {g.leni:.2f}, level {100 * g.mean_level:.0f}%"
                 for g in e.groups
             )

@@ -46,7 +46,7 @@ from app.window.status_bar import ElidingStatusBar, window_title
 from app.window.tasks import BackgroundTasks
 from app.window.undo import undo_stack
 from app.window.view_colouring import ViewColouring
-from app.window.workers import PrecomputeWorker, Worker
+from app.window.workers import ClearLightWorker, PrecomputeWorker, Worker
 from lightinv_core.editing.changes import CURRENT_SOURCE
 from lightinv_core.project import Project
 
@@ -296,10 +296,16 @@ class MainWindow(QtWidgets.QMainWindow):
         self._update_busy()
 
     def _update_busy(self) -> None:
-        """Say over the view why its light is missing or out of date: the light model is
-        being built (with its progress), or was not (cancelled)."""
+        """Say over the view why its light is missing or out of date: the light model or
+        the clear glazing's light is being built (with its progress), or was not
+        (cancelled)."""
         d = self.doc
-        if d.patches is None or d.operator is not None:
+        if isinstance(self.worker, ClearLightWorker):
+            text = (
+                f"Tracing the clear glazing's light... {self.progress.value() / 10:.0f}%\n"
+                "The light shown leaves it out until then."
+            )
+        elif d.patches is None or d.operator is not None:
             text = None
         elif isinstance(self.worker, PrecomputeWorker):
             again = self.viewport.has_values

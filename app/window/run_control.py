@@ -70,7 +70,7 @@ class RunController(QtCore.QObject):
         if self.worker is not None:
             return False
         if d.operator is None or self.win.worker is not None:
-            self._say("Wait for the radiosity operator (Compute > Precompute) first.")
+            self._say(f"Wait for {self.win.tasks.waited_for()} first.")
             return False
         why = self.panel.refusal()
         if why is not None:

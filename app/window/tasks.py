@@ -1,9 +1,17 @@
 """Background work of the window other than optimisation: building (or loading) the
-radiosity operator, and writing the PDF report.
+radiosity operator, tracing the clear glazing's light, and writing the PDF report.
 
 One such worker at a time (``worker``), shown by the status bar's progress bar with
 Compute > Cancel; the optimisation has its own controller (run_control.py). Workers
 are in workers.py; this module starts them and takes their results to the document.
+
+The clear glazing's light takes seconds to tens of seconds to trace (``light.clear_build``),
+so the document never builds it on the GUI thread (``clear_elsewhere``): whenever the
+design shown needs a trace not yet made (a clear-glazed project opened, its daylight or
+glazing changed, an undo), a ``ClearLightWorker`` traces it while the window stays
+responsive and the view shows the light without it; once done the document relights. A
+cancelled (or failed) trace is not started again for the same glazing until Compute >
+Precompute asks; the design itself is never changed by it.
 """
 
 from __future__ import annotations
@@ -14,6 +22,7 @@ from PySide6 import QtCore
 
 from app.dialogs import ask
 from app.window.workers import (
+    ClearLightWorker,
     ExportWorker,
     PrecomputeWorker,
     ReportWorker,
@@ -21,6 +30,7 @@ from app.window.workers import (
     stop_and_wait,
 )
 from lightinv_core.errors import LightInvError
+from lightinv_core.light.clear_build import clear_light_key
 
 
 class BackgroundTasks(QtCore.QObject):
@@ -30,6 +40,10 @@ class BackgroundTasks(QtCore.QObject):
         super().__init__(window)
         self.win, self.doc = window, window.doc
         self.worker: Worker | None = None
+        self._declined = None  # the clear glazing whose trace was cancelled or failed
+        window.doc.model.clear_elsewhere = True  # traced here, in a worker
+        window.doc.designChanged.connect(lambda: self.start_clear_trace())
+        window.doc.operatorChanged.connect(lambda: self.start_clear_trace())
 
     def _start(self, worker: Worker) -> None:
         win = self.win
@@ -47,6 +61,7 @@ class BackgroundTasks(QtCore.QObject):
         """Build or load the operator in a worker thread (progress bar, cancel)."""
         if self.doc.patches is None or self.worker is not None:
             return
+        self._declined = None  # asked for: a cancelled clear trace may run again
         worker = PrecomputeWorker(self.doc.patches, self.doc.operator_settings, self)
         worker.succeeded.connect(self._precomputed)
         worker.failed.connect(lambda msg: ask.error(self.win, "precompute failed", msg))
@@ -70,12 +85,74 @@ class BackgroundTasks(QtCore.QObject):
         if self.worker.warnings:
             self._say(self.worker.warnings[0], 8000)
 
+    def waited_for(self) -> str:
+        """What work in the background the design's light waits for, in words."""
+        if isinstance(self.worker, ClearLightWorker):
+            return "the clear glazing's trace (the status bar shows how far)"
+        return "the radiosity operator (Compute > Precompute)"
+
+    # -- the clear glazing's light ---------------------------------------------------------
+    def start_clear_trace(self) -> bool:
+        """Trace the clear glazing's light of the design shown in a worker if it needs
+        one (``Document.clear_pending``), with the progress bar and Compute > Cancel;
+        whether one started. Another worker running: its end comes back here; a trace
+        running for another glazing is cancelled first."""
+        d = self.doc
+        pending = d.project is not None and d.clear_pending()
+        key = clear_light_key(d.design) if pending else None
+        running = self.worker
+        if isinstance(running, ClearLightWorker):
+            if running.key != key:  # another glazing now, or none (an undo): not this one
+                running.cancel()  # its end (_done) starts the trace needed, if any
+            return False
+        if not pending or running is not None or key == self._declined:
+            return False
+        d.model.clear_note = ""  # being traced: the document's own words say so
+        worker = ClearLightWorker(d.prepared(), d.design, self)
+        worker.succeeded.connect(self._clear_traced)
+        worker.failed.connect(lambda msg: self._clear_missed(worker, msg))
+        worker.cancelled.connect(lambda: self._clear_missed(worker, ""))
+        self.win.statusBar().showMessage(
+            "Tracing the clear glazing's light (sky, sun, reflections); the view shows the "
+            "rest meanwhile; Compute > Cancel stops it"
+        )
+        self._start(worker)
+        return True
+
+    def _clear_traced(self, got: tuple) -> None:
+        seconds, daylight = got
+        self.win.set_warnings("clear glazing", [])
+        if self.doc.light is not None:
+            # Relights, and keeps the worker's light in every scenario if the design is
+            # still the one traced: the views read it without building it again.
+            self.doc.clear_light_changed(daylight=daylight)
+        self._say(f"Clear glazing traced in {seconds:.1f} s", 6000)
+
+    def _clear_missed(self, worker: ClearLightWorker, message: str) -> None:
+        """A trace cancelled (``message`` empty) or failed: not started again for this
+        glazing until Compute > Precompute; the view goes on without its light."""
+        d = self.doc
+        if d.project is None or clear_light_key(d.design) != worker.key:
+            return  # cancelled for another glazing: _done traces that one
+        self._declined = worker.key
+        if message:
+            note = f"the clear glazing's light could not be traced: {message}"
+            self.win.set_warnings("clear glazing", [note[:1].upper() + note[1:]])
+        else:
+            note = (
+                "the clear glazing's trace was cancelled: its light is left out until "
+                "Compute > Precompute traces it"
+            )
+        if d.light is not None:
+            d.clear_light_changed(note)  # the panels say why, not "being traced"
+        self._say(note[:1].upper() + note[1:], 10000)
+
     def _solution_to_write(self, title: str):
         """The design on screen as a solution to report or export, or None once the
         user has been told why not (no operator yet, work running, a bad design)."""
         d = self.doc
         if d.operator is None or self.worker is not None:
-            ask.inform(self.win, "Wait for the radiosity operator first.")
+            ask.inform(self.win, f"Wait for {self.waited_for()} first.")
             return None
         try:
             return d.design_solution()
@@ -143,6 +220,8 @@ class BackgroundTasks(QtCore.QObject):
             # The scene changed while it ran (a zone drawn, an undo): build for this one.
             self.start_precompute()
             return
+        if self.start_clear_trace():  # the glazing shown (still, or since) needs its light
+            return  # lightinv --run starts once it is traced
         if win.run_after_precompute and self.doc.operator is not None:
             win.run_after_precompute = False  # lightinv --run: start once the operator is there
             win.runs.start()

@@ -13,7 +13,7 @@ import time
 import numpy as np
 from PySide6 import QtCore
 
-from app.view import calc_overlay, luminaire_overlay, observer_overlay
+from app.view import calc_overlay, luminaire_overlay, observer_overlay, sensor_overlay
 from app.view.daylight_maps import design_caption, map_values, maps
 from lightinv_core.editing.next_step import document_next_step
 from lightinv_core.editing.results import result_label
@@ -36,6 +36,8 @@ class ViewColouring(QtCore.QObject):
         self.options = window.view_options
         self.last_render_ms = float("nan")
         self._luminaire_key = None
+        self.sensors: tuple = ()  # the control groups' sensor outlines drawn
+        self.doc.designChanged.connect(self.draw_sensors)
         o = self.options
         o.colour_by.currentIndexChanged.connect(self.recolour)
         o.colour_by.currentIndexChanged.connect(self._colour_by_changed)
@@ -76,6 +78,7 @@ class ViewColouring(QtCore.QObject):
             picked = self.win.edits.current_observer
             observer_overlay.draw(self.viewport.plotter, d.patches, d.design.observers, picked)
             calc_overlay.draw(self.viewport.plotter, d.patches, d.design.calc_objects)
+            self.draw_sensors()
             self._luminaire_warnings(d.patches, d.design.arrays)
         self.update_hint()
         if field is None or not np.any(field.illuminance > 0):
@@ -90,6 +93,16 @@ class ViewColouring(QtCore.QObject):
         self.win.status_eval.setText(
             f"lighting {self.doc.last_eval_ms:.1f} ms, view {self.last_render_ms:.1f} ms"
         )
+
+    def draw_sensors(self) -> None:
+        """Outline each control group's sensor on its work plane (``sensor_overlay``); on
+        every design change too, so an edit or an undo shows before any light does."""
+        d, vp = self.doc, self.viewport
+        if d.project is None or vp.mesh is None:
+            return
+        grids, _ = d.shown_grids()
+        self.sensors = sensor_overlay.draw(vp.plotter, d.design, d.patches, grids)
+        vp.request_render()
 
     def paint(self, field) -> None:
         """Colour the patches as View > Colour by says: the light shown, a pinned

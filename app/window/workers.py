@@ -159,6 +159,59 @@ class ExportWorker(Worker):
         return exporter(self.name).write(ex, self.path)
 
 
+class ClearLightWorker(Worker):
+    """Traces the clear glazing's light of ``design`` (``light.clear_build.clear_light``:
+    sky patches, the sun hour by hour, their reflections; about 20 s on the flagship
+    office) on the document's operator, off the GUI thread: once it succeeds the
+    document finds it built. Then the design's light in every scenario
+    (``layout_daylight``: its arrays placed exactly, its groups' and observers' light, as
+    long again on the flagship), which the views would otherwise build on the GUI thread
+    next. Cancel stops it between the build's steps and leaves nothing built; succeeds
+    with (seconds, the ``LayoutDaylight`` or None when it could not be made here)."""
+
+    def __init__(self, prepared, design, parent: QtCore.QObject | None = None):
+        from lightinv_core.light.clear_build import clear_light_key
+
+        super().__init__(parent)
+        self.prepared, self.design = prepared, design
+        self.key = clear_light_key(design)
+
+    def _step(self, fraction: float) -> None:
+        if self.is_cancelled():
+            raise CancelledError("the clear glazing's trace was cancelled")
+        self.progress.emit(fraction)
+
+    def work(self) -> tuple:
+        from threadpoolctl import threadpool_limits
+
+        from lightinv_core.light.clear_build import clear_light
+        from lightinv_core.light.daylight import layout_daylight
+        from lightinv_core.light.model import LightModel
+
+        p = self.prepared
+        t0 = time.perf_counter()
+        ld = None
+        try:
+            # One BLAS thread: a second one spins against the GUI thread (see RunWorker).
+            with threadpool_limits(limits=1, user_api="blas"):
+                light = LightModel(p.scene, p.patches, p.operator)
+                clear_light(light, self.design, self._step)
+                self._step(0.97)
+                try:
+                    ld = layout_daylight(light, self.design)
+                except LightInvError:
+                    ld = None  # the views build it and say why
+        except (LightInvError, MemoryError):
+            raise
+        except Exception as exc:  # a bug: a message for people, the traceback on stderr
+            traceback.print_exc()
+            raise LightInvError(
+                f"the clear glazing's light could not be traced ({type(exc).__name__}: {exc})"
+            ) from exc
+        self.progress.emit(1.0)
+        return time.perf_counter() - t0, ld
+
+
 @dataclass(frozen=True)
 class RunSnapshot:
     """What the GUI draws of a running optimisation, taken at its redraw rate.

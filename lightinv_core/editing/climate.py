@@ -134,6 +134,11 @@ class DaylightCache:
         self._slots[slot] = (light, design, preview, ld)
         return ld
 
+    def put(self, light, design: Design, ld: LayoutDaylight) -> None:
+        """Keep ``ld``, the light of ``design`` as written made elsewhere (a worker's, on
+        another light model of the same operator), as if ``get`` had built it."""
+        self._slots[False] = (light, design, None, ld)
+
     def clear(self) -> None:
         """Forget both (a new scene or light model)."""
         self._slots.clear()

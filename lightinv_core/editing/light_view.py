@@ -19,6 +19,7 @@ from lightinv_core.editing.lighting import ShownLight
 from lightinv_core.editing.state import DocumentState
 from lightinv_core.errors import DesignError, LightInvError
 from lightinv_core.light.arrays import arrays_field
+from lightinv_core.light.clear_build import clear_light_ready
 from lightinv_core.light.daylight import LayoutDaylight
 from lightinv_core.light.field import LightField
 from lightinv_core.light.grids import DesignGrids, grid_light
@@ -28,9 +29,39 @@ from lightinv_core.operator.radiosity import RadiosityOperator
 from lightinv_core.optimize.problem import DesignProblem
 from lightinv_core.study import Prepared
 
+CLEAR_PENDING = (
+    "the clear glazing's light is being traced in the background (the status bar shows "
+    "how far); its daylight figures follow once it is done"
+)
+"""Why a figure that needs the clear glazing's light is not there yet (``clear_pending``)."""
+
 
 class LightView(DocumentState):
     """Attach the operator, light the design or a preview, and answer what the light is."""
+
+    def clear_pending(self) -> bool:
+        """Whether the design's clear glazing waits for its light to be built elsewhere
+        (``clear_elsewhere``): the light shown leaves it out, and the daylight figures and
+        the problem raise DesignError(``clear_note`` or ``CLEAR_PENDING``) until it is
+        built (``clear_light_changed``)."""
+        return (
+            self.clear_elsewhere
+            and self.light is not None
+            and not clear_light_ready(self.light, self.design)
+        )
+
+    def clear_light_changed(self, note: str = "", daylight: LayoutDaylight | None = None) -> None:
+        """The clear glazing's light was built (a worker's ``clear_light`` on this
+        operator), or its trace given up (``note`` says why, in what raises while it is
+        pending): light the design again and let every view read it again. ``daylight``:
+        the design's light in every scenario, made by the same worker (kept when it is
+        of the design as it is now: the views need not build it here)."""
+        self.clear_note = note
+        self._problem = None
+        self._daylight.clear()
+        if daylight is not None and daylight.design is self.design and self.light is not None:
+            self._daylight.put(self.light, self.design, daylight)
+        self._relight()
 
     def set_operator(self, operator: RadiosityOperator) -> None:
         """Attach a built (or cached) operator of these patches; lighting becomes
@@ -47,10 +78,13 @@ class LightView(DocumentState):
         return Prepared(self.scene, self.patches, self.operator, True, 0.0)
 
     def problem(self) -> DesignProblem | None:
-        """The design bound to the light model (None before the operator exists)."""
+        """The design bound to the light model (None before the operator exists;
+        DesignError while its clear glazing's light is pending, ``clear_pending``)."""
         if self.light is None:
             return None
         if self._problem is None:
+            if self.clear_pending():
+                raise DesignError(self.clear_note or CLEAR_PENDING)
             self._problem = DesignProblem(self.design, self.light)
         return self._problem
 
@@ -65,8 +99,10 @@ class LightView(DocumentState):
     def offending_patches(self) -> list[tuple[str, str, np.ndarray]]:
         """Where the design's light breaks its intentions: (intention, bound, patch ids)
         per violated bound (a work plane's: the floor patches under its points that
-        break it, ``offending_points``); empty before the operator exists or when a
-        geometric rule fails."""
+        break it, ``offending_points``); empty before the operator exists, while the
+        clear glazing's light is pending or when a geometric rule fails."""
+        if self.clear_pending():
+            return []
         problem = self.problem()
         if problem is None:
             return []
@@ -84,7 +120,7 @@ class LightView(DocumentState):
         judged in the intention's scenario (an EN 12464-1 preset's: night); a short
         average marks every point of its plane. Empty before the operator exists."""
         gridded = [it for it in self.design.intentions if it.grid is not None]
-        ld = self.layout_daylight() if gridded else None
+        ld = self.layout_daylight() if gridded and not self.clear_pending() else None
         if ld is None or ld.grids is None:
             return []
         out = []
@@ -183,9 +219,12 @@ class LightView(DocumentState):
         """The light of the design as written (``shown``: of the layout shown, a running
         best's when previewed) in every scenario, with its daylight metrics, hours and
         annual energy (``light.daylight.LayoutDaylight``); built once per design or
-        preview, None before the operator exists."""
+        preview, None before the operator exists; DesignError while the clear glazing's
+        light is pending (``clear_pending``)."""
         if self.light is None:
             return None
+        if self.clear_pending():
+            raise DesignError(self.clear_note or CLEAR_PENDING)
         preview = self._preview if shown else None
         return self._daylight.get(self.light, self.design, preview)
 

@@ -5,7 +5,9 @@ layout (a running optimisation's best, without touching the design), and other s
 under the design's rules (a pinned result, for the difference view; its light is kept
 until its sources or the rules change, since the view asks on every edit).
 
-Fixed clear glazing adds its light in the design scenario (``light.clear_build``).
+Fixed clear glazing adds its light in the design scenario (``light.clear_build``); with
+``defer_clear`` (a window that traces it in a worker) a clear glazing not yet built is
+left out rather than built here.
 Luminaire arrays add their light placed exactly (``light.arrays.arrays_field``: about
 a second for a room's arrays, so it is kept until the arrays change), and the design's
 work planes their grids: ``grid_lux`` and ``grid_stats`` are the values shown (EN
@@ -22,7 +24,7 @@ import numpy as np
 from lightinv_core.design.model import Design, LuminaireArray, Source
 from lightinv_core.errors import LightInvError
 from lightinv_core.light.arrays import arrays_field
-from lightinv_core.light.clear_build import clear_light
+from lightinv_core.light.clear_build import clear_light, clear_light_ready
 from lightinv_core.light.field import LightField
 from lightinv_core.light.grids import DesignGrids, design_receivers
 from lightinv_core.light.model import LightModel
@@ -45,6 +47,9 @@ class ShownLight:
         """The design's work-plane grids (None without work planes)."""
         self.grid_lux: np.ndarray | None = None
         """Illuminance (lux, maintained) at every grid point of the layout shown."""
+        self.defer_clear = False
+        """True: a clear glazing whose light is not built yet is left out, not built here
+        (the window builds it in a worker: about 20 s on the flagship office)."""
 
     def relight(self, design: Design, preview: tuple[Source, ...] | None = None) -> LightField:
         """Light ``preview`` (sources as lit) if given, else ``design`` as written; the
@@ -91,6 +96,8 @@ class ShownLight:
         (``light.clear_build``: built once per clear glazing, a few seconds). Without a
         readable weather file (its sun is part of the build) the view goes without it:
         the climate panel says why."""
+        if self.defer_clear and not clear_light_ready(self.model, design):
+            return None
         try:
             clear = clear_light(self.model, design)
         except LightInvError:

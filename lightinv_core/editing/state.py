@@ -75,6 +75,11 @@ class DocumentState:
         # Called after every edit with (label, project before, project after): the app
         # keeps them for undo and redo (a QUndoStack); ``restore`` puts a state back.
         self.on_edit: Callable[[str, Project, Project], None] | None = None
+        # True: the clear glazing's light (``light.clear_build``, seconds to tens of
+        # seconds) is built elsewhere, in a worker (the window); until then the light
+        # shown leaves it out and what needs it says it is pending (``clear_pending``).
+        self.clear_elsewhere = False
+        self.clear_note = ""  # why it is still missing, if not being built (a cancel)
 
     # -- the project --------------------------------------------------------------------------
     @property
@@ -161,6 +166,7 @@ class DocumentState:
     def _relight(self) -> None:
         if self._light_shown is not None:
             shown = self._light_shown
+            shown.defer_clear = self.clear_elsewhere
             shown.relight(self.design, self._preview)
             self.events.emit(
                 "lighting", LightingChanged(shown.field, shown.previewing, shown.last_eval_ms)

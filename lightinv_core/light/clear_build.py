@@ -71,27 +71,47 @@ left the points' annual means 5-10% apart (docs/daylight.md)."""
 _CACHE: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()
 
 
-def clear_light(light, design: Design) -> ClearDesignLight | None:
+def clear_light(light, design: Design, progress=None) -> ClearDesignLight | None:
     """The clear glazing's light of ``design`` on ``light`` (a ``LightModel``), made once
-    per operator, clear sources, work planes and daylight; None without clear glazing."""
+    per operator, clear sources, work planes and daylight; None without clear glazing.
+    ``progress(fraction)`` (0-1) is called between the build's steps; an exception it
+    raises (a ``CancelledError``) stops the build and leaves the cache as it was."""
     sources = clear_sources(design)
     if not sources:
         return None
-    key = (sources, tuple(design.workplanes), _traced(design.daylight))
+    key = clear_light_key(design)
     memo = _CACHE.setdefault(light.op, {})
     if key not in memo:
+        built = _build(light, design, sources, progress or (lambda f: None))
         memo.clear()  # one clear glazing at a time per operator
-        memo[key] = _build(light, design, sources)
+        memo[key] = built
     return memo[key]
+
+
+def clear_light_key(design: Design) -> tuple | None:
+    """What the clear glazing's light of ``design`` depends on (None without clear
+    glazing): equal keys share one build."""
+    sources = clear_sources(design)
+    if not sources:
+        return None
+    return (sources, tuple(design.workplanes), _traced(design.daylight))
+
+
+def clear_light_ready(light, design: Design) -> bool:
+    """Whether ``clear_light(light, design)`` returns at once: no clear glazing, or its
+    light already built on ``light``'s operator (an editor builds it elsewhere first)."""
+    key = clear_light_key(design)
+    return key is None or key in _CACHE.get(light.op, {})
 
 
 def _traced(d: Daylight) -> Daylight:
     """``d`` without the fields the build does not read (the dimming's target, least
-    level and standby, EN 17037's sunlight day and altitude): editing them in the
-    Climate tab must not trace the glazing again (about 20 s on the flagship office)."""
+    level and standby, EN 17037's sunlight day, altitude and provision basis, the DGP
+    limit): editing them in the Climate tab must not trace the glazing again (about
+    20 s on the flagship office)."""
     return replace(
         d, target_lux=0.0, min_level=0.0, standby_w=0.0, sunlight_date="03-21",
-        sunlight_min_altitude=None,
+        sunlight_min_altitude=None, dgp_limit=0.4, en17037_basis="points",
     )  # fmt: skip
 
 
@@ -194,7 +214,7 @@ def _blinds(design: Design, grids, direct: np.ndarray, H: int) -> np.ndarray:
     return closed
 
 
-def _build(light, design: Design, sources) -> ClearDesignLight:
+def _build(light, design: Design, sources, progress) -> ClearDesignLight:
     from lightinv_core.climate.sky_luminance import cie_overcast, scaled_sky
     from lightinv_core.climate.skydome import tregenza
 
@@ -214,7 +234,9 @@ def _build(light, design: Design, sources) -> ClearDesignLight:
         k = dome.patch_of(to_geographic(dirs, north))
         return np.where(k < 0, K0, k)
 
+    progress(0.02)
     sky_w, geo, dn, up = _weather(d, dome)
+    progress(0.12)
     H = len(dn)
     mean, hour_bin = sun_bins(geo, up, SUN_BASIS_MF)
     S = len(mean)
@@ -224,16 +246,21 @@ def _build(light, design: Design, sources) -> ClearDesignLight:
     B = K0 + 1 + 2 * S  # one source's block: sky and ground, sun reflected, sun direct
     # First hit on the room's patches, per source: the sky by bins, the beam per sun bin.
     room = room_sky_rays(lit, glass, caster, ROOM_RAYS, 0)
+    progress(0.15)
     H_sky = _binned(room, G, bins, K0 + 1)  # (G, n, K0 + 1)
     H_sun = sun_on_room(lit, glass, caster, to_scene(mean, north), GLASS_SAMPLES, 0)
     first = np.concatenate([H_sky, H_sun], axis=2)  # (G, n, K0 + 1 + S)
     # Closed blinds: the panes glow (emission E), their first light F E.
+    progress(0.2)
     E_closed, outside, outward = _closed(light, design, sources, glass)
+    progress(0.22)
     flat = np.moveaxis(first, 0, 1).reshape(patches.n, -1)
     flat = np.concatenate([flat, np.asarray(op.F @ E_closed)], axis=1)
     got = flat + _reflected(light, rho, flat)
+    progress(0.55)
     lit_H, H_closed = got[:, :-G].reshape(patches.n, G, -1), got[:, -G:]
     grids = design_receivers(light, design)
+    progress(0.7)
     at_patches = np.zeros((patches.n, G * B + G))
     for g in range(G):
         block = np.concatenate([lit_H[:, g], H_sun[g]], axis=1)
@@ -248,6 +275,7 @@ def _build(light, design: Design, sources) -> ClearDesignLight:
         rays = max(POINT_RAYS, int(op.info.get("rays", DEFAULT_RAYS)))
         seed = int(op.info.get("seed", 0)) + GRID_SEED_OFFSET
         Fp = receiver_factors(pts, nrm, caster, patches.n, rays, seed)
+        progress(0.85)
         seen = receiver_sky_rays(pts, nrm, lit, glass, caster, GLASS_SAMPLES, 0)
         own = _binned(seen, G, bins, K0 + 1)  # the points' own view of the sky
         at_points = np.zeros((len(pts), G * B + G))
@@ -262,6 +290,7 @@ def _build(light, design: Design, sources) -> ClearDesignLight:
             direct[:, :, hours] = exact * dn[hours]
         at_points = samples.values(at_points)
         direct = np.stack([samples.values(x) for x in direct]) if G else direct[:, : samples.size]
+    progress(0.95)
     closed = _blinds(design, grids, direct, H)
     every = np.zeros((G * B + G, H), np.float32)
     blinds = np.zeros_like(every)

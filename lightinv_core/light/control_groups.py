@@ -2,10 +2,12 @@
 
 Each group (``design.model.ControlGroup``) holds luminaire sources and arrays and reads
 its sensor: the grid points of a work plane inside a plan rectangle. Each occupied hour
-it dims, by the one rule of ``climate.metrics.dimming_level``, to top its sensor's mean
-daylight up to ``daylight.target_lux`` with its own luminaires' light there at full
-output (the other groups' light is not counted: each sensor is calibrated with its own
-group alone, as ``study.control_groups`` does), down to its ``min_level``. Energy (kWh a
+its mode (``climate.control_modes``) sets its level from its sensor's mean daylight, its
+own target (default ``daylight.target_lux``) and its own luminaires' light there at
+full output (the other groups' light is not counted: each sensor is calibrated with its
+own group alone, as ``study.control_groups`` does): ``dimming`` tops the daylight up to
+the target by the one rule of ``climate.metrics.dimming_level``, down to its
+``min_level``; ``switching`` is off while the daylight alone meets the target. Energy (kWh a
 year) per group and in total (standby counted once, in the total); LENI per group over
 the whole floor of the control plane, so the groups' LENIs add up.
 
@@ -21,9 +23,10 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
+from lightinv_core.climate.control_modes import ControlModeSpec, control_mode
 from lightinv_core.climate.metrics import lighting_kwh
 from lightinv_core.design.model import DEFAULT_CONTROL_GROUP, ControlGroup, Design, DesignError
-from lightinv_core.light.daylight_year import DaylightYear, dimming_levels, dimming_sum
+from lightinv_core.light.daylight_year import DaylightYear
 from lightinv_core.sources.types import source_type
 
 
@@ -43,13 +46,26 @@ class ControlPlan:
     """The groups that hold luminaires, in the design's order (the undeclared default
     group last): ``names``, ``sensors[k]`` the grid point ids (into ``grids.points``)
     group k reads, ``min_levels``, ``sources[k]`` and ``arrays[k]`` the ids of its
-    luminaire sources (into ``design.sources``) and arrays (into ``design.arrays``)."""
+    luminaire sources (into ``design.sources``) and arrays (into ``design.arrays``),
+    ``modes[k]`` its control mode and ``targets[k]`` its target (lux: its own, else the
+    daylight's)."""
 
     names: tuple[str, ...]
     sensors: tuple[np.ndarray, ...]
     min_levels: tuple[float, ...]
     sources: tuple[np.ndarray, ...]
     arrays: tuple[np.ndarray, ...]
+    modes: tuple[ControlModeSpec, ...] = ()
+    targets: tuple[float | None, ...] = ()
+
+    def target(self, k: int, default: float) -> float:
+        """Group k's target (lux), or ``default`` for a plan made without targets."""
+        own = self.targets[k] if k < len(self.targets) else None
+        return default if own is None else own
+
+    def mode(self, k: int) -> ControlModeSpec:
+        """Group k's control mode (dimming when the plan names none)."""
+        return self.modes[k] if k < len(self.modes) else control_mode("dimming")
 
     @property
     def count(self) -> int:
@@ -74,7 +90,7 @@ def control_plan(design: Design, grids) -> ControlPlan | None:
     if DEFAULT_CONTROL_GROUP not in declared:
         order.append(DEFAULT_CONTROL_GROUP)
     lum = [j for j, s in enumerate(design.sources) if source_type(s.kind).electric]
-    names, sensors, floors, srcs, arrs = [], [], [], [], []
+    names, sensors, floors, srcs, arrs, modes, targets = [], [], [], [], [], [], []
     for name in order:
         s_ids = np.array([j for j in lum if design.sources[j].control_group == name], int)
         a_ids = np.array([j for j, a in enumerate(design.arrays) if a.control_group == name], int)
@@ -86,7 +102,18 @@ def control_plan(design: Design, grids) -> ControlPlan | None:
         floors.append(design.daylight.min_level if group.min_level is None else group.min_level)
         srcs.append(s_ids)
         arrs.append(a_ids)
-    return ControlPlan(tuple(names), tuple(sensors), tuple(floors), tuple(srcs), tuple(arrs))
+        modes.append(control_mode(group.mode))
+        d = design.daylight
+        targets.append(d.target_lux if group.target_lux is None else group.target_lux)
+    return ControlPlan(
+        tuple(names),
+        tuple(sensors),
+        tuple(floors),
+        tuple(srcs),
+        tuple(arrs),
+        tuple(modes),
+        tuple(targets),
+    )
 
 
 def _sensor_points(design: Design, grids, group: ControlGroup) -> np.ndarray:
@@ -106,7 +133,8 @@ class GroupEnergy:
     """One control group's year: ``luminaires`` (count), ``watts`` (W as laid out),
     ``sensor_points`` read, ``electric_lux`` (its own light on its sensor at full
     output), ``min_level``, ``mean_level`` over the occupied hours, ``energy_kwh`` a
-    year, ``leni`` (kWh/m² a over the control plane's floor) and ``monthly_kwh`` (12,)."""
+    year, ``leni`` (kWh/m² a over the control plane's floor), ``monthly_kwh`` (12,),
+    its control ``mode`` and ``target_lux`` (lux)."""
 
     name: str
     luminaires: int
@@ -118,6 +146,8 @@ class GroupEnergy:
     energy_kwh: float
     leni: float
     monthly_kwh: tuple[float, ...]
+    mode: str = "dimming"
+    target_lux: float = 500.0
 
     def as_dict(self) -> dict:
         """JSON-ready."""
@@ -164,17 +194,49 @@ def group_light(light, design: Design, grids, plan: ControlPlan, sources, arrays
 
 
 def group_levels(points, year: DaylightYear, lit: GroupLight, target: float) -> np.ndarray:
-    """(K, T) each group's dimming level in each occupied hour; ``points`` the layout's
-    ``ScenarioLight`` at the grid points (its daylight)."""
+    """(K, T) each group's level (0-1) in each occupied hour, by its mode; ``points`` the
+    layout's ``ScenarioLight`` at the grid points (its daylight), ``target`` (lux) the
+    daylight's, for groups without their own."""
     plan = lit.plan
     out = np.empty((plan.count, year.hours))
     for k, ids in enumerate(plan.sensors):
-        full = float(lit.points[k, ids].mean())
+        full = max(float(lit.points[k, ids].mean()), 1e-9)
         b = points.sky[:, ids, 0].mean(axis=1)
+        day = np.asarray(b, dtype=float) @ year.exterior
         clear = points.clear_hours(ids)
-        fixed = None if clear is None else clear.mean(axis=0)
-        out[k] = dimming_levels(year, b, full, target, plan.min_levels[k], fixed)
+        if clear is not None:
+            day = day + clear.mean(axis=0)
+        mode = plan.mode(k)
+        out[k] = mode.levels(day, full, plan.target(k, target), plan.min_levels[k])
     return out
+
+
+def level_sum(
+    mode: ControlModeSpec,
+    year: DaylightYear,
+    b: np.ndarray,
+    full: np.ndarray,
+    target: float,
+    min_level: float,
+    fixed: np.ndarray | None = None,
+) -> np.ndarray:
+    """(m,) the levels of ``mode`` summed over the occupied hours for m candidates: ``b``
+    (m, G) the sensor's mean daylight per exterior lux of each sky group, ``full`` (m,)
+    its own luminaires' mean lux at full output, ``fixed`` (T,) lux of daylight the
+    same for every candidate (clear glazing). One sky group alone, or fixed daylight
+    alone, is summed over the sorted year (O(log hours)); anything else hour by hour."""
+    b = np.atleast_2d(np.asarray(b, dtype=float))
+    A = np.maximum(np.asarray(full, dtype=float), 1e-9)
+    if fixed is not None and b.shape[1] == 0:
+        s = np.sort(np.asarray(fixed, dtype=float))
+        S = np.concatenate([[0.0], np.cumsum(s)])
+        return mode.sorted_sum(s, S, np.ones(len(A)), A, target, min_level)
+    if year.sorted is not None and fixed is None:
+        return mode.sorted_sum(year.sorted, year.prefix, b[:, 0], A, target, min_level)
+    day = b @ year.exterior
+    if fixed is not None:
+        day = day + fixed
+    return mode.levels(day, A[:, None], target, min_level).sum(axis=1)
 
 
 def group_energies(
@@ -205,6 +267,8 @@ def group_energies(
                 kwh,
                 kwh / floor,
                 monthly,
+                plan.mode(k).name,
+                plan.target(k, 0.0),
             )
         )
     return tuple(out)
@@ -253,16 +317,20 @@ class GroupBatch:
         return full, watts
 
     def level_sums(self, parts, offset: int, full: np.ndarray, target: float) -> np.ndarray:
-        """(K, m) each group's dimming levels summed over the occupied hours; ``parts`` the
-        batch's ``ScenarioLight`` at the level's receivers, grid points from ``offset``."""
+        """(K, m) each group's levels (by its mode) summed over the occupied hours;
+        ``parts`` the batch's ``ScenarioLight`` at the level's receivers, grid points from
+        ``offset``; ``target`` (lux) the daylight's, for groups without their own."""
         year = parts.year()
+        plan = self.plan
         out = np.empty(full.shape)
-        for k, ids in enumerate(self.plan.sensors):
+        for k, ids in enumerate(plan.sensors):
             idx = offset + ids
             b = parts.sky[:, idx].mean(axis=1).T
             clear = parts.clear_hours(idx)
             fixed = None if clear is None else clear.mean(axis=0)
-            out[k] = dimming_sum(year, b, full[k], target, self.plan.min_levels[k], fixed)
+            out[k] = level_sum(
+                plan.mode(k), year, b, full[k], plan.target(k, target), plan.min_levels[k], fixed
+            )
         return out
 
 
@@ -277,3 +345,65 @@ def exact_arrays_at_sensors(light, plan: ControlPlan, grids, arrays) -> np.ndarr
             at = arrays_field(light.patches, light.op, mine, grids.points[plan.sensors[k]])[1]
             out[k] = float(at.mean())
     return out
+
+
+# -- where the sensors are (the window draws them) -------------------------------------------
+
+
+@dataclass(frozen=True)
+class SensorOutline:
+    """Where control group ``name`` reads: ``corners`` (4, 3) m, its plan rectangle on
+    the work plane ``workplane`` at that plane's height (the plane's grid extent when it
+    reads the whole plane), and whether it is ``whole``."""
+
+    name: str
+    workplane: str
+    corners: np.ndarray
+    whole: bool
+
+
+def sensor_outlines(design: Design, patches, grids=None) -> tuple[SensorOutline, ...]:
+    """The sensor of every control group of ``design`` (the declared ones in order, then
+    the default group when it holds luminaires); none for a design that keeps the one
+    default group (``default_only``). The height and a whole plane's extent come from the
+    work plane's grid points (``grids``, ``light.grids.DesignGrids``) when given, else
+    from its floor group's patches (the height above their median, their plan extent
+    less the border); a group on a plane that cannot be placed is left out."""
+    if default_only(design) or design.control_plane is None:
+        return ()
+    groups = list(design.control_groups)
+    names = {g.name for g in groups}
+    lums = [s for s in design.sources if source_type(s.kind).electric]
+    members = {x.control_group for x in (*lums, *design.arrays)}
+    if DEFAULT_CONTROL_GROUP not in names and DEFAULT_CONTROL_GROUP in members:
+        groups.append(ControlGroup(DEFAULT_CONTROL_GROUP))
+    planes = {w.name: w for w in design.workplanes}
+    out = []
+    for g in groups:
+        wp = planes.get(g.workplane or design.control_plane.name)
+        extent = None if wp is None else _plane_extent(wp, patches, grids)
+        if extent is None:
+            continue
+        x0, y0, x1, y1, z = extent
+        if g.sensor is not None:
+            x0, y0, x1, y1 = g.sensor
+        xy = np.array([[x0, y0], [x1, y0], [x1, y1], [x0, y1]], dtype=float)
+        corners = np.column_stack([xy, np.full(4, z)])
+        out.append(SensorOutline(g.name, wp.name, corners, g.sensor is None))
+    return tuple(out)
+
+
+def _plane_extent(wp, patches, grids) -> tuple[float, float, float, float, float] | None:
+    """(x0, y0, x1, y1, z) m of work plane ``wp``: its grid's extent and height, or its
+    floor group's (None when the group is not in the scene)."""
+    if grids is not None and wp.name in grids.spans:
+        pts = grids.points[grids.spans[wp.name]]
+        if len(pts):
+            lo, hi = pts[:, :2].min(axis=0), pts[:, :2].max(axis=0)
+            return (*lo, *hi, float(np.median(pts[:, 2])))
+    if wp.group not in patches.group_names:
+        return None
+    c = patches.centroid[patches.group_index(wp.group)]
+    lo, hi = c[:, :2].min(axis=0) + wp.border, c[:, :2].max(axis=0) - wp.border
+    lo, hi = np.minimum(lo, hi), np.maximum(lo, hi)
+    return (*lo, *hi, float(np.median(c[:, 2])) + wp.height)

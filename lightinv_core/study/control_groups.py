@@ -3,12 +3,14 @@
 Each luminaire belongs to a control group (the schedule's ``control`` column; one
 group for all by default). A group's sensor reads the work-plane points inside its
 region (a rectangle in plan, ``--sensor GROUP=X0,Y0,X1,Y1``; the whole grid when none
-is given). Each occupied hour the group dims, by the one rule of ``climate.metrics``,
-to the level that tops the region's mean daylight up to the target with the group's
-own luminaires' light on that region at full output (the light of the other groups
-is not counted: each sensor is calibrated with its own group alone, as a commissioning
-engineer does at night). Outside the schedule the luminaires are off; standby is
-counted once, in the total.
+is given). Each occupied hour the group's control mode (``climate.control_modes``,
+``dimming`` unless it names another) sets its level from the region's mean daylight, its
+target (its own, else the settings') and the group's own luminaires' light on that
+region at full output (the light of the other groups is not counted: each sensor is
+calibrated with its own group alone, as a commissioning engineer does at night):
+``dimming`` tops the daylight up to the target by the one rule of ``climate.metrics``;
+``switching`` is off while the daylight alone meets the target, else full. Outside the
+schedule the luminaires are off; standby is counted once, in the total.
 
 Energy (kWh a year) per group and in total; LENI per group is the group's energy over
 the whole floor area, so the groups' LENIs add up to the total's.
@@ -20,7 +22,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from lightinv_core.climate.metrics import dimming_level, lighting_kwh
+from lightinv_core.climate.control_modes import DIMMING, control_mode
+from lightinv_core.climate.metrics import lighting_kwh
 from lightinv_core.errors import LightInvError
 from lightinv_core.light.control_groups import sensor_mask
 
@@ -34,8 +37,8 @@ DEFAULT_GROUP = "all"
 class GroupDimming:
     """One control group's year: its ``luminaires``, ``installed_w`` (W at the set
     dimming), ``sensor_points`` read, ``electric_lux`` (its own light on the region at
-    full output), ``mean_level`` over the occupied hours, ``energy_kwh`` and ``leni``
-    (kWh/m² a over the whole floor)."""
+    full output), ``mean_level`` over the occupied hours, ``energy_kwh``, ``leni``
+    (kWh/m² a over the whole floor), its control ``mode`` and ``target_lux``."""
 
     name: str
     luminaires: int
@@ -45,6 +48,8 @@ class GroupDimming:
     mean_level: float
     energy_kwh: float
     leni: float
+    mode: str = DIMMING
+    target_lux: float = 500.0
 
     def as_dict(self) -> dict:
         """JSON-ready."""
@@ -61,17 +66,23 @@ def group_dimming(
     settings,
     floor_m2: float,
     hours_per_year: float,
+    modes: dict[str, str] | None = None,
+    targets: dict[str, float] | None = None,
 ) -> tuple[list[GroupDimming], dict]:
     """Each group's year and the total: ``daylight`` (q, T) lux per work-plane point
     and occupied hour, ``electric[g]`` (q,) group g's lux at full output, ``watts[g]``
     its power (W), ``counts[g]`` its luminaires, ``sensors[g]`` its region (or the
-    whole grid), ``settings`` a ``Daylight`` (target lux, minimum level, standby W)."""
-    unknown = sorted(set(sensors) - set(electric))
-    if unknown:
-        raise LightInvError(
-            f"--sensor names control group(s) {unknown} that no luminaire belongs to; the "
-            f"groups are {sorted(electric)}"
-        )
+    whole grid), ``settings`` a ``Daylight`` (target lux, minimum level, standby W),
+    ``modes[g]`` its control mode (default dimming) and ``targets[g]`` its own target
+    (lux; default the settings')."""
+    modes, targets = dict(modes or {}), dict(targets or {})
+    for what, given in (("--sensor", sensors), ("a control mode", modes), ("a target", targets)):
+        unknown = sorted(set(given) - set(electric))
+        if unknown:
+            raise LightInvError(
+                f"{what} names control group(s) {unknown} that no luminaire belongs to; "
+                f"the groups are {sorted(electric)}"
+            )
     if not floor_m2 > 0:
         raise LightInvError("LENI needs a floor area above 0 m²")
     groups = []
@@ -88,7 +99,9 @@ def group_dimming(
                 f"control group {name!r}: its luminaires give no light on its sensor region"
             )
         day = daylight[mask].mean(axis=0)
-        levels = dimming_level(day, full, settings.target_lux, settings.min_level)
+        mode = control_mode(modes.get(name, DIMMING))
+        target = float(targets.get(name, settings.target_lux))
+        levels = mode.levels(day, full, target, settings.min_level)
         kwh = float(lighting_kwh(watts[name], levels.sum(), 0.0, hours_per_year))
         groups.append(
             GroupDimming(
@@ -100,6 +113,8 @@ def group_dimming(
                 float(levels.mean()),
                 kwh,
                 kwh / floor_m2,
+                mode.name,
+                target,
             )
         )
     standby = float(lighting_kwh(0.0, 0.0, settings.standby_w, hours_per_year))

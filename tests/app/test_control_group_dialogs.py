@@ -31,3 +31,18 @@ def test_the_group_dialog_builds_what_is_entered(qtbot):
     got = dialog.group()
     assert got.sensor == (1.0, 1.0, 11.0, 7.0) and got.workplane == "high"
     assert got.min_level == 0.25
+
+
+def test_the_group_dialog_takes_a_mode_and_an_own_target(qtbot):
+    base = ControlGroup("g", mode="switching", target_lux=300.0)
+    dialog = ControlGroupDialog(["wp"], base, target_lux=500.0)
+    qtbot.addWidget(dialog)
+    assert dialog.group() == base  # shown as it is: switching, its own 300 lux
+    labels = [dialog.mode.itemText(i) for i in range(dialog.mode.count())]
+    assert labels[:2] == ["dimming (continuous)", "switching (on/off)"]
+    dialog.mode.setCurrentIndex(0)
+    dialog.own_target.setChecked(False)
+    assert dialog.group() == ControlGroup("g")  # dimming to the daylight's target
+    fresh = ControlGroupDialog(["wp"], ControlGroup("h"), target_lux=450.0)
+    qtbot.addWidget(fresh)
+    assert fresh.target.value() == 450.0 and not fresh.target.isEnabled()  # proposed

@@ -11,6 +11,7 @@ import re
 import tomllib
 from pathlib import Path
 
+from lightinv_core.climate.control_modes import control_mode, control_mode_names
 from lightinv_core.goals import goal_specs
 from lightinv_core.optimize.registry import methods
 from lightinv_core.quantities import quantity_specs
@@ -89,6 +90,8 @@ def registries() -> str:
     ]
     out += ["", "| optimizer | label | settings |", "|---|---|---|"]
     out += [f"| `{m.name}` | {m.label} | `{m.settings.__name__}` |" for m in methods()]
+    out += ["", "| control mode | label |", "|---|---|"]
+    out += [f"| `{n}` | {control_mode(n).label} |" for n in control_mode_names()]
     return "\n".join(out)
 
 

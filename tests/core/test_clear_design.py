@@ -261,7 +261,8 @@ def test_ase_at_most_ten_percent_is_an_upper_bound_on_the_average(sidelit):
 
 def test_a_dimming_or_sunlight_edit_keeps_the_traced_glazing(sidelit):
     """The clear build is traced once: an edit of the dimming target, least level,
-    standby or the EN 17037 sunlight day reuses it; a new transmittance traces again."""
+    standby, the EN 17037 sunlight day or basis or the DGP limit reuses it; a new
+    transmittance traces again."""
     from lightinv_core.light.clear_build import clear_light
 
     design = window_design(sidelit)
@@ -270,7 +271,8 @@ def test_a_dimming_or_sunlight_edit_keeps_the_traced_glazing(sidelit):
     edited = replace(
         design,
         daylight=replace(day, target_lux=300.0, min_level=0.3, standby_w=1.0,
-                         sunlight_date="02-15", sunlight_min_altitude=12.0),
+                         sunlight_date="02-15", sunlight_min_altitude=12.0,
+                         dgp_limit=0.35, en17037_basis="hours"),
     )  # fmt: skip
     assert clear_light(sidelit, edited) is first
     other = replace(design, daylight=replace(day, transmittance=0.5 * day.transmittance))

@@ -5,8 +5,11 @@ Every luminaire source and luminaire array belongs to one control group (its
 reads the mean daylight over the grid points of a work plane (``workplane``, default the
 design's control plane) inside a plan rectangle (``sensor``, world x0, y0, x1, y1 in m;
 the whole plane when absent), and each occupied hour the group dims to top that mean up
-to ``daylight.target_lux`` with its own luminaires' light there at full output, down to
-``min_level`` at most (the ballast's floor; default ``daylight.min_level``). A design
+to its ``target_lux`` (default ``daylight.target_lux``) with its own luminaires' light
+there at full output, as its ``mode`` says (``climate.control_modes``: ``dimming``,
+continuously down to ``min_level`` at most, the ballast's floor, default
+``daylight.min_level``; or ``switching``, off while the daylight alone meets the
+target and full output otherwise). A design
 that declares no group and names none keeps the one group of all its luminaires read on
 the whole control plane: its results are bit for bit those before groups existed.
 """
@@ -15,8 +18,9 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 
+from lightinv_core.climate.control_modes import DIMMING, control_mode_names
 from lightinv_core.errors import DesignError
-from lightinv_core.fields import Number, Numbers, ObjectSpec, String, declare
+from lightinv_core.fields import Choice, Number, Numbers, ObjectSpec, String, declare
 
 DEFAULT_CONTROL_GROUP = "all"
 """The control group of every luminaire that names none."""
@@ -26,8 +30,9 @@ DEFAULT_CONTROL_GROUP = "all"
 class ControlGroup:
     """A daylight-linked control group (see the module): its ``name``, the ``sensor``
     rectangle (x0, y0, x1, y1, m, plan; None: the whole work plane) on ``workplane``
-    (None: the control plane) and its lowest dimming level ``min_level`` (None: the
-    daylight's)."""
+    (None: the control plane), its lowest dimming level ``min_level`` (None: the
+    daylight's), its control ``mode`` (a ``climate.control_modes`` name) and the
+    illuminance ``target_lux`` its sensor is kept at (lux; None: the daylight's)."""
 
     name: str = field(metadata=declare(String(), "unique among the control groups"))
     sensor: tuple[float, float, float, float] | None = field(
@@ -53,6 +58,24 @@ class ControlGroup:
             Number(lo=0.0, hi=1.0),
             "lowest dimming level of its luminaires (the ballast's floor; default: the "
             "daylight's `min_level`)",
+            nullable=True,
+        ),
+    )
+
+    mode: str = field(
+        default=DIMMING,
+        metadata=declare(
+            Choice(control_mode_names, name='`"dimming"` or `"switching"`'),
+            "how its luminaires follow its sensor: `dimming` (continuously, to top the "
+            "daylight up to the target, down to `min_level`) or `switching` (off while the "
+            "daylight alone meets the target, else full output)",
+        ),
+    )
+    target_lux: float | None = field(
+        default=None,
+        metadata=declare(
+            Number(gt=0.0, hi=1e5),
+            "illuminance its sensor's mean is kept at, lux (default: the daylight's `target_lux`)",
             nullable=True,
         ),
     )
