@@ -330,6 +330,7 @@ def control_groups_table(section: DaylightSection) -> Table | None:
     rows = tuple(
         (
             g.name,
+            f"{g.mode} to {fmt(g.target_lux)} lux",
             str(g.luminaires),
             f"{fmt(g.watts)} W",
             str(g.sensor_points),
@@ -340,13 +341,15 @@ def control_groups_table(section: DaylightSection) -> Table | None:
         )
         for g in e.groups
     )
-    head = ("group", "luminaires", "power", "sensor points", "floor", "mean dimming")
+    head = ("group", "control", "luminaires", "power", "sensor points", "floor", "mean level")
     return Table(
         "Control groups",
         (*head, "annual energy", "LENI kWh/m² a"),
         rows,
-        note="Each group dims on its own sensor region (the mean daylight of its points) "
-        "with its own luminaires' light there; standby is counted once, in the total. "
+        note="Each group is controlled by its own sensor region (the mean daylight of its "
+        "points) with its own luminaires' light there: dimming tops the daylight up to "
+        "its target, switching is off while the daylight alone meets it; standby is "
+        "counted once, in the total. "
         "LENI per group over the whole floor, so the groups' LENIs add up.",
     )
 

@@ -234,7 +234,9 @@ def test_the_optimiser_scores_the_groups_total(sidelit):
     assert "control group window row: 3 luminaires" in text
     section = daylight_section(layout_daylight(light, design, sol.sources, sol.arrays), [])
     table = control_groups_table(section)
-    assert [r[0] for r in table.rows] == ["window row", "all"] and table.rows[0][1] == "3"
+    assert [r[0] for r in table.rows] == ["window row", "all"] and table.rows[0][2] == "3"
+    target = f"{design.daylight.target_lux:g}"
+    assert [r[1] for r in table.rows] == [f"dimming to {target} lux"] * 2
 
 
 # -- the one group of before -----------------------------------------------------------
