@@ -159,6 +159,28 @@ def group_rect(text: str) -> tuple[str, tuple[float, float, float, float]]:
     return group, v
 
 
+def group_control(text: str) -> tuple[str, str, float | None]:
+    """``GROUP=MODE`` or ``GROUP=MODE:LUX``: a control group's mode (a registered control
+    mode: dimming, switching) and its own target (lux; default ``--target-lux``)."""
+    from lightinv_core.climate.control_modes import control_mode_names
+
+    group, sep, value = text.partition("=")
+    mode, colon, lux = value.partition(":")
+    names = control_mode_names()
+    try:
+        target = float(lux) if colon else None
+        if not sep or not group or mode not in names:
+            raise ValueError
+        if target is not None and not (math.isfinite(target) and target > 0):
+            raise ValueError
+    except ValueError:
+        raise argparse.ArgumentTypeError(
+            f"expected GROUP=MODE or GROUP=MODE:LUX (MODE one of {', '.join(names)}, LUX a "
+            f"target above 0), got {text!r}"
+        ) from None
+    return group, mode, target
+
+
 def point3(text: str) -> tuple[float, float, float]:
     """``X,Y,Z`` metres."""
     try:

@@ -169,6 +169,16 @@ def build_parser() -> argparse.ArgumentParser:
         "control group of the luminaire schedule's control column; repeat per group",
     )
     sim.add_argument(
+        "--group-control",
+        type=types.group_control,
+        action="append",
+        default=[],
+        metavar="GROUP=MODE[:LUX]",
+        help="a control group's control: dimming (the default) or switching (off while "
+        "the daylight on its sensor alone meets the target), and its own target in lux "
+        "(default --target-lux); repeat per group",
+    )
+    sim.add_argument(
         "--view",
         type=types.vector6,
         action="append",

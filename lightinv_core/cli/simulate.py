@@ -50,8 +50,9 @@ def check_args(args) -> None:
         raise LightInvError(
             "--view and --sunlight-point are studied over the whole year: leave out --hour"
         )
-    if args.sensor and not args.luminaires:
-        raise LightInvError("--sensor dims a control group of luminaires: give --luminaires")
+    if (args.sensor or args.group_control) and not args.luminaires:
+        what = "--sensor" if args.sensor else "--group-control"
+        raise LightInvError(f"{what} controls a group of luminaires: give --luminaires")
     if args.sunlight_point and args.sunlight_min_altitude is None:
         raise LightInvError(
             "EN 17037 counts the sun above a minimum altitude set for the site (the "
@@ -111,6 +112,8 @@ def spec_of(args) -> SimulationSpec:
         sunlight_min_altitude=args.sunlight_min_altitude,
         sky_mf=args.sky_subdivision,
         sensors=dict(args.sensor),
+        group_modes={g: m for g, m, _ in args.group_control},
+        group_targets={g: t for g, _, t in args.group_control if t is not None},
         exterior_lux=args.exterior_lux,
         ground_reflectance=args.ground_reflectance,
         workplane=plane,

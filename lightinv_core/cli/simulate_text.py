@@ -105,7 +105,8 @@ def reference_payload(res: SimulationResult, spec: SimulationSpec) -> tuple[dict
         groups = [g.as_dict() for g in res.control_groups]
         payload["annual"]["control_groups"] = {"groups": groups, "total": res.control_total}
         lines += [
-            f"control group {g['name']}: {g['luminaires']} luminaire(s), {g['installed_w']:.0f} W, "
+            f"control group {g['name']} ({g['mode']} to {g['target_lux']:g} lux): "
+            f"{g['luminaires']} luminaire(s), {g['installed_w']:.0f} W, "
             f"sensor {g['sensor_points']} points, mean level {g['mean_level']:.2f}, "
             f"{g['energy_kwh']:.0f} kWh a year, LENI {g['leni']:.2f} kWh/m² a"
             for g in groups

@@ -127,6 +127,8 @@ class SimulationSpec:
     sunlight_min_altitude: float | None = None
     sky_mf: int = 1
     sensors: dict[str, tuple[float, float, float, float]] = field(default_factory=dict)
+    group_modes: dict[str, str] = field(default_factory=dict)
+    group_targets: dict[str, float] = field(default_factory=dict)
     ground_reflectance: float = 0.2
     workplane: WorkPlane | None = None
     edition: str = Edition.EN12464_2011
@@ -348,7 +350,7 @@ def _read_workplane(spec, result: SimulationResult, F, caster, light, df: bool, 
             dim = clear_dimming(result.clear_year, electric, watts, floor, spec.annual)
             result.clear_dimming = (dim, float(np.mean(electric)))
         groups = {x.control or DEFAULT_GROUP for x in luminaires}
-        if spec.sensors or len(groups) > 1:
+        if spec.sensors or spec.group_modes or len(groups) > 1:
             scene = (lit, F, caster, grid, factors)
             _control_groups(spec, result, scene, year, days, floor)
     # With clear glazing the year's figures are the clear year's (diffusing groups
@@ -384,6 +386,8 @@ def _control_groups(spec, result: SimulationResult, scene, year, days, floor: fl
         spec.annual,
         floor,
         days.every.shape[1],
+        modes=dict(spec.group_modes),
+        targets=dict(spec.group_targets),
     )
     result.control_groups, result.control_total = groups, total
 

@@ -68,6 +68,22 @@ def test_control_groups_by_sensor_region(tmp_path, capsys, monkeypatch):
     assert by["south"]["leni"] + by["north"]["leni"] == pytest.approx(
         (g["total"]["energy_kwh"] - standby) / 96.0
     )
+    assert {(x["mode"], x["target_lux"]) for x in by.values()} == {("dimming", 300.0)}
+
+    # --group-control: the north row switched at its own 200 lux; the south row as before.
+    sensors = ["--sensor", "south=0,0,12,4", "--sensor", "north=0,4,12,8"]
+    switched = _run(
+        capsys, _schedule(tmp_path, groups), [*sensors, "--group-control", "north=switching:200"]
+    )
+    after = {x["name"]: x for x in switched["control_groups"]["groups"]}
+    assert (after["north"]["mode"], after["north"]["target_lux"]) == ("switching", 200.0)
+    assert after["south"] == by["south"]
+    # Switching is on full or off: its mean level is the share of hours it is on, which
+    # a lower target can only cut, and it never runs below dimming's floor while on.
+    assert after["north"]["mean_level"] != by["north"]["mean_level"]
+    assert after["north"]["energy_kwh"] == pytest.approx(
+        after["north"]["mean_level"] * 60.0 * switched["occupied_hours"] / 1000.0, rel=1e-9
+    )
 
 
 def test_sensor_regions_and_their_errors(tmp_path, capsys, monkeypatch):
@@ -87,3 +103,8 @@ def test_sensor_regions_and_their_errors(tmp_path, capsys, monkeypatch):
     with pytest.raises(SystemExit):
         cli.main([*argv, "--sensor", "a=0,0,0,1"])
     assert "non-zero size" in capsys.readouterr().err
+    with pytest.raises(SystemExit):
+        cli.main([*argv, "--group-control", "a=blinking"])
+    assert "MODE one of dimming, switching" in capsys.readouterr().err
+    assert cli.main([*argv, "--group-control", "b=switching"]) == 2
+    assert "no luminaire belongs to" in capsys.readouterr().err
