@@ -198,7 +198,10 @@ class Viewport(QtWidgets.QWidget):
             self._show_materials(per_patch is None)
         self.mesh.cell_data["value"][:] = values
         lo, hi = self.clim if self.clim is not None else (0.0, float(max(values.max(), 1e-6)))
-        self.plotter.actors["scene"].mapper.scalar_range = (lo, hi)
+        actor = self.plotter.actors.get("scene")
+        if actor is None:  # the window closing: its scene is gone before a late repaint
+            return
+        actor.mapper.scalar_range = (lo, hi)
         if units != self.units or fmt != self.label_format:
             self.units, self.label_format = units, fmt
             for bar in self.plotter.scalar_bars.values():

@@ -83,6 +83,8 @@ class ClimatePanel(QtWidgets.QWidget):
             self.transmittance,
             self.sun_day,
             self.sun_altitude,
+            self.basis,
+            self.dgp_limit,
             self.start,
             self.end,
             self.weekdays,
@@ -152,6 +154,23 @@ class ClimatePanel(QtWidgets.QWidget):
             "value for the site)"
         )
         form.addRow("Sun counts above", self.sun_altitude)
+        # EN 17037 daylight provision's two readings of "a plane fraction for half the
+        # daylight hours" (docs/daylight.md, "EN 17037's hours basis in a project").
+        self.basis = QtWidgets.QComboBox()
+        self.basis.addItem("points: each point", "points")
+        self.basis.addItem("hours: each hour", "hours")
+        self.basis.setToolTip(
+            "EN 17037 daylight provision: 'points' counts the points reaching the "
+            "illuminance in half the daylight hours (Honeybee); 'hours' the hours in which "
+            "the plane fraction reaches it (ClimateStudio)"
+        )
+        form.addRow("Provision basis", self.basis)
+        self.dgp_limit = typed_number(0.19, 1.0, 0.05, 2)
+        self.dgp_limit.setToolTip(
+            "Simplified DGP at observers: the limit whose exceedance a glare intention "
+            "counts (0.40: EN 17037 medium; 0.45 minimum, 0.35 high)"
+        )
+        form.addRow("DGP limit", self.dgp_limit)
         self.browse_button.clicked.connect(lambda: self.browse())
         self.builtin_button.clicked.connect(lambda: self.set_weather("builtin"))
         self.north.valueChanged.connect(lambda v: self._set(north_deg=v))
@@ -165,6 +184,8 @@ class ClimatePanel(QtWidgets.QWidget):
         self.sun_altitude.valueChanged.connect(
             lambda v: self._set(sunlight_min_altitude=None if v <= NO_ALTITUDE else v)
         )
+        self.basis.activated.connect(lambda _i: self._set(en17037_basis=self.basis.currentData()))
+        self.dgp_limit.valueChanged.connect(lambda v: self._set(dgp_limit=v))
         return group
 
     def _control_group(self) -> QtWidgets.QGroupBox:
@@ -270,6 +291,8 @@ class ClimatePanel(QtWidgets.QWidget):
             self.sun_day.setCurrentIndex(max(self.sun_day.findData(day.sunlight_date), 0))
             alt = day.sunlight_min_altitude
             self.sun_altitude.setValue(NO_ALTITUDE if alt is None else alt)
+            self.basis.setCurrentIndex(max(self.basis.findData(day.en17037_basis), 0))
+            self.dgp_limit.setValue(day.dgp_limit)
             self.start.setValue(day.occupancy[0])
             self.end.setValue(day.occupancy[1])
             self.weekdays.setChecked(day.weekdays)

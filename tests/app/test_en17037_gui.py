@@ -83,6 +83,33 @@ def test_en17037_provision_at_least_medium_by_clicks(qtbot, window, tmp_path):
     assert "daylight hours" in window.viewport.caption
     u.screenshot(window, SHOTS, "map-en17037-300")
 
+    # Climate > Provision basis: the hours reading; the Achieved tab rates it on that
+    # basis (the layout's own figure), and Edit > Undo takes it back.
+    u.tab(window, "Climate")
+    basis = u.reveal(u.field(window.climate_panel, "Provision basis"))
+    u.choose(basis, "hours: each hour")
+    assert d.design.daylight.en17037_basis == "hours"
+    (it,) = [i for i in d.design.intentions if i.quantity == "en17037"]
+    score = d.layout_daylight().quantity(it)[0][0]
+    u.tab(window, "Achieved")
+    level = ("none", "minimum", "medium", "high")[min(int(score), 3)]
+    shown = f"{score:.2f} ({level})"
+    assert u.wait_for(lambda: any(
+        table.item(r, 4) is not None and table.item(r, 4).text() == shown
+        for r in range(table.rowCount())
+    ), 60_000), shown  # fmt: skip
+    # The DGP limit typed beside it (the glare intentions' threshold).
+    u.tab(window, "Climate")
+    limit = u.reveal(u.field(window.climate_panel, "DGP limit"))
+    u.type_text(limit, "0.35")
+    u.press(limit, Qt.Key_Return)
+    assert d.design.daylight.dgp_limit == pytest.approx(0.35)
+    u.screenshot(window, SHOTS, "climate-basis-dgp")
+    u.menu(window, "Edit", "Undo climate: dgp_limit")
+    u.menu(window, "Edit", "Undo climate: en17037_basis")
+    assert d.design.daylight.en17037_basis == "points" and basis.currentData() == "points"
+    assert d.design.daylight.dgp_limit == pytest.approx(0.40)
+
 
 @pytest.mark.slow
 def test_en17037_sunlight_at_an_eye_waits_for_the_sites_altitude(qtbot, window, tmp_path):
