@@ -48,6 +48,12 @@ from lightinv_core.scenarios import scenario_spec
 from lightinv_core.sources.emission import source_electric_power
 from lightinv_core.sources.types import diffusing, source_type
 
+
+def _per_layout(x: np.ndarray) -> np.ndarray:
+    """(R', m) from the clear glazing's (R',) (the same for every layout) or (R', m)."""
+    return x[:, None] if x.ndim == 1 else x
+
+
 SDA_SHARE = 0.5
 """A point counts towards sDA300/50% when its DA300 is at least this share."""
 
@@ -85,7 +91,7 @@ class ScenarioLight:
         if self.groups.count:
             out = out + np.tensordot(self.groups.overcast, self.sky[:, idx], axes=1)
         if self.clear is not None:
-            out = out + self.clear.overcast(idx)[:, None]
+            out = out + _per_layout(self.clear.overcast(idx))
         return out
 
     def design_daylight(self, idx=slice(None)) -> np.ndarray:
@@ -95,7 +101,7 @@ class ScenarioLight:
         ext = self.daylight.exterior_lux
         out = ext * self.sky[:, idx].sum(axis=0)
         if self.clear is not None:
-            out = out + ext * self.clear.overcast(idx)[:, None]
+            out = out + ext * _per_layout(self.clear.overcast(idx))
         return out
 
     @property
@@ -110,11 +116,13 @@ class ScenarioLight:
         if self.groups.count:
             day = day + np.tensordot(y.every[:, hour], self.sky[:, :, 0], axes=1)
         if self.clear is not None:
-            day = day + self.clear.lux(slice(None), [hour])[:, 0]
+            got = self.clear.lux(slice(None), [hour])
+            day = day + got.reshape(len(got), -1)[:, 0]
         return day
 
     def clear_hours(self, idx=slice(None)) -> np.ndarray | None:
-        """(R', T) the clear glazing's daylight (lux) in the occupied hours, or None."""
+        """(R', T) the clear glazing's daylight (lux) in the occupied hours, or None;
+        (R', m, T) when the clear glazing moves with the layouts (``light.clear_batch``)."""
         if self.clear is None:
             return None
         return self.clear.hours(idx, np.asarray(self.year().occupied))
@@ -139,9 +147,10 @@ class ScenarioLight:
         year = self.year()
         mask = np.asarray(year.occupied)
         m = self.electric.shape[1]
+        moving = getattr(self.clear, "per_layout", False)
         if band.direct_sun or not self.groups.count:
             own = self.clear.band(band, idx, mask)
-            return np.repeat(own[:, None], m, axis=1)
+            return own if moving else np.repeat(own[:, None], m, axis=1)
         fixed = self.clear.hours(idx, mask)
         a = self.coefficients(idx)  # (R', m, G)
         out = np.empty(a.shape[:2])

@@ -20,6 +20,7 @@ from lightinv_core.design.model import Design
 from lightinv_core.design.variables import ArrayLayout, Variables
 from lightinv_core.kinds import Scenario
 from lightinv_core.light.arrays import ArrayLight, arrays_field
+from lightinv_core.light.clear_batch import ClearBatch
 from lightinv_core.light.clear_glazing import stacked
 from lightinv_core.light.control_groups import exact_arrays_at_sensors
 from lightinv_core.light.daylight import ScenarioLight
@@ -192,18 +193,44 @@ class CandidateLight:
                 Vg = np.zeros_like(V_sky)
                 Vg[on] = V_sky[on]
             sky[g] = p.light.illuminance(Vg, level.receivers, on)
-        parts = ScenarioLight(d.daylight, p.sky, lux, sky, self._year_box, self._clear(level))
+        clear = self._clear(level, rect, filt)
+        parts = ScenarioLight(d.daylight, p.sky, lux, sky, self._year_box, clear)
         W = self._weights_of(lay)
         return Lit(V, by_kind, cols, parts.lux(Scenario.DESIGN), parts, lay, W)
 
-    def _clear(self, level: Level):
-        """The fixed clear glazing's light at the level's receivers (None without)."""
+    def _clear(self, level: Level, rect=None, filt=None):
+        """The clear glazing's light at the level's receivers (None without): fixed, or
+        the candidates' own when a clear shape moves (``light.clear_batch``)."""
+        cells = getattr(self.problem, "clear_cells", None)
+        if cells is not None:
+            return self._moving(cells, level, rect, filt)
         clear = getattr(self.problem, "clear", None)
         if clear is None:
             return None
         if level.divisor not in self._clear_at:
             self._clear_at[level.divisor] = stacked(clear.patches, level.rows, clear.points)
         return self._clear_at[level.divisor]
+
+    def _moving(self, cells, level: Level, rect, filt) -> ClearBatch:
+        """The clear light of the batch (rect, filt) whose clear shapes move."""
+        p = self.problem
+        if level.divisor not in self._clear_at:
+            at = np.searchsorted(cells.rows, level.rows)
+            self._clear_at[level.divisor] = np.concatenate(
+                [at, len(cells.rows) + np.arange(cells.points)]
+            )
+        if "occupied" not in self._clear_at:
+            from lightinv_core.climate.weather import load_weather
+            from lightinv_core.light.daylight_year import weather_path
+
+            d = p.design.daylight
+            weather = load_weather(weather_path(d))
+            self._clear_at["occupied"] = np.asarray(
+                weather.occupied(*d.occupancy, weekdays=d.weekdays)
+            )
+        shares = cells.shares(p.light, p.design, rect, filt)
+        pos, occupied = self._clear_at[level.divisor], self._clear_at["occupied"]
+        return ClearBatch(cells, shares, pos, occupied, getattr(p, "control", None))
 
     def judged(self, x: np.ndarray, lv: Level) -> Lit:
         """The light of layout x at level ``lv``'s receivers, its arrays placed exactly

@@ -1,0 +1,324 @@
+"""Clear glazing whose shape the optimiser moves: its light traced once per zone cell.
+
+A clear source with free variables (``u0 v0 u1 v1 filter``) changes its light with
+every candidate. Its light is linear in how much of each zone patch it covers: a
+candidate's clear light is ``sum_c s_c L_c`` over the *cells* c of the clear sources'
+zones (the zone patches), s_c = filter x the share of the cell the rectangle covers
+(as the zone emission of diffusing glazing, ``sources.emission``) and L_c the light of
+the cell fully glazed at the design's transmittance. So the build traces every cell
+once, as ``light.clear_build`` traces a fixed source (the same rays, seeds and
+reflections; one glazing group per cell), and keeps per cell:
+
+- ``coef`` (C, R, B) float32: lux per unit of each column at the receivers (the patch
+  rows the problem reads, then the work-plane points), B = the 145 Tregenza patches
+  and the ground, the sun's reflections on the MF:2 sun bins, the sun's direct light
+  on the same bins (0 at the points, whose direct sun is traced hour by hour);
+- ``direct`` per cell a sparse (q, H) float32: the direct sun at each work-plane point
+  in each hour (lux), traced at the hour's own sun; sparse because a cell puts sun on
+  a point in few hours;
+- ``glow`` (C, R): the cell with its blinds closed, a diffusing glow of
+  ``BLIND_TRANSMITTANCE`` x the transmittance, per lux on its plane; ``over`` (C, R)
+  lux per horizontal lux under the CIE overcast sky.
+
+Every clear source of a design goes through cells once any of them is free (the fixed
+ones with constant shares), so the LM-83 blinds close per source in the fewest
+combination as before (``light.clear_batch``). A clear zone is black inside over its
+whole area (a fixed build blackens only the covered patches): the uncovered part of a
+clear zone reflects nothing (docs/daylight.md, "Clear shapes in the optimiser").
+"""
+
+from __future__ import annotations
+
+import math
+import time
+import weakref
+from dataclasses import dataclass, field, replace
+
+import numpy as np
+import scipy.sparse as sp
+
+from lightinv_core.climate.skydome import SUN_BASIS_MF, sun_bins
+from lightinv_core.design.model import Design
+from lightinv_core.light.arrays import caster_for
+from lightinv_core.light.clear_build import (
+    GLASS_SAMPLES,
+    POINT_RAYS,
+    ROOM_RAYS,
+    _binned,
+    _closed,
+    _reflected,
+    _traced,
+    _weather,
+)
+from lightinv_core.light.clear_glazing import (
+    BLIND_TRANSMITTANCE,
+    clear_sources,
+    clear_transmittance,
+    is_clear,
+)
+from lightinv_core.light.grids import GRID_SEED_OFFSET, design_receivers
+from lightinv_core.transport.clear_glazing import (
+    Glass,
+    SkyRays,
+    receiver_sky_rays,
+    room_sky_rays,
+    sun_on_points,
+    sun_on_room,
+    to_geographic,
+    to_scene,
+)
+from lightinv_core.transport.formfactors import DEFAULT_RAYS
+from lightinv_core.transport.receivers import receiver_factors
+
+CHUNK_BYTES = 64 << 20
+"""Largest first-hit block (patches x columns x 8 bytes) reflected at once."""
+SUN_HOURS_CHUNK = 512
+"""Hours of direct sun at the points traced at once."""
+
+_CACHE: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()
+
+
+def moving_clear(design: Design) -> tuple:
+    """The design's clear sources with free variables (their shape or filter moves)."""
+    return tuple(s for s in design.sources if is_clear(s) and s.free)
+
+
+def refuse_moving_sunlight(design: Design) -> None:
+    """DesignError for an EN 17037 sunlight intention on a design whose clear glazing
+    moves: its hours are counted through the glazing as written (not done per shape)."""
+    from lightinv_core.design.model import DesignError
+    from lightinv_core.quantities import quantity_spec
+
+    for it in design.intentions:
+        if it.observers is not None and quantity_spec(it.quantity).from_glare is None:
+            raise DesignError(
+                f"intention {it.name!r}: EN 17037 sunlight exposure is counted through "
+                "clear glazing as drawn; free no clear source's shape or filter with it"
+            )
+
+
+@dataclass(frozen=True, eq=False)
+class ClearCells:
+    """The clear glazing of a design traced per zone cell (see the module).
+
+    ``sources`` the clear sources (indices into the design's sources, ``source_index``),
+    ``cell_source`` (C,) the clear source of each cell and ``cell_slot`` (C,) its place
+    in that source's zone grid (``grid.patch.ravel()`` order); ``rows`` the patch rows
+    read, ``points`` the work-plane points (receivers after the rows); ``weights`` (B,
+    H) each column's hourly weight (sky luminance, direct normal lux in the sun's bin),
+    ``outside`` (G, H) the exterior lux on each source's plane, ``outward`` (G, 3),
+    ``sun_cols`` the direct sun columns; ``seconds`` the build's CPU time."""
+
+    source_index: tuple[int, ...]
+    cell_source: np.ndarray
+    cell_slot: np.ndarray
+    rows: np.ndarray
+    points: int
+    coef: np.ndarray
+    glow: np.ndarray
+    over: np.ndarray
+    direct: tuple
+    weights: np.ndarray
+    outside: np.ndarray
+    outward: np.ndarray
+    sun_cols: np.ndarray
+    seconds: float
+    kept: dict = field(default_factory=dict, repr=False)  # hourly blocks (clear_batch)
+
+    @property
+    def count(self) -> int:
+        """Number of cells C."""
+        return len(self.cell_source)
+
+    @property
+    def sources(self) -> int:
+        """Number of clear sources G."""
+        return len(self.source_index)
+
+    @property
+    def nbytes(self) -> int:
+        """Memory of the cells' columns, sparse direct sun included (bytes)."""
+        total = self.coef.nbytes + self.glow.nbytes + self.over.nbytes + self.weights.nbytes
+        return total + sum(d.data.nbytes + d.indices.nbytes + d.indptr.nbytes for d in self.direct)
+
+    def shares(self, light, design: Design, rect: np.ndarray, filt: np.ndarray) -> np.ndarray:
+        """(m, C) each cell's glazed share (filter x the share of it covered) for m
+        candidates (rect (m, S, 4) m, filt (m, S) over the design's sources)."""
+        from lightinv_core.sources.emission import _overlap
+
+        m = rect.shape[0]
+        out = np.zeros((m, self.count))
+        for g, j in enumerate(self.source_index):
+            grid = light.emission.grid(design.sources[j].zone)
+            nu, nv = grid.patch.shape
+            ou = _overlap(rect[:, j, 0], rect[:, j, 2], nu, grid.du)
+            ov = _overlap(rect[:, j, 1], rect[:, j, 3], nv, grid.dv)
+            s = (filt[:, j, None, None] * ou[:, :, None] * ov[:, None, :]).reshape(m, -1)
+            mine = np.flatnonzero(self.cell_source == g)
+            out[:, mine] = s[:, self.cell_slot[mine]]
+        return out
+
+
+def clear_cells(light, design: Design, rows: np.ndarray) -> ClearCells | None:
+    """The cells of ``design``'s clear glazing on ``light`` (a ``LightModel``), with
+    the patch ``rows`` read as receivers besides the work-plane points; None unless a
+    clear source is free. Made once per operator, clear sources' zones, rows, work
+    planes and daylight."""
+    if not moving_clear(design):
+        return None
+    sources = clear_sources(design)
+    zones = tuple((s.zone, s.name) for s in sources)
+    rows = np.unique(np.asarray(rows, dtype=np.int64))
+    key = (zones, rows.tobytes(), tuple(design.workplanes), _traced(design.daylight))
+    memo = _CACHE.setdefault(light.op, {})
+    if key not in memo:
+        memo.clear()  # one clear glazing at a time per operator
+        memo[key] = _build(light, design, sources, rows)
+    return memo[key]
+
+
+def _cell_glass(light, design: Design, sources, tau: float):
+    """The panes: every patch of every clear source's zone, one glazing group per
+    cell, at the full transmittance; sorted by patch id as a fixed build's are (so a
+    rectangle covering a whole zone traces the very same rays)."""
+    index = {s.name: j for j, s in enumerate(design.sources)}
+    ids, src, slot = [], [], []
+    for g, s in enumerate(sources):
+        patch = light.emission.grid(s.zone).patch.ravel()
+        ids.append(patch)
+        src.append(np.full(len(patch), g))
+        slot.append(np.arange(len(patch)))
+    ids, src, slot = np.concatenate(ids), np.concatenate(src), np.concatenate(slot)
+    order = np.argsort(ids, kind="stable")
+    ids, src, slot = ids[order], src[order], slot[order]
+    C = len(ids)
+    glass = Glass(ids, np.full(C, tau), np.arange(C), tuple(str(c) for c in range(C)))
+    return glass, src, slot, tuple(index[s.name] for s in sources)
+
+
+def _subset(rays: SkyRays, c0: int, c1: int) -> SkyRays:
+    """The rays of cells c0..c1-1, renumbered from 0."""
+    on = (rays.group >= c0) & (rays.group < c1)
+    return SkyRays(rays.target[on], rays.direction[on], rays.weight[on], rays.group[on] - c0,
+                   rays.targets)  # fmt: skip
+
+
+def _sun_on_room(lit, glass, caster, dirs) -> np.ndarray:
+    """(C, n, S) float32 first hit of the beam per cell and sun bin, a few bins at a
+    time (the same glass samples each call: the seed draws only those)."""
+    C, n, S = glass.count, lit.n, len(dirs)
+    out = np.zeros((C, n, S), np.float32)
+    step = max(1, CHUNK_BYTES // max(1, 8 * C * n))
+    for k in range(0, S, step):
+        out[:, :, k : k + step] = sun_on_room(
+            lit, glass, caster, dirs[k : k + step], GLASS_SAMPLES, 0
+        )
+    return out
+
+
+def _build(light, design: Design, sources, rows: np.ndarray) -> ClearCells:
+    from lightinv_core.climate.sky_luminance import cie_overcast, scaled_sky
+    from lightinv_core.climate.skydome import tregenza
+
+    t0 = time.process_time()
+    d = design.daylight
+    patches, op = light.patches, light.op
+    glass, src, slot, index = _cell_glass(light, design, sources, clear_transmittance(d))
+    C, G = glass.count, len(sources)
+    rho = patches.rho.copy()
+    rho[glass.idx] = 0.0  # a clear zone is black inside (see the module)
+    lit = replace(patches, rho=rho)
+    caster = caster_for(patches)
+    dome = tregenza()
+    K0, north = len(dome.solid_angles), d.north_deg
+
+    def bins(dirs):
+        k = dome.patch_of(to_geographic(dirs, north))
+        return np.where(k < 0, K0, k)
+
+    sky_w, geo, dn, up = _weather(d, dome)
+    H = len(dn)
+    mean, hour_bin = sun_bins(geo, up, SUN_BASIS_MF)
+    S = len(mean)
+    hours = np.flatnonzero(up)
+    sun_w = np.zeros((S, H))
+    sun_w[hour_bin[hours], hours] = dn[hours]
+    B = K0 + 1 + 2 * S
+    room = room_sky_rays(lit, glass, caster, ROOM_RAYS, 0)
+    H_sun = _sun_on_room(lit, glass, caster, to_scene(mean, north))
+    # Closed blinds per source: its exterior lux every hour and its outward normal.
+    one = Glass(glass.idx, glass.transmittance, src, tuple(s.name for s in sources))
+    E_src, outside, outward = _closed(light, design, sources, one)
+    grids = design_receivers(light, design)
+    R = len(rows) + (0 if grids is None else grids.samples.size)
+    coef = np.zeros((C, R, B), np.float32)
+    glow = np.zeros((C, R), np.float32)
+    Fp = pts = nrm = own = None
+    if grids is not None:
+        samples = grids.samples
+        pts, nrm = samples.points, samples.normals
+        rays = max(POINT_RAYS, int(op.info.get("rays", DEFAULT_RAYS)))
+        seed = int(op.info.get("seed", 0)) + GRID_SEED_OFFSET
+        Fp = receiver_factors(pts, nrm, caster, patches.n, rays, seed)
+        seen = receiver_sky_rays(pts, nrm, lit, glass, caster, GLASS_SAMPLES, 0)
+        own = _binned(seen, C, bins, K0 + 1)  # (C, q_samples, K0 + 1)
+    step = max(1, CHUNK_BYTES // (8 * patches.n * (K0 + 2 + S)))
+    for c0 in range(0, C, step):
+        c1 = min(C, c0 + step)
+        first = np.concatenate(
+            [_binned(_subset(room, c0, c1), c1 - c0, bins, K0 + 1), H_sun[c0:c1]], axis=2
+        )  # (c, n, K0 + 1 + S)
+        E = np.zeros((patches.n, c1 - c0))
+        E[glass.idx[c0:c1], np.arange(c1 - c0)] = BLIND_TRANSMITTANCE * glass.transmittance[c0:c1]
+        flat = np.moveaxis(first, 0, 1).reshape(patches.n, -1)
+        flat = np.concatenate([flat, np.asarray(op.F @ E)], axis=1)
+        got = flat + _reflected(light, rho, flat)
+        lit_H = got[:, : -(c1 - c0)].reshape(patches.n, c1 - c0, -1)
+        closed_H = got[:, -(c1 - c0) :]
+        for c in range(c0, c1):
+            k = c - c0
+            block = np.zeros((patches.n, B))
+            block[:, : K0 + 1 + S] = lit_H[:, k]
+            block[:, K0 + 1 : K0 + 1 + S] -= H_sun[c]  # reflected only: the beam is direct
+            block[:, K0 + 1 + S :] = H_sun[c]
+            coef[c, : len(rows)] = block[rows]
+            glow[c, : len(rows)] = closed_H[rows, k]
+            if grids is not None:
+                at = np.asarray(Fp @ (rho[:, None] * lit_H[:, k]))
+                at[:, : K0 + 1] += own[c]
+                coef[c, len(rows) :, : K0 + 1 + S] = samples.values(at)
+                e = np.asarray(Fp @ (E[:, k] + rho * closed_H[:, k]))
+                glow[c, len(rows) :] = samples.values(e)
+    direct = _direct(pts, nrm, lit, glass, caster, geo, hours, dn, north, grids, H)
+    over0 = np.concatenate([scaled_sky(dome, cie_overcast, 1.0), [d.ground_reflectance / math.pi]])
+    over = coef[:, :, : K0 + 1] @ over0.astype(np.float32)
+    weights = np.concatenate([sky_w, sun_w, sun_w], axis=0).astype(np.float32)
+    sun_cols = np.arange(K0 + 1 + S, B)
+    return ClearCells(
+        index, src, slot, rows, 0 if grids is None else grids.samples.size, coef, glow, over,
+        direct, weights, outside, outward, sun_cols, time.process_time() - t0,
+    )  # fmt: skip
+
+
+def _direct(pts, nrm, lit, glass, caster, geo, hours, dn, north, grids, H) -> tuple:
+    """Per cell a sparse (q, H) float32: its direct sun (lux) at the work-plane points
+    in every hour, traced at the hour's own sun, a few hundred hours at a time."""
+    C = glass.count
+    if grids is None:
+        return tuple(sp.csr_matrix((0, H), dtype=np.float32) for _ in range(C))
+    q = grids.samples.size
+    parts: list[list] = [[] for _ in range(C)]
+    for i in range(0, len(hours), SUN_HOURS_CHUNK):
+        h = hours[i : i + SUN_HOURS_CHUNK]
+        got = sun_on_points(pts, nrm, lit, glass, caster, to_scene(geo[h], north)) * dn[h]
+        for c in range(C):
+            x = grids.samples.values(got[c])
+            r, t = np.nonzero(x)
+            parts[c].append((r, h[t], x[r, t]))
+    out = []
+    for c in range(C):
+        r = np.concatenate([p[0] for p in parts[c]]) if parts[c] else np.zeros(0, int)
+        t = np.concatenate([p[1] for p in parts[c]]) if parts[c] else np.zeros(0, int)
+        v = np.concatenate([p[2] for p in parts[c]]) if parts[c] else np.zeros(0)
+        out.append(sp.csr_matrix((v.astype(np.float32), (r, t)), shape=(q, H)))
+    return tuple(out)
