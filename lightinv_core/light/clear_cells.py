@@ -224,7 +224,7 @@ def _build(light, design: Design, sources, rows: np.ndarray) -> ClearCells:
     d = design.daylight
     patches, op = light.patches, light.op
     glass, src, slot, index = _cell_glass(light, design, sources, clear_transmittance(d))
-    C, G = glass.count, len(sources)
+    C = glass.count
     rho = patches.rho.copy()
     rho[glass.idx] = 0.0  # a clear zone is black inside (see the module)
     lit = replace(patches, rho=rho)
@@ -248,7 +248,7 @@ def _build(light, design: Design, sources, rows: np.ndarray) -> ClearCells:
     H_sun = _sun_on_room(lit, glass, caster, to_scene(mean, north))
     # Closed blinds per source: its exterior lux every hour and its outward normal.
     one = Glass(glass.idx, glass.transmittance, src, tuple(s.name for s in sources))
-    E_src, outside, outward = _closed(light, design, sources, one)
+    _, outside, outward = _closed(light, design, sources, one)
     grids = design_receivers(light, design)
     R = len(rows) + (0 if grids is None else grids.samples.size)
     coef = np.zeros((C, R, B), np.float32)
