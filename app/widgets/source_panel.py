@@ -249,6 +249,8 @@ class SourcePanel(QtWidgets.QGroupBox):
             w.setVisible(glazed)
         self.glazing.setEnabled(glazed and not tied)
         self.glazing.setCurrentIndex(max(0, self.glazing.findData(str(s.glazing))))
+        if glazed and s.glazing == GlazingKind.CLEAR:  # frees its rectangle, not its filter
+            self.free_strength.setEnabled(False)
         ranged, rated = "flux_range" in t.fields, "efficacy" in t.fields
         for w in (self.flux_min, self.flux_max, self.range_label):
             w.setVisible(ranged)
@@ -281,7 +283,9 @@ class SourcePanel(QtWidgets.QGroupBox):
         kind = self.glazing.currentData()
         if name is None or kind is None or self.doc.design.source(name).glazing == kind:
             return
-        free = self.doc.design.source(name).free  # clear glazing keeps its freedom
+        free = self.doc.design.source(name).free
+        if kind == GlazingKind.CLEAR:  # its rectangle stays free, its filter not
+            free = tuple(v for v in free if v in CORNERS)
         if kind != GlazingKind.CLEAR:
             self._apply(glazing=kind, free=free)
             return

@@ -107,7 +107,9 @@ class ClearCells:
     read, ``points`` the work-plane points (receivers after the rows); ``weights`` (B,
     H) each column's hourly weight (sky luminance, direct normal lux in the sun's bin),
     ``outside`` (G, H) the exterior lux on each source's plane, ``outward`` (G, 3),
-    ``sun_cols`` the direct sun columns; ``seconds`` the build's CPU time."""
+    ``sun_cols`` the direct sun columns, ``over_weights`` (K0 + 1,) the CIE overcast
+    sky's weights of the sky and ground columns per horizontal lux; ``seconds`` the
+    build's CPU time."""
 
     source_index: tuple[int, ...]
     cell_source: np.ndarray
@@ -117,6 +119,7 @@ class ClearCells:
     coef: np.ndarray
     glow: np.ndarray
     over: np.ndarray
+    over_weights: np.ndarray
     direct: tuple
     weights: np.ndarray
     outside: np.ndarray
@@ -159,21 +162,22 @@ class ClearCells:
         return out
 
 
-def clear_cells(light, design: Design, rows: np.ndarray) -> ClearCells | None:
+def clear_cells(light, design: Design, rows=None) -> ClearCells | None:
     """The cells of ``design``'s clear glazing on ``light`` (a ``LightModel``), with
-    the patch ``rows`` read as receivers besides the work-plane points; None unless a
-    clear source is free. Made once per operator, clear sources' zones, rows, work
-    planes and daylight."""
+    the patch ``rows`` read as receivers besides the work-plane points (None: any the
+    cells kept have); None unless a clear source is free. Made once per operator, clear
+    sources' zones, work planes and daylight (and again for rows they lack)."""
     if not moving_clear(design):
         return None
     sources = clear_sources(design)
     zones = tuple((s.zone, s.name) for s in sources)
-    rows = np.unique(np.asarray(rows, dtype=np.int64))
-    key = (zones, rows.tobytes(), tuple(design.workplanes), _traced(design.daylight))
+    key = (zones, tuple(design.workplanes), _traced(design.daylight))
     memo = _CACHE.setdefault(light.op, {})
-    if key not in memo:
+    got = memo.get(key)
+    want = np.zeros(0, np.int64) if rows is None else np.unique(np.asarray(rows, np.int64))
+    if got is None or not np.isin(want, got.rows).all():
         memo.clear()  # one clear glazing at a time per operator
-        memo[key] = _build(light, design, sources, rows)
+        memo[key] = _build(light, design, sources, want)
     return memo[key]
 
 
@@ -296,7 +300,7 @@ def _build(light, design: Design, sources, rows: np.ndarray) -> ClearCells:
     sun_cols = np.arange(K0 + 1 + S, B)
     return ClearCells(
         index, src, slot, rows, 0 if grids is None else grids.samples.size, coef, glow, over,
-        direct, weights, outside, outward, sun_cols, time.process_time() - t0,
+        over0, direct, weights, outside, outward, sun_cols, time.process_time() - t0,
     )  # fmt: skip
 
 

@@ -26,7 +26,9 @@ from lightinv_core.design.model import Daylight, Design, DesignError, Intention
 from lightinv_core.errors import LightInvError
 from lightinv_core.kinds import Quantity
 from lightinv_core.light.clear_build import clear_light
+from lightinv_core.light.clear_cells import clear_cells
 from lightinv_core.light.clear_glazing import ClearLight
+from lightinv_core.light.clear_layout import layout_clear
 from lightinv_core.light.continuous_da import cda as continuous_da
 from lightinv_core.light.daylight_year import (
     DaylightYear,
@@ -429,7 +431,14 @@ def layout_daylight(light, design: Design, sources=None, arrays=None) -> LayoutD
         group = tuple(s for s in diffusing(sources) if s.zone in zones)
         per_group.append(group)
         sky[g] = light.field(group, unit).illuminance
-    clear = clear_light(light, design)
+    # Clear glazing as this layout places it: a clear shape the optimiser moved is
+    # traced afresh at its rectangle (``light.clear_build``, cached per shape).
+    as_laid = replace(design, sources=sources) if sources != design.sources else design
+    clear = clear_light(light, as_laid)
+    clear_points = None if clear is None else clear.points
+    cells = clear_cells(light, design)  # None unless a clear shape is free
+    if cells is not None:  # the work plane as the optimiser judges it: the cells' sum
+        clear_points = layout_clear(light, design, sources, cells)
     at_patches = ScenarioLight(
         design.daylight,
         groups,
@@ -449,7 +458,7 @@ def layout_daylight(light, design: Design, sources=None, arrays=None) -> LayoutD
             e_pts[:, None],
             s_pts[:, :, None],
             at_patches._year,
-            None if clear is None else clear.points,
+            clear_points,
         )
     watts = float(sum(source_electric_power(s) for s in lum))
     for a in arrays:
@@ -475,7 +484,7 @@ def layout_daylight(light, design: Design, sources=None, arrays=None) -> LayoutD
     sunlit_error = ""
     if any(quantity_spec(it.quantity).from_glare is None for it in eyes):
         try:
-            sunlit = observer_sunlight(light, design)
+            sunlit = observer_sunlight(light, as_laid)
         except LightInvError as exc:  # the rest of the light stands; the intention says why
             sunlit_error = str(exc)
     return LayoutDaylight(

@@ -42,7 +42,7 @@ from lightinv_core.goals import goal_names, goal_spec
 from lightinv_core.kinds import GoalKind, Scenario
 from lightinv_core.light.arrays import ArrayLight, array_light, array_shapes, resolve_product
 from lightinv_core.light.clear_build import clear_light
-from lightinv_core.light.clear_cells import clear_cells, refuse_moving_sunlight
+from lightinv_core.light.clear_cells import clear_cells, moving_clear, refuse_moving_sunlight
 from lightinv_core.light.control_groups import GroupBatch, control_plan
 from lightinv_core.light.daylight_year import sky_groups
 from lightinv_core.light.en17037_sun import sunlight_values
@@ -194,11 +194,11 @@ class DesignProblem:
         # Fixed clear glazing: its light is computed once, added to every candidate's;
         # once a clear shape is free, every clear source's light is traced per zone cell
         # and summed per candidate (``light.clear_cells``, ``light.clear_batch``).
+        if moving_clear(design):
+            refuse_moving_sunlight(design)
         self.clear_cells = clear_cells(light, design, self._patch_rows())
         self.clear = None if self.clear_cells is not None else clear_light(light, design)
         self.split = self.split or self.clear is not None or self.clear_cells is not None
-        if self.clear_cells is not None:
-            refuse_moving_sunlight(design)
         self.sky = sky_groups(light, design) if self.split else None
         plane = design.control_plane
         self.control = None if plane is None or self.grids is None else self.grids.spans[plane.name]

@@ -137,10 +137,12 @@ def test_the_candidate_path_reads_the_same_clear_light(sidelit):
     assert ase_mean > 0.1 and ev.penalty[0] > 0  # some points see 250 h of sun
 
 
-def test_a_clear_source_frees_no_flux_a_luminaire_takes_no_glazing(sidelit):
+def test_a_clear_source_frees_only_its_rectangle_a_luminaire_takes_no_glazing(sidelit):
     # Its shape and filter may be free (tests/core/test_clear_shapes.py); a flux not.
-    assert clear_window(sidelit, glazing="clear", free=("u0", "filter")).free == ("u0", "filter")
-    with pytest.raises(DesignError, match="source 'W1': clear glazing has no flux"):
+    assert clear_window(sidelit, glazing="clear", free=("u0", "v1")).free == ("u0", "v1")
+    with pytest.raises(DesignError, match="source 'W1': clear glazing frees only its rect"):
+        clear_window(sidelit, glazing="clear", free=("u0", "filter"))
+    with pytest.raises(DesignError, match="not its flux"):
         clear_window(sidelit, glazing="clear", free=("flux",), flux=1.0)
     raw = {"name": "W1", "zone": "window", "kind": "window", "rect": [0, 0, 1, 1]}
     (free,) = read_sources([{**raw, "glazing": "clear", "free": ["u1"]}], "sources")

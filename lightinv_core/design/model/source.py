@@ -129,9 +129,13 @@ class Source:
         lo, hi = self.flux_range
         if not lo < hi:
             raise DesignError(f"{where}: flux range must satisfy 0 <= min < max")
-        if self.glazing == GlazingKind.CLEAR and VariableName.FLUX in self.free:
+        strength = {VariableName.FLUX, VariableName.FILTER} & set(self.free)
+        if self.glazing == GlazingKind.CLEAR and strength:
+            # Its light is traced per zone cell and summed by the share glazed: linear in
+            # the rectangle, not in the glass's transmittance (docs/daylight.md).
             raise DesignError(
-                f"{where}: clear glazing has no flux to free (free: u0 v0 u1 v1 filter)"
+                f"{where}: clear glazing frees only its rectangle (u0, v0, u1, v1), not "
+                f"its {', '.join(sorted(strength))}: make it diffusing to free that"
             )
 
     @property
