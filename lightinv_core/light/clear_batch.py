@@ -19,6 +19,7 @@ from __future__ import annotations
 from types import SimpleNamespace
 
 import numpy as np
+import scipy.sparse as sp
 
 from lightinv_core.light.clear_cells import ClearCells
 
@@ -26,17 +27,11 @@ MAX_KEPT = 8
 """Hourly cell blocks kept per cells object (receiver set x hour mask x kind)."""
 
 
-def _key(idx) -> tuple:
-    if isinstance(idx, slice):
-        return ("slice", idx.start, idx.stop, idx.step)
-    a = np.asarray(idx)
-    return ("rows", a.dtype.str, a.tobytes())
-
-
 def cell_hours(cells: ClearCells, rec: np.ndarray, mask: np.ndarray, sun_only: bool) -> np.ndarray:
     """(C, R', T) float32 each cell's light (lux, blinds open, no glow) at receivers
-    ``rec`` (indices into the cells' receivers) in the hours of ``mask``: the direct sun
-    alone with ``sun_only``. Kept on ``cells`` (the same for every batch)."""
+    ``rec`` (indices into the cells' receivers) in the hours of ``mask``; with
+    ``sun_only`` the direct sun alone, as a sparse (C, R' T). Kept on ``cells`` (the
+    same for every batch)."""
     memo = cells.kept
     key = (np.asarray(rec).tobytes(), np.asarray(mask).tobytes(), sun_only)
     if key in memo:
@@ -57,6 +52,8 @@ def cell_hours(cells: ClearCells, rec: np.ndarray, mask: np.ndarray, sun_only: b
             out[c] = coef @ W
         if on.any():
             out[c, on] += cells.direct[c][rec[on] - off][:, hours].toarray()
+    if sun_only:  # the sun reaches a point through a cell in few hours: sparse
+        out = sp.csr_matrix(out.reshape(cells.count, -1))
     memo[key] = out
     return out
 
@@ -90,26 +87,43 @@ class ClearBatch:
             mine = np.flatnonzero(self.cells.cell_source == g)
             yield g, mine, self.shares[:, mine]
 
-    def _sum(self, blocks: np.ndarray, mine, s) -> np.ndarray:
-        """(m, R', T) the candidates' sum of the cells' ``blocks`` (C, R', T)."""
-        C, R, T = blocks[mine].shape
-        return (s @ blocks[mine].reshape(C, R * T)).reshape(-1, R, T)
+    def _sum(self, blocks, mine, s, R: int, T: int) -> np.ndarray:
+        """(m, R, T) the candidates' sum of the cells' ``blocks`` (C, R, T), or of a
+        sparse (C, R T) (the direct sun)."""
+        if sp.issparse(blocks):
+            return np.asarray(s @ blocks[mine], dtype=np.float32).reshape(-1, R, T)
+        return (s @ blocks[mine].reshape(len(mine), R * T)).reshape(-1, R, T)
 
     @property
     def closed(self) -> np.ndarray:
-        """(m, G, H) each candidate's LM-83 blinds per clear source and hour."""
+        """(m, G, H) each candidate's LM-83 blinds per clear source and hour: with one
+        source closed in the hours when more than 2% of the control plane's points get
+        direct sun of 1,000 lux or more (``sun_metrics.blinds_closed``, vectorised over
+        the batch); with several, ``blinds_schedule`` per candidate."""
         if self._closed is None:
-            from lightinv_core.climate.sun_metrics import blinds_schedule
+            from lightinv_core.climate.sun_metrics import (
+                BLINDS_LUX,
+                BLINDS_SHARE,
+                blinds_schedule,
+            )
 
             c = self.cells
             H = c.weights.shape[1]
             closed = np.zeros((self.m, c.sources, H), bool)
-            if self.control is not None and self.occupied.any():
+            occ = self.occupied
+            if self.control is not None and occ.any():
                 rec = len(c.rows) + np.arange(c.points)[self.control]
-                sun = cell_hours(c, rec, self.occupied, True)
-                per = np.stack([self._sum(sun, mine, s) for _, mine, s in self._by_source()], 1)
-                for j in range(self.m):  # (G, q, T) each
-                    closed[j][:, self.occupied] = blinds_schedule(per[j])
+                if c.sources == 1:  # the whole batch at once; shared with ASE's sun
+                    sun = self._light_rec(rec, occ, False, True)  # (m, q, T)
+                    closed[:, 0, occ] = (sun >= BLINDS_LUX).mean(axis=1) > BLINDS_SHARE
+                else:
+                    blocks, T = cell_hours(c, rec, occ, True), int(occ.sum())
+                    per = [
+                        self._sum(blocks, mine, s, len(rec), T) for _, mine, s in self._by_source()
+                    ]
+                    per = np.stack(per, 1)  # (m, G, q, T)
+                    for j in range(self.m):
+                        closed[j][:, occ] = blinds_schedule(per[j])
             self._closed = closed
         return self._closed
 
@@ -119,23 +133,32 @@ class ClearBatch:
 
     def _light(self, idx, mask, blinds: bool, sun_only: bool = False) -> np.ndarray:
         """(R', m, T) the candidates' clear light at receivers idx in ``mask``'s hours."""
-        key = (_key(idx), np.asarray(mask).tobytes(), blinds, sun_only)
+        return self._light_rec(self.pos[idx], mask, blinds, sun_only)
+
+    def _light_rec(self, rec, mask, blinds: bool, sun_only: bool) -> np.ndarray:
+        """``_light`` at the cells' receivers ``rec``: (R', m, T) float64, or with
+        ``sun_only`` (m, R', T) float32 (the direct sun, read as such)."""
+        rec = np.asarray(rec, dtype=np.int64)
+        mask = np.asarray(mask, bool)
+        key = (rec.tobytes(), mask.tobytes(), blinds, sun_only)
         if key in self._memo:
             return self._memo[key]
-        rec = self.pos[idx]
-        mask = np.asarray(mask, bool)
         blocks = cell_hours(self.cells, rec, mask, sun_only)
-        out = np.zeros((self.m, len(rec), int(mask.sum())), np.float32)
+        T = int(mask.sum())
+        out = None
         for g, mine, s in self._by_source():
-            part = self._sum(blocks, mine, s)
-            if blinds and not sun_only:
-                shut = self.closed[:, g][:, mask][:, None, :]  # (m, 1, T)
+            part = self._sum(blocks, mine, s, len(rec), T)
+            if blinds and not sun_only:  # closed hours: the source's glow instead
+                shut = self.closed[:, g][:, mask]  # (m, T)
                 glow = s @ self.cells.glow[mine][:, rec]  # (m, R')
-                outside = self.cells.outside[g][mask].astype(np.float32)
-                part = np.where(shut, glow[:, :, None] * outside, part)
-            out += part
-        got = np.ascontiguousarray(np.moveaxis(out, 0, 1))
-        if len(self._memo) >= 6:
+                outside = self.cells.outside[g][mask]
+                for j in np.flatnonzero(shut.any(axis=1)):
+                    cols = np.flatnonzero(shut[j])
+                    part[j][:, cols] = np.outer(glow[j], outside[cols])
+            out = part if out is None else out + part
+        # float64 once here, not in each band's count (``HourBand.of_hours`` casts).
+        got = out if sun_only else np.array(np.moveaxis(out, 0, 1), dtype=float, order="C")
+        if len(self._memo) >= 4:
             self._memo.clear()
         self._memo[key] = got
         return got
@@ -143,7 +166,8 @@ class ClearBatch:
     def hours(self, idx, mask: np.ndarray, sun_only: bool = False) -> np.ndarray:
         """(R', m, T) lux at receivers idx in the hours of ``mask``, with the LM-83
         blinds (the direct sun alone, blinds open, with ``sun_only``)."""
-        return self._light(idx, mask, not sun_only, sun_only)
+        got = self._light(idx, mask, not sun_only, sun_only)
+        return np.moveaxis(got, 0, 1) if sun_only else got
 
     def open_hours(self, idx, mask: np.ndarray) -> np.ndarray:
         """(R', m, T) lux at receivers idx in ``mask``'s hours with every blind open."""
@@ -151,7 +175,11 @@ class ClearBatch:
 
     def band(self, band, idx, mask: np.ndarray) -> np.ndarray:
         """(R', m) an annual metric (``quantities.HourBand``) of this light alone."""
-        lux = self.hours(idx, mask, band.direct_sun)
+        if band.direct_sun:  # (m, R', T)
+            sun = self._light(idx, mask, False, True)
+            m, R, T = sun.shape
+            return band.of_hours(sun.reshape(m * R, T)).reshape(m, R).T
+        lux = self.hours(idx, mask)
         R, m, T = lux.shape
         return band.of_hours(lux.reshape(R * m, T)).reshape(R, m)
 
