@@ -70,6 +70,9 @@ from lightinv_core.transport.clear_glazing import (
 from lightinv_core.transport.formfactors import DEFAULT_RAYS
 from lightinv_core.transport.receivers import receiver_factors
 
+MAX_CELLS = 36
+"""Most cells per free clear source: a zone of more patches is traced in blocks of
+patches (a block's light is taken as even over it when partly covered)."""
 CHUNK_BYTES = 64 << 20
 """Largest first-hit block (patches x columns x 8 bytes) reflected at once."""
 SUN_HOURS_CHUNK = 512
@@ -101,9 +104,10 @@ def refuse_moving_sunlight(design: Design) -> None:
 class ClearCells:
     """The clear glazing of a design traced per zone cell (see the module).
 
-    ``sources`` the clear sources (indices into the design's sources, ``source_index``),
-    ``cell_source`` (C,) the clear source of each cell and ``cell_slot`` (C,) its place
-    in that source's zone grid (``grid.patch.ravel()`` order); ``rows`` the patch rows
+    ``source_index`` the clear sources' indices among the design's sources,
+    ``cell_source`` (C,) the clear source of each cell, ``blocks`` per clear source None
+    (fixed: one cell) or (its zone patches' share of each of its cells (patches, B), those
+    cells' indices); ``rows`` the patch rows
     read, ``points`` the work-plane points (receivers after the rows); ``weights`` (B,
     H) each column's hourly weight (sky luminance, direct normal lux in the sun's bin),
     ``outside`` (G, H) the exterior lux on each source's plane, ``outward`` (G, 3),
@@ -113,7 +117,7 @@ class ClearCells:
 
     source_index: tuple[int, ...]
     cell_source: np.ndarray
-    cell_slot: np.ndarray
+    blocks: tuple
     rows: np.ndarray
     points: int
     coef: np.ndarray
@@ -145,59 +149,101 @@ class ClearCells:
         return total + sum(d.data.nbytes + d.indices.nbytes + d.indptr.nbytes for d in self.direct)
 
     def shares(self, light, design: Design, rect: np.ndarray, filt: np.ndarray) -> np.ndarray:
-        """(m, C) each cell's glazed share (filter x the share of it covered) for m
-        candidates (rect (m, S, 4) m, filt (m, S) over the design's sources)."""
+        """(m, C) each cell's glazed share for m candidates (rect (m, S, 4) m, filt (m, S)
+        over the design's sources): a free source's cells, the share of their area its
+        rectangle covers (a mean over a block's patches); a fixed source's cell, 1."""
         from lightinv_core.sources.emission import _overlap
 
         m = rect.shape[0]
         out = np.zeros((m, self.count))
         for g, j in enumerate(self.source_index):
+            if self.blocks[g] is None:
+                out[:, self.cell_source == g] = 1.0
+                continue
+            agg, cells = self.blocks[g]
             grid = light.emission.grid(design.sources[j].zone)
             nu, nv = grid.patch.shape
             ou = _overlap(rect[:, j, 0], rect[:, j, 2], nu, grid.du)
             ov = _overlap(rect[:, j, 1], rect[:, j, 3], nv, grid.dv)
             s = (filt[:, j, None, None] * ou[:, :, None] * ov[:, None, :]).reshape(m, -1)
-            mine = np.flatnonzero(self.cell_source == g)
-            out[:, mine] = s[:, self.cell_slot[mine]]
+            out[:, cells] = np.asarray(agg.T @ s.T).T
         return out
 
 
-def clear_cells(light, design: Design, rows=None) -> ClearCells | None:
+def clear_cells(light, design: Design, rows=None, build: bool = True) -> ClearCells | None:
     """The cells of ``design``'s clear glazing on ``light`` (a ``LightModel``), with
     the patch ``rows`` read as receivers besides the work-plane points (None: any the
-    cells kept have); None unless a clear source is free. Made once per operator, clear
-    sources' zones, work planes and daylight (and again for rows they lack)."""
+    cells kept have); None unless a clear source is free (or, with ``build`` False,
+    unless they are made already). Made once per operator, clear sources (a free one by
+    its zone), work planes and daylight (and again for rows they lack)."""
     if not moving_clear(design):
         return None
     sources = clear_sources(design)
-    zones = tuple((s.zone, s.name) for s in sources)
+    zones = tuple((s.zone, s.name) if s.free else s for s in sources)
     key = (zones, tuple(design.workplanes), _traced(design.daylight))
     memo = _CACHE.setdefault(light.op, {})
     got = memo.get(key)
     want = np.zeros(0, np.int64) if rows is None else np.unique(np.asarray(rows, np.int64))
+    if not build:
+        return got
     if got is None or not np.isin(want, got.rows).all():
         memo.clear()  # one clear glazing at a time per operator
         memo[key] = _build(light, design, sources, want)
     return memo[key]
 
 
+def _blocks(nu: int, nv: int, du: float, dv: float) -> tuple[int, int]:
+    """Zone patches per cell along u and v: 1 x 1 up to ``MAX_CELLS`` cells, else the
+    fewest blocks of about square size that bring the cells down to it."""
+    ku = kv = 1
+    while math.ceil(nu / ku) * math.ceil(nv / kv) > MAX_CELLS:
+        if ku * du <= kv * dv and ku < nu:
+            ku += 1
+        else:
+            kv += 1
+    return ku, kv
+
+
 def _cell_glass(light, design: Design, sources, tau: float):
-    """The panes: every patch of every clear source's zone, one glazing group per
-    cell, at the full transmittance; sorted by patch id as a fixed build's are (so a
-    rectangle covering a whole zone traces the very same rays)."""
+    """The panes and their cells, sorted by patch id as a fixed build's are (so a
+    rectangle covering a whole zone traces the very same rays). A free clear source:
+    every patch of its zone at the full transmittance, in cells of one patch (or blocks
+    of patches, ``MAX_CELLS``); a fixed one: the patches it covers, at its transmittance
+    x filter x the share covered (as ``clear_build.clear_glass``), one cell."""
+    from lightinv_core.light.clear_build import clear_glass
+
     index = {s.name: j for j, s in enumerate(design.sources)}
-    ids, src, slot = [], [], []
+    ids, trans, cell, src, blocks = [], [], [], [], []
+    C = 0
     for g, s in enumerate(sources):
-        patch = light.emission.grid(s.zone).patch.ravel()
-        ids.append(patch)
-        src.append(np.full(len(patch), g))
-        slot.append(np.arange(len(patch)))
-    ids, src, slot = np.concatenate(ids), np.concatenate(src), np.concatenate(slot)
+        if not s.free:
+            one = clear_glass(light, (s,), tau)
+            ids.append(one.idx)
+            trans.append(one.transmittance)
+            cell.append(np.full(one.count, C))
+            src.append(g)
+            blocks.append(None)
+            C += 1
+            continue
+        grid = light.emission.grid(s.zone)
+        nu, nv = grid.patch.shape
+        ku, kv = _blocks(nu, nv, grid.du, grid.dv)
+        i, j = np.meshgrid(np.arange(nu), np.arange(nv), indexing="ij")
+        bv = math.ceil(nv / kv)
+        b = ((i // ku) * bv + j // kv).ravel()  # each patch's block, patch.ravel() order
+        B = int(b.max()) + 1
+        size = np.bincount(b, minlength=B)
+        agg = sp.csr_matrix((1.0 / size[b], (np.arange(nu * nv), b)), shape=(nu * nv, B))
+        ids.append(grid.patch.ravel())
+        trans.append(np.full(nu * nv, tau))
+        cell.append(C + b)
+        src += [g] * B
+        blocks.append((agg, C + np.arange(B)))
+        C += B
+    ids, trans, cell = np.concatenate(ids), np.concatenate(trans), np.concatenate(cell)
     order = np.argsort(ids, kind="stable")
-    ids, src, slot = ids[order], src[order], slot[order]
-    C = len(ids)
-    glass = Glass(ids, np.full(C, tau), np.arange(C), tuple(str(c) for c in range(C)))
-    return glass, src, slot, tuple(index[s.name] for s in sources)
+    glass = Glass(ids[order], trans[order], cell[order], tuple(str(c) for c in range(C)))
+    return glass, np.asarray(src), tuple(blocks), tuple(index[s.name] for s in sources)
 
 
 def _subset(rays: SkyRays, c0: int, c1: int) -> SkyRays:
@@ -210,7 +256,7 @@ def _subset(rays: SkyRays, c0: int, c1: int) -> SkyRays:
 def _sun_on_room(lit, glass, caster, dirs) -> np.ndarray:
     """(C, n, S) float32 first hit of the beam per cell and sun bin, a few bins at a
     time (the same glass samples each call: the seed draws only those)."""
-    C, n, S = glass.count, lit.n, len(dirs)
+    C, n, S = len(glass.groups), lit.n, len(dirs)
     out = np.zeros((C, n, S), np.float32)
     step = max(1, CHUNK_BYTES // max(1, 8 * C * n))
     for k in range(0, S, step):
@@ -227,8 +273,8 @@ def _build(light, design: Design, sources, rows: np.ndarray) -> ClearCells:
     t0 = time.process_time()
     d = design.daylight
     patches, op = light.patches, light.op
-    glass, src, slot, index = _cell_glass(light, design, sources, clear_transmittance(d))
-    C = glass.count
+    glass, src, blocks, index = _cell_glass(light, design, sources, clear_transmittance(d))
+    C = len(glass.groups)
     rho = patches.rho.copy()
     rho[glass.idx] = 0.0  # a clear zone is black inside (see the module)
     lit = replace(patches, rho=rho)
@@ -251,7 +297,7 @@ def _build(light, design: Design, sources, rows: np.ndarray) -> ClearCells:
     room = room_sky_rays(lit, glass, caster, ROOM_RAYS, 0)
     H_sun = _sun_on_room(lit, glass, caster, to_scene(mean, north))
     # Closed blinds per source: its exterior lux every hour and its outward normal.
-    one = Glass(glass.idx, glass.transmittance, src, tuple(s.name for s in sources))
+    one = Glass(glass.idx, glass.transmittance, src[glass.group], tuple(s.name for s in sources))
     _, outside, outward = _closed(light, design, sources, one)
     grids = design_receivers(light, design)
     R = len(rows) + (0 if grids is None else grids.samples.size)
@@ -273,7 +319,8 @@ def _build(light, design: Design, sources, rows: np.ndarray) -> ClearCells:
             [_binned(_subset(room, c0, c1), c1 - c0, bins, K0 + 1), H_sun[c0:c1]], axis=2
         )  # (c, n, K0 + 1 + S)
         E = np.zeros((patches.n, c1 - c0))
-        E[glass.idx[c0:c1], np.arange(c1 - c0)] = BLIND_TRANSMITTANCE * glass.transmittance[c0:c1]
+        on = (glass.group >= c0) & (glass.group < c1)
+        E[glass.idx[on], glass.group[on] - c0] = BLIND_TRANSMITTANCE * glass.transmittance[on]
         flat = np.moveaxis(first, 0, 1).reshape(patches.n, -1)
         flat = np.concatenate([flat, np.asarray(op.F @ E)], axis=1)
         got = flat + _reflected(light, rho, flat)
@@ -299,7 +346,7 @@ def _build(light, design: Design, sources, rows: np.ndarray) -> ClearCells:
     weights = np.concatenate([sky_w, sun_w, sun_w], axis=0).astype(np.float32)
     sun_cols = np.arange(K0 + 1 + S, B)
     return ClearCells(
-        index, src, slot, rows, 0 if grids is None else grids.samples.size, coef, glow, over,
+        index, src, blocks, rows, 0 if grids is None else grids.samples.size, coef, glow, over,
         over0, direct, weights, outside, outward, sun_cols, time.process_time() - t0,
     )  # fmt: skip
 
@@ -307,7 +354,7 @@ def _build(light, design: Design, sources, rows: np.ndarray) -> ClearCells:
 def _direct(pts, nrm, lit, glass, caster, geo, hours, dn, north, grids, H) -> tuple:
     """Per cell a sparse (q, H) float32: its direct sun (lux) at the work-plane points
     in every hour, traced at the hour's own sun, a few hundred hours at a time."""
-    C = glass.count
+    C = len(glass.groups)
     if grids is None:
         return tuple(sp.csr_matrix((0, H), dtype=np.float32) for _ in range(C))
     q = grids.samples.size

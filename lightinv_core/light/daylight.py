@@ -436,8 +436,10 @@ def layout_daylight(light, design: Design, sources=None, arrays=None) -> LayoutD
     as_laid = replace(design, sources=sources) if sources != design.sources else design
     clear = clear_light(light, as_laid)
     clear_points = None if clear is None else clear.points
-    cells = clear_cells(light, design)  # None unless a clear shape is free
-    if cells is not None:  # the work plane as the optimiser judges it: the cells' sum
+    # A clear shape the optimiser moved: the work plane as it judged it, the cells' sum
+    # (when a problem has made them: the window does not trace them for a view).
+    cells = clear_cells(light, design, build=False)
+    if cells is not None:
         clear_points = layout_clear(light, design, sources, cells)
     at_patches = ScenarioLight(
         design.daylight,

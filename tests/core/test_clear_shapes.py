@@ -268,3 +268,48 @@ def test_solve_a_project_with_a_free_clear_rooflight(tmp_path, capsys):
     assert out["daylight"]["sda300_50"] >= 0.5  # the work plane as the optimiser judged it
     assert out["sources"][0]["area_m2"] < 4.0  # smaller than the whole rooflight
     assert "min_glazing_area" in json.dumps(out)
+
+
+def test_blocks_of_patches_and_a_fixed_clear_source_beside_a_free_one(monkeypatch):
+    """A zone of more patches than ``MAX_CELLS`` is traced in blocks; a fixed clear
+    source beside a free one is one cell at its own transmittance (its blinds its own):
+    with the free one over its whole zone the cells' sum is a fixed build of both."""
+    import lightinv_core.light.clear_cells as cc
+
+    monkeypatch.setattr(cc, "MAX_CELLS", 4)
+    faces = room_faces(0, 0, 0, 6, 6, 3)
+    ceiling = [Insert("roof", 1, 2, 3, 4, group="roof", zone_kind="skylight")]
+    south = [Insert("win", 0.9, 1, 2.1, 5, group="win", zone_kind="window")]
+    parts = {"floor": ("floor", 0.3, []), "ceiling": ("ceiling", 0.8, ceiling)}
+    parts |= {k: ("walls", 0.6, []) for k in ("north", "west", "east")}
+    parts["south"] = ("walls", 0.6, south)
+    surfaces, zones = [], []
+    for key, (group, rho, inserts) in parts.items():
+        s, z = split_rect(key, group, rho, faces[key], inserts)
+        surfaces += s
+        zones += z
+    scene = Scene("two", tuple(surfaces), tuple(zones), 0.5, "two clear openings")
+    patches = mesh_patches(scene)
+    light = LightModel(scene, patches, build_operator(patches, OperatorSettings(rays=256)))
+    w, h = light.zone_size("roof")
+    roof = Source("S1", "roof", "skylight", (0, 0, w, h), glazing="clear", free=("u1",))
+    win = Source("W1", "win", "window", (0, 0.5, 1.2, 3.5), glazing="clear", filter=0.8)
+    d = Design(
+        sources=(roof, win),
+        goals=(Goal("min_glazing_area"),),
+        workplanes=(Workplane("wp", 0.8, 1.0),),
+        daylight=Daylight(transmittance=TAU),
+        intentions=(Intention("DA", grid="wp", quantity="da", average=0.1),),
+    )
+    p = DesignProblem(d, light)
+    cells = p.clear_cells
+    assert light.emission.grid("roof").patch.size == 16 and cells.count == 4 + 1
+    parts_, idx = candidate(p, [w])
+    fixed = layout_daylight(light, replace(d, sources=(replace(roof, free=()), win)))
+    span = fixed.grids.span("wp")
+    got, want = parts_.clear_hours(idx)[:, 0], fixed.points.clear_hours(span)
+    assert np.abs(got - want).max() <= 1e-5 * want.max()
+    assert figures(parts_, idx) == pytest.approx(figures(fixed.points, span), abs=1e-6)
+    # Half the rooflight: two of its four blocks, and less light than the whole.
+    half, _ = candidate(p, [w / 2])
+    assert half.clear_hours(idx)[:, 0].mean() < got.mean()
