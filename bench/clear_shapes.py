@@ -85,7 +85,7 @@ def design(light: LightModel, free=("u0", "v0")) -> Design:
     lum = Source("L1", "lum", "luminaire", (0, 0, *light.zone_size("lum")), flux=6000.0)
     return Design(
         sources=(s1, lum),
-        rules=(Rule("centred", ("S1",)),) if free else (),
+        rules=(Rule("centred", ("S1",)),) if free == ("u0", "v0") else (),
         goals=(Goal("min_annual_energy"),),
         workplanes=(Workplane("wp", 0.8, 0.5),),
         daylight=Daylight(transmittance=TAU, target_lux=300.0),

@@ -22,6 +22,24 @@ from lightinv_core.light.grids import design_receivers
 from lightinv_core.sources.emission import source_stack
 
 
+def laid_clear(light, design: Design, sources, as_laid: Design):
+    """(at the patches, at the work-plane points) the clear light of the layout
+    ``sources`` of ``design`` (``as_laid``: the design with them): traced afresh at
+    their rectangles (``clear_build``, cached per shape), and, once a problem has made
+    the cells of a clear shape the optimiser moves, the work plane as it judged it, the
+    cells' sum (the window does not trace cells for a view); (None, None) without."""
+    from lightinv_core.light.clear_build import clear_light
+    from lightinv_core.light.clear_cells import clear_cells
+
+    clear = clear_light(light, as_laid)
+    if clear is None:
+        return None, None
+    cells = clear_cells(light, design, build=False)
+    if cells is not None:
+        return clear.patches, layout_clear(light, design, sources, cells)
+    return clear.patches, clear.points
+
+
 def layout_clear(light, design: Design, sources, cells: ClearCells) -> ClearLight | None:
     """The clear light of the layout ``sources`` (the design's, as laid) at the design's
     work-plane points, summed from ``cells``; None without work planes."""

@@ -25,10 +25,8 @@ from lightinv_core.climate.metrics import lighting_kwh
 from lightinv_core.design.model import Daylight, Design, DesignError, Intention
 from lightinv_core.errors import LightInvError
 from lightinv_core.kinds import Quantity
-from lightinv_core.light.clear_build import clear_light
-from lightinv_core.light.clear_cells import clear_cells
 from lightinv_core.light.clear_glazing import ClearLight
-from lightinv_core.light.clear_layout import layout_clear
+from lightinv_core.light.clear_layout import laid_clear
 from lightinv_core.light.continuous_da import cda as continuous_da
 from lightinv_core.light.daylight_year import (
     DaylightYear,
@@ -431,22 +429,14 @@ def layout_daylight(light, design: Design, sources=None, arrays=None) -> LayoutD
         group = tuple(s for s in diffusing(sources) if s.zone in zones)
         per_group.append(group)
         sky[g] = light.field(group, unit).illuminance
-    # Clear glazing as this layout places it: a clear shape the optimiser moved is
-    # traced afresh at its rectangle (``light.clear_build``, cached per shape).
     as_laid = replace(design, sources=sources) if sources != design.sources else design
-    clear = clear_light(light, as_laid)
-    clear_points = None if clear is None else clear.points
-    # A clear shape the optimiser moved: the work plane as it judged it, the cells' sum
-    # (when a problem has made them: the window does not trace them for a view).
-    cells = clear_cells(light, design, build=False)
-    if cells is not None:
-        clear_points = layout_clear(light, design, sources, cells)
+    clear, clear_points = laid_clear(light, design, sources, as_laid)
     at_patches = ScenarioLight(
         design.daylight,
         groups,
         electric[:, None],
         sky[:, :, None],
-        clear=None if clear is None else clear.patches,
+        clear=clear,
     )
     at_points = None
     if grids is not None:
