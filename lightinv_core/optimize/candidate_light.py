@@ -216,6 +216,10 @@ class CandidateLight:
         p = self.problem
         if level.divisor not in self._clear_at:
             at = np.searchsorted(cells.rows, level.rows)
+            if len(at) and not np.array_equal(
+                cells.rows[np.minimum(at, len(cells.rows) - 1)], level.rows
+            ):
+                raise ValueError("a level reads patches the clear cells were not traced at")
             self._clear_at[level.divisor] = np.concatenate(
                 [at, len(cells.rows) + np.arange(cells.points)]
             )

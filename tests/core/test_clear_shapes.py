@@ -313,3 +313,26 @@ def test_blocks_of_patches_and_a_fixed_clear_source_beside_a_free_one(monkeypatc
     # Half the rooflight: two of its four blocks, and less light than the whole.
     half, _ = candidate(p, [w / 2])
     assert half.clear_hours(idx)[:, 0].mean() < got.mean()
+
+
+def test_patch_receivers_read_the_cells_too(room):
+    """An intention on the floor's patches: the cells are traced at those rows too, and
+    over the whole zone the floor's DA and ASE are a fixed build's (last in this file:
+    other rows rebuild the cells)."""
+    floor = (
+        Intention("floor DA", group="floor", quantity="da", average=0.1),
+        Intention("floor ASE", group="floor", quantity="ase", max_average=0.9),
+    )
+    d = design(room, free=("u0", "v0", "u1", "v1"), intentions=floor)
+    p = DesignProblem(d, room)
+    w, h = room.zone_size("roof")
+    level = p.level(1)
+    parts, _ = candidate(p, [0.0, 0.0, w, h])
+    fixed = layout_daylight(room, design(room, free=(), intentions=floor))
+    rows = np.arange(len(level.rows))
+    for q in ("da", "ase"):
+        band = quantity_spec(q).hours
+        got = parts.band(band, rows)[:, 0]
+        want = fixed.patches.band(band, level.rows)[:, 0]
+        assert np.allclose(got, want, atol=1e-9), q
+    assert len(p.clear_cells.rows) == len(level.rows) > 100
