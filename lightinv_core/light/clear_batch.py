@@ -99,7 +99,8 @@ class ClearBatch:
         """(m, G, H) each candidate's LM-83 blinds per clear source and hour: with one
         source closed in the hours when more than 2% of the control plane's points get
         direct sun of 1,000 lux or more (``sun_metrics.blinds_closed``, vectorised over
-        the batch); with several, ``blinds_schedule`` per candidate."""
+        the batch); with several, ``blinds_schedule`` (hour by hour, a few candidates'
+        hours in one call)."""
         if self._closed is None:
             from lightinv_core.climate.sun_metrics import (
                 BLINDS_LUX,
@@ -122,8 +123,13 @@ class ClearBatch:
                         self._sum(blocks, mine, s, len(rec), T) for _, mine, s in self._by_source()
                     ]
                     per = np.stack(per, 1)  # (m, G, q, T)
-                    for j in range(self.m):
-                        closed[j][:, occ] = blinds_schedule(per[j])
+                    # Each hour is judged alone: a few candidates' hours side by side
+                    # make one call (G, q, k T).
+                    for j in range(0, self.m, 8):
+                        k = per[j : j + 8]
+                        side = np.moveaxis(k, 0, 2).reshape(k.shape[1], k.shape[2], -1)
+                        got = blinds_schedule(side).reshape(k.shape[1], len(k), -1)
+                        closed[j : j + 8][:, :, occ] = np.moveaxis(got, 1, 0)
             self._closed = closed
         return self._closed
 

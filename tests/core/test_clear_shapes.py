@@ -313,6 +313,12 @@ def test_blocks_of_patches_and_a_fixed_clear_source_beside_a_free_one(monkeypatc
     # Half the rooflight: two of its four blocks, and less light than the whole.
     half, _ = candidate(p, [w / 2])
     assert half.clear_hours(idx)[:, 0].mean() < got.mean()
+    # Two sources' blinds (the fewest closed, per hour) for a batch as one by one.
+    X = np.array([[w], [w / 2], [0.3 * w], [0.0]])
+    batch = p.lighting.of(*p.vars.decode(X), p.level(1), None).parts.clear.closed
+    for j, x in enumerate(X):
+        assert np.array_equal(candidate(p, x)[0].clear.closed[0], batch[j])
+    assert batch.any() and not np.array_equal(batch[0], batch[3])
 
 
 def test_patch_receivers_read_the_cells_too(room):
