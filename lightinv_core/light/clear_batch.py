@@ -42,7 +42,7 @@ def cell_hours(cells: ClearCells, rec: np.ndarray, mask: np.ndarray, sun_only: b
     W = cells.weights[:, hours]
     rec = np.asarray(rec)
     out = np.empty((cells.count, len(rec), len(hours)), np.float32)
-    off = len(cells.rows)
+    off = len(cells.year_rows)
     on = rec >= off  # work-plane points: their direct sun is traced hour by hour
     for c in range(cells.count):
         coef = cells.coef[c, rec]
@@ -60,16 +60,19 @@ def cell_hours(cells: ClearCells, rec: np.ndarray, mask: np.ndarray, sun_only: b
 
 class ClearBatch:
     """The clear light of m candidates (``shares`` (m, C)) at a level's receivers:
-    ``pos`` maps each level receiver to the cells' receivers; ``occupied`` (H,) the
+    ``pos`` maps each level receiver to the cells' receivers of ``over``, ``year_pos``
+    to those of the year's columns (-1: a patch whose intentions read no year);
+    ``occupied`` (H,) the
     schedule's hours (the blinds close only then); ``control`` the control work
     plane's points among the cells' points (None: blinds stay open)."""
 
     per_layout = True
 
-    def __init__(self, cells: ClearCells, shares, pos, occupied, control=None):
+    def __init__(self, cells: ClearCells, shares, pos, year_pos, occupied, control=None):
         self.cells = cells
         self.shares = np.asarray(shares, dtype=np.float32)
         self.pos = np.asarray(pos, dtype=np.int64)
+        self.year_pos = np.asarray(year_pos, dtype=np.int64)
         self.occupied = np.asarray(occupied, bool)
         self.control = control
         self.columns = SimpleNamespace(outward=cells.outward)
@@ -113,7 +116,7 @@ class ClearBatch:
             closed = np.zeros((self.m, c.sources, H), bool)
             occ = self.occupied
             if self.control is not None and occ.any():
-                rec = len(c.rows) + np.arange(c.points)[self.control]
+                rec = len(c.year_rows) + np.arange(c.points)[self.control]
                 if c.sources == 1:  # the whole batch at once; shared with ASE's sun
                     sun = self._light_rec(rec, occ, False, True)  # (m, q, T)
                     closed[:, 0, occ] = (sun >= BLINDS_LUX).mean(axis=1) > BLINDS_SHARE
@@ -139,7 +142,10 @@ class ClearBatch:
 
     def _light(self, idx, mask, blinds: bool, sun_only: bool = False) -> np.ndarray:
         """(R', m, T) the candidates' clear light at receivers idx in ``mask``'s hours."""
-        return self._light_rec(self.pos[idx], mask, blinds, sun_only)
+        rec = self.year_pos[idx]
+        if np.any(rec < 0):
+            raise ValueError("the year's clear light is read at patches it was not traced at")
+        return self._light_rec(rec, mask, blinds, sun_only)
 
     def _light_rec(self, rec, mask, blinds: bool, sun_only: bool) -> np.ndarray:
         """``_light`` at the cells' receivers ``rec``: (R', m, T) float64, or with

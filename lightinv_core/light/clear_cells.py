@@ -107,8 +107,9 @@ class ClearCells:
     ``source_index`` the clear sources' indices among the design's sources,
     ``cell_source`` (C,) the clear source of each cell, ``blocks`` per clear source None
     (fixed: one cell) or (its zone patches' share of each of its cells (patches, B), those
-    cells' indices); ``rows`` the patch rows
-    read, ``points`` the work-plane points (receivers after the rows); ``weights`` (B,
+    cells' indices); ``rows`` the patch rows read (``over`` there), ``year_rows`` those
+    of them whose intentions read the year (``coef`` and ``glow`` there), ``points`` the
+    work-plane points (receivers after the rows in each); ``weights`` (B,
     H) each column's hourly weight (sky luminance, direct normal lux in the sun's bin),
     ``outside`` (G, H) the exterior lux on each source's plane, ``outward`` (G, 3),
     ``sun_cols`` the direct sun columns, ``over_weights`` (K0 + 1,) the CIE overcast
@@ -119,6 +120,7 @@ class ClearCells:
     cell_source: np.ndarray
     blocks: tuple
     rows: np.ndarray
+    year_rows: np.ndarray
     points: int
     coef: np.ndarray
     glow: np.ndarray
@@ -170,12 +172,15 @@ class ClearCells:
         return out
 
 
-def clear_cells(light, design: Design, rows=None, build: bool = True) -> ClearCells | None:
+def clear_cells(
+    light, design: Design, rows=None, year_rows=None, build: bool = True
+) -> ClearCells | None:
     """The cells of ``design``'s clear glazing on ``light`` (a ``LightModel``), with
     the patch ``rows`` read as receivers besides the work-plane points (None: any the
-    cells kept have); None unless a clear source is free (or, with ``build`` False,
-    unless they are made already). Made once per operator, clear sources (a free one by
-    its zone), work planes and daylight (and again for rows they lack)."""
+    cells kept have), the year's columns kept at ``year_rows`` of them only (None: all);
+    None unless a clear source is free (or, with ``build`` False, unless they are made
+    already). Made once per operator, clear sources (a free one by its zone), work
+    planes and daylight (and again for rows they lack)."""
     if not moving_clear(design):
         return None
     sources = clear_sources(design)
@@ -184,11 +189,13 @@ def clear_cells(light, design: Design, rows=None, build: bool = True) -> ClearCe
     memo = _CACHE.setdefault(light.op, {})
     got = memo.get(key)
     want = np.zeros(0, np.int64) if rows is None else np.unique(np.asarray(rows, np.int64))
+    year = want if year_rows is None else np.unique(np.asarray(year_rows, np.int64))
     if not build:
         return got
-    if got is None or not np.isin(want, got.rows).all():
+    lacks = got is None or not np.isin(want, got.rows).all()
+    if lacks or not np.isin(year, got.year_rows).all():
         memo.clear()  # one clear glazing at a time per operator
-        memo[key] = _build(light, design, sources, want)
+        memo[key] = _build(light, design, sources, want, np.intersect1d(year, want))
     return memo[key]
 
 
@@ -266,7 +273,7 @@ def _sun_on_room(lit, glass, caster, dirs) -> np.ndarray:
     return out
 
 
-def _build(light, design: Design, sources, rows: np.ndarray) -> ClearCells:
+def _build(light, design: Design, sources, rows: np.ndarray, year: np.ndarray) -> ClearCells:
     from lightinv_core.climate.sky_luminance import cie_overcast, scaled_sky
     from lightinv_core.climate.skydome import tregenza
 
@@ -300,9 +307,11 @@ def _build(light, design: Design, sources, rows: np.ndarray) -> ClearCells:
     one = Glass(glass.idx, glass.transmittance, src[glass.group], tuple(s.name for s in sources))
     _, outside, outward = _closed(light, design, sources, one)
     grids = design_receivers(light, design)
-    R = len(rows) + (0 if grids is None else grids.samples.size)
-    coef = np.zeros((C, R, B), np.float32)
-    glow = np.zeros((C, R), np.float32)
+    q = 0 if grids is None else grids.samples.size
+    coef = np.zeros((C, len(year) + q, B), np.float32)
+    glow = np.zeros((C, len(year) + q), np.float32)
+    over = np.zeros((C, len(rows) + q), np.float32)
+    over0 = np.concatenate([scaled_sky(dome, cie_overcast, 1.0), [d.ground_reflectance / math.pi]])
     Fp = pts = nrm = own = None
     if grids is not None:
         samples = grids.samples
@@ -332,21 +341,21 @@ def _build(light, design: Design, sources, rows: np.ndarray) -> ClearCells:
             block[:, : K0 + 1 + S] = lit_H[:, k]
             block[:, K0 + 1 : K0 + 1 + S] -= H_sun[c]  # reflected only: the beam is direct
             block[:, K0 + 1 + S :] = H_sun[c]
-            coef[c, : len(rows)] = block[rows]
-            glow[c, : len(rows)] = closed_H[rows, k]
+            coef[c, : len(year)] = block[year]
+            glow[c, : len(year)] = closed_H[year, k]
+            over[c, : len(rows)] = block[rows, : K0 + 1] @ over0
             if grids is not None:
                 at = np.asarray(Fp @ (rho[:, None] * lit_H[:, k]))
                 at[:, : K0 + 1] += own[c]
-                coef[c, len(rows) :, : K0 + 1 + S] = samples.values(at)
+                coef[c, len(year) :, : K0 + 1 + S] = samples.values(at)
                 e = np.asarray(Fp @ (E[:, k] + rho * closed_H[:, k]))
-                glow[c, len(rows) :] = samples.values(e)
+                glow[c, len(year) :] = samples.values(e)
     direct = _direct(pts, nrm, lit, glass, caster, geo, hours, dn, north, grids, H)
-    over0 = np.concatenate([scaled_sky(dome, cie_overcast, 1.0), [d.ground_reflectance / math.pi]])
-    over = coef[:, :, : K0 + 1] @ over0.astype(np.float32)
+    over[:, len(rows) :] = coef[:, len(year) :, : K0 + 1] @ over0.astype(np.float32)
     weights = np.concatenate([sky_w, sun_w, sun_w], axis=0).astype(np.float32)
     sun_cols = np.arange(K0 + 1 + S, B)
     return ClearCells(
-        index, src, blocks, rows, 0 if grids is None else grids.samples.size, coef, glow, over,
+        index, src, blocks, rows, year, q, coef, glow, over,
         over0, direct, weights, outside, outward, sun_cols, time.process_time() - t0,
     )  # fmt: skip
 

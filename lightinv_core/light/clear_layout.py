@@ -48,7 +48,7 @@ def layout_clear(light, design: Design, sources, cells: ClearCells) -> ClearLigh
         return None
     rect, _, filt = source_stack(sources)
     s = cells.shares(light, design, rect, filt)[0]
-    pts = len(cells.rows) + np.arange(cells.points)
+    pts = len(cells.year_rows) + np.arange(cells.points)
     G, B, H = cells.sources, cells.coef.shape[2], cells.weights.shape[1]
     coefficients = np.zeros((cells.points, G * B + G))
     direct = np.zeros((G, cells.points, H), np.float32)

@@ -215,14 +215,7 @@ class CandidateLight:
         """The clear light of the batch (rect, filt) whose clear shapes move."""
         p = self.problem
         if level.divisor not in self._clear_at:
-            at = np.searchsorted(cells.rows, level.rows)
-            if len(at) and not np.array_equal(
-                cells.rows[np.minimum(at, len(cells.rows) - 1)], level.rows
-            ):
-                raise ValueError("a level reads patches the clear cells were not traced at")
-            self._clear_at[level.divisor] = np.concatenate(
-                [at, len(cells.rows) + np.arange(cells.points)]
-            )
+            self._clear_at[level.divisor] = _positions(cells, level.rows)
         if "occupied" not in self._clear_at:
             from lightinv_core.climate.weather import load_weather
             from lightinv_core.light.daylight_year import weather_path
@@ -233,8 +226,8 @@ class CandidateLight:
                 weather.occupied(*d.occupancy, weekdays=d.weekdays)
             )
         shares = cells.shares(p.light, p.design, rect, filt)
-        pos, occupied = self._clear_at[level.divisor], self._clear_at["occupied"]
-        return ClearBatch(cells, shares, pos, occupied, getattr(p, "control", None))
+        (pos, year_pos), occupied = self._clear_at[level.divisor], self._clear_at["occupied"]
+        return ClearBatch(cells, shares, pos, year_pos, occupied, getattr(p, "control", None))
 
     def judged(self, x: np.ndarray, lv: Level) -> Lit:
         """The light of layout x at level ``lv``'s receivers, its arrays placed exactly
@@ -252,3 +245,22 @@ class CandidateLight:
         if plan is not None:  # each control group's arrays, placed exactly, on its sensor
             control = exact_arrays_at_sensors(p.light, plan, p.grids, p.arrays_at(x))
         return replace(lit, layout=p.vars.decode_arrays(x[None]), control_exact=control)
+
+
+def _positions(cells, rows: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """A level's receivers (patch ``rows``, then the work-plane points) among the clear
+    cells' receivers: of their overcast factors, and of their year's columns (-1 at a
+    patch whose intentions read no year)."""
+    at = np.searchsorted(cells.rows, rows)
+    if len(at) and not np.array_equal(cells.rows[np.minimum(at, len(cells.rows) - 1)], rows):
+        raise ValueError("a level reads patches the clear cells were not traced at")
+    pts = np.arange(cells.points)
+    year = np.full(len(rows), -1)
+    if len(cells.year_rows):
+        yr = np.searchsorted(cells.year_rows, rows)
+        ok = yr < len(cells.year_rows)
+        ok[ok] = cells.year_rows[yr[ok]] == rows[ok]
+        year[ok] = yr[ok]
+    return np.concatenate([at, len(cells.rows) + pts]), np.concatenate(
+        [year, len(cells.year_rows) + pts]
+    )

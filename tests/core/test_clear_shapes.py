@@ -322,12 +322,14 @@ def test_blocks_of_patches_and_a_fixed_clear_source_beside_a_free_one(monkeypatc
 
 
 def test_patch_receivers_read_the_cells_too(room):
-    """An intention on the floor's patches: the cells are traced at those rows too, and
-    over the whole zone the floor's DA and ASE are a fixed build's (last in this file:
-    other rows rebuild the cells)."""
+    """Intentions on the floor's patches (annual) and the walls' (night): the cells keep
+    the year's columns at the floor, the overcast factor at both; over the whole zone
+    the floor's DA and ASE and the walls' overcast light are a fixed build's (last in
+    this file: other rows rebuild the cells)."""
     floor = (
         Intention("floor DA", group="floor", quantity="da", average=0.1),
         Intention("floor ASE", group="floor", quantity="ase", max_average=0.9),
+        Intention("walls at night", group="walls", quantity="lux", min=0.0, scenario="night"),
     )
     d = design(room, free=("u0", "v0", "u1", "v1"), intentions=floor)
     p = DesignProblem(d, room)
@@ -335,10 +337,16 @@ def test_patch_receivers_read_the_cells_too(room):
     level = p.level(1)
     parts, _ = candidate(p, [0.0, 0.0, w, h])
     fixed = layout_daylight(room, design(room, free=(), intentions=floor))
-    rows = np.arange(len(level.rows))
+    rows = np.flatnonzero(np.isin(level.rows, p.clear_cells.year_rows))
     for q in ("da", "ase"):
         band = quantity_spec(q).hours
         got = parts.band(band, rows)[:, 0]
-        want = fixed.patches.band(band, level.rows)[:, 0]
+        want = fixed.patches.band(band, level.rows[rows])[:, 0]
         assert np.allclose(got, want, atol=1e-9), q
-    assert len(p.clear_cells.rows) == len(level.rows) > 100
+    # The year's columns at the floor only; the walls (a night intention) read none.
+    cells = p.clear_cells
+    assert len(cells.rows) == len(level.rows) > len(cells.year_rows) > 100
+    assert np.array_equal(cells.year_rows, np.sort(room.patches.group_index("floor")))
+    walls = np.flatnonzero(~np.isin(level.rows, cells.year_rows))
+    over = fixed.patches.overcast_daylight(level.rows[walls])[:, 0]
+    assert np.allclose(parts.overcast_daylight(walls)[:, 0], over)  # the walls' overcast
