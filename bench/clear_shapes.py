@@ -320,6 +320,7 @@ def flagship(args) -> dict:
         "batch_cpu_s": round(t4 - t3, 3),
         "fixed_batch_cpu_s": round(t6 - t5, 3),
         "cell_rows": len(cells.rows),
+        "cell_year_rows": len(cells.year_rows),
         "batch": args.batch,
     }
 

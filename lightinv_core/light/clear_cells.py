@@ -9,19 +9,21 @@ the cell fully glazed at the design's transmittance. So the build traces every c
 once, as ``light.clear_build`` traces a fixed source (the same rays, seeds and
 reflections; one glazing group per cell), and keeps per cell:
 
-- ``coef`` (C, R, B) float32: lux per unit of each column at the receivers (the patch
-  rows the problem reads, then the work-plane points), B = the 145 Tregenza patches
+- ``coef`` (C, R, B) float32: lux per unit of each column at the receivers (the patches
+  of intentions measured over the year, then the work-plane points), B = the 145 Tregenza patches
   and the ground, the sun's reflections on the MF:2 sun bins, the sun's direct light
   on the same bins (0 at the points, whose direct sun is traced hour by hour);
 - ``direct`` per cell a sparse (q, H) float32: the direct sun at each work-plane point
   in each hour (lux), traced at the hour's own sun; sparse because a cell puts sun on
   a point in few hours;
 - ``glow`` (C, R): the cell with its blinds closed, a diffusing glow of
-  ``BLIND_TRANSMITTANCE`` x the transmittance, per lux on its plane; ``over`` (C, R)
-  lux per horizontal lux under the CIE overcast sky.
+  ``BLIND_TRANSMITTANCE`` x the transmittance, per lux on its plane; ``over`` (C, R')
+  lux per horizontal lux under the CIE overcast sky at every patch the problem reads
+  and the points.
 
-Every clear source of a design goes through cells once any of them is free (the fixed
-ones with constant shares), so the LM-83 blinds close per source in the fewest
+Every clear source of a design goes through cells once any of them is free (a fixed one
+as one cell; a free one's zone in blocks of patches beyond ``MAX_CELLS``), so the LM-83
+blinds close per source in the fewest
 combination as before (``light.clear_batch``). A clear zone is black inside over its
 whole area (a fixed build blackens only the covered patches): the uncovered part of a
 clear zone reflects nothing (docs/daylight.md, "Clear shapes in the optimiser").
