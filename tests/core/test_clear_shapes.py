@@ -350,3 +350,33 @@ def test_patch_receivers_read_the_cells_too(room):
     walls = np.flatnonzero(~np.isin(level.rows, cells.year_rows))
     over = fixed.patches.overcast_daylight(level.rows[walls])[:, 0]
     assert np.allclose(parts.overcast_daylight(walls)[:, 0], over)  # the walls' overcast
+
+
+def test_two_control_groups_dim_to_each_candidates_clear_light(room):
+    """Two control groups (the strip under the rooflight's sensor, a second luminaire
+    near the wall on its own): the batch's annual energy is each candidate's alone and,
+    for one layout, ``layout_daylight``'s groups' energy (each dimmed to its own sensor's
+    share of that candidate's clear light)."""
+    from lightinv_core.design.model import ControlGroup
+
+    base = design(room)
+    strip, lum = base.sources[1], replace(base.sources[1], name="L2", rect=(0, 0, 3.0, 1.0))
+    groups = (ControlGroup("middle", sensor=(2.0, 2.0, 6.0, 6.0)), ControlGroup("edge"))
+    d = replace(
+        base,
+        sources=(
+            base.sources[0],
+            replace(strip, control_group="middle"),
+            replace(lum, control_group="edge"),
+        ),
+        control_groups=groups,
+    )
+    p = DesignProblem(d, room)
+    X = np.array([[0.0, 0.0], [0.6, 0.55], [1.2, 1.2]])
+    kwh = p.evaluate(X).goals["min_annual_energy"]
+    for j, x in enumerate(X):
+        assert p.evaluate(x[None]).goals["min_annual_energy"][0] == pytest.approx(kwh[j], rel=1e-6)
+        lay = layout_daylight(room, d, p.sources_at(x))
+        assert len(lay.energy().groups) == 2
+        assert lay.energy().energy_kwh == pytest.approx(kwh[j], rel=1e-6)
+    assert kwh[0] < kwh[2]  # more daylight, less energy
