@@ -16,7 +16,10 @@ from lightinv_core.errors import LightInvError
 from lightinv_core.kinds import GlazingKind
 from lightinv_core.sources.types import source_type
 
-GLAZING_TEXT = {GlazingKind.DIFFUSING: "diffusing (a glow)", GlazingKind.CLEAR: "clear (fixed)"}
+GLAZING_TEXT = {
+    GlazingKind.DIFFUSING: "diffusing (a glow)",
+    GlazingKind.CLEAR: "clear (sky and sun)",
+}
 """The glazing choice's entries for people."""
 
 STRENGTH_BOXES = {
@@ -80,14 +83,14 @@ class SourcePanel(QtWidgets.QGroupBox):
         self.strength.valueChanged.connect(self._strength_edited)
         self.strength_label = QtWidgets.QLabel("flux")
         form.addRow(self.strength_label, self.strength)
-        # Glazing kinds (daylit sources whose type takes the field): clear glazing is
-        # fixed in this version, so choosing it frees nothing (docs/daylight.md).
+        # Glazing kinds (daylit sources whose type takes the field): clear glazing's shape
+        # and filter may be free like a diffusing one's (docs/daylight.md).
         self.glazing = QtWidgets.QComboBox()
         for kind in GlazingKind:
             self.glazing.addItem(GLAZING_TEXT[kind], str(kind))
         self.glazing.setToolTip(
             "Diffusing: the glass glows with the light on its outside. Clear: the sky and "
-            "the sun seen through it by direction (fixed: its shape is not optimised)"
+            "the sun seen through it by direction"
         )
         self.glazing.currentIndexChanged.connect(self._glazing_edited)
         self.glazing_label = QtWidgets.QLabel("Glazing")
@@ -244,12 +247,10 @@ class SourcePanel(QtWidgets.QGroupBox):
         glazed = "glazing" in t.fields
         for w in (self.glazing, self.glazing_label):
             w.setVisible(glazed)
-        clear = glazed and s.glazing == GlazingKind.CLEAR
         self.glazing.setEnabled(glazed and not tied)
         self.glazing.setCurrentIndex(max(0, self.glazing.findData(str(s.glazing))))
-        if clear:  # fixed: nothing of it is optimised
-            for w in (self.free_place, self.free_strength):
-                w.setEnabled(False)
+        if glazed and s.glazing == GlazingKind.CLEAR:  # frees its rectangle, not its filter
+            self.free_strength.setEnabled(False)
         ranged, rated = "flux_range" in t.fields, "efficacy" in t.fields
         for w in (self.flux_min, self.flux_max, self.range_label):
             w.setVisible(ranged)
@@ -282,8 +283,9 @@ class SourcePanel(QtWidgets.QGroupBox):
         kind = self.glazing.currentData()
         if name is None or kind is None or self.doc.design.source(name).glazing == kind:
             return
-        # Clear glazing is fixed: it frees nothing (the optimiser keeps it as drawn).
-        free = () if kind == GlazingKind.CLEAR else self.doc.design.source(name).free
+        free = self.doc.design.source(name).free
+        if kind == GlazingKind.CLEAR:  # its rectangle stays free, its filter not
+            free = tuple(v for v in free if v in CORNERS)
         if kind != GlazingKind.CLEAR:
             self._apply(glazing=kind, free=free)
             return

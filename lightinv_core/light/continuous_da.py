@@ -30,13 +30,14 @@ def cda(light, idx=slice(None), threshold: float = CDA_THRESHOLD) -> np.ndarray:
         k = np.searchsorted(year.sorted, cut, side="left")  # hours below the cut
         below = a0 * year.prefix[k] / threshold
         return (below + (year.hours - k)) / year.hours
-    if a.shape[-1] == 0:  # clear glazing alone: the same for every layout
-        own = np.clip(fixed / threshold, 0.0, 1.0).mean(axis=1)
-        return np.repeat(own[:, None], a.shape[1], axis=1)
+    moving = fixed is not None and fixed.ndim == 3  # (R', m, T): clear shapes that move
+    if a.shape[-1] == 0:  # clear glazing alone
+        own = np.clip(fixed / threshold, 0.0, 1.0).mean(axis=-1)
+        return own if moving else np.repeat(own[:, None], a.shape[1], axis=1)
     out = np.empty(a.shape[:2])
     for j in range(a.shape[1]):
         lux = a[:, j, :] @ year.exterior
         if fixed is not None:
-            lux = lux + fixed
+            lux = lux + (fixed[:, j] if moving else fixed)
         out[:, j] = np.clip(lux / threshold, 0.0, 1.0).mean(axis=1)
     return out

@@ -223,11 +223,12 @@ def level_sum(
     """(m,) the levels of ``mode`` summed over the occupied hours for m candidates: ``b``
     (m, G) the sensor's mean daylight per exterior lux of each sky group, ``full`` (m,)
     its own luminaires' mean lux at full output, ``fixed`` (T,) lux of daylight the
-    same for every candidate (clear glazing). One sky group alone, or fixed daylight
-    alone, is summed over the sorted year (O(log hours)); anything else hour by hour."""
+    same for every candidate (clear glazing), or (m, T) each candidate's (clear glazing
+    whose shape moves). One sky group alone, or fixed daylight alone, is summed over the
+    sorted year (O(log hours)); anything else hour by hour."""
     b = np.atleast_2d(np.asarray(b, dtype=float))
     A = np.maximum(np.asarray(full, dtype=float), 1e-9)
-    if fixed is not None and b.shape[1] == 0:
+    if fixed is not None and b.shape[1] == 0 and np.ndim(fixed) == 1:
         s = np.sort(np.asarray(fixed, dtype=float))
         S = np.concatenate([[0.0], np.cumsum(s)])
         return mode.sorted_sum(s, S, np.ones(len(A)), A, target, min_level)

@@ -25,15 +25,15 @@ from lightinv_core.climate.metrics import lighting_kwh
 from lightinv_core.design.model import Daylight, Design, DesignError, Intention
 from lightinv_core.errors import LightInvError
 from lightinv_core.kinds import Quantity
-from lightinv_core.light.clear_build import clear_light
+from lightinv_core.light.annual_energy import AnnualEnergy, annual_energy
 from lightinv_core.light.clear_glazing import ClearLight
+from lightinv_core.light.clear_layout import laid_clear
 from lightinv_core.light.continuous_da import cda as continuous_da
 from lightinv_core.light.daylight_year import (
     DaylightYear,
     SkyGroups,
     band_values,
     daylight_year,
-    dimming_levels,
 )
 from lightinv_core.light.dgp_observers import eyed_values, layout_eye_daylight
 from lightinv_core.light.en17037_plane import plane_score, reach_shares
@@ -48,6 +48,12 @@ from lightinv_core.quantities import HourBand, quantity_spec
 from lightinv_core.scenarios import scenario_spec
 from lightinv_core.sources.emission import source_electric_power
 from lightinv_core.sources.types import diffusing, source_type
+
+
+def _per_layout(x: np.ndarray) -> np.ndarray:
+    """(R', m) from the clear glazing's (R',) (the same for every layout) or (R', m)."""
+    return x[:, None] if x.ndim == 1 else x
+
 
 SDA_SHARE = 0.5
 """A point counts towards sDA300/50% when its DA300 is at least this share."""
@@ -86,7 +92,7 @@ class ScenarioLight:
         if self.groups.count:
             out = out + np.tensordot(self.groups.overcast, self.sky[:, idx], axes=1)
         if self.clear is not None:
-            out = out + self.clear.overcast(idx)[:, None]
+            out = out + _per_layout(self.clear.overcast(idx))
         return out
 
     def design_daylight(self, idx=slice(None)) -> np.ndarray:
@@ -96,7 +102,7 @@ class ScenarioLight:
         ext = self.daylight.exterior_lux
         out = ext * self.sky[:, idx].sum(axis=0)
         if self.clear is not None:
-            out = out + ext * self.clear.overcast(idx)[:, None]
+            out = out + ext * _per_layout(self.clear.overcast(idx))
         return out
 
     @property
@@ -111,11 +117,13 @@ class ScenarioLight:
         if self.groups.count:
             day = day + np.tensordot(y.every[:, hour], self.sky[:, :, 0], axes=1)
         if self.clear is not None:
-            day = day + self.clear.lux(slice(None), [hour])[:, 0]
+            got = self.clear.lux(slice(None), [hour])
+            day = day + got.reshape(len(got), -1)[:, 0]
         return day
 
     def clear_hours(self, idx=slice(None)) -> np.ndarray | None:
-        """(R', T) the clear glazing's daylight (lux) in the occupied hours, or None."""
+        """(R', T) the clear glazing's daylight (lux) in the occupied hours, or None;
+        (R', m, T) when the clear glazing moves with the layouts (``light.clear_batch``)."""
         if self.clear is None:
             return None
         return self.clear.hours(idx, np.asarray(self.year().occupied))
@@ -140,9 +148,10 @@ class ScenarioLight:
         year = self.year()
         mask = np.asarray(year.occupied)
         m = self.electric.shape[1]
+        moving = getattr(self.clear, "per_layout", False)
         if band.direct_sun or not self.groups.count:
             own = self.clear.band(band, idx, mask)
-            return np.repeat(own[:, None], m, axis=1)
+            return own if moving else np.repeat(own[:, None], m, axis=1)
         fixed = self.clear.hours(idx, mask)
         a = self.coefficients(idx)  # (R', m, G)
         out = np.empty(a.shape[:2])
@@ -185,57 +194,6 @@ class ScenarioLight:
         if spec.from_scenarios is not None:
             return spec.from_scenarios(self, idx)
         return spec.from_lux(self.lux(intention.scenario, idx), rho)
-
-
-@dataclass(frozen=True)
-class AnnualEnergy:
-    """Daylight-linked dimming of a layout over the weather year: ``energy_kwh`` (a
-    year, standby included), ``leni`` (kWh/m² a over ``floor_m2``), ``full_kwh`` (the
-    same hours at full output), ``monthly_kwh`` (12,) and the mean dimming level."""
-
-    energy_kwh: float
-    leni: float
-    full_kwh: float
-    monthly_kwh: tuple[float, ...]
-    mean_level: float
-    floor_m2: float
-    groups: tuple = ()  # ``light.control_groups.GroupEnergy`` each, with control groups
-
-
-def annual_energy(
-    light: ScenarioLight, grid_idx, installed_w: float, floor_m2: float
-) -> AnnualEnergy:
-    """Dimming energy of the first layout of ``light`` controlled on the work-plane points
-    ``grid_idx`` (their mean): see ``climate.metrics`` for the rules."""
-    d = light.daylight
-    y = light.year()
-    full = float(light.electric[grid_idx, 0].mean())
-    # Without skylights there are no sky groups: b is empty and the daylight zero.
-    b = light.sky[:, grid_idx, 0].mean(axis=1)
-    clear = light.clear_hours(grid_idx)
-    fixed = None if clear is None else clear.mean(axis=0)
-    levels = dimming_levels(y, b, full, d.target_lux, d.min_level, fixed)
-    hours_year = y.every.shape[1]
-    energy = lighting_kwh(installed_w, levels.sum(), d.standby_w, hours_year)
-    full_kwh = lighting_kwh(installed_w, y.hours, d.standby_w, hours_year)
-    per_month = np.bincount(np.asarray(y.midpoints.month) - 1, minlength=12)
-    monthly = [
-        float(
-            lighting_kwh(
-                installed_w, levels[y.months == mth].sum(), d.standby_w, per_month[mth - 1]
-            )
-        )
-        for mth in range(1, 13)
-    ]
-    floor = max(float(floor_m2), 1e-9)
-    return AnnualEnergy(
-        float(energy),
-        float(energy / floor),
-        float(full_kwh),
-        tuple(monthly),
-        float(levels.mean()),
-        float(floor_m2),
-    )
 
 
 @dataclass(frozen=True, eq=False)
@@ -428,13 +386,14 @@ def layout_daylight(light, design: Design, sources=None, arrays=None) -> LayoutD
         group = tuple(s for s in diffusing(sources) if s.zone in zones)
         per_group.append(group)
         sky[g] = light.field(group, unit).illuminance
-    clear = clear_light(light, design)
+    as_laid = replace(design, sources=sources) if sources != design.sources else design
+    clear, clear_points = laid_clear(light, design, sources, as_laid)
     at_patches = ScenarioLight(
         design.daylight,
         groups,
         electric[:, None],
         sky[:, :, None],
-        clear=None if clear is None else clear.patches,
+        clear=clear,
     )
     at_points = None
     if grids is not None:
@@ -448,7 +407,7 @@ def layout_daylight(light, design: Design, sources=None, arrays=None) -> LayoutD
             e_pts[:, None],
             s_pts[:, :, None],
             at_patches._year,
-            None if clear is None else clear.points,
+            clear_points,
         )
     watts = float(sum(source_electric_power(s) for s in lum))
     for a in arrays:
@@ -475,7 +434,7 @@ def layout_daylight(light, design: Design, sources=None, arrays=None) -> LayoutD
     specs = [quantity_spec(it.quantity) for it in eyes]
     if any(q.from_glare is None and q.from_eyes is None for q in specs):
         try:
-            sunlit = observer_sunlight(light, design)
+            sunlit = observer_sunlight(light, as_laid)
         except LightInvError as exc:  # the rest of the light stands; the intention says why
             sunlit_error = str(exc)
     return LayoutDaylight(

@@ -266,10 +266,11 @@ def dimming_sum(
     """Sum over the occupied hours of the dimming level clip((target - b.E(t) -
     fixed(t)) / full, min_level, 1) for m candidates: ``b`` (m, G) the control plane's
     mean daylight per exterior lux, ``full`` (m,) its mean electric lux at full output
-    (> 0), ``fixed`` (T,) lux of daylight the same for every candidate (clear glazing)."""
+    (> 0), ``fixed`` (T,) lux of daylight the same for every candidate (clear glazing),
+    or (m, T) each candidate's (clear glazing whose shape moves)."""
     b = np.atleast_2d(np.asarray(b, dtype=float))
     A = np.maximum(np.asarray(full, dtype=float), 1e-9)
-    if fixed is not None and b.shape[1] == 0:
+    if fixed is not None and b.shape[1] == 0 and np.ndim(fixed) == 1:
         # Only fixed daylight: one sorted year, as for one sky group with b = 1.
         s = np.sort(np.asarray(fixed, dtype=float))
         S = np.concatenate([[0.0], np.cumsum(s)])

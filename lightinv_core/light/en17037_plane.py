@@ -109,8 +109,11 @@ def reach_shares(light, idx, levels) -> np.ndarray:
     a = light.coefficients(idx)  # (R', m, G)
     fixed = None
     if light.clear is not None:
-        fixed = light.clear.open_hours(idx, mask)  # (R', Hd), the same for every layout
+        fixed = light.clear.open_hours(idx, mask)  # (R', Hd), or (R', m, Hd) moving
+    moving = fixed is not None and fixed.ndim == 3  # (R', m, Hd): clear shapes that move
     if fixed is not None and a.shape[-1] == 0:
+        if moving:
+            return (fixed[None] >= levels[:, None, None, None]).sum(axis=-1) / hours
         own = (fixed[None] >= levels[:, None, None]).sum(axis=2) / hours
         return np.repeat(own[:, :, None], a.shape[1], axis=2)
     ext = light.year().every[:, mask]  # (G, Hd)
@@ -125,7 +128,7 @@ def reach_shares(light, idx, levels) -> np.ndarray:
     for j in range(a.shape[1]):  # one layout at a time: (R', Hd) lux
         lux = a[:, j, :] @ ext
         if fixed is not None:
-            lux = lux + fixed
+            lux = lux + (fixed[:, j] if moving else fixed)
         out[:, :, j] = (lux[None] >= levels[:, None, None]).sum(axis=2) / hours
     return out
 

@@ -20,6 +20,7 @@ from lightinv_core.design.model import Design
 from lightinv_core.design.variables import ArrayLayout, Variables
 from lightinv_core.kinds import Scenario
 from lightinv_core.light.arrays import ArrayLight, arrays_field
+from lightinv_core.light.clear_batch import ClearBatch
 from lightinv_core.light.clear_glazing import stacked
 from lightinv_core.light.control_groups import exact_arrays_at_sensors
 from lightinv_core.light.daylight import ScenarioLight
@@ -192,18 +193,41 @@ class CandidateLight:
                 Vg = np.zeros_like(V_sky)
                 Vg[on] = V_sky[on]
             sky[g] = p.light.illuminance(Vg, level.receivers, on)
-        parts = ScenarioLight(d.daylight, p.sky, lux, sky, self._year_box, self._clear(level))
+        clear = self._clear(level, rect, filt)
+        parts = ScenarioLight(d.daylight, p.sky, lux, sky, self._year_box, clear)
         W = self._weights_of(lay)
         return Lit(V, by_kind, cols, parts.lux(Scenario.DESIGN), parts, lay, W)
 
-    def _clear(self, level: Level):
-        """The fixed clear glazing's light at the level's receivers (None without)."""
+    def _clear(self, level: Level, rect=None, filt=None):
+        """The clear glazing's light at the level's receivers (None without): fixed, or
+        the candidates' own when a clear shape moves (``light.clear_batch``)."""
+        cells = getattr(self.problem, "clear_cells", None)
+        if cells is not None:
+            return self._moving(cells, level, rect, filt)
         clear = getattr(self.problem, "clear", None)
         if clear is None:
             return None
         if level.divisor not in self._clear_at:
             self._clear_at[level.divisor] = stacked(clear.patches, level.rows, clear.points)
         return self._clear_at[level.divisor]
+
+    def _moving(self, cells, level: Level, rect, filt) -> ClearBatch:
+        """The clear light of the batch (rect, filt) whose clear shapes move."""
+        p = self.problem
+        if level.divisor not in self._clear_at:
+            self._clear_at[level.divisor] = _positions(cells, level.rows)
+        if "occupied" not in self._clear_at:
+            from lightinv_core.climate.weather import load_weather
+            from lightinv_core.light.daylight_year import weather_path
+
+            d = p.design.daylight
+            weather = load_weather(weather_path(d))
+            self._clear_at["occupied"] = np.asarray(
+                weather.occupied(*d.occupancy, weekdays=d.weekdays)
+            )
+        shares = cells.shares(p.light, p.design, rect, filt)
+        (pos, year_pos), occupied = self._clear_at[level.divisor], self._clear_at["occupied"]
+        return ClearBatch(cells, shares, pos, year_pos, occupied, getattr(p, "control", None))
 
     def judged(self, x: np.ndarray, lv: Level) -> Lit:
         """The light of layout x at level ``lv``'s receivers, its arrays placed exactly
@@ -221,3 +245,22 @@ class CandidateLight:
         if plan is not None:  # each control group's arrays, placed exactly, on its sensor
             control = exact_arrays_at_sensors(p.light, plan, p.grids, p.arrays_at(x))
         return replace(lit, layout=p.vars.decode_arrays(x[None]), control_exact=control)
+
+
+def _positions(cells, rows: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """A level's receivers (patch ``rows``, then the work-plane points) among the clear
+    cells' receivers: of their overcast factors, and of their year's columns (-1 at a
+    patch whose intentions read no year)."""
+    at = np.searchsorted(cells.rows, rows)
+    if len(at) and not np.array_equal(cells.rows[np.minimum(at, len(cells.rows) - 1)], rows):
+        raise ValueError("a level reads patches the clear cells were not traced at")
+    pts = np.arange(cells.points)
+    year = np.full(len(rows), -1)
+    if len(cells.year_rows):
+        yr = np.searchsorted(cells.year_rows, rows)
+        ok = yr < len(cells.year_rows)
+        ok[ok] = cells.year_rows[yr[ok]] == rows[ok]
+        year[ok] = yr[ok]
+    return np.concatenate([at, len(cells.rows) + pts]), np.concatenate(
+        [year, len(cells.year_rows) + pts]
+    )

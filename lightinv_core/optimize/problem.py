@@ -42,6 +42,7 @@ from lightinv_core.goals import goal_names, goal_spec
 from lightinv_core.kinds import GoalKind, Scenario
 from lightinv_core.light.arrays import ArrayLight, array_light, array_shapes, resolve_product
 from lightinv_core.light.clear_build import clear_light
+from lightinv_core.light.clear_cells import clear_cells, moving_clear, refuse_moving_sunlight
 from lightinv_core.light.control_groups import GroupBatch, control_plan
 from lightinv_core.light.daylight_year import sky_groups
 from lightinv_core.light.dgp_observers import eye_daylight
@@ -66,6 +67,7 @@ from lightinv_core.optimize.objectives import (
 )
 from lightinv_core.optimize.solution_builder import build_solution, offending_patches
 from lightinv_core.quantities import quantity_spec
+from lightinv_core.scenarios import scenario_spec
 
 __all__ = [
     "ARRAY_MARGIN",
@@ -191,9 +193,14 @@ class DesignProblem:
         self.split = self.annual_goals or any(
             it.scenario != Scenario.DESIGN for it in design.intentions
         )
-        # Clear glazing is fixed: its light is computed once, added to every candidate's.
-        self.clear = clear_light(light, design)
-        self.split = self.split or self.clear is not None
+        # Fixed clear glazing: its light is computed once, added to every candidate's;
+        # once a clear shape is free, every clear source's light is traced per zone cell
+        # and summed per candidate (``light.clear_cells``, ``light.clear_batch``).
+        if moving_clear(design):
+            refuse_moving_sunlight(design)
+        self.clear_cells = clear_cells(light, design, self._patch_rows(), self._year_rows())
+        self.clear = None if self.clear_cells is not None else clear_light(light, design)
+        self.split = self.split or self.clear is not None or self.clear_cells is not None
         self.sky = sky_groups(light, design) if self.split else None
         plane = design.control_plane
         self.control = None if plane is None or self.grids is None else self.grids.spans[plane.name]
@@ -224,6 +231,18 @@ class DesignProblem:
             sets.append(self.glare.seen)
         if any(g.kind == GoalKind.MATCH for g in self.design.goals):
             sets.append(np.arange(self.patches.n))
+        return np.unique(np.concatenate(sets)) if sets else np.zeros(0, np.int64)
+
+    def _year_rows(self) -> np.ndarray:
+        """The patches of intentions measured over the weather year (the clear cells keep
+        their hourly columns there only; elsewhere a patch reads their overcast factor)."""
+        sets = [
+            s
+            for s, it in zip(self.intent_sets, self.design.intentions, strict=True)
+            if s is not None
+            and it.observers is None
+            and scenario_spec(quantity_spec(it.quantity).scenario or it.scenario).weather
+        ]
         return np.unique(np.concatenate(sets)) if sets else np.zeros(0, np.int64)
 
     @property

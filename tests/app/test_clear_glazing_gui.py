@@ -1,8 +1,9 @@
 """Clear glazing chosen in the window (issue #30, docs/daylight.md "Clear glazing in a
 project"), by clicks at 1366 x 768: the integrated office opened by File > Open
 project..., its skylight S1 picked in the design tree, Properties > Source > Glazing
-set to clear (which frees nothing: clear glazing is fixed), then Edit > Undo by its
-keys. The light it gives is checked in tests/core/test_clear_design.py."""
+set to clear (its rectangle stays free: the optimiser moves clear shapes too, its
+filter box greyed), then Edit > Undo by its keys. The light it gives is checked in
+tests/core/test_clear_design.py."""
 
 from __future__ import annotations
 
@@ -35,9 +36,10 @@ def test_a_skylight_made_clear_by_clicks(qtbot, window, tmp_path):
     assert glazing.currentText().startswith("diffusing")
     u.choose(glazing, "clear")
     s = d.design.source("S1")
-    assert s.glazing == "clear" and s.free == ()
-    place = [b for b in props.findChildren(QtWidgets.QCheckBox) if b.text() == "position and size"]
-    assert place and not place[0].isEnabled() and not place[0].isChecked()
+    assert s.glazing == "clear" and s.free == ("u0", "v0", "u1", "v1")
+    boxes = {b.text(): b for b in props.findChildren(QtWidgets.QCheckBox)}
+    assert boxes["position and size"].isEnabled() and boxes["position and size"].isChecked()
+    assert not boxes["filter"].isEnabled()  # a clear glazing frees its rectangle only
     shot = u.screenshot(window, SHOTS, "source-panel-clear")
     assert shot.exists()
 

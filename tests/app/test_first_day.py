@@ -120,7 +120,7 @@ def first_day(qtbot, win, path: Path, model: Model, out: Path) -> None:
 
     # File > Import model..., the file typed in the file dialog, 0.5 m patches, OK.
     def half_metre(dialog):
-        u.type_text(u.field(dialog, "Patch size"), "0.5")
+        u.type_text(u.field(dialog, "Patch size"), "0.8")
         u.ok(dialog)
 
     seen = u.answer(lambda: u.menu(win, "File", "Import model..."), u.file_name(path), half_metre)

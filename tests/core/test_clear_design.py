@@ -137,12 +137,16 @@ def test_the_candidate_path_reads_the_same_clear_light(sidelit):
     assert ase_mean > 0.1 and ev.penalty[0] > 0  # some points see 250 h of sun
 
 
-def test_a_free_clear_source_is_refused_a_luminaire_takes_no_glazing(sidelit):
-    with pytest.raises(DesignError, match="source 'W1': clear glazing is fixed"):
-        clear_window(sidelit, glazing="clear", free=("u0",))
+def test_a_clear_source_frees_only_its_rectangle_a_luminaire_takes_no_glazing(sidelit):
+    # Its shape and filter may be free (tests/core/test_clear_shapes.py); a flux not.
+    assert clear_window(sidelit, glazing="clear", free=("u0", "v1")).free == ("u0", "v1")
+    with pytest.raises(DesignError, match="source 'W1': clear glazing frees only its rect"):
+        clear_window(sidelit, glazing="clear", free=("u0", "filter"))
+    with pytest.raises(DesignError, match="not its flux"):
+        clear_window(sidelit, glazing="clear", free=("flux",), flux=1.0)
     raw = {"name": "W1", "zone": "window", "kind": "window", "rect": [0, 0, 1, 1]}
-    with pytest.raises(ProjectError, match=r"W1.*clear glazing is fixed"):
-        read_sources([{**raw, "glazing": "clear", "free": ["u1"]}], "sources")
+    (free,) = read_sources([{**raw, "glazing": "clear", "free": ["u1"]}], "sources")
+    assert free.free == ("u1",)
     lum = {"name": "L1", "zone": "z", "kind": "luminaire", "rect": [0, 0, 1, 1], "flux": 100}
     with pytest.raises(ProjectError, match=r"glazing: only skylights or windows have this"):
         read_sources([{**lum, "glazing": "clear"}], "sources")

@@ -113,8 +113,8 @@ class Source:
         default=GlazingKind.DIFFUSING,
         metadata=declare(
             Choice(lambda: GLAZING_KINDS, GlazingKind),
-            '`"diffusing"` (a Lambertian glow) or `"clear"` (the sky and sun by direction, '
-            "fixed: docs/daylight.md)",
+            '`"diffusing"` (a Lambertian glow) or `"clear"` (the sky and sun by direction: '
+            "docs/daylight.md)",
         ),
     )
     control_group: str = field(default=DEFAULT_CONTROL_GROUP, metadata=CONTROL_GROUP_OF)
@@ -129,12 +129,13 @@ class Source:
         lo, hi = self.flux_range
         if not lo < hi:
             raise DesignError(f"{where}: flux range must satisfy 0 <= min < max")
-        if self.glazing == GlazingKind.CLEAR and self.free:
-            # Its light is computed once per design (sky and sun by direction), so it
-            # must stay as drawn: the optimiser moves only luminaires and diffusing glazing.
+        strength = {VariableName.FLUX, VariableName.FILTER} & set(self.free)
+        if self.glazing == GlazingKind.CLEAR and strength:
+            # Its light is traced per zone cell and summed by the share glazed: linear in
+            # the rectangle, not in the glass's transmittance (docs/daylight.md).
             raise DesignError(
-                f"{where}: clear glazing is fixed (its shape and filter are not optimised "
-                f"yet): free nothing, or make it diffusing (free: {', '.join(self.free)})"
+                f"{where}: clear glazing frees only its rectangle (u0, v0, u1, v1), not "
+                f"its {', '.join(sorted(strength))}: make it diffusing to free that"
             )
 
     @property

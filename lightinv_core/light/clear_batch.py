@@ -1,0 +1,204 @@
+"""The clear glazing's light of a batch of candidates whose clear shapes move.
+
+``ClearBatch`` is what ``ScenarioLight.clear`` holds when the clear glazing moves
+(``light.clear_cells``): the same questions as a fixed ``ClearLight`` (the overcast
+factor, the hourly light with the LM-83 blinds, the direct sun, the light with every
+blind open, an annual band), answered per candidate, with one more axis: (R', m, ...)
+where a fixed glazing's answer is (R', ...), the same for every layout.
+
+How: a candidate's light is ``sum_c s_c L_c`` over the cells (``ClearCells.shares``).
+Per receiver set and hour mask the cells' hourly light (C, R', T) is made once and
+kept on the cells (``ClearCells`` are built once per problem), so a batch costs one
+(m, C) x (C, R' T) product per source. The blinds are each candidate's own: its direct
+sun at the control work plane's points in the occupied hours, through
+``climate.sun_metrics.blinds_schedule`` (the fewest sources closed, as a fixed design).
+"""
+
+from __future__ import annotations
+
+from types import SimpleNamespace
+
+import numpy as np
+import scipy.sparse as sp
+
+from lightinv_core.light.clear_cells import ClearCells
+
+MAX_KEPT = 8
+"""Hourly cell blocks kept per cells object (receiver set x hour mask x kind)."""
+
+
+def cell_hours(cells: ClearCells, rec: np.ndarray, mask: np.ndarray, sun_only: bool) -> np.ndarray:
+    """(C, R', T) float32 each cell's light (lux, blinds open, no glow) at receivers
+    ``rec`` (indices into the cells' receivers) in the hours of ``mask``; with
+    ``sun_only`` the direct sun alone, as a sparse (C, R' T). Kept on ``cells`` (the
+    same for every batch)."""
+    memo = cells.kept
+    key = (np.asarray(rec).tobytes(), np.asarray(mask).tobytes(), sun_only)
+    if key in memo:
+        return memo[key]
+    if len(memo) >= MAX_KEPT:
+        memo.pop(next(iter(memo)))
+    hours = np.flatnonzero(mask)
+    W = cells.weights[:, hours]
+    rec = np.asarray(rec)
+    out = np.empty((cells.count, len(rec), len(hours)), np.float32)
+    off = len(cells.year_rows)
+    on = rec >= off  # work-plane points: their direct sun is traced hour by hour
+    for c in range(cells.count):
+        coef = cells.coef[c, rec]
+        if sun_only:
+            out[c] = coef[:, cells.sun_cols] @ W[cells.sun_cols]
+        else:
+            out[c] = coef @ W
+        if on.any():
+            out[c, on] += cells.direct[c][rec[on] - off][:, hours].toarray()
+    if sun_only:  # the sun reaches a point through a cell in few hours: sparse
+        out = sp.csr_matrix(out.reshape(cells.count, -1))
+    memo[key] = out
+    return out
+
+
+class ClearBatch:
+    """The clear light of m candidates (``shares`` (m, C)) at a level's receivers:
+    ``pos`` maps each level receiver to the cells' receivers of ``over``, ``year_pos``
+    to those of the year's columns (-1: a patch whose intentions read no year);
+    ``occupied`` (H,) the
+    schedule's hours (the blinds close only then); ``control`` the control work
+    plane's points among the cells' points (None: blinds stay open)."""
+
+    per_layout = True
+
+    def __init__(self, cells: ClearCells, shares, pos, year_pos, occupied, control=None):
+        self.cells = cells
+        self.shares = np.asarray(shares, dtype=np.float32)
+        self.pos = np.asarray(pos, dtype=np.int64)
+        self.year_pos = np.asarray(year_pos, dtype=np.int64)
+        self.occupied = np.asarray(occupied, bool)
+        self.control = control
+        self.columns = SimpleNamespace(outward=cells.outward)
+        self._memo: dict = {}
+        self._closed = None
+
+    @property
+    def m(self) -> int:
+        """Number of candidates."""
+        return self.shares.shape[0]
+
+    def _by_source(self):
+        """Per clear source: (its cells, their shares (m, C_g))."""
+        for g in range(self.cells.sources):
+            mine = np.flatnonzero(self.cells.cell_source == g)
+            yield g, mine, self.shares[:, mine]
+
+    def _sum(self, blocks, mine, s, R: int, T: int) -> np.ndarray:
+        """(m, R, T) the candidates' sum of the cells' ``blocks`` (C, R, T), or of a
+        sparse (C, R T) (the direct sun)."""
+        if sp.issparse(blocks):
+            return np.asarray(s @ blocks[mine], dtype=np.float32).reshape(-1, R, T)
+        return (s @ blocks[mine].reshape(len(mine), R * T)).reshape(-1, R, T)
+
+    @property
+    def closed(self) -> np.ndarray:
+        """(m, G, H) each candidate's LM-83 blinds per clear source and hour: with one
+        source closed in the hours when more than 2% of the control plane's points get
+        direct sun of 1,000 lux or more (``sun_metrics.blinds_closed``, vectorised over
+        the batch); with several, ``blinds_schedule`` (hour by hour, a few candidates'
+        hours in one call)."""
+        if self._closed is None:
+            from lightinv_core.climate.sun_metrics import (
+                BLINDS_LUX,
+                BLINDS_SHARE,
+                blinds_schedule,
+            )
+
+            c = self.cells
+            H = c.weights.shape[1]
+            closed = np.zeros((self.m, c.sources, H), bool)
+            occ = self.occupied
+            if self.control is not None and occ.any():
+                rec = len(c.year_rows) + np.arange(c.points)[self.control]
+                if c.sources == 1:  # the whole batch at once; shared with ASE's sun
+                    sun = self._light_rec(rec, occ, False, True)  # (m, q, T)
+                    closed[:, 0, occ] = (sun >= BLINDS_LUX).mean(axis=1) > BLINDS_SHARE
+                else:
+                    blocks, T = cell_hours(c, rec, occ, True), int(occ.sum())
+                    per = [
+                        self._sum(blocks, mine, s, len(rec), T) for _, mine, s in self._by_source()
+                    ]
+                    per = np.stack(per, 1)  # (m, G, q, T)
+                    # Each hour is judged alone: a few candidates' hours side by side
+                    # make one call (G, q, k T).
+                    for j in range(0, self.m, 8):
+                        k = per[j : j + 8]
+                        side = np.moveaxis(k, 0, 2).reshape(k.shape[1], k.shape[2], -1)
+                        got = blinds_schedule(side).reshape(k.shape[1], len(k), -1)
+                        closed[j : j + 8][:, :, occ] = np.moveaxis(got, 1, 0)
+            self._closed = closed
+        return self._closed
+
+    def overcast(self, idx=slice(None)) -> np.ndarray:
+        """(R', m) lux per horizontal exterior lux under the CIE overcast sky."""
+        return self.cells.over[:, self.pos[idx]].T.astype(float) @ self.shares.T.astype(float)
+
+    def _light(self, idx, mask, blinds: bool, sun_only: bool = False) -> np.ndarray:
+        """(R', m, T) the candidates' clear light at receivers idx in ``mask``'s hours."""
+        rec = self.year_pos[idx]
+        if np.any(rec < 0):
+            raise ValueError("the year's clear light is read at patches it was not traced at")
+        return self._light_rec(rec, mask, blinds, sun_only)
+
+    def _light_rec(self, rec, mask, blinds: bool, sun_only: bool) -> np.ndarray:
+        """``_light`` at the cells' receivers ``rec``: (R', m, T) float64, or with
+        ``sun_only`` (m, R', T) float32 (the direct sun, read as such)."""
+        rec = np.asarray(rec, dtype=np.int64)
+        mask = np.asarray(mask, bool)
+        key = (rec.tobytes(), mask.tobytes(), blinds, sun_only)
+        if key in self._memo:
+            return self._memo[key]
+        blocks = cell_hours(self.cells, rec, mask, sun_only)
+        T = int(mask.sum())
+        out = None
+        for g, mine, s in self._by_source():
+            part = self._sum(blocks, mine, s, len(rec), T)
+            if blinds and not sun_only:  # closed hours: the source's glow instead
+                shut = self.closed[:, g][:, mask]  # (m, T)
+                glow = s @ self.cells.glow[mine][:, rec]  # (m, R')
+                outside = self.cells.outside[g][mask]
+                for j in np.flatnonzero(shut.any(axis=1)):
+                    cols = np.flatnonzero(shut[j])
+                    part[j][:, cols] = np.outer(glow[j], outside[cols])
+            out = part if out is None else out + part
+        # float64 once here, not in each band's count (``HourBand.of_hours`` casts).
+        got = out if sun_only else np.array(np.moveaxis(out, 0, 1), dtype=float, order="C")
+        if len(self._memo) >= 4:
+            self._memo.clear()
+        self._memo[key] = got
+        return got
+
+    def hours(self, idx, mask: np.ndarray, sun_only: bool = False) -> np.ndarray:
+        """(R', m, T) lux at receivers idx in the hours of ``mask``, with the LM-83
+        blinds (the direct sun alone, blinds open, with ``sun_only``)."""
+        got = self._light(idx, mask, not sun_only, sun_only)
+        return np.moveaxis(got, 0, 1) if sun_only else got
+
+    def open_hours(self, idx, mask: np.ndarray) -> np.ndarray:
+        """(R', m, T) lux at receivers idx in ``mask``'s hours with every blind open."""
+        return self._light(idx, mask, False)
+
+    def band(self, band, idx, mask: np.ndarray) -> np.ndarray:
+        """(R', m) an annual metric (``quantities.HourBand``) of this light alone."""
+        if band.direct_sun:  # (m, R', T)
+            sun = self._light(idx, mask, False, True)
+            m, R, T = sun.shape
+            return band.of_hours(sun.reshape(m * R, T)).reshape(m, R).T
+        lux = self.hours(idx, mask)
+        R, m, T = lux.shape
+        return band.of_hours(lux.reshape(R * m, T)).reshape(R, m)
+
+    def lux(self, idx=slice(None), hours=slice(None)) -> np.ndarray:
+        """(R', m, h) the clear light (lux) in ``hours`` (indices or a slice of the
+        year), with the LM-83 blinds."""
+        mask = np.zeros(self.cells.weights.shape[1], bool)
+        mask[hours] = True
+        order = np.argsort(np.argsort(np.arange(len(mask))[hours]))
+        return self.hours(idx, mask)[:, :, order]
