@@ -12,11 +12,19 @@ By the problem's shape (decided from bench/optimizers.py, table in the README):
 
 The rule (a bandit over the two searches, by recent gain per unit of work):
 
-- each search's work is counted, not timed: its evaluations plus ``COST`` per batch
-  (``cma``'s ask and tell, a VNS batch's own overhead; measured in CPU with one BLAS
-  thread: a CMA-ES generation of 10-11 costs about as much as 56 evaluations on the
-  office demo and 69 on the patio). Counted, so the same project and seed give the same
-  run on any machine and under any load (docs/project-file.md promises it);
+- each search's work is counted, not timed: its evaluations plus a cost per batch
+  (``batch_cost``), on a model of the problem's patches count. A VNS batch costs
+  ``COST`` = 8 beside its 32 candidates. A CMA-ES generation costs ``COST`` = 50 (its
+  candidates spread over the zones light more of the operator's columns than a VNS
+  batch around one incumbent: on the patio a generation of 8 costs 1.7 VNS batches of
+  32) plus ``cma``'s ask and tell, about 1 ms of Python: ``ASK_TELL`` = 150 evaluations
+  up to ``SMALL`` = 5,424 patches, where a candidate costs a few µs (a generation cost
+  3.5-4.8 VNS batches on the built matches of 1,424 patches, measured with one BLAS
+  thread), falling as (SMALL / patches)^2 above as a candidate's light grows dearer
+  (57 in all on the patio's 24,569). Before, a generation cost 50 plus its candidates
+  at every scale, so CMA-ES got three to five times its share of the CPU on the small
+  problems. Counted, so the same project and seed give the same run on any machine and
+  under any load (docs/project-file.md promises it);
 - its **rate** is the relative fall of its best f + P (``relative_gain``; becoming
   feasible counts ``FEASIBLE_GAIN``) over the most recent ``WINDOW`` of its own work,
   divided by that work;
@@ -63,7 +71,15 @@ FLOOR = 0.2
 WINDOW = 0.5
 """A search's rate is measured over this share of its own work (the recent half)."""
 COST = {"cmaes": 50, "vns": 8}
-"""Work of one batch beside its evaluations, in evaluations (module docstring)."""
+"""Work of one batch beside its evaluations, in evaluations, where a candidate's light is
+dear (module docstring; ``batch_cost`` adds CMA-ES's ``ASK_TELL`` where it is cheap)."""
+ASK_TELL = 150
+"""CMA-ES's ask and tell (``cma``, about 1 ms of Python a generation), in evaluations at
+``SMALL`` patches or fewer, where a candidate costs a few µs; it falls as
+(SMALL / patches)^2 above, as a candidate's light grows dearer (module docstring)."""
+SMALL = 5424
+"""Patches up to which a candidate's light is cheap beside ``cma``'s overhead (the office
+demo's count)."""
 PROBE = 300
 """Work (evaluations) each search does before the rates move the shares (the first
 phase: a few CMA-ES generations, a few VNS batches)."""
@@ -82,6 +98,14 @@ def wants_front(design: Design) -> bool:
     with another pair gets one best layout of its first goal (the Run panel's goal is
     the user's choice); its front comes from ``nsga2`` or ``epsilon``, chosen by name."""
     return {str(g.kind) for g in design.goals} >= FRONT_GOALS
+
+
+def batch_cost(name: str, patches: int) -> float:
+    """Work of one batch of search ``name`` beside its evaluations, on a model of
+    ``patches`` patches (module docstring)."""
+    if name != "cmaes":
+        return float(COST[name])
+    return COST[name] + ASK_TELL * min(1.0, SMALL / max(patches, 1)) ** 2
 
 
 def patience(nvar: int) -> int:
@@ -110,9 +134,9 @@ class _Arm:
     """One search of the portfolio: its work, its best after each of its steps and
     its last real improvement."""
 
-    def __init__(self, name: str, run):
-        self.name, self.run = name, run
-        self.work = 0.0  # its evaluations plus COST per batch
+    def __init__(self, name: str, run, cost: float = 0.0):
+        self.name, self.run, self.cost = name, run, cost
+        self.work = 0.0  # its evaluations plus ``cost`` per batch
         self.trace: list[tuple[float, float, float]] = [(0.0, *run.budget.best[:2])]
         self.mark = (np.inf, np.inf)  # (value, penalty) at the last real gain
         self.mark_evals = 0
@@ -124,9 +148,11 @@ class _Arm:
 
     def step(self, before=None) -> None:
         """One batch of the search (``before()`` first: a VNS restart's draws)."""
+        e0 = self.evals
         if before is not None:
             before()
-        self.work += self.run.step() + COST[self.name]
+        self.run.step()
+        self.work += self.evals - e0 + self.cost  # a restart's start evaluated too
         value, pen = self.run.budget.best[:2]
         self.trace.append((self.work, value, pen))
         if real_gain(value, pen, *self.mark):
@@ -188,9 +214,10 @@ def interleaved(
     given, gets one row per batch: (search stepped, each search's work so far,
     the weights that chose it, each search's evaluations so far)."""
     quiet = RunContext(stop=StopRule(max_evals=None), seed=context.seed)
+    n = problem.patches.n
     arms = [
-        _Arm("cmaes", CMAESRun(problem, quiet)),
-        _Arm("vns", VNSRun(problem, quiet, trials=trials)),
+        _Arm("cmaes", CMAESRun(problem, quiet), batch_cost("cmaes", n)),
+        _Arm("vns", VNSRun(problem, quiet, trials=trials), batch_cost("vns", n)),
     ]
     rng = np.random.default_rng(context.seed + RESTART_SEED)
     nvar = problem.vars.n

@@ -4,6 +4,7 @@ share to the other; counted, so the same seed gives the same run."""
 
 from __future__ import annotations
 
+from itertools import pairwise
 from types import SimpleNamespace
 
 import pytest
@@ -95,3 +96,34 @@ def test_when_cmaes_stagnates_vns_gets_most_of_the_work(light, monkeypatch):
     again: list = []
     interleaved(deceptive(light), RunContext(seed=0, stop=StopRule(6000)), log=again)
     assert again == log
+
+
+def test_a_cmaes_generation_is_priced_by_the_patches_count():
+    # cma's ask and tell (about 1 ms of Python) weighs ASK_TELL evaluations where a
+    # candidate's light is cheap, and a sixteenth of that at four times SMALL patches.
+    small = portfolio.COST["cmaes"] + portfolio.ASK_TELL
+    assert portfolio.batch_cost("cmaes", 1000) == small
+    assert portfolio.batch_cost("cmaes", portfolio.SMALL) == small
+    far = portfolio.batch_cost("cmaes", 4 * portfolio.SMALL)
+    assert far == pytest.approx(portfolio.COST["cmaes"] + portfolio.ASK_TELL / 16)
+    assert portfolio.batch_cost("vns", 1000) == portfolio.batch_cost("vns", 10**6) == 8.0
+
+
+def test_each_batch_adds_its_evaluations_and_its_searchs_batch_cost(light):
+    """In a run, every batch's work is its evaluations plus its search's batch cost at
+    the problem's patches count (CMA-ES's generations dear on this small office)."""
+    problem = deceptive(light)
+    n = problem.patches.n
+    assert n <= portfolio.SMALL
+    log: list = []
+    interleaved(problem, RunContext(seed=1, stop=StopRule(3000)), log=log)
+    seen = set()
+    for before, row in pairwise(log):
+        k = 0 if row[0] == "cmaes" else 1
+        evals = row[3][k] - before[3][k]
+        work = row[1][k] - before[1][k]
+        # (A VNS restart's evaluation of its new start is counted with its batch.)
+        assert work - evals == pytest.approx(portfolio.batch_cost(row[0], n))
+        seen.add(row[0])
+    assert seen == {"cmaes", "vns"}
+    assert portfolio.batch_cost("cmaes", n) == portfolio.COST["cmaes"] + portfolio.ASK_TELL
