@@ -68,18 +68,27 @@ GAIN = 1e-3
 """A search improves when its best f + P falls by this share (or becomes feasible)."""
 FLOOR = 0.2
 """Least weight of a search (behind, or stagnating): it keeps a sixth of the work."""
+LEAD = 0.05
+"""When both searches stagnate, one whose best f + P trails the other's by more than this
+share weighs ``FLOOR`` (module docstring)."""
 WINDOW = 0.5
 """A search's rate is measured over this share of its own work (the recent half)."""
 COST = {"cmaes": 50, "vns": 8}
 """Work of one batch beside its evaluations, in evaluations, where a candidate's light is
 dear (module docstring; ``batch_cost`` adds CMA-ES's ``ASK_TELL`` where it is cheap)."""
-ASK_TELL = 150
-"""CMA-ES's ask and tell (``cma``, about 1 ms of Python a generation), in evaluations at
-``SMALL`` patches or fewer, where a candidate costs a few µs; it falls as
-(SMALL / patches)^2 above, as a candidate's light grows dearer (module docstring)."""
+ASK_TELL = {"cmaes": (400.0, 70.0, 4.5), "vns": (0.0, 0.0, 0.0)}
+"""Each search's own Python beside the light, in evaluations at ``SMALL`` patches or
+fewer (an evaluation there costs about 7 µs of CPU): (a new run, a batch, a candidate
+asked). CMA-ES: a new run (IPOP restart) 400 (its ``CMAEvolutionStrategy``, 2.5-3 ms), a
+generation's ask and tell 70 (0.45 ms) plus 4.5 per candidate asked (25-35 µs each;
+``cma`` measured with one BLAS thread, n = 5 and 12, populations of 8 to 384). A VNS
+batch's own work is in ``COST``."""
 SMALL = 5424
 """Patches up to which a candidate's light is cheap beside ``cma``'s overhead (the office
-demo's count)."""
+demo's count); above, ``ASK_TELL`` falls as (SMALL / patches)^2, as a candidate's light
+grows dearer (about 750 µs on the patio's 24,569 patches)."""
+
+
 PROBE = 300
 """Work (evaluations) each search does before the rates move the shares (the first
 phase: a few CMA-ES generations, a few VNS batches)."""
@@ -100,12 +109,14 @@ def wants_front(design: Design) -> bool:
     return {str(g.kind) for g in design.goals} >= FRONT_GOALS
 
 
-def batch_cost(name: str, patches: int) -> float:
+def batch_cost(name: str, patches: int, asked: int = 0, new_run: bool = False) -> float:
     """Work of one batch of search ``name`` beside its evaluations, on a model of
-    ``patches`` patches (module docstring)."""
-    if name != "cmaes":
-        return float(COST[name])
-    return COST[name] + ASK_TELL * min(1.0, SMALL / max(patches, 1)) ** 2
+    ``patches`` patches: ``COST`` plus its own Python (``ASK_TELL``) for a batch of
+    ``asked`` candidates, and for a new run when the batch began one (module
+    docstring)."""
+    start, generation, candidate = ASK_TELL[name]
+    python = generation + candidate * asked + (start if new_run else 0.0)
+    return COST[name] + python * min(1.0, SMALL / max(patches, 1)) ** 2
 
 
 def patience(nvar: int) -> int:
@@ -134,9 +145,10 @@ class _Arm:
     """One search of the portfolio: its work, its best after each of its steps and
     its last real improvement."""
 
-    def __init__(self, name: str, run, cost: float = 0.0):
-        self.name, self.run, self.cost = name, run, cost
-        self.work = 0.0  # its evaluations plus ``cost`` per batch
+    def __init__(self, name: str, run, patches: int):
+        self.name, self.run, self.patches = name, run, patches
+        self.work = 0.0  # its evaluations plus ``batch_cost`` per batch
+        self.last = batch_cost(name, patches, new_run=True)  # its last batch's cost
         self.trace: list[tuple[float, float, float]] = [(0.0, *run.budget.best[:2])]
         self.mark = (np.inf, np.inf)  # (value, penalty) at the last real gain
         self.mark_evals = 0
@@ -151,8 +163,12 @@ class _Arm:
         e0 = self.evals
         if before is not None:
             before()
+        es = getattr(self.run, "es", None)  # CMA-ES's current run
         self.run.step()
-        self.work += self.evals - e0 + self.cost  # a restart's start evaluated too
+        asked = getattr(self.run, "lam", 0)
+        new_run = es is not getattr(self.run, "es", None)
+        self.last = batch_cost(self.name, self.patches, asked, new_run)
+        self.work += self.evals - e0 + self.last  # a VNS restart's start evaluated too
         value, pen = self.run.budget.best[:2]
         self.trace.append((self.work, value, pen))
         if real_gain(value, pen, *self.mark):
@@ -178,10 +194,23 @@ def weights(arms: list[_Arm], nvar: int) -> list[float]:
     over the best rate, at least ``FLOOR``; ``FLOOR`` while it stagnates."""
     if any(a.work < PROBE for a in arms):
         return [1.0 for _ in arms]
+    if all(a.stagnating(nvar) for a in arms):
+        return _by_lead(arms)
     rates = [a.rate() for a in arms]
     top = max(rates)
     w = [max(FLOOR, r / top) if top > 0.0 else 1.0 for r in rates]
     return [FLOOR if a.stagnating(nvar) else x for a, x in zip(arms, w, strict=True)]
+
+
+def _by_lead(arms: list[_Arm]) -> list[float]:
+    """Weights when every search stagnates: 1 for the one holding the best and for any
+    within ``LEAD`` of it, ``FLOOR`` for one trailing it by more (module docstring)."""
+    bests = [a.run.budget.best[:2] for a in arms]
+    top = bests[0]
+    for b in bests[1:]:
+        if better(*b, *top):
+            top = b
+    return [FLOOR if relative_gain(*top, *b) > LEAD else 1.0 for b in bests]
 
 
 def _restart_vns(problem: DesignProblem, arm: _Arm, rng: np.random.Generator) -> None:
@@ -216,8 +245,8 @@ def interleaved(
     quiet = RunContext(stop=StopRule(max_evals=None), seed=context.seed)
     n = problem.patches.n
     arms = [
-        _Arm("cmaes", CMAESRun(problem, quiet), batch_cost("cmaes", n)),
-        _Arm("vns", VNSRun(problem, quiet, trials=trials), batch_cost("vns", n)),
+        _Arm("cmaes", CMAESRun(problem, quiet), n),
+        _Arm("vns", VNSRun(problem, quiet, trials=trials), n),
     ]
     rng = np.random.default_rng(context.seed + RESTART_SEED)
     nvar = problem.vars.n
@@ -242,7 +271,8 @@ def interleaved(
     absorb()
     while (why := total.why() or _stalled(arms, stall)) is None:
         w = weights(arms, nvar)
-        k = min(range(len(arms)), key=lambda i: arms[i].work / w[i])
+        # The least work per weight; on a tie (the first batch) the cheaper batch.
+        k = min(range(len(arms)), key=lambda i: (arms[i].work / w[i], arms[i].last))
         arm = arms[k]
         before = None
         if arm.name == "vns" and (arm.run.stuck or arm.stagnating(2 * nvar)):
