@@ -13,18 +13,20 @@ By the problem's shape (decided from bench/optimizers.py, table in the README):
 The rule (a bandit over the two searches, by recent gain per unit of work):
 
 - each search's work is counted, not timed: its evaluations plus a cost per batch
-  (``batch_cost``), on a model of the problem's patches count. A VNS batch costs
-  ``COST`` = 8 beside its 32 candidates. A CMA-ES generation costs ``COST`` = 50 (its
-  candidates spread over the zones light more of the operator's columns than a VNS
-  batch around one incumbent: on the patio a generation of 8 costs 1.7 VNS batches of
-  32) plus ``cma``'s ask and tell, about 1 ms of Python: ``ASK_TELL`` = 150 evaluations
-  up to ``SMALL`` = 5,424 patches, where a candidate costs a few µs (a generation cost
-  3.5-4.8 VNS batches on the built matches of 1,424 patches, measured with one BLAS
-  thread), falling as (SMALL / patches)^2 above as a candidate's light grows dearer
-  (57 in all on the patio's 24,569). Before, a generation cost 50 plus its candidates
-  at every scale, so CMA-ES got three to five times its share of the CPU on the small
-  problems. Counted, so the same project and seed give the same run on any machine and
-  under any load (docs/project-file.md promises it);
+  (``batch_cost``), a model of its CPU. ``COST`` per batch: 8 for a VNS batch of 32
+  candidates around one incumbent, 50 for a CMA-ES generation (its candidates, spread
+  over the zones, light more of the operator's columns: on the patio a generation of 8
+  costs about 1.7 VNS batches). Plus CMA-ES's own Python (``ASK_TELL``, ``cma``'s ask
+  and tell, measured with one BLAS thread): 400 evaluations for a new run (IPOP
+  restart), 70 a generation and 4.5 a candidate asked, where a candidate's light is
+  cheap (``SMALL`` = 5,424 patches or fewer: about 7 µs an evaluation), falling as
+  (SMALL / patches)^2 above (a twentieth on the patio's 24,569 patches, where an
+  evaluation with a lux field costs about 750 µs). On the built matches of 1,424
+  patches a generation of 10-12 weighs 4.5 VNS batches (measured 3.7-4.1): before, it
+  weighed 1.5 at every scale, so CMA-ES got about three times its share of the CPU
+  there. On a tie (the first batch) the cheaper batch goes first. Counted, so the same
+  project and seed give the same run on any machine and under any load
+  (docs/project-file.md promises it);
 - its **rate** is the relative fall of its best f + P (``relative_gain``; becoming
   feasible counts ``FEASIBLE_GAIN``) over the most recent ``WINDOW`` of its own work,
   divided by that work;
@@ -37,6 +39,11 @@ The rule (a bandit over the two searches, by recent gain per unit of work):
   basin; a VNS run in a local optimum), whatever its rate (its small gains there lead
   nowhere more often than not: measured, weighting them by their rate cost a run on
   the three-luminaire match its success);
+- when both stagnate, the one holding the best weighs 1 and the other ``FLOOR`` if its
+  best f + P trails by more than ``LEAD`` = 5% (else both weigh 1): the leader's small
+  gains improve the answer, the other's must first close the gap (on experiment 4 a
+  CMA-ES run creeping to the target 12% ahead of a VNS that kept restarting got half the
+  work, and ``auto`` needed three to four times CMA-ES's CPU on that seed);
 - VNS restarts when a whole sweep of its neighbourhoods finds nothing better, or when
   it stagnates, from the random valid layout farthest from where its earlier runs
   ended.
