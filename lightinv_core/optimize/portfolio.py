@@ -39,11 +39,14 @@ The rule (a bandit over the two searches, by recent gain per unit of work):
   basin; a VNS run in a local optimum), whatever its rate (its small gains there lead
   nowhere more often than not: measured, weighting them by their rate cost a run on
   the three-luminaire match its success);
-- when both stagnate, the one holding the best weighs 1 and the other ``FLOOR`` if its
-  best f + P trails by more than ``LEAD`` = 5% (else both weigh 1): the leader's small
-  gains improve the answer, the other's must first close the gap (on experiment 4 a
-  CMA-ES run creeping to the target 12% ahead of a VNS that kept restarting got half the
-  work, and ``auto`` needed three to four times CMA-ES's CPU on that seed);
+- when both stagnate and the one holding the best still gains a little (its rate is
+  above 0), it weighs 1 and the other ``FLOOR`` if its best f + P trails by more than
+  ``LEAD`` = 5% (else both weigh 1): the leader's small gains improve the answer, the
+  other's must first close the gap (on experiment 4 a CMA-ES run creeping to the
+  target 12% ahead of a VNS that kept restarting got half the work, and ``auto`` needed
+  three to four times CMA-ES's CPU on that seed). A leader that gains nothing is not
+  favoured: on experiment 1 a CMA-ES run stuck early at e = 0.36, far behind VNS, then
+  found the target, which that rule had delayed from 0.6 to 1.35 CPU s;
 - VNS restarts when a whole sweep of its neighbourhoods finds nothing better, or when
   it stagnates, from the random valid layout farthest from where its earlier runs
   ended.
@@ -210,14 +213,17 @@ def weights(arms: list[_Arm], nvar: int) -> list[float]:
 
 
 def _by_lead(arms: list[_Arm]) -> list[float]:
-    """Weights when every search stagnates: 1 for the one holding the best and for any
-    within ``LEAD`` of it, ``FLOOR`` for one trailing it by more (module docstring)."""
+    """Weights when every search stagnates: while the one holding the best still gains
+    (its rate is above 0), 1 for it and for any within ``LEAD`` of it, ``FLOOR`` for one
+    trailing it by more; else ``FLOOR`` each, the same shares (module docstring)."""
     bests = [a.run.budget.best[:2] for a in arms]
-    top = bests[0]
-    for b in bests[1:]:
-        if better(*b, *top):
-            top = b
-    return [FLOOR if relative_gain(*top, *b) > LEAD else 1.0 for b in bests]
+    lead = 0
+    for i, b in enumerate(bests):
+        if better(*b, *bests[lead]):
+            lead = i
+    if arms[lead].rate() <= 0.0:  # the leader is stuck too: neither is favoured
+        return [FLOOR for _ in arms]
+    return [FLOOR if relative_gain(*bests[lead], *b) > LEAD else 1.0 for b in bests]
 
 
 def _restart_vns(problem: DesignProblem, arm: _Arm, rng: np.random.Generator) -> None:

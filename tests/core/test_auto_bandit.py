@@ -54,22 +54,29 @@ def test_a_stagnating_search_weighs_the_floor_whatever_its_rate():
     assert weights([gaining, stagnant], nvar=4) == [1.0, FLOOR]
 
 
-def test_when_both_stagnate_one_trailing_by_more_than_lead_weighs_the_floor():
-    # Both without a real gain in patience(4) = 500 of their evaluations.
-    def stuck(best: float) -> _Arm:
-        a = arm([(0.0, 1.0), (1000.0, best), (2000.0, best)], evals=2000, mark_evals=1000)
+def test_when_both_stagnate_one_trailing_a_gaining_leader_by_more_than_lead_weighs_the_floor():
+    # Both without a real gain (GAIN = 0.1%) in patience(4) = 500 of their evaluations;
+    # ``creep`` is the fall of the best over the recent half of the work.
+    def stuck(best: float, creep: float = 0.0) -> _Arm:
+        trace = [(0.0, 1.0), (1000.0, best * (1 - creep)), (2000.0, best)]
+        a = arm(trace, evals=2000, mark_evals=1000)
         a.run.budget.best = (best, 0.0, 0.0)
         return a
 
-    leader = stuck(-0.12)
-    assert weights([leader, stuck(-0.12 * (1 - 2 * LEAD))], nvar=4) == [1.0, FLOOR]
-    assert weights([stuck(-0.12 * (1 - 2 * LEAD)), leader], nvar=4) == [FLOOR, 1.0]
+    def creeping() -> _Arm:
+        return stuck(-0.12, creep=1e-4)  # still gaining, far less than GAIN
+
+    behind = -0.12 * (1 - 2 * LEAD)
+    assert weights([creeping(), stuck(behind)], nvar=4) == [1.0, FLOOR]
+    assert weights([stuck(behind), creeping()], nvar=4) == [FLOOR, 1.0]
     # Within LEAD of the best both keep the same share.
-    assert weights([leader, stuck(-0.12 * (1 - LEAD / 2))], nvar=4) == [1.0, 1.0]
+    assert weights([creeping(), stuck(-0.12 * (1 - LEAD / 2))], nvar=4) == [1.0, 1.0]
+    # A leader that gains nothing is not favoured.
+    assert weights([stuck(-0.12), stuck(behind)], nvar=4) == [FLOOR, FLOOR]
     # A feasible best leads any infeasible one.
     infeasible = stuck(-0.5)
     infeasible.run.budget.best = (-0.5, 0.1, 0.0)
-    assert weights([leader, infeasible], nvar=4) == [1.0, FLOOR]
+    assert weights([creeping(), infeasible], nvar=4) == [1.0, FLOOR]
 
 
 @pytest.fixture(scope="module")
