@@ -81,8 +81,8 @@ FLOOR = 0.2
 LEAD = 0.05
 """When both searches stagnate, one whose best f + P trails the other's by more than this
 share weighs ``FLOOR`` (module docstring)."""
-WINDOW = 0.5
-"""A search's rate is measured over this share of its own work (the recent half)."""
+WINDOW = 0.25
+"""A search's rate is measured over this share of its own work (the recent quarter)."""
 COST = {"cmaes": 50, "vns": 8}
 """Work of one batch beside its evaluations, in evaluations, where a candidate's light is
 dear (module docstring; ``batch_cost`` adds CMA-ES's ``ASK_TELL`` where it is cheap)."""
