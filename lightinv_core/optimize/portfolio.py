@@ -12,11 +12,21 @@ By the problem's shape (decided from bench/optimizers.py, table in the README):
 
 The rule (a bandit over the two searches, by recent gain per unit of work):
 
-- each search's work is counted, not timed: its evaluations plus ``COST`` per batch
-  (``cma``'s ask and tell, a VNS batch's own overhead; measured in CPU with one BLAS
-  thread: a CMA-ES generation of 10-11 costs about as much as 56 evaluations on the
-  office demo and 69 on the patio). Counted, so the same project and seed give the same
-  run on any machine and under any load (docs/project-file.md promises it);
+- each search's work is counted, not timed: its evaluations plus a cost per batch
+  (``batch_cost``), a model of its CPU. ``COST`` per batch: 8 for a VNS batch of 32
+  candidates around one incumbent, 50 for a CMA-ES generation (its candidates, spread
+  over the zones, light more of the operator's columns: on the patio a generation of 8
+  costs about 1.7 VNS batches). Plus CMA-ES's own Python (``ASK_TELL``, ``cma``'s ask
+  and tell, measured with one BLAS thread): 400 evaluations for a new run (IPOP
+  restart), 70 a generation and 4.5 a candidate asked, where a candidate's light is
+  cheap (``SMALL`` = 5,424 patches or fewer: about 7 µs an evaluation), falling as
+  (SMALL / patches)^2 above (a twentieth on the patio's 24,569 patches, where an
+  evaluation with a lux field costs about 750 µs). On the built matches of 1,424
+  patches a generation of 10-12 weighs 4.5 VNS batches (measured 3.7-4.1): before, it
+  weighed 1.5 at every scale, so CMA-ES got about three times its share of the CPU
+  there. On a tie (the first batch) the cheaper batch goes first. Counted, so the same
+  project and seed give the same run on any machine and under any load
+  (docs/project-file.md promises it);
 - its **rate** is the relative fall of its best f + P (``relative_gain``; becoming
   feasible counts ``FEASIBLE_GAIN``) over the most recent ``WINDOW`` of its own work,
   divided by that work;
@@ -29,6 +39,14 @@ The rule (a bandit over the two searches, by recent gain per unit of work):
   basin; a VNS run in a local optimum), whatever its rate (its small gains there lead
   nowhere more often than not: measured, weighting them by their rate cost a run on
   the three-luminaire match its success);
+- when both stagnate and the one holding the best still gains a little (its rate is
+  above 0), it weighs 1 and the other ``FLOOR`` if its best f + P trails by more than
+  ``LEAD`` = 5% (else both weigh 1): the leader's small gains improve the answer, the
+  other's must first close the gap (on experiment 4 a CMA-ES run creeping to the
+  target 12% ahead of a VNS that kept restarting got half the work, and ``auto`` needed
+  three to four times CMA-ES's CPU on that seed). A leader that gains nothing is not
+  favoured: on experiment 1 a CMA-ES run stuck early at e = 0.36, far behind VNS, then
+  found the target, which that rule had delayed from 0.6 to 1.35 CPU s;
 - VNS restarts when a whole sweep of its neighbourhoods finds nothing better, or when
   it stagnates, from the random valid layout farthest from where its earlier runs
   ended.
@@ -60,10 +78,27 @@ GAIN = 1e-3
 """A search improves when its best f + P falls by this share (or becomes feasible)."""
 FLOOR = 0.2
 """Least weight of a search (behind, or stagnating): it keeps a sixth of the work."""
-WINDOW = 0.5
-"""A search's rate is measured over this share of its own work (the recent half)."""
+LEAD = 0.05
+"""When both searches stagnate, one whose best f + P trails the other's by more than this
+share weighs ``FLOOR`` (module docstring)."""
+WINDOW = 0.25
+"""A search's rate is measured over this share of its own work (the recent quarter)."""
 COST = {"cmaes": 50, "vns": 8}
-"""Work of one batch beside its evaluations, in evaluations (module docstring)."""
+"""Work of one batch beside its evaluations, in evaluations, where a candidate's light is
+dear (module docstring; ``batch_cost`` adds CMA-ES's ``ASK_TELL`` where it is cheap)."""
+ASK_TELL = {"cmaes": (400.0, 70.0, 4.5), "vns": (0.0, 0.0, 0.0)}
+"""Each search's own Python beside the light, in evaluations at ``SMALL`` patches or
+fewer (an evaluation there costs about 7 µs of CPU): (a new run, a batch, a candidate
+asked). CMA-ES: a new run (IPOP restart) 400 (its ``CMAEvolutionStrategy``, 2.5-3 ms), a
+generation's ask and tell 70 (0.45 ms) plus 4.5 per candidate asked (25-35 µs each;
+``cma`` measured with one BLAS thread, n = 5 and 12, populations of 8 to 384). A VNS
+batch's own work is in ``COST``."""
+SMALL = 5424
+"""Patches up to which a candidate's light is cheap beside ``cma``'s overhead (the office
+demo's count); above, ``ASK_TELL`` falls as (SMALL / patches)^2, as a candidate's light
+grows dearer (about 750 µs on the patio's 24,569 patches)."""
+
+
 PROBE = 300
 """Work (evaluations) each search does before the rates move the shares (the first
 phase: a few CMA-ES generations, a few VNS batches)."""
@@ -82,6 +117,16 @@ def wants_front(design: Design) -> bool:
     with another pair gets one best layout of its first goal (the Run panel's goal is
     the user's choice); its front comes from ``nsga2`` or ``epsilon``, chosen by name."""
     return {str(g.kind) for g in design.goals} >= FRONT_GOALS
+
+
+def batch_cost(name: str, patches: int, asked: int = 0, new_run: bool = False) -> float:
+    """Work of one batch of search ``name`` beside its evaluations, on a model of
+    ``patches`` patches: ``COST`` plus its own Python (``ASK_TELL``) for a batch of
+    ``asked`` candidates, and for a new run when the batch began one (module
+    docstring)."""
+    start, generation, candidate = ASK_TELL[name]
+    python = generation + candidate * asked + (start if new_run else 0.0)
+    return COST[name] + python * min(1.0, SMALL / max(patches, 1)) ** 2
 
 
 def patience(nvar: int) -> int:
@@ -110,9 +155,10 @@ class _Arm:
     """One search of the portfolio: its work, its best after each of its steps and
     its last real improvement."""
 
-    def __init__(self, name: str, run):
-        self.name, self.run = name, run
-        self.work = 0.0  # its evaluations plus COST per batch
+    def __init__(self, name: str, run, patches: int):
+        self.name, self.run, self.patches = name, run, patches
+        self.work = 0.0  # its evaluations plus ``batch_cost`` per batch
+        self.last = batch_cost(name, patches, new_run=True)  # its last batch's cost
         self.trace: list[tuple[float, float, float]] = [(0.0, *run.budget.best[:2])]
         self.mark = (np.inf, np.inf)  # (value, penalty) at the last real gain
         self.mark_evals = 0
@@ -124,9 +170,15 @@ class _Arm:
 
     def step(self, before=None) -> None:
         """One batch of the search (``before()`` first: a VNS restart's draws)."""
+        e0 = self.evals
         if before is not None:
             before()
-        self.work += self.run.step() + COST[self.name]
+        es = getattr(self.run, "es", None)  # CMA-ES's current run
+        self.run.step()
+        asked = getattr(self.run, "lam", 0)
+        new_run = es is not getattr(self.run, "es", None)
+        self.last = batch_cost(self.name, self.patches, asked, new_run)
+        self.work += self.evals - e0 + self.last  # a VNS restart's start evaluated too
         value, pen = self.run.budget.best[:2]
         self.trace.append((self.work, value, pen))
         if real_gain(value, pen, *self.mark):
@@ -152,10 +204,26 @@ def weights(arms: list[_Arm], nvar: int) -> list[float]:
     over the best rate, at least ``FLOOR``; ``FLOOR`` while it stagnates."""
     if any(a.work < PROBE for a in arms):
         return [1.0 for _ in arms]
+    if all(a.stagnating(nvar) for a in arms):
+        return _by_lead(arms)
     rates = [a.rate() for a in arms]
     top = max(rates)
     w = [max(FLOOR, r / top) if top > 0.0 else 1.0 for r in rates]
     return [FLOOR if a.stagnating(nvar) else x for a, x in zip(arms, w, strict=True)]
+
+
+def _by_lead(arms: list[_Arm]) -> list[float]:
+    """Weights when every search stagnates: while the one holding the best still gains
+    (its rate is above 0), 1 for it and for any within ``LEAD`` of it, ``FLOOR`` for one
+    trailing it by more; else ``FLOOR`` each, the same shares (module docstring)."""
+    bests = [a.run.budget.best[:2] for a in arms]
+    lead = 0
+    for i, b in enumerate(bests):
+        if better(*b, *bests[lead]):
+            lead = i
+    if arms[lead].rate() <= 0.0:  # the leader is stuck too: neither is favoured
+        return [FLOOR for _ in arms]
+    return [FLOOR if relative_gain(*bests[lead], *b) > LEAD else 1.0 for b in bests]
 
 
 def _restart_vns(problem: DesignProblem, arm: _Arm, rng: np.random.Generator) -> None:
@@ -188,9 +256,10 @@ def interleaved(
     given, gets one row per batch: (search stepped, each search's work so far,
     the weights that chose it, each search's evaluations so far)."""
     quiet = RunContext(stop=StopRule(max_evals=None), seed=context.seed)
+    n = problem.patches.n
     arms = [
-        _Arm("cmaes", CMAESRun(problem, quiet)),
-        _Arm("vns", VNSRun(problem, quiet, trials=trials)),
+        _Arm("cmaes", CMAESRun(problem, quiet), n),
+        _Arm("vns", VNSRun(problem, quiet, trials=trials), n),
     ]
     rng = np.random.default_rng(context.seed + RESTART_SEED)
     nvar = problem.vars.n
@@ -215,7 +284,8 @@ def interleaved(
     absorb()
     while (why := total.why() or _stalled(arms, stall)) is None:
         w = weights(arms, nvar)
-        k = min(range(len(arms)), key=lambda i: arms[i].work / w[i])
+        # The least work per weight; on a tie (the first batch) the cheaper batch.
+        k = min(range(len(arms)), key=lambda i: (arms[i].work / w[i], arms[i].last))
         arm = arms[k]
         before = None
         if arm.name == "vns" and (arm.run.stuck or arm.stagnating(2 * nvar)):

@@ -4,6 +4,8 @@ share to the other; counted, so the same seed gives the same run."""
 
 from __future__ import annotations
 
+import math
+from itertools import pairwise
 from types import SimpleNamespace
 
 import pytest
@@ -14,7 +16,7 @@ from lightinv_core.operator.build import build_operator
 from lightinv_core.operator.settings import OperatorSettings
 from lightinv_core.optimize import portfolio
 from lightinv_core.optimize.method import RunContext
-from lightinv_core.optimize.portfolio import FLOOR, PROBE, _Arm, interleaved, weights
+from lightinv_core.optimize.portfolio import FLOOR, LEAD, PROBE, _Arm, interleaved, weights
 from lightinv_core.optimize.problem import DesignProblem
 from lightinv_core.optimize.termination import StopRule
 from lightinv_core.scene.builtin import builtin_scene
@@ -24,7 +26,7 @@ from lightinv_core.scene.patches import mesh_patches
 def arm(trace: list[tuple[float, float]], evals: int = 100, mark_evals: int = 100) -> _Arm:
     """An arm whose own best after each step was trace[i] = (work, f + P), feasible."""
     run = SimpleNamespace(budget=SimpleNamespace(best=(trace[0][1], 0.0, 0.0), evals=evals))
-    a = _Arm("x", run)
+    a = _Arm("vns", run, patches=1000)
     a.trace = [(t, v, 0.0) for t, v in trace]
     a.work = trace[-1][0]
     a.mark_evals = mark_evals
@@ -50,6 +52,31 @@ def test_a_stagnating_search_weighs_the_floor_whatever_its_rate():
     # The same recent gain, but no real gain in patience(4) = 500 of its evaluations.
     stagnant = arm([(0.0, 1.0), (1000.0, 0.5), (2000.0, 0.25)], evals=2000, mark_evals=1000)
     assert weights([gaining, stagnant], nvar=4) == [1.0, FLOOR]
+
+
+def test_when_both_stagnate_one_trailing_a_gaining_leader_by_more_than_lead_weighs_the_floor():
+    # Both without a real gain (GAIN = 0.1%) in patience(4) = 500 of their evaluations;
+    # ``creep`` is the fall of the best over the recent half of the work.
+    def stuck(best: float, creep: float = 0.0) -> _Arm:
+        trace = [(0.0, 1.0), (1000.0, best * (1 - creep)), (2000.0, best)]
+        a = arm(trace, evals=2000, mark_evals=1000)
+        a.run.budget.best = (best, 0.0, 0.0)
+        return a
+
+    def creeping() -> _Arm:
+        return stuck(-0.12, creep=1e-4)  # still gaining, far less than GAIN
+
+    behind = -0.12 * (1 - 2 * LEAD)
+    assert weights([creeping(), stuck(behind)], nvar=4) == [1.0, FLOOR]
+    assert weights([stuck(behind), creeping()], nvar=4) == [FLOOR, 1.0]
+    # Within LEAD of the best both keep the same share.
+    assert weights([creeping(), stuck(-0.12 * (1 - LEAD / 2))], nvar=4) == [1.0, 1.0]
+    # A leader that gains nothing is not favoured.
+    assert weights([stuck(-0.12), stuck(behind)], nvar=4) == [FLOOR, FLOOR]
+    # A feasible best leads any infeasible one.
+    infeasible = stuck(-0.5)
+    infeasible.run.budget.best = (-0.5, 0.1, 0.0)
+    assert weights([creeping(), infeasible], nvar=4) == [1.0, FLOOR]
 
 
 @pytest.fixture(scope="module")
@@ -95,3 +122,43 @@ def test_when_cmaes_stagnates_vns_gets_most_of_the_work(light, monkeypatch):
     again: list = []
     interleaved(deceptive(light), RunContext(seed=0, stop=StopRule(6000)), log=again)
     assert again == log
+
+
+def test_a_cmaes_generation_is_priced_by_its_population_and_the_patches_count():
+    # cma's Python weighs ASK_TELL evaluations where a candidate's light is cheap (up to
+    # SMALL patches) and a sixteenth of that at four times SMALL patches.
+    start, generation, candidate = portfolio.ASK_TELL["cmaes"]
+    cost = portfolio.COST["cmaes"]
+    assert portfolio.batch_cost("cmaes", 1000, 11) == cost + generation + 11 * candidate
+    assert portfolio.batch_cost("cmaes", portfolio.SMALL, 22, new_run=True) == (
+        cost + start + generation + 22 * candidate
+    )
+    far = portfolio.batch_cost("cmaes", 4 * portfolio.SMALL, 11)
+    assert far == pytest.approx(cost + (generation + 11 * candidate) / 16)
+    # A VNS batch costs COST at any scale.
+    assert portfolio.batch_cost("vns", 1000, 32) == portfolio.batch_cost("vns", 10**6, 32) == 8.0
+
+
+def test_each_batch_adds_its_evaluations_and_its_searchs_batch_cost(light):
+    """In a run, every batch's work is its evaluations plus its search's batch cost at
+    the problem's patches count (CMA-ES's generations dear on this small office)."""
+    problem = deceptive(light)
+    n = problem.patches.n
+    assert n <= portfolio.SMALL
+    log: list = []
+    interleaved(problem, RunContext(seed=1, stop=StopRule(3000)), log=log)
+    lam = 4 + int(3 * math.log(problem.vars.n))  # CMA-ES's first population
+    costs = {"cmaes": [], "vns": []}
+    for before, row in pairwise(log):
+        k = 0 if row[0] == "cmaes" else 1
+        evals = row[3][k] - before[3][k]
+        work = row[1][k] - before[1][k]
+        # (A VNS restart's evaluation of its new start is counted with its batch.)
+        costs[row[0]].append(work - evals)
+    # CMA-ES's first generation began its run (the cheaper VNS batch went first).
+    assert log[0][0] == "vns"
+    assert costs["cmaes"][0] == pytest.approx(portfolio.batch_cost("cmaes", n, lam, True))
+    assert costs["cmaes"][1:5] == pytest.approx([portfolio.batch_cost("cmaes", n, lam)] * 4)
+    assert set(costs["vns"]) == {portfolio.batch_cost("vns", n)}
+    # Seven times a VNS batch's cost here: cma's Python is dear beside this light.
+    assert costs["cmaes"][1] > 7 * costs["vns"][0]
