@@ -28,24 +28,6 @@ PROJECT = Path(__file__).resolve().parents[2] / "resources" / "projects" / "offi
 SHOTS = Path("/tmp/shots-groups")
 
 
-def _row_boxes(dialog: QtWidgets.QWidget, text: str) -> list[QtWidgets.QDoubleSpinBox]:
-    """The number fields of the form row labelled ``text`` (a row of several)."""
-    for form in dialog.findChildren(QtWidgets.QFormLayout):
-        for row in range(form.rowCount()):
-            lab = form.itemAt(row, QtWidgets.QFormLayout.LabelRole)
-            if lab is not None and u.plain(lab.widget().text()) == text:
-                cell = form.itemAt(row, QtWidgets.QFormLayout.FieldRole).layout()
-                return [cell.itemAt(i).widget() for i in range(cell.count())]
-    raise AssertionError(f"no row {text!r}")
-
-
-def _type_number(box: QtWidgets.QAbstractSpinBox, text: str) -> None:
-    u.click(box)
-    u.press(box, QtCore.Qt.Key_A, QtCore.Qt.ControlModifier)
-    u.type_text(box, text)
-    u.press(box, QtCore.Qt.Key_Tab)
-
-
 def _window_row(dialog: QtWidgets.QWidget) -> None:
     """Answer the control group dialog: "window row", reading x 0-4 m of the plane."""
     name = u.field(dialog, "Name")
@@ -56,9 +38,9 @@ def _window_row(dialog: QtWidgets.QWidget) -> None:
     assert whole.isChecked()
     u.click(whole, QtCore.QPoint(8, whole.height() // 2))  # its tick box
     assert not whole.isChecked()
-    boxes = _row_boxes(dialog, "Region x0 y0 x1 y1 (m)")
+    boxes = u.form_row(dialog, "Region x0 y0 x1 y1 (m)")
     for box, value in zip(boxes, ("0", "0", "4", "8"), strict=True):
-        _type_number(box, value)
+        u.type_number(box, value)
     u.ok(dialog)
 
 

@@ -25,36 +25,18 @@ PROJECT = Path(__file__).resolve().parents[2] / "resources" / "projects" / "offi
 SHOTS = Path("/tmp/shots-cleargui")
 
 
-def _row(dialog: QtWidgets.QWidget, text: str) -> list[QtWidgets.QWidget]:
-    """The widgets of the form row labelled ``text`` (a row of several)."""
-    for form in dialog.findChildren(QtWidgets.QFormLayout):
-        for row in range(form.rowCount()):
-            lab = form.itemAt(row, QtWidgets.QFormLayout.LabelRole)
-            if lab is not None and u.plain(lab.widget().text()) == text:
-                cell = form.itemAt(row, QtWidgets.QFormLayout.FieldRole).layout()
-                return [cell.itemAt(i).widget() for i in range(cell.count())]
-    raise AssertionError(f"no row {text!r}")
-
-
-def _type_number(box: QtWidgets.QAbstractSpinBox, text: str) -> None:
-    u.click(box)
-    u.press(box, QtCore.Qt.Key_A, QtCore.Qt.ControlModifier)
-    u.type_text(box, text)
-    u.press(box, QtCore.Qt.Key_Tab)
-
-
 def _switching_at_300(dialog: QtWidgets.QWidget) -> None:
     u.choose(u.field(dialog, "Control"), "switching (on/off)")
-    tick, target = _row(dialog, "Own target (lux)")
+    tick, target = u.form_row(dialog, "Own target (lux)")
     assert not tick.isChecked() and not target.isEnabled()
     u.click(tick, QtCore.QPoint(8, tick.height() // 2))
-    _type_number(target, "300")
+    u.type_number(target, "300")
     u.ok(dialog)
 
 
 def _region_y1(value: str):
     def answer(dialog: QtWidgets.QWidget) -> None:
-        _type_number(_row(dialog, "Region x0 y0 x1 y1 (m)")[3], value)
+        u.type_number(u.form_row(dialog, "Region x0 y0 x1 y1 (m)")[3], value)
         u.ok(dialog)
 
     return answer

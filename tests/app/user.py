@@ -58,6 +58,26 @@ def type_text(widget: QtWidgets.QWidget, text: str) -> None:
     QTest.keyClicks(target, text)
 
 
+def type_number(box: QtWidgets.QAbstractSpinBox, text: str) -> None:
+    """Click into the number field ``box``, select what it holds, type ``text`` and
+    leave it with Tab (the field reports one edit when typing is done)."""
+    click(box)
+    QTest.keyClick(box, QtCore.Qt.Key_A, QtCore.Qt.ControlModifier)
+    type_text(box, text)
+    QTest.keyClick(box, QtCore.Qt.Key_Tab)
+
+
+def form_row(widget: QtWidgets.QWidget, text: str) -> list[QtWidgets.QWidget]:
+    """The widgets of the form row labelled ``text`` in ``widget`` (a row of several)."""
+    for form in widget.findChildren(QtWidgets.QFormLayout):
+        for row in range(form.rowCount()):
+            lab = form.itemAt(row, QtWidgets.QFormLayout.LabelRole)
+            if lab is not None and plain(lab.widget().text()) == text:
+                cell = form.itemAt(row, QtWidgets.QFormLayout.FieldRole).layout()
+                return [cell.itemAt(i).widget() for i in range(cell.count())]
+    raise AssertionError(f"no row {text!r}")
+
+
 def press(widget: QtWidgets.QWidget, key, modifiers=QtCore.Qt.NoModifier) -> None:
     """A key pressed while ``widget`` has the focus."""
     QTest.keyClick(widget, key, modifiers)

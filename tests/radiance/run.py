@@ -188,6 +188,15 @@ def _epw(weather_path: Path, tmp: Path) -> Path:
     return target
 
 
+def _turned(v, north_deg: float) -> np.ndarray:
+    """(q, 3) vectors turned about z by -``north_deg`` into Radiance's frame (+Y north)."""
+    turn = np.radians(-north_deg)
+    rot = np.array(
+        [[math.cos(turn), -math.sin(turn), 0], [math.sin(turn), math.cos(turn), 0], [0, 0, 1]]
+    )
+    return np.asarray(v, float).reshape(-1, 3) @ rot.T
+
+
 def annual_lux(
     patches: Patches,
     glazing: dict[str, float],
@@ -221,12 +230,7 @@ def annual_lux(
     hemisphere rays reach the sky patches straight or through the glass, nothing is
     reflected).
     """
-    turn = np.radians(-north_deg)
-    rot = np.array(
-        [[math.cos(turn), -math.sin(turn), 0], [math.sin(turn), math.cos(turn), 0], [0, 0, 1]]
-    )
-    p = np.asarray(points, float).reshape(-1, 3) @ rot.T
-    n = np.asarray(normals, float).reshape(-1, 3) @ rot.T
+    p, n = _turned(points, north_deg), _turned(normals, north_deg)
     with tempfile.TemporaryDirectory(prefix="lightinv-rad-") as d:
         tmp = Path(d)
         epw = _epw(Path(weather_path), tmp)
@@ -279,12 +283,7 @@ def annual_sun_discs(
     patch). Unlike ``annual_lux(direct_sun_only=True)``, whose sun is spread over a
     patch of about 3 degrees, the beam's edge stays sharp. Only the discs some hour uses
     are traced."""
-    turn = np.radians(-north_deg)
-    rot = np.array(
-        [[math.cos(turn), -math.sin(turn), 0], [math.sin(turn), math.cos(turn), 0], [0, 0, 1]]
-    )
-    p = np.asarray(points, float).reshape(-1, 3) @ rot.T
-    n = np.asarray(normals, float).reshape(-1, 3) @ rot.T
+    p, n = _turned(points, north_deg), _turned(normals, north_deg)
     with tempfile.TemporaryDirectory(prefix="lightinv-rad-") as d:
         tmp = Path(d)
         epw = _epw(Path(weather_path), tmp)
