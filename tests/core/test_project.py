@@ -595,7 +595,7 @@ ERRORS = [
     (
         _set("intentions[0].quantity", "cd"),
         "intentions[0].quantity: expected one of 'lux', 'C', 'df', 'da', 'udi', 'sda', "
-        "'ase', 'ugr', 'en17037', 'sunlight', 'cda', got string 'cd'",
+        "'ase', 'ugr', 'en17037', 'sunlight', 'cda', 'dgp', got string 'cd'",
     ),
     (_set("rules[2].axis", "x"), "rules[2].axis: expected one of 'u', 'v', got string 'x'"),
     (_set("results.pareto.objectives[0]", "cost"), "results.pareto.objectives[0]: expected one of"),
