@@ -36,3 +36,11 @@ def private_operator_cache(tmp_path_factory):
             os.environ.pop(key, None)
         else:
             os.environ[key] = old
+
+
+def pytest_collection_modifyitems(session, config, items):
+    """The modules holding slow tests first, each kept whole (its module fixtures built
+    once): with four workers on two cores, long tests left to the end of the queue ran
+    alone while the other workers had nothing left (the longest-first rule)."""
+    slow = {item.module.__name__ for item in items if item.get_closest_marker("slow")}
+    items.sort(key=lambda item: item.module.__name__ not in slow)
