@@ -26,7 +26,7 @@ import numpy as np
 from lightinv_core.climate.control_modes import ControlModeSpec, control_mode
 from lightinv_core.climate.metrics import lighting_kwh
 from lightinv_core.design.model import DEFAULT_CONTROL_GROUP, ControlGroup, Design, DesignError
-from lightinv_core.light.daylight_year import DaylightYear
+from lightinv_core.light.daylight_year import DaylightYear, level_sum
 from lightinv_core.sources.types import source_type
 
 
@@ -209,35 +209,6 @@ def group_levels(points, year: DaylightYear, lit: GroupLight, target: float) -> 
         mode = plan.mode(k)
         out[k] = mode.levels(day, full, plan.target(k, target), plan.min_levels[k])
     return out
-
-
-def level_sum(
-    mode: ControlModeSpec,
-    year: DaylightYear,
-    b: np.ndarray,
-    full: np.ndarray,
-    target: float,
-    min_level: float,
-    fixed: np.ndarray | None = None,
-) -> np.ndarray:
-    """(m,) the levels of ``mode`` summed over the occupied hours for m candidates: ``b``
-    (m, G) the sensor's mean daylight per exterior lux of each sky group, ``full`` (m,)
-    its own luminaires' mean lux at full output, ``fixed`` (T,) lux of daylight the
-    same for every candidate (clear glazing), or (m, T) each candidate's (clear glazing
-    whose shape moves). One sky group alone, or fixed daylight alone, is summed over the
-    sorted year (O(log hours)); anything else hour by hour."""
-    b = np.atleast_2d(np.asarray(b, dtype=float))
-    A = np.maximum(np.asarray(full, dtype=float), 1e-9)
-    if fixed is not None and b.shape[1] == 0 and np.ndim(fixed) == 1:
-        s = np.sort(np.asarray(fixed, dtype=float))
-        S = np.concatenate([[0.0], np.cumsum(s)])
-        return mode.sorted_sum(s, S, np.ones(len(A)), A, target, min_level)
-    if year.sorted is not None and fixed is None:
-        return mode.sorted_sum(year.sorted, year.prefix, b[:, 0], A, target, min_level)
-    day = b @ year.exterior
-    if fixed is not None:
-        day = day + fixed
-    return mode.levels(day, A[:, None], target, min_level).sum(axis=1)
 
 
 def group_energies(

@@ -25,6 +25,7 @@ from pathlib import Path
 
 import numpy as np
 
+from lightinv_core.climate.control_modes import DIMMING, ControlModeSpec, control_mode
 from lightinv_core.climate.metrics import dimming_level
 from lightinv_core.climate.sky import overcast_plane_illuminance
 from lightinv_core.design.model import Daylight, Design
@@ -264,40 +265,38 @@ def dimming_sum(
     fixed: np.ndarray | None = None,
 ) -> np.ndarray:
     """Sum over the occupied hours of the dimming level clip((target - b.E(t) -
-    fixed(t)) / full, min_level, 1) for m candidates: ``b`` (m, G) the control plane's
-    mean daylight per exterior lux, ``full`` (m,) its mean electric lux at full output
-    (> 0), ``fixed`` (T,) lux of daylight the same for every candidate (clear glazing),
-    or (m, T) each candidate's (clear glazing whose shape moves)."""
+    fixed(t)) / full, min_level, 1) for m candidates: ``level_sum`` of continuous
+    dimming (``climate.control_modes``)."""
+    return level_sum(control_mode(DIMMING), year, b, full, target, min_level, fixed)
+
+
+def level_sum(
+    mode: ControlModeSpec,
+    year: DaylightYear,
+    b: np.ndarray,
+    full: np.ndarray,
+    target: float,
+    min_level: float,
+    fixed: np.ndarray | None = None,
+) -> np.ndarray:
+    """(m,) the levels of ``mode`` summed over the occupied hours for m candidates: ``b``
+    (m, G) the sensor's mean daylight per exterior lux of each sky group, ``full`` (m,)
+    its own luminaires' mean lux at full output, ``fixed`` (T,) lux of daylight the
+    same for every candidate (clear glazing), or (m, T) each candidate's (clear glazing
+    whose shape moves). One sky group alone, or fixed daylight alone, is summed over the
+    sorted year (O(log hours)); anything else hour by hour."""
     b = np.atleast_2d(np.asarray(b, dtype=float))
     A = np.maximum(np.asarray(full, dtype=float), 1e-9)
     if fixed is not None and b.shape[1] == 0 and np.ndim(fixed) == 1:
-        # Only fixed daylight: one sorted year, as for one sky group with b = 1.
         s = np.sort(np.asarray(fixed, dtype=float))
         S = np.concatenate([[0.0], np.cumsum(s)])
-        return _sorted_sum(s, S, len(s), np.ones(len(A)), A, target, min_level)
-    if year.sorted is None or fixed is not None:
-        day = b @ year.exterior
-        if fixed is not None:
-            day = day + fixed
-        return dimming_level(day, A[:, None], target, min_level).sum(axis=1)
-    return _sorted_sum(year.sorted, year.prefix, year.hours, b[:, 0], A, target, min_level)
-
-
-def _sorted_sum(s, S, T, b0, A, target: float, min_level: float) -> np.ndarray:
-    """The dimming sum over T hours of exterior lux ``s`` sorted (prefix sums ``S``)."""
-    # level 1 while E <= e1, min_level once E >= e2, (target - b E) / A between.
-    flat = b0 <= 0
-    safe = np.where(flat, 1.0, b0)
-    e1 = np.where(flat, np.inf, (target - A) / safe)
-    e2 = np.where(flat, np.inf, (target - min_level * A) / safe)
-    i1 = np.searchsorted(s, e1, side="right")
-    i2 = np.searchsorted(s, e2, side="left")
-    i2 = np.maximum(i2, i1)
-    middle = (target * (i2 - i1) - b0 * (S[i2] - S[i1])) / A
-    total = i1 + middle + min_level * (T - i2)
-    # Without daylight the level is one constant all year.
-    const = np.clip(target / A, min_level, 1.0) * T
-    return np.where(flat, const, total)
+        return mode.sorted_sum(s, S, np.ones(len(A)), A, target, min_level)
+    if year.sorted is not None and fixed is None:
+        return mode.sorted_sum(year.sorted, year.prefix, b[:, 0], A, target, min_level)
+    day = b @ year.exterior
+    if fixed is not None:
+        day = day + fixed
+    return mode.levels(day, A[:, None], target, min_level).sum(axis=1)
 
 
 def dimming_levels(
