@@ -24,8 +24,6 @@ from lightinv_core.study import prepare, solve
 from lightinv_core.transport.workplane import grid_statistics
 from tests.core.test_zone_on_cut_surface import write_room
 
-pytestmark = pytest.mark.slow  # minutes of CPU in all: run first (tests/conftest.py)
-
 PANEL = "Panel 600 x 600 3600 lm 30 W"
 NAIVE = 8 * 10  # the panels of the answer the issue reported
 

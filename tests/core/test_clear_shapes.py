@@ -43,8 +43,6 @@ from lightinv_core.study import SimulationSpec, simulate
 from lightinv_core.study.clear_metrics import work_plane_metrics
 from lightinv_core.transport.workplane import WorkPlane
 
-pytestmark = pytest.mark.slow  # minutes of CPU in all: run first (tests/conftest.py)
-
 TAU = 0.7
 ZONE = (2.5, 2.5, 5.5, 5.5)  # the rooflight zone in the ceiling, 3 x 3 m
 

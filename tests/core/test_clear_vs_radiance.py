@@ -17,8 +17,6 @@ import pytest
 from tests.radiance.compare import CASES, ROOMS, compare
 from tests.radiance.run import POINT_PARAMS
 
-pytestmark = pytest.mark.slow  # minutes of CPU in all: run first (tests/conftest.py)
-
 ALLOWED = {"sun": 0.05, "sky": 0.03}
 """The sun and the sky apart in each room; ``bench/peers.py`` also runs them together
 with the ground."""

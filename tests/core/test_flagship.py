@@ -24,8 +24,6 @@ from lightinv_core.scene.patches import mesh_patches
 from lightinv_core.study import prepare, stop_rule
 from lightinv_core.transport.formfactors import form_factor_matrix, lost_fraction
 
-pytestmark = pytest.mark.slow  # minutes of CPU in all: run first (tests/conftest.py)
-
 PROJECT = Path(__file__).resolve().parents[2] / "resources" / "projects" / "office-flagship.json"
 OFFICE_PRODUCTS = (
     "Recessed panel 600 x 600 3400 lm 27 W",

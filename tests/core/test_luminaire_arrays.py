@@ -185,7 +185,6 @@ def test_products_resolve_from_the_catalogue_or_files(tmp_path):
 # -- light: against the reference solver with exact luminaires ------------------------------
 
 
-@pytest.mark.slow
 def test_grid_light_matches_the_reference_solver(office):
     arrays = (_array("A1", "lum_west"), _array("A2", "lum_east", dimming=0.5))
     d = _design(arrays)
@@ -310,7 +309,6 @@ def _arrays_project(tmp_path):
     return here
 
 
-@pytest.mark.slow
 def test_cli_solve_prints_the_arrays_and_the_work_plane(tmp_path, capsys):
     from lightinv_core.cli import main
 
@@ -332,7 +330,6 @@ def test_cli_solve_prints_the_arrays_and_the_work_plane(tmp_path, capsys):
     assert sol.arrays[0].rows == got["arrays"][0]["rows"]
 
 
-@pytest.mark.slow
 def test_report_has_the_schedule_polar_curves_and_work_planes(tmp_path):
     from lightinv_core.cli import main
     from lightinv_core.project import load_project

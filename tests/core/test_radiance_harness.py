@@ -30,8 +30,6 @@ from tests.radiance import (
     window_office,
 )
 
-pytestmark = pytest.mark.slow  # minutes of CPU in all: run first (tests/conftest.py)
-
 UP = np.array([[0.0, 0.0, 1.0]])
 ORIGIN = np.zeros((1, 3))
 EPW = Path(__file__).resolve().parents[1] / "data" / "weather" / "chicago.epw.gz"

@@ -88,8 +88,6 @@ from lightinv_core.operator.settings import OperatorSettings
 from lightinv_core.scene.builtin import builtin_scene
 from lightinv_core.scene.patches import mesh_patches
 
-pytestmark = pytest.mark.slow  # minutes of CPU in all: run first (tests/conftest.py)
-
 def hwm():  # this process's own peak (ru_maxrss keeps the parent's across exec)
     with open("/proc/self/status") as fh:
         return next(int(x.split()[1]) * 1024 for x in fh if x.startswith("VmHWM:"))

@@ -405,7 +405,6 @@ def _mutate(data: bytes, edit: str, r: st.DataObject) -> bytes:
     return b"\n".join(lines)
 
 
-@pytest.mark.slow
 @settings(
     max_examples=25, deadline=None, suppress_health_check=[HealthCheck.function_scoped_fixture]
 )
