@@ -30,6 +30,7 @@ from lightinv_core.design.arrays import ArrayShapes, luminaire_positions
 from lightinv_core.design.model import LuminaireArray, Workplane
 from lightinv_core.design.variables import ArrayLayout
 from lightinv_core.errors import DesignError, LightInvError
+from lightinv_core.light.catmull_rom import catmull_rom, taps
 from lightinv_core.luminaires import Photometry, builtin_catalogue, read_photometry
 from lightinv_core.luminaires.formats import is_photometry_reference, split_reference
 from lightinv_core.operator.luminaire_basis import luminaire_responses
@@ -60,6 +61,8 @@ work plane (EN 12464-1's usual desk height)."""
 _FF_CACHE: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()
 _RESPONSES: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()
 KEEP_RESPONSES = 4  # array precomputes remembered per operator (epsilon sweeps reuse one)
+_FIELDS: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()  # arrays_field's responses
+KEEP_FIELDS = 16  # a layout's arrays, each control group's, at grids, sensors and patches
 _CASTERS: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()
 
 
@@ -312,8 +315,8 @@ class ArrayLight:
                 fv = np.clip(v / lat.dv, 0, lat.nv - 1)
                 i0 = np.minimum(np.floor(fu).astype(np.int64), lat.nu - 2)
                 k0 = np.minimum(np.floor(fv).astype(np.int64), lat.nv - 2)
-                taps_u = _taps(i0, _catmull_rom(fu - i0), lat.nu)
-                taps_v = _taps(k0, _catmull_rom(fv - k0), lat.nv)
+                taps_u = taps(i0, catmull_rom(fu - i0), lat.nu)
+                taps_v = taps(k0, catmull_rom(fv - k0), lat.nv)
                 cand = np.broadcast_to(np.arange(m)[:, None], u.shape)
                 for iu, wu in taps_u:
                     for kv, wv in taps_v:
@@ -350,34 +353,6 @@ def lattice_step(
         return finest
     throw = float(np.abs((where - frame.origin) @ frame.normal).min())
     return float(np.clip(STEP_PER_THROW * throw, finest, max(finest, LATTICE_MAX)))
-
-
-def _catmull_rom(t: np.ndarray) -> tuple[np.ndarray, ...]:
-    """Weights of the nodes at -1, 0, 1, 2 for a point ``t`` in [0, 1] past node 0: the
-    Catmull-Rom cubic, exact for quadratics (its error falls as the step to the fourth
-    power, the bilinear blend's only as its square)."""
-    t2, t3 = t * t, t * t * t
-    return (
-        0.5 * (-t3 + 2 * t2 - t),
-        0.5 * (3 * t3 - 5 * t2 + 2),
-        0.5 * (-3 * t3 + 4 * t2 + t),
-        0.5 * (t3 - t2),
-    )
-
-
-def _taps(i0: np.ndarray, weights: tuple, n: int) -> list[tuple[np.ndarray, np.ndarray]]:
-    """(node index, weight) pairs of the four Catmull-Rom taps around ``i0`` on a line of
-    ``n`` nodes; a tap past an end is the straight-line extrapolation of the last two
-    nodes (2 R[0] - R[1]), so the blend stays exact for linear changes up to the edge."""
-    out = []
-    for d, w in zip((-1, 0, 1, 2), weights, strict=True):
-        i = i0 + d
-        low, high = i < 0, i > n - 1
-        inside = np.clip(i, 0, n - 1)
-        out.append((inside, np.where(low | high, 2.0 * w, w)))
-        # The extrapolation's second node carries -w.
-        out.append((np.where(low, 1, np.where(high, n - 2, inside)), np.where(low | high, -w, 0.0)))
-    return out
 
 
 def array_light(
@@ -433,6 +408,17 @@ def array_escape_warnings(patches: Patches, arrays: Sequence[LuminaireArray]) ->
     return luminaire_escape_warnings(lums, caster_for(patches))
 
 
+def _products_key(arrays: Sequence[LuminaireArray]) -> tuple:
+    """What tells the arrays' photometry apart: each product as written, and for a file
+    its size and modification time (a file edited on disk is read again)."""
+    out = []
+    for a in arrays:
+        path = (split_reference(a.product) or (Path(a.product), None))[0]
+        st = path.stat() if is_photometry_reference(a.product) and path.is_file() else None
+        out.append((a.product, None if st is None else (st.st_size, st.st_mtime_ns)))
+    return tuple(out)
+
+
 def arrays_field(
     patches: Patches,
     op: RadiosityOperator,
@@ -451,19 +437,31 @@ def arrays_field(
     pts = as_point_set(points)
     if not lums:
         return np.zeros(patches.n), np.zeros(pts.size)
-    # Responses at unit dimming, then weighted: one column per luminaire.
-    undimmed = [PlacedLuminaire(p.name, p.position, p.photometry, p.aim, p.c0, 1.0) for p in lums]
-    resp = luminaire_responses(
-        patches,
-        form_factors(patches, op),
-        op.lowrank,
-        undimmed,
-        np.arange(patches.n),
-        pts,
-        caster=caster_for(patches),
-        rays=int(op.info.get("rays", DEFAULT_RAYS)),
-        cancel=cancel,
-    )
+    # Responses at unit dimming, then weighted: one column per luminaire. They depend on
+    # where the luminaires are and what they are, not on their dimming: kept per
+    # operator, so a climate or dimming edit does not trace them again (seconds each).
+    where = [np.concatenate([p.position, p.aim, p.c0]).astype(float) for p in lums]
+    key = (_products_key(arrays), pts.key(), np.asarray(where).tobytes())
+    memo = _FIELDS.setdefault(op, {})
+    resp = memo.pop(key, None)  # re-inserted below: the least recently used goes first
+    if resp is None:
+        undimmed = [
+            PlacedLuminaire(p.name, p.position, p.photometry, p.aim, p.c0, 1.0) for p in lums
+        ]
+        resp = luminaire_responses(
+            patches,
+            form_factors(patches, op),
+            op.lowrank,
+            undimmed,
+            np.arange(patches.n),
+            pts,
+            caster=caster_for(patches),
+            rays=int(op.info.get("rays", DEFAULT_RAYS)),
+            cancel=cancel,
+        )
+        while len(memo) >= KEEP_FIELDS:
+            memo.pop(next(iter(memo)))
+    memo[key] = resp
     w = np.asarray(scale, np.float32)
     return (resp.at_rows @ w).astype(float), (resp.at_points @ w).astype(float)
 

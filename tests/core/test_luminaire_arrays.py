@@ -230,6 +230,35 @@ def test_lattice_blend_is_close_to_exact_placement_off_the_nodes(office):
     assert np.abs(blend - exact).max() / exact.mean() < 0.02
 
 
+def test_arrays_field_keeps_its_responses_across_dimming_but_not_moves(office, monkeypatch):
+    """A climate or dimming edit re-reads the arrays' light without tracing it again; a
+    moved array or another product is traced afresh (and equals a cold trace)."""
+    import dataclasses
+
+    import lightinv_core.light.arrays as arrays_mod
+
+    calls = []
+    real = arrays_mod.luminaire_responses
+    monkeypatch.setattr(
+        arrays_mod, "luminaire_responses", lambda *a, **k: calls.append(1) or real(*a, **k)
+    )
+    a = _array("A1", "lum_west", rect=(0.2, 0.4, 1.8, 5.6), rows=3, rotation=0)
+    pts = np.array([[2.0, 2.0, 0.8], [3.0, 4.0, 0.8]])
+    H1, p1 = arrays_field(office.patches, office.op, (a,), pts)
+    dimmed = dataclasses.replace(a, dimming=0.5)
+    H2, p2 = arrays_field(office.patches, office.op, (dimmed,), pts)
+    assert len(calls) == 1  # the dimming change read the kept responses
+    assert np.allclose(H2, 0.5 * H1, rtol=1e-6) and np.allclose(p2, 0.5 * p1, rtol=1e-6)
+    moved = dataclasses.replace(a, rect=(0.4, 0.4, 2.0, 5.6))
+    H3, _ = arrays_field(office.patches, office.op, (moved,), pts)
+    other = dataclasses.replace(a, product=DOWNLIGHT)
+    H4, _ = arrays_field(office.patches, office.op, (other,), pts)
+    assert len(calls) == 3 and not np.allclose(H3, H1) and not np.allclose(H4, H1)
+    arrays_mod._FIELDS.clear()  # cold: the kept answer is the traced one
+    H5, _ = arrays_field(office.patches, office.op, (moved,), pts)
+    assert len(calls) == 4 and np.array_equal(H5, H3)
+
+
 # -- goals and optimisation -----------------------------------------------------------------
 
 
