@@ -2,7 +2,8 @@
 overcast, and any registered one), each daylight metric (DF, DA300, UDI, sDA, and any
 registered one) and the light of one hour of the year, each of the layout shown, on the
 patches and on the work planes' points; the lists come from the scenario and quantity
-registries.
+registries; and the maps at the observers (simplified DGP over the year,
+``observer_maps``), which colour the observers' glyphs, not the patches.
 
 Each is read from the layout's light in every scenario (``DocumentModel.layout_daylight``,
 built once per design change); what cannot be computed is said in the map's caption.
@@ -13,6 +14,7 @@ from __future__ import annotations
 import numpy as np
 
 from app.document import Document
+from app.view import observer_maps
 from lightinv_core.editing.climate import hour_state
 from lightinv_core.errors import LightInvError
 from lightinv_core.kinds import Scenario
@@ -42,6 +44,7 @@ def maps() -> dict[str, tuple[str, str, str]]:
             out[q.name] = (_annual_text(q), f"{q.metric.split()[0]} %", "%.0f")
         elif q.from_scenarios is not None:
             out[q.name] = (q.label, f"{q.metric} {q.unit}".strip(), f"%.{q.decimals - 1}f")
+    out.update(observer_maps.observer_maps())
     out[HOUR] = ("illuminance at the hour of the year (lux)", "lux", "%.0f")
     return out
 
@@ -57,7 +60,7 @@ def _point_map(key: str):
 
 def _annual_text(q) -> str:
     """An annual metric's Colour by entry: its name, then what its % means."""
-    if q.hours.point_share is None:
+    if q.hours.point_share is None and q.hours.point_hours is None:
         return f"{q.noun} {q.metric} (% of occupied hours)"
     return f"{q.noun} {q.metric} (100 % where a point counts)"
 
@@ -66,12 +69,14 @@ class MapResult:
     """A daylight map for the view: ``values`` per patch (None: nothing to show), the
     colour bar's ``units`` and label ``fmt``, a ``caption``, a fixed ``clim`` (None:
     the view's range) and the work planes' ``grids`` with the same quantity at their
-    points (``grid_values``; None without work planes)."""
+    points (``grid_values``; None without work planes); ``observers`` the colours of
+    the observers' glyphs (``observer_maps.ObserverColours``; None: drawn plain)."""
 
     def __init__(self, values, units: str, fmt: str, caption: str | None, clim=None):
         self.values, self.units, self.fmt = values, units, fmt
         self.caption, self.clim = caption, clim
         self.grids, self.grid_values = None, None
+        self.observers: observer_maps.ObserverColours | None = None
 
     @property
     def label_format(self) -> str:
@@ -85,6 +90,8 @@ def map_values(doc: Document, key: str, hour: int) -> MapResult:
     computed (no light model, an unreadable weather file)."""
     text, units, fmt = maps()[key]
     try:
+        if key in observer_maps.observer_maps():
+            return _at_observers(doc, key, units, fmt)
         ld = doc.layout_daylight(shown=True)
         if ld is None:
             return MapResult(None, units, fmt, None)
@@ -95,6 +102,18 @@ def map_values(doc: Document, key: str, hour: int) -> MapResult:
         return shown
     except LightInvError as exc:
         return MapResult(None, units, fmt, f"{text}: {exc}")
+
+
+def _at_observers(doc: Document, key: str, units: str, fmt: str) -> MapResult:
+    """A map at the observers: the patches in their materials (values None), the
+    observers' colours and the caption saying what they mean."""
+    if doc.light is None:
+        return MapResult(None, units, fmt, None)
+    figures, left_out = doc.observer_dgp(shown=True)
+    shown = MapResult(None, units, fmt, observer_maps.caption(key, figures, left_out))
+    if figures:
+        shown.observers = observer_maps.observer_colours(key, figures)
+    return shown
 
 
 def _map(ld, doc: Document, key: str, hour: int, units: str, fmt: str) -> MapResult:

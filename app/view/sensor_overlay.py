@@ -1,9 +1,10 @@
 """Control groups' sensors drawn in the 3-D view: each group's sensor rectangle outlined
 on its work plane, in a colour of its own, labelled with the group's name (the work
 plane's iso-lines are thin and coloured by the light; these are thick and flat). Named
-actors (``sensors``, and ``sensor-label-K`` per group, its label in the group's colour),
-so a redraw after an edit or an undo replaces them; a design without control groups
-draws nothing (``light.control_groups.sensor_outlines``)."""
+actors (``sensors``, and ``sensor-label-K`` per group, its label in the group's colour,
+and ``sensor-handles``: a ball at each corner of a declared group's region, which
+Move mode drags, ``sensor_drag``), so a redraw after an edit or an undo replaces them; a
+design without control groups draws nothing (``light.control_groups.sensor_outlines``)."""
 
 from __future__ import annotations
 
@@ -13,6 +14,8 @@ import pyvista as pv
 from lightinv_core.light.control_groups import SensorOutline, sensor_outlines
 
 NAME = "sensors"
+HANDLES = "sensor-handles"
+HANDLE_PX = 13  # a corner handle's width on screen, pixels
 LABEL = "sensor-label-{}"
 LIFT = 0.03  # m above the work plane, so its own iso-lines do not hide the outline
 PALETTE = ("#1f77b4", "#ff7f0e", "#2ca02c", "#d62728", "#9467bd", "#8c564b", "#e377c2")
@@ -40,9 +43,28 @@ def outline_mesh(outlines: tuple[SensorOutline, ...]) -> pv.PolyData | None:
     return mesh
 
 
+def handle_mesh(outlines, declared: set[str]) -> pv.PolyData | None:
+    """A point at each corner of the declared groups' outlines (the default group, when
+    undeclared, has no region to drag), each in its group's colour (``rgb``); drawn as
+    balls ``HANDLE_PX`` pixels wide whatever the zoom."""
+    points, colours = [], []
+    for k, o in enumerate(outlines):
+        if o.name not in declared:
+            continue
+        rgb = [int(sensor_colour(k)[i : i + 2], 16) for i in (1, 3, 5)]
+        points += [c + np.array([0.0, 0.0, LIFT]) for c in o.corners]
+        colours += [rgb] * len(o.corners)
+    if not points:
+        return None
+    mesh = pv.PolyData(np.array(points, float))
+    mesh.point_data["rgb"] = np.array(colours, dtype=np.uint8)
+    return mesh
+
+
 def draw(plotter, design, patches, grids=None) -> tuple[SensorOutline, ...]:
     """Draw (or clear) the sensors of ``design``'s control groups; the outlines drawn."""
     plotter.remove_actor(NAME, render=False)
+    plotter.remove_actor(HANDLES, render=False)
     for name in getattr(plotter, "_sensor_labels", ()):
         plotter.remove_actor(name, render=False)
     plotter._sensor_labels = []
@@ -53,6 +75,17 @@ def draw(plotter, design, patches, grids=None) -> tuple[SensorOutline, ...]:
     plotter.add_mesh(
         mesh, name=NAME, scalars="rgb", rgb=True, line_width=4, lighting=False, render=False
     )
+    handles = handle_mesh(outlines, {c.name for c in design.control_groups})
+    if handles is not None:
+        plotter.add_mesh(
+            handles,
+            name=HANDLES,
+            scalars="rgb",
+            rgb=True,
+            point_size=HANDLE_PX,
+            render_points_as_spheres=True,
+            render=False,
+        )
     for k, o in enumerate(outlines):
         name = LABEL.format(k)
         plotter.add_point_labels(

@@ -20,6 +20,7 @@ from PySide6 import QtCore, QtGui, QtWidgets
 from app.dialogs import ask
 from app.dialogs.ask import ask_recovery
 from app.document import Document
+from app.view.sensor_drag import SensorDrag
 from app.view.viewport import Viewport
 from app.widgets.achieved_panel import AchievedPanel
 from app.widgets.climate_panel import ClimatePanel
@@ -99,6 +100,14 @@ class MainWindow(QtWidgets.QMainWindow):
         self.files.fill_recent()
         self._status()
         self.colouring = ViewColouring(self)
+        # Control groups' sensor regions dragged in Move mode (an observer's ball first).
+        self.sensor_drag = SensorDrag(
+            self.viewport,
+            self.doc,
+            lambda: self.colouring.sensors,
+            self.statusBar().showMessage,
+            self.edits.observer_drag.observer_at,
+        )
         self._connect()
         self.fit_to_screen()
         self._initial_state = self.saveState()  # View > Restore the panel layout

@@ -85,6 +85,7 @@ class ViewColouring(QtCore.QObject):
             # No light model, or a design that emits none: its materials, not a black
             # room under a colour bar of zeros.
             luminaire_overlay.draw_planes(self.viewport.plotter, None, None)
+            self.colour_observers(None)
             self.viewport.set_caption(None if field is None else NO_LIGHT)
             self.viewport.set_values(None)
             return
@@ -114,6 +115,7 @@ class ViewColouring(QtCore.QObject):
         key, fmt, caption = self.options.colour_by.currentData(), "%.0f", None
         grids, grid_values = self.doc.shown_grids()
         label, plane_clim, plane_cmap = "{:.0f}", None, "inferno"
+        observers = None  # the observers' colours: a map at the observers only
         if other is not None:
             # Difference view: the loaded layout minus a pinned one, centred on zero, on
             # the patches and the work planes alike (signed labels).
@@ -137,7 +139,7 @@ class ViewColouring(QtCore.QObject):
             shown = map_values(self.doc, key, self.win.climate_panel.current_hour())
             values, units, fmt, caption = shown.values, shown.units, shown.fmt, shown.caption
             grids, grid_values = shown.grids, shown.grid_values
-            label, plane_clim = shown.label_format, shown.clim
+            label, plane_clim, observers = shown.label_format, shown.clim, shown.observers
             if shown.clim is not None:
                 self.viewport.clim = shown.clim
             elif key == "df":
@@ -152,6 +154,16 @@ class ViewColouring(QtCore.QObject):
             )
         self.viewport.set_caption(caption)
         self.viewport.set_values(values, units, fmt)
+        self.colour_observers(observers)
+
+    def colour_observers(self, colours) -> None:
+        """Colour the observers' glyphs by a map at the observers (None: plain,
+        ``observer_overlay.set_colours``), redrawn when that changes."""
+        d, vp = self.doc, self.viewport
+        if observer_overlay.set_colours(vp.plotter, colours) and d.project is not None:
+            picked = self.win.edits.current_observer
+            observer_overlay.draw(vp.plotter, d.patches, d.design.observers, picked)
+            vp.request_render()
 
     def _scene_changed(self, change) -> None:
         self.viewport.keep_camera = bool(change.rebuilt)

@@ -9,6 +9,8 @@ for the difference view.
 
 from __future__ import annotations
 
+from dataclasses import replace
+
 import numpy as np
 from scipy.spatial import cKDTree
 
@@ -21,7 +23,9 @@ from lightinv_core.errors import DesignError, LightInvError
 from lightinv_core.light.arrays import arrays_field
 from lightinv_core.light.clear_build import clear_light_ready
 from lightinv_core.light.daylight import LayoutDaylight
+from lightinv_core.light.dgp_observers import observer_dgp
 from lightinv_core.light.field import LightField
+from lightinv_core.light.glare import observer_eyes
 from lightinv_core.light.grids import DesignGrids, grid_light
 from lightinv_core.light.intentions import bound_checks, intention_stats, offending
 from lightinv_core.light.model import LightModel
@@ -240,4 +244,31 @@ class LightView(DocumentState):
         if memo is None or memo[0] != key:
             lux = grid_light(self.light, grids, tuple(sources), tuple(arrays), self.design.daylight)
             self._grid_compared = memo = (key, lux)
+        return memo[1]
+
+    def observer_dgp(self, shown: bool = False) -> tuple[dict[str, dict], tuple[str, ...]]:
+        """({observer: simplified DGP figures}, the observers left out) of the design as
+        written (``shown``: of the layout shown) at every observer inside the room, with or
+        without a ``dgp`` intention (``light.dgp_observers.observer_dgp``: the share of the
+        occupied hours above ``daylight.dgp_limit``, EN 17037's glare protection level, the
+        largest DGPs and Ev, lux); ({}, ()) before the operator exists; made once per design
+        or preview; DesignError while the clear glazing's light is pending."""
+        if self.light is None or not self.design.observers:
+            return {}, ()
+        if self.clear_pending():
+            raise DesignError(self.clear_note or CLEAR_PENDING)
+        preview = self._preview if shown else None
+        key = (self.light, self.design, preview)
+        memo = getattr(self, "_dgp_shown", None)
+        if memo is None or any(a is not b for a, b in zip(memo[0], key, strict=True)):
+            inside, out = [], []
+            for ob in self.design.observers:
+                try:
+                    observer_eyes(self.patches, (ob,))
+                    inside.append(ob)
+                except LightInvError:
+                    out.append(ob.name)  # outside the room: not drawn, not rated
+            design = replace(self.design, observers=tuple(inside))
+            figures = observer_dgp(self.light, design, preview) if inside else {}
+            self._dgp_shown = memo = (key, (figures, tuple(out)))
         return memo[1]
