@@ -85,6 +85,7 @@ class ClimatePanel(QtWidgets.QWidget):
             self.sun_altitude,
             self.basis,
             self.dgp_limit,
+            self.sky,
             self.start,
             self.end,
             self.weekdays,
@@ -171,6 +172,17 @@ class ClimatePanel(QtWidgets.QWidget):
             "counts (0.40: EN 17037 medium; 0.45 minimum, 0.35 high)"
         )
         form.addRow("DGP limit", self.dgp_limit)
+        # Clear glazing's sky in finer patches (docs/daylight.md, "Finer skies in
+        # projects"): the sun is traced by direction either way.
+        self.sky = QtWidgets.QComboBox()
+        for mf, text in ((1, "145 (Tregenza)"), (2, "577 (Reinhart MF:2)"), (4, "2,305 (MF:4)")):
+            self.sky.addItem(text, mf)
+        self.sky.setToolTip(
+            "Clear glazing: the sky's patches. Finer patches follow the sky's luminance "
+            "more closely and cost more time and memory to trace; the sun is traced by "
+            "direction either way, so ASE does not change"
+        )
+        form.addRow("Sky patches", self.sky)
         self.browse_button.clicked.connect(lambda: self.browse())
         self.builtin_button.clicked.connect(lambda: self.set_weather("builtin"))
         self.north.valueChanged.connect(lambda v: self._set(north_deg=v))
@@ -186,6 +198,7 @@ class ClimatePanel(QtWidgets.QWidget):
         )
         self.basis.activated.connect(lambda _i: self._set(en17037_basis=self.basis.currentData()))
         self.dgp_limit.valueChanged.connect(lambda v: self._set(dgp_limit=v))
+        self.sky.activated.connect(lambda _i: self._set(sky_subdivision=self.sky.currentData()))
         return group
 
     def _control_group(self) -> QtWidgets.QGroupBox:
@@ -293,6 +306,7 @@ class ClimatePanel(QtWidgets.QWidget):
             self.sun_altitude.setValue(NO_ALTITUDE if alt is None else alt)
             self.basis.setCurrentIndex(max(self.basis.findData(day.en17037_basis), 0))
             self.dgp_limit.setValue(day.dgp_limit)
+            self.sky.setCurrentIndex(max(self.sky.findData(day.sky_subdivision), 0))
             self.start.setValue(day.occupancy[0])
             self.end.setValue(day.occupancy[1])
             self.weekdays.setChecked(day.weekdays)
