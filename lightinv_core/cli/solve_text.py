@@ -3,6 +3,7 @@ daylight, violations and front."""
 
 from __future__ import annotations
 
+from lightinv_core.climate.control_modes import control_text
 from lightinv_core.value_text import goal_value, source_line, u0_text
 
 
@@ -55,11 +56,14 @@ def solve_text(out: dict) -> str:
                 f"{d['full_output_kwh']:.0f} kWh), LENI {d['leni_kwh_m2']:.2f} kWh/m² a"
             )
             for g in d.get("control_groups", []):
+                how = ""  # results saved before modes and targets were kept say none
+                if "mode" in g and "target_lux" in g:
+                    how = f"; {control_text(g['mode'], g['target_lux'], g.get('dead_band', 0))}"
                 lines.append(
                     f"    control group {g['name']}: {g['luminaires']} luminaires, "
                     f"{g['watts']:.0f} W, sensor {g['sensor_points']} points, mean level "
                     f"{100 * g['mean_level']:.0f}%, {g['energy_kwh']:.1f} kWh a year, "
-                    f"LENI {g['leni']:.2f} kWh/m² a"
+                    f"LENI {g['leni']:.2f} kWh/m² a{how}"
                 )
             p = d.get("en17037_provision")
             if p:

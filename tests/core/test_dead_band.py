@@ -18,6 +18,8 @@ import numpy as np
 import pytest
 
 from lightinv_core import cli
+from lightinv_core.cli.solve import daylight_summary
+from lightinv_core.cli.solve_text import solve_text
 from lightinv_core.climate.control_modes import (
     control_mode,
     control_text,
@@ -30,6 +32,7 @@ from lightinv_core.design.model import ControlGroup, DesignError
 from lightinv_core.light.daylight import layout_daylight
 from lightinv_core.light.daylight_year import level_sum
 from lightinv_core.optimize.problem import DesignProblem
+from lightinv_core.report.daylight import control_groups_table, daylight_section
 from lightinv_core.study.control_groups import group_dimming
 from tests.core.test_control_groups import _schedule
 from tests.core.test_control_groups_design import _office_design, office  # noqa: F401
@@ -167,6 +170,13 @@ def test_the_optimiser_and_the_layout_agree_with_a_band(office):  # noqa: F811
     assert got[0] == pytest.approx(banded.energy().energy_kwh, rel=1e-6)
     half = layout_daylight(light, designs[1], problem.sources_at(X[1])).energy().energy_kwh
     assert got[1] == pytest.approx(half, rel=1e-6)
+    # The report's control column and solve's text say the band.
+    table = control_groups_table(daylight_section(banded, []))
+    assert table.rows[0][:2] == ("west", "switching to 300 lux, off from 450 lux")
+    summary = daylight_summary(light, designs[1], problem.solution(X[0]))
+    head = dict(project="p", status="ok", method="vns", evaluations=1, seconds=0.0)
+    text = solve_text({**head, "precompute_seconds": 0.0, "daylight": summary})
+    assert "LENI" in text and "; switching to 300 lux, off from 450 lux" in text
     # level_sum with a band over the same year is the scan summed.
     b = banded.points.sky[:, ids, 0].mean(axis=1)[None]
     assert level_sum(SWITCHING, year, b, np.array([300.0]), 300.0, 0.1, None, 0.5)[0] == (
