@@ -48,6 +48,8 @@ def solve_text(out: dict) -> str:
             lines.append(f"  annual daylight not computed: {d['annual_error']}")
         else:
             ase = f", ASE1000,250 {100 * d['ase1000_250']:.0f}%" if "ase1000_250" in d else ""
+            if "sky_patches" in d:  # clear glazing: the sky's patches it was traced on
+                ase += f" (clear glazing, sky in {d['sky_patches']:,} patches)"
             lines.append(
                 f"  {d['site']}: DA300 mean {100 * d['da300_mean']:.0f}%, sDA300/50% "
                 f"{100 * d['sda300_50']:.0f}%, UDI 100-3000 {100 * d['udi_100_3000_mean']:.0f}%"

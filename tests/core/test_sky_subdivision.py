@@ -5,7 +5,8 @@ a project's fixed clear glazing.
 References: the forward study at the same subdivision (``simulate --sky-subdivision 2``,
 ``study.clear_year``, itself checked against Radiance) on the same room; the project at
 MF:1 (the annual figures move by little, ASE, direct sun traced by direction, not at
-all); the project file's field and its refusals; the traced light rebuilt on an edit.
+all); solve's JSON and text; the project file's field and its refusals; the traced
+light rebuilt on an edit.
 """
 
 from __future__ import annotations
@@ -16,10 +17,13 @@ from dataclasses import replace
 import numpy as np
 import pytest
 
+from lightinv_core.cli.solve import daylight_summary
+from lightinv_core.cli.solve_text import solve_text
 from lightinv_core.design.model import Daylight, Intention
 from lightinv_core.fields import ProjectError
 from lightinv_core.light.clear_build import clear_light_key
 from lightinv_core.light.daylight import layout_daylight
+from lightinv_core.optimize.problem import DesignProblem
 from lightinv_core.project import project_from_dict, project_to_dict
 from lightinv_core.study import SimulationSpec, simulate
 from lightinv_core.study.clear_metrics import blinds, work_plane_metrics
@@ -73,6 +77,16 @@ def test_a_project_at_mf2_gives_the_studys_mf2_year(sidelit):  # noqa: F811
     assert np.array_equal(one.points.clear.direct, got.points.clear.direct)
     a, b = one.points.clear_hours().mean(axis=1), got.points.clear_hours().mean(axis=1)
     assert 0 < np.abs(a / b - 1).mean() < 0.02
+
+    # lightinv-cli solve says which sky the clear glazing was traced on.
+    design = _design(sidelit, 2)
+    problem = DesignProblem(design, sidelit)
+    summary = daylight_summary(sidelit, design, problem.solution(problem.vars.initial()))
+    assert summary["sky_patches"] == 577
+    assert summary["ase1000_250"] == pytest.approx(_mean(got, "ase"))
+    head = dict(project="p", status="ok", method="vns", evaluations=1, seconds=0.0)
+    text = solve_text({**head, "precompute_seconds": 0.0, "daylight": summary})
+    assert "(clear glazing, sky in 577 patches)" in text
 
 
 def test_the_project_field():

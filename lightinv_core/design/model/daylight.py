@@ -93,7 +93,8 @@ class Daylight:
     weekdays only unless ``weekdays`` is False, ``ground_reflectance``, ``overcast_lux``
     (horizontal lux of the design overcast sky), daylight-linked dimming to
     ``target_lux`` on the work plane ``workplane`` (default: the first) between
-    ``min_level`` and full output, with ``standby_w`` drawn all year.
+    ``min_level`` and full output, with ``standby_w`` drawn all year; fixed clear
+    glazing sees the sky in Reinhart ``sky_subdivision`` patches (1: Tregenza's 145).
     """
 
     exterior_lux: float = field(
