@@ -68,7 +68,13 @@ class ClimatePanel(QtWidgets.QWidget):
         grid = QtWidgets.QGridLayout()
         outer.addLayout(grid, 1)
         grid.addWidget(self._site_group(), 0, 0)
-        grid.addWidget(self._control_group(), 0, 1)
+        # Beside the site's long form, not in it: a row there would push the rows below
+        # out of sight of a 768 px screen's Climate tab.
+        right = QtWidgets.QVBoxLayout()
+        right.addWidget(self._control_group())
+        right.addWidget(self._sky_group())
+        right.addStretch(1)
+        grid.addLayout(right, 0, 1)
         grid.addWidget(self._hour_group(), 1, 0)
         self.energy = EnergyBox()
         grid.addWidget(self.energy, 1, 1)
@@ -172,17 +178,6 @@ class ClimatePanel(QtWidgets.QWidget):
             "counts (0.40: EN 17037 medium; 0.45 minimum, 0.35 high)"
         )
         form.addRow("DGP limit", self.dgp_limit)
-        # Clear glazing's sky in finer patches (docs/daylight.md, "Finer skies in
-        # projects"): the sun is traced by direction either way.
-        self.sky = QtWidgets.QComboBox()
-        for mf, text in ((1, "145 (Tregenza)"), (2, "577 (Reinhart MF:2)"), (4, "2,305 (MF:4)")):
-            self.sky.addItem(text, mf)
-        self.sky.setToolTip(
-            "Clear glazing: the sky's patches. Finer patches follow the sky's luminance "
-            "more closely and cost more time and memory to trace; the sun is traced by "
-            "direction either way, so ASE does not change"
-        )
-        form.addRow("Sky patches", self.sky)
         self.browse_button.clicked.connect(lambda: self.browse())
         self.builtin_button.clicked.connect(lambda: self.set_weather("builtin"))
         self.north.valueChanged.connect(lambda v: self._set(north_deg=v))
@@ -198,7 +193,6 @@ class ClimatePanel(QtWidgets.QWidget):
         )
         self.basis.activated.connect(lambda _i: self._set(en17037_basis=self.basis.currentData()))
         self.dgp_limit.valueChanged.connect(lambda v: self._set(dgp_limit=v))
-        self.sky.activated.connect(lambda _i: self._set(sky_subdivision=self.sky.currentData()))
         return group
 
     def _control_group(self) -> QtWidgets.QGroupBox:
@@ -236,6 +230,23 @@ class ClimatePanel(QtWidgets.QWidget):
         self.min_level.valueChanged.connect(lambda v: self._set(min_level=v))
         self.standby.valueChanged.connect(lambda v: self._set(standby_w=v))
         self.plane.activated.connect(lambda _i: self._set(workplane=self.plane.currentData()))
+        return group
+
+    def _sky_group(self) -> QtWidgets.QGroupBox:
+        # Clear glazing's sky in finer patches (docs/daylight.md, "Finer skies in
+        # projects"): the sun is traced by direction either way.
+        group = QtWidgets.QGroupBox("Clear glazing")
+        form = compact_form(group)
+        self.sky = QtWidgets.QComboBox()
+        for mf, text in ((1, "145 (Tregenza)"), (2, "577 (Reinhart MF:2)"), (4, "2,305 (MF:4)")):
+            self.sky.addItem(text, mf)
+        self.sky.setToolTip(
+            "Clear glazing: the sky's patches. Finer patches follow the sky's luminance "
+            "more closely and cost more time and memory to trace; the sun is traced by "
+            "direction either way, so ASE does not change"
+        )
+        form.addRow("Sky patches", self.sky)
+        self.sky.activated.connect(lambda _i: self._set(sky_subdivision=self.sky.currentData()))
         return group
 
     def _hour_group(self) -> QtWidgets.QGroupBox:
