@@ -1,8 +1,9 @@
 """The dialog of one daylight-linked control group: its name, the work plane its sensor
 reads, the plan rectangle of that plane's points it reads (or the whole plane), how its
 luminaires follow the sensor (a control mode of ``climate.control_modes``: dimming or
-switching), the illuminance it keeps (its own target, or the daylight's) and the lowest
-level its luminaires dim to (or the daylight's)."""
+switching), the illuminance it keeps (its own target, or the daylight's), for a mode
+that takes one (switching) its dead band, and the lowest level its luminaires dim to (or
+the daylight's)."""
 
 from __future__ import annotations
 
@@ -66,12 +67,26 @@ class ControlGroupDialog(QtWidgets.QDialog):
         self.own_target, self.target = optional_number(form, "Own target (lux)", own, 1e5, 0)
         self.own_target.setChecked(base.target_lux is not None)
         self.target.setSingleStep(50)
+        self.band = number_box(0.0, 200.0, 100.0 * base.dead_band, 0, 5.0)
+        self.band.setSuffix(" %")
+        self.band.setToolTip(
+            "switching: off once the daylight reaches the target plus this share, back on "
+            "when it falls below the target, so the luminaires do not cycle (0: off at the "
+            "target; a product's photocell has 15)"
+        )
+        form.addRow("Dead band", self.band)
+        self.mode.currentIndexChanged.connect(lambda _i: self._band_enabled())
+        self._band_enabled()
         self.own_floor, self.floor = optional_number(
             form, "Own lowest level", min_level if base.min_level is None else base.min_level, 1.0
         )
         self.own_floor.setChecked(base.min_level is not None)
         self.floor.setSingleStep(0.05)
         form.addRow(ok_cancel(self))
+
+    def _band_enabled(self) -> None:
+        """The dead band only for a mode that takes one (switching)."""
+        self.band.setEnabled(control_mode(self.mode.currentData()).banded is not None)
 
     def accept(self) -> None:
         """Close only on a group that can be built; else say why and stay."""
@@ -92,4 +107,5 @@ class ControlGroupDialog(QtWidgets.QDialog):
             min_level=self.floor.value() if self.own_floor.isChecked() else None,
             mode=self.mode.currentData(),
             target_lux=self.target.value() if self.own_target.isChecked() else None,
+            dead_band=self.band.value() / 100.0 if self.band.isEnabled() else 0.0,
         )

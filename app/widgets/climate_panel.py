@@ -68,7 +68,13 @@ class ClimatePanel(QtWidgets.QWidget):
         grid = QtWidgets.QGridLayout()
         outer.addLayout(grid, 1)
         grid.addWidget(self._site_group(), 0, 0)
-        grid.addWidget(self._control_group(), 0, 1)
+        # Beside the site's long form, not in it: a row there would push the rows below
+        # out of sight of a 768 px screen's Climate tab.
+        right = QtWidgets.QVBoxLayout()
+        right.addWidget(self._control_group())
+        right.addWidget(self._sky_group())
+        right.addStretch(1)
+        grid.addLayout(right, 0, 1)
         grid.addWidget(self._hour_group(), 1, 0)
         self.energy = EnergyBox()
         grid.addWidget(self.energy, 1, 1)
@@ -85,6 +91,7 @@ class ClimatePanel(QtWidgets.QWidget):
             self.sun_altitude,
             self.basis,
             self.dgp_limit,
+            self.sky,
             self.start,
             self.end,
             self.weekdays,
@@ -225,6 +232,23 @@ class ClimatePanel(QtWidgets.QWidget):
         self.plane.activated.connect(lambda _i: self._set(workplane=self.plane.currentData()))
         return group
 
+    def _sky_group(self) -> QtWidgets.QGroupBox:
+        # Clear glazing's sky in finer patches (docs/daylight.md, "Finer skies in
+        # projects"): the sun is traced by direction either way.
+        group = QtWidgets.QGroupBox("Clear glazing")
+        form = compact_form(group)
+        self.sky = QtWidgets.QComboBox()
+        for mf, text in ((1, "145 (Tregenza)"), (2, "577 (Reinhart MF:2)"), (4, "2,305 (MF:4)")):
+            self.sky.addItem(text, mf)
+        self.sky.setToolTip(
+            "Clear glazing: the sky's patches. Finer patches follow the sky's luminance "
+            "more closely and cost more time and memory to trace; the sun is traced by "
+            "direction either way, so ASE does not change"
+        )
+        form.addRow("Sky patches", self.sky)
+        self.sky.activated.connect(lambda _i: self._set(sky_subdivision=self.sky.currentData()))
+        return group
+
     def _hour_group(self) -> QtWidgets.QGroupBox:
         group = QtWidgets.QGroupBox("Hour of the year")
         lay = QtWidgets.QVBoxLayout(group)
@@ -293,6 +317,7 @@ class ClimatePanel(QtWidgets.QWidget):
             self.sun_altitude.setValue(NO_ALTITUDE if alt is None else alt)
             self.basis.setCurrentIndex(max(self.basis.findData(day.en17037_basis), 0))
             self.dgp_limit.setValue(day.dgp_limit)
+            self.sky.setCurrentIndex(max(self.sky.findData(day.sky_subdivision), 0))
             self.start.setValue(day.occupancy[0])
             self.end.setValue(day.occupancy[1])
             self.weekdays.setChecked(day.weekdays)

@@ -30,6 +30,8 @@ def group_text(group: ControlGroup, members: list[str]) -> str:
     how = "" if group.mode == DIMMING else f"; {group.mode}"
     if group.target_lux is not None:
         how += f"; {group.target_lux:g} lux"
+    if group.dead_band > 0:
+        how += f"; dead band {100 * group.dead_band:g}%"
     return f"{group.name}: {plane}, {where}{how}; {who}"
 
 
@@ -129,7 +131,7 @@ class ControlGroupsBox(QtWidgets.QGroupBox):
         if not ask.accepted(dialog):
             return False
         new = dialog.group()
-        keys = ("name", "sensor", "workplane", "min_level", "mode", "target_lux")
+        keys = ("name", "sensor", "workplane", "min_level", "mode", "target_lux", "dead_band")
         fields = {k: getattr(new, k) for k in keys}
         return self._guard(lambda: self.doc.update_control_group(name, **fields))
 

@@ -6,6 +6,7 @@ from __future__ import annotations
 from PySide6 import QtWidgets
 
 from app.view.energy_chart import EnergyChart
+from lightinv_core.climate.control_modes import control_text
 from lightinv_core.errors import LightInvError
 
 
@@ -49,7 +50,8 @@ class EnergyBox(QtWidgets.QGroupBox):
             f"mean level {100 * e.mean_level:.0f}%\n"
             f"{ld.installed_w:,.0f} W installed, dimmed on work plane {ld.control}"
             + "".join(
-                f"\ngroup {g.name} ({g.mode} to {g.target_lux:,.0f} lux): {g.watts:,.0f} W, "
+                f"\ngroup {g.name} ({control_text(g.mode, g.target_lux, g.dead_band)}): "
+                f"{g.watts:,.0f} W, "
                 f"{g.energy_kwh:,.1f} kWh, "
                 f"LENI {g.leni:.2f}, level {100 * g.mean_level:.0f}%"
                 for g in e.groups

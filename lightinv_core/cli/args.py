@@ -159,26 +159,36 @@ def group_rect(text: str) -> tuple[str, tuple[float, float, float, float]]:
     return group, v
 
 
-def group_control(text: str) -> tuple[str, str, float | None]:
-    """``GROUP=MODE`` or ``GROUP=MODE:LUX``: a control group's mode (a registered control
-    mode: dimming, switching) and its own target (lux; default ``--target-lux``)."""
-    from lightinv_core.climate.control_modes import control_mode_names
+def group_control(text: str) -> tuple[str, str, float | None, float]:
+    """``GROUP=MODE``, ``GROUP=MODE:LUX`` or ``GROUP=MODE:LUX:BAND``: a control group's
+    mode (a registered control mode: dimming, switching), its own target (lux; default
+    ``--target-lux``) and its dead band (a fraction of the target, 0-2; default 0)."""
+    from lightinv_core.climate.control_modes import control_mode, control_mode_names
 
     group, sep, value = text.partition("=")
-    mode, colon, lux = value.partition(":")
+    mode, colon, rest = value.partition(":")
+    lux, colon2, band_text = rest.partition(":")
     names = control_mode_names()
     try:
         target = float(lux) if colon else None
+        band = float(band_text) if colon2 else 0.0
         if not sep or not group or mode not in names:
             raise ValueError
         if target is not None and not (math.isfinite(target) and target > 0):
             raise ValueError
+        if not 0.0 <= band <= 2.0:
+            raise ValueError
     except ValueError:
         raise argparse.ArgumentTypeError(
-            f"expected GROUP=MODE or GROUP=MODE:LUX (MODE one of {', '.join(names)}, LUX a "
-            f"target above 0), got {text!r}"
+            f"expected GROUP=MODE, GROUP=MODE:LUX or GROUP=MODE:LUX:BAND (MODE one of "
+            f"{', '.join(names)}, LUX a target above 0, BAND a dead band 0-2, a fraction "
+            f"of the target), got {text!r}"
         ) from None
-    return group, mode, target
+    if band > 0 and control_mode(mode).banded is None:
+        raise argparse.ArgumentTypeError(
+            f"a dead band applies to switching; mode {mode!r} takes none, got {text!r}"
+        )
+    return group, mode, target, band
 
 
 def point3(text: str) -> tuple[float, float, float]:

@@ -173,10 +173,11 @@ def build_parser() -> argparse.ArgumentParser:
         type=types.group_control,
         action="append",
         default=[],
-        metavar="GROUP=MODE[:LUX]",
+        metavar="GROUP=MODE[:LUX[:BAND]]",
         help="a control group's control: dimming (the default) or switching (off while "
-        "the daylight on its sensor alone meets the target), and its own target in lux "
-        "(default --target-lux); repeat per group",
+        "the daylight on its sensor alone meets the target), its own target in lux "
+        "(default --target-lux) and for switching a dead band BAND, a fraction of the "
+        "target (off from LUX x (1 + BAND), on again below LUX; default 0); repeat per group",
     )
     sim.add_argument(
         "--view",

@@ -6,6 +6,7 @@ from __future__ import annotations
 import numpy as np
 
 from lightinv_core.cli.output import peak_rss_mb
+from lightinv_core.climate.control_modes import control_text
 from lightinv_core.quantities import quantity_spec
 from lightinv_core.study import SimulationResult, SimulationSpec
 from lightinv_core.study.simulation import installed_watts, luminaire_watts
@@ -105,7 +106,8 @@ def reference_payload(res: SimulationResult, spec: SimulationSpec) -> tuple[dict
         groups = [g.as_dict() for g in res.control_groups]
         payload["annual"]["control_groups"] = {"groups": groups, "total": res.control_total}
         lines += [
-            f"control group {g['name']} ({g['mode']} to {g['target_lux']:g} lux): "
+            f"control group {g['name']} "
+            f"({control_text(g['mode'], g['target_lux'], g['dead_band'])}): "
             f"{g['luminaires']} luminaire(s), {g['installed_w']:.0f} W, "
             f"sensor {g['sensor_points']} points, mean level {g['mean_level']:.2f}, "
             f"{g['energy_kwh']:.0f} kWh a year, LENI {g['leni']:.2f} kWh/m² a"

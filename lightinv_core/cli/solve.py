@@ -103,6 +103,8 @@ def daylight_summary(light: LightModel, design: Design, sol: Solution) -> dict:
 
         ase = lay.points.band(quantity_spec(Quantity.ASE).hours, span)[:, 0]
         out["ase1000_250"] = float(ase.mean())
+        mf = design.daylight.sky_subdivision  # Reinhart's MF of its sky patches
+        out["sky_patches"] = 144 * mf * mf + 1
     return out
 
 

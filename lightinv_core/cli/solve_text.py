@@ -3,6 +3,7 @@ daylight, violations and front."""
 
 from __future__ import annotations
 
+from lightinv_core.climate.control_modes import control_text
 from lightinv_core.value_text import goal_value, source_line, u0_text
 
 
@@ -47,6 +48,8 @@ def solve_text(out: dict) -> str:
             lines.append(f"  annual daylight not computed: {d['annual_error']}")
         else:
             ase = f", ASE1000,250 {100 * d['ase1000_250']:.0f}%" if "ase1000_250" in d else ""
+            if "sky_patches" in d:  # clear glazing: the sky's patches it was traced on
+                ase += f" (clear glazing, sky in {d['sky_patches']:,} patches)"
             lines.append(
                 f"  {d['site']}: DA300 mean {100 * d['da300_mean']:.0f}%, sDA300/50% "
                 f"{100 * d['sda300_50']:.0f}%, UDI 100-3000 {100 * d['udi_100_3000_mean']:.0f}%"
@@ -55,11 +58,14 @@ def solve_text(out: dict) -> str:
                 f"{d['full_output_kwh']:.0f} kWh), LENI {d['leni_kwh_m2']:.2f} kWh/m² a"
             )
             for g in d.get("control_groups", []):
+                how = ""  # results saved before modes and targets were kept say none
+                if "mode" in g and "target_lux" in g:
+                    how = f"; {control_text(g['mode'], g['target_lux'], g.get('dead_band', 0))}"
                 lines.append(
                     f"    control group {g['name']}: {g['luminaires']} luminaires, "
                     f"{g['watts']:.0f} W, sensor {g['sensor_points']} points, mean level "
                     f"{100 * g['mean_level']:.0f}%, {g['energy_kwh']:.1f} kWh a year, "
-                    f"LENI {g['leni']:.2f} kWh/m² a"
+                    f"LENI {g['leni']:.2f} kWh/m² a{how}"
                 )
             p = d.get("en17037_provision")
             if p:

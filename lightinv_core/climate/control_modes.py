@@ -8,11 +8,19 @@ output (lux), the group's target (lux) and its lowest dimming level:
 - ``dimming`` (the default): continuous, ``climate.metrics.dimming_level``: the level
   that tops the daylight up to the target, between the lowest level and 1;
 - ``switching`` (on/off): off (0) in the hours the daylight alone meets the target
-  (daylight >= target), else full output (1); the lowest level does not apply.
+  (daylight >= target), else full output (1); the lowest level does not apply. With a
+  dead band ``band`` (a fraction of the target, as a switching photocell has to keep
+  from cycling) it switches off once the daylight reaches target x (1 + band) and back
+  on once it falls below the target; in between it keeps the previous hour's state, so
+  its hours are scanned in order, each day starting on (the luminaires come on with the
+  occupancy; ``switching_banded``). A band of 0 is the plain rule, hour by hour.
 
 Each spec also sums its levels over a year of exterior illuminance sorted once (the
 optimiser's O(log hours) path: the daylight is ``b0 x s`` with ``s`` sorted and its
-prefix sums ``S``), so a mode registered later is as fast as the built-in ones.
+prefix sums ``S``), so a mode registered later is as fast as the built-in ones. A
+dead band makes the level depend on the hour before, so a banded year has no sorted
+path: ``mode_levels`` scans it in order (``daylight_year.level_sum`` then goes hour by
+hour; dimming keeps its sorted sum).
 """
 
 from __future__ import annotations
@@ -43,6 +51,10 @@ class ControlModeSpec:
     label: str
     levels: Callable[..., np.ndarray]
     sorted_sum: Callable[..., np.ndarray]
+    banded: Callable[..., np.ndarray] | None = None
+    """``banded(daylight (..., T), full, target, min_level, band, starts (T,)) -> levels``:
+    the mode with a dead band ``band`` (fraction of the target) over hours in order,
+    each day beginning where ``starts`` is True; None: the mode takes no dead band."""
 
 
 def _dimming_sorted_sum(s, S, b0, full, target: float, min_level: float) -> np.ndarray:
@@ -82,9 +94,75 @@ def _switching_sorted_sum(s, S, b0, full, target: float, min_level: float) -> np
     return np.where(b0 > 0, on.astype(float), dark) * np.ones(np.shape(full))
 
 
+def switching_banded(daylight, full, target: float, min_level: float, band: float, starts=None):
+    """On/off with a dead band: (..., T) levels over hours in order (the last axis).
+    Off (0) from the hour the daylight (lux) reaches ``target`` x (1 + ``band``), on
+    (1) from the hour it falls below ``target`` (lux); between the two the previous
+    hour's state holds. Each day (``starts`` (T,) True at its first hour; None: one day)
+    starts on. ``full`` and ``min_level`` do not matter (the modes' one signature)."""
+    day = np.atleast_1d(np.asarray(daylight, dtype=float))
+    T = day.shape[-1]
+    t = np.arange(T)
+    first = np.zeros(T, bool) if starts is None else np.array(starts, dtype=bool)
+    first[:1] = True
+    off = day >= target * (1.0 + band)
+    decided = off | (day < target)
+    # The last hour up to each hour where the daylight left the band, and whether it
+    # fell in today: without one the day's first state (on) holds.
+    last = np.maximum.accumulate(np.where(decided, t, -1), axis=-1)
+    today = np.maximum.accumulate(np.where(first, t, 0))
+    was_off = np.take_along_axis(off, np.maximum(last, 0), axis=-1) & (last >= today)
+    level = np.where(was_off, 0.0, 1.0)
+    return np.broadcast_to(level, np.broadcast(level, full).shape)
+
+
+def mode_levels(
+    mode: ControlModeSpec,
+    daylight,
+    full,
+    target: float,
+    min_level: float,
+    band: float = 0.0,
+    starts=None,
+) -> np.ndarray:
+    """``mode``'s levels (0-1) for ``daylight`` (..., T) lux over hours in order: with a
+    dead band ``band`` > 0 (fraction of the ``target``) its ``banded`` rule, each day
+    beginning where ``starts`` (T,) is True; else hour by hour (``levels``)."""
+    if band > 0:
+        if mode.banded is None:
+            raise LightInvError(f"control mode {mode.name!r} takes no dead band")
+        return mode.banded(daylight, full, target, min_level, band, starts)
+    return mode.levels(daylight, full, target, min_level)
+
+
+def control_text(mode: str, target_lux: float, dead_band: float = 0.0) -> str:
+    """A group's control for people: ``"switching to 300 lux"``, with a dead band
+    ``"switching to 300 lux, off from 345 lux"`` (the CLI, the report, the window)."""
+    text = f"{mode} to {target_lux:,.0f} lux"
+    if dead_band > 0:
+        text += f", off from {target_lux * (1.0 + dead_band):,.0f} lux"
+    return text
+
+
+def day_starts(midpoints) -> np.ndarray:
+    """(T,) True at each hour whose date differs from the hour before (the first
+    included): ``midpoints`` the middles of the hours in order (a pandas
+    ``DatetimeIndex``, local time), e.g. a year's occupied hours."""
+    stamps = np.asarray(midpoints, dtype="datetime64[ns]").astype("datetime64[D]")
+    out = np.ones(len(stamps), bool)
+    out[1:] = stamps[1:] != stamps[:-1]
+    return out
+
+
 _BUILT_IN = (
     ControlModeSpec(DIMMING, "dimming (continuous)", dimming_level, _dimming_sorted_sum),
-    ControlModeSpec(SWITCHING, "switching (on/off)", switching_level, _switching_sorted_sum),
+    ControlModeSpec(
+        SWITCHING,
+        "switching (on/off)",
+        switching_level,
+        _switching_sorted_sum,
+        switching_banded,
+    ),
 )
 _MODES: dict[str, ControlModeSpec] = {m.name: m for m in _BUILT_IN}
 

@@ -216,7 +216,7 @@ def _blinds(design: Design, grids, direct: np.ndarray, H: int) -> np.ndarray:
 
 def _build(light, design: Design, sources, progress) -> ClearDesignLight:
     from lightinv_core.climate.sky_luminance import cie_overcast, scaled_sky
-    from lightinv_core.climate.skydome import tregenza
+    from lightinv_core.climate.skydome import reinhart
 
     t0 = time.process_time()
     d = design.daylight
@@ -226,7 +226,7 @@ def _build(light, design: Design, sources, progress) -> ClearDesignLight:
     rho[glass.idx] = 0.0  # the clear panes pass light and reflect none
     lit = replace(patches, rho=rho)
     caster = caster_for(patches)
-    dome = tregenza()
+    dome = reinhart(d.sky_subdivision)  # Tregenza's 145 patches at MF:1
     K0, G = len(dome.solid_angles), len(sources)
     north = d.north_deg
 

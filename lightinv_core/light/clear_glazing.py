@@ -9,7 +9,8 @@ once per light model, clear sources, work planes and daylight settings.
 Its light at a receiver in hour t is ``sum_k c_k w_k(t)`` over K columns, a block per
 clear source (it has its own blinds):
 
-- the 145 Tregenza sky patches, w_k(t) the patch's Perez luminance of the hour (cd/m²,
+- the sky patches (Tregenza's 145; Reinhart's 577 or 2,305 by
+  ``daylight.sky_subdivision``), w_k(t) the patch's Perez luminance of the hour (cd/m²,
   scaled to the file's diffuse horizontal illuminance), and the ground, w = rho_g E_gh / pi;
 - the sun's light reflected in the room, on a Reinhart MF:2 basis of sun positions
   (about 6 degrees; a bin's direction is the mean of its hours' suns), w = the hour's

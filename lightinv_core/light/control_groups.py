@@ -7,7 +7,8 @@ own target (default ``daylight.target_lux``) and its own luminaires' light there
 full output (the other groups' light is not counted: each sensor is calibrated with its
 own group alone, as ``study.control_groups`` does): ``dimming`` tops the daylight up to
 the target by the one rule of ``climate.metrics.dimming_level``, down to its
-``min_level``; ``switching`` is off while the daylight alone meets the target. Energy (kWh a
+``min_level``; ``switching`` is off while the daylight alone meets the target (with its
+``dead_band``: off from target x (1 + band), on again below the target). Energy (kWh a
 year) per group and in total (standby counted once, in the total); LENI per group over
 the whole floor of the control plane, so the groups' LENIs add up.
 
@@ -23,7 +24,7 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-from lightinv_core.climate.control_modes import ControlModeSpec, control_mode
+from lightinv_core.climate.control_modes import ControlModeSpec, control_mode, mode_levels
 from lightinv_core.climate.metrics import lighting_kwh
 from lightinv_core.design.model import DEFAULT_CONTROL_GROUP, ControlGroup, Design, DesignError
 from lightinv_core.light.daylight_year import DaylightYear, level_sum
@@ -47,8 +48,8 @@ class ControlPlan:
     group last): ``names``, ``sensors[k]`` the grid point ids (into ``grids.points``)
     group k reads, ``min_levels``, ``sources[k]`` and ``arrays[k]`` the ids of its
     luminaire sources (into ``design.sources``) and arrays (into ``design.arrays``),
-    ``modes[k]`` its control mode and ``targets[k]`` its target (lux: its own, else the
-    daylight's)."""
+    ``modes[k]`` its control mode, ``targets[k]`` its target (lux: its own, else the
+    daylight's) and ``bands[k]`` its dead band (fraction of the target; switching)."""
 
     names: tuple[str, ...]
     sensors: tuple[np.ndarray, ...]
@@ -57,6 +58,11 @@ class ControlPlan:
     arrays: tuple[np.ndarray, ...]
     modes: tuple[ControlModeSpec, ...] = ()
     targets: tuple[float | None, ...] = ()
+    bands: tuple[float, ...] = ()
+
+    def band(self, k: int) -> float:
+        """Group k's dead band (0 for a plan made without bands)."""
+        return self.bands[k] if k < len(self.bands) else 0.0
 
     def target(self, k: int, default: float) -> float:
         """Group k's target (lux), or ``default`` for a plan made without targets."""
@@ -90,7 +96,7 @@ def control_plan(design: Design, grids) -> ControlPlan | None:
     if DEFAULT_CONTROL_GROUP not in declared:
         order.append(DEFAULT_CONTROL_GROUP)
     lum = [j for j, s in enumerate(design.sources) if source_type(s.kind).electric]
-    names, sensors, floors, srcs, arrs, modes, targets = [], [], [], [], [], [], []
+    names, sensors, floors, srcs, arrs, modes, targets, bands = ([] for _ in range(8))
     for name in order:
         s_ids = np.array([j for j in lum if design.sources[j].control_group == name], int)
         a_ids = np.array([j for j, a in enumerate(design.arrays) if a.control_group == name], int)
@@ -105,6 +111,7 @@ def control_plan(design: Design, grids) -> ControlPlan | None:
         modes.append(control_mode(group.mode))
         d = design.daylight
         targets.append(d.target_lux if group.target_lux is None else group.target_lux)
+        bands.append(group.dead_band)
     return ControlPlan(
         tuple(names),
         tuple(sensors),
@@ -113,6 +120,7 @@ def control_plan(design: Design, grids) -> ControlPlan | None:
         tuple(arrs),
         tuple(modes),
         tuple(targets),
+        tuple(bands),
     )
 
 
@@ -134,7 +142,7 @@ class GroupEnergy:
     ``sensor_points`` read, ``electric_lux`` (its own light on its sensor at full
     output), ``min_level``, ``mean_level`` over the occupied hours, ``energy_kwh`` a
     year, ``leni`` (kWh/m² a over the control plane's floor), ``monthly_kwh`` (12,),
-    its control ``mode`` and ``target_lux`` (lux)."""
+    its control ``mode``, ``target_lux`` (lux) and ``dead_band`` (fraction)."""
 
     name: str
     luminaires: int
@@ -148,6 +156,7 @@ class GroupEnergy:
     monthly_kwh: tuple[float, ...]
     mode: str = "dimming"
     target_lux: float = 500.0
+    dead_band: float = 0.0
 
     def as_dict(self) -> dict:
         """JSON-ready."""
@@ -206,8 +215,15 @@ def group_levels(points, year: DaylightYear, lit: GroupLight, target: float) -> 
         clear = points.clear_hours(ids)
         if clear is not None:
             day = day + clear.mean(axis=0)
-        mode = plan.mode(k)
-        out[k] = mode.levels(day, full, plan.target(k, target), plan.min_levels[k])
+        out[k] = mode_levels(
+            plan.mode(k),
+            day,
+            full,
+            plan.target(k, target),
+            plan.min_levels[k],
+            plan.band(k),
+            year.day_starts,
+        )
     return out
 
 
@@ -241,6 +257,7 @@ def group_energies(
                 monthly,
                 plan.mode(k).name,
                 plan.target(k, 0.0),
+                plan.band(k),
             )
         )
     return tuple(out)
@@ -301,7 +318,14 @@ class GroupBatch:
             clear = parts.clear_hours(idx)
             fixed = None if clear is None else clear.mean(axis=0)
             out[k] = level_sum(
-                plan.mode(k), year, b, full[k], plan.target(k, target), plan.min_levels[k], fixed
+                plan.mode(k),
+                year,
+                b,
+                full[k],
+                plan.target(k, target),
+                plan.min_levels[k],
+                fixed,
+                plan.band(k),
             )
         return out
 

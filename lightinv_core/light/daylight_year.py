@@ -25,7 +25,13 @@ from pathlib import Path
 
 import numpy as np
 
-from lightinv_core.climate.control_modes import DIMMING, ControlModeSpec, control_mode
+from lightinv_core.climate.control_modes import (
+    DIMMING,
+    ControlModeSpec,
+    control_mode,
+    day_starts,
+    mode_levels,
+)
 from lightinv_core.climate.metrics import dimming_level
 from lightinv_core.climate.sky import overcast_plane_illuminance
 from lightinv_core.design.model import Daylight, Design
@@ -110,6 +116,12 @@ class DaylightYear:
     def midpoints(self):
         """The middle of every hour of the file (``Weather.midpoints``)."""
         return self.times - np.timedelta64(30, "m")
+
+    @property
+    def day_starts(self) -> np.ndarray:
+        """(T,) True at each occupied hour that begins a day (a dead band's state
+        restarts there: ``climate.control_modes.switching_banded``)."""
+        return day_starts(self.midpoints[np.asarray(self.occupied)])
 
 
 def weather_path(daylight: Daylight) -> Path:
@@ -278,15 +290,21 @@ def level_sum(
     target: float,
     min_level: float,
     fixed: np.ndarray | None = None,
+    band: float = 0.0,
 ) -> np.ndarray:
     """(m,) the levels of ``mode`` summed over the occupied hours for m candidates: ``b``
     (m, G) the sensor's mean daylight per exterior lux of each sky group, ``full`` (m,)
     its own luminaires' mean lux at full output, ``fixed`` (T,) lux of daylight the
     same for every candidate (clear glazing), or (m, T) each candidate's (clear glazing
-    whose shape moves). One sky group alone, or fixed daylight alone, is summed over the
-    sorted year (O(log hours)); anything else hour by hour."""
+    whose shape moves), ``band`` a dead band (fraction of the target). One sky group
+    alone, or fixed daylight alone, is summed over the sorted year (O(log hours));
+    anything else, and a dead band (its state carries over the hours), hour by hour."""
     b = np.atleast_2d(np.asarray(b, dtype=float))
     A = np.maximum(np.asarray(full, dtype=float), 1e-9)
+    if band > 0:
+        day = b @ year.exterior if fixed is None else b @ year.exterior + fixed
+        levels = mode_levels(mode, day, A[:, None], target, min_level, band, year.day_starts)
+        return levels.sum(axis=1)
     if fixed is not None and b.shape[1] == 0 and np.ndim(fixed) == 1:
         s = np.sort(np.asarray(fixed, dtype=float))
         S = np.concatenate([[0.0], np.cumsum(s)])

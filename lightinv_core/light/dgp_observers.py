@@ -284,7 +284,7 @@ def clear_at_eyes(light, design: Design, eyes: Eyes, F, caster) -> ClearLight | 
     columns of ``clear_light`` read as a work-plane point reads them (see
     ``light.clear_build``), the beam traced at each hour's own sun (``direct``). ``F``
     (k, n): the eyes' form factors to the patches; ``caster`` the scene's."""
-    from lightinv_core.climate.skydome import tregenza
+    from lightinv_core.climate.skydome import reinhart
 
     k = len(eyes.names)
     built = clear_light(light, design)
@@ -294,7 +294,7 @@ def clear_at_eyes(light, design: Design, eyes: Eyes, F, caster) -> ClearLight | 
     sources = clear_sources(design)
     cols, P = built.patches.columns, built.patches.coefficients
     G = len(sources)
-    dome = tregenza()
+    dome = reinhart(d.sky_subdivision)  # the build's sky patches
     K0 = len(dome.solid_angles)
     B = (cols.count - G) // G
     S = (B - K0 - 1) // 2

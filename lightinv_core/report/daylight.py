@@ -25,6 +25,7 @@ from pathlib import Path
 import numpy as np
 from matplotlib.figure import Figure
 
+from lightinv_core.climate.control_modes import control_text
 from lightinv_core.climate.metrics import DA_THRESHOLD, UDI_BANDS
 from lightinv_core.design.model import Daylight, Design, Source
 from lightinv_core.errors import LightInvError
@@ -330,7 +331,7 @@ def control_groups_table(section: DaylightSection) -> Table | None:
     rows = tuple(
         (
             g.name,
-            f"{g.mode} to {fmt(g.target_lux)} lux",
+            control_text(g.mode, g.target_lux, g.dead_band),
             str(g.luminaires),
             f"{fmt(g.watts)} W",
             str(g.sensor_points),

@@ -9,7 +9,9 @@ target (its own, else the settings') and the group's own luminaires' light on th
 region at full output (the light of the other groups is not counted: each sensor is
 calibrated with its own group alone, as a commissioning engineer does at night):
 ``dimming`` tops the daylight up to the target by the one rule of ``climate.metrics``;
-``switching`` is off while the daylight alone meets the target, else full. Outside the
+``switching`` is off while the daylight alone meets the target, else full (with a dead
+band: off from target x (1 + band), on again below the target, the hours of each day
+in order). Outside the
 schedule the luminaires are off; standby is counted once, in the total.
 
 Energy (kWh a year) per group and in total; LENI per group is the group's energy over
@@ -22,7 +24,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from lightinv_core.climate.control_modes import DIMMING, control_mode
+from lightinv_core.climate.control_modes import DIMMING, control_mode, mode_levels
 from lightinv_core.climate.metrics import lighting_kwh
 from lightinv_core.errors import LightInvError
 from lightinv_core.light.control_groups import sensor_mask
@@ -50,6 +52,7 @@ class GroupDimming:
     leni: float
     mode: str = DIMMING
     target_lux: float = 500.0
+    dead_band: float = 0.0
 
     def as_dict(self) -> dict:
         """JSON-ready."""
@@ -68,15 +71,20 @@ def group_dimming(
     hours_per_year: float,
     modes: dict[str, str] | None = None,
     targets: dict[str, float] | None = None,
+    bands: dict[str, float] | None = None,
+    starts: np.ndarray | None = None,
 ) -> tuple[list[GroupDimming], dict]:
     """Each group's year and the total: ``daylight`` (q, T) lux per work-plane point
     and occupied hour, ``electric[g]`` (q,) group g's lux at full output, ``watts[g]``
     its power (W), ``counts[g]`` its luminaires, ``sensors[g]`` its region (or the
     whole grid), ``settings`` a ``Daylight`` (target lux, minimum level, standby W),
-    ``modes[g]`` its control mode (default dimming) and ``targets[g]`` its own target
-    (lux; default the settings')."""
-    modes, targets = dict(modes or {}), dict(targets or {})
-    for what, given in (("--sensor", sensors), ("a control mode", modes), ("a target", targets)):
+    ``modes[g]`` its control mode (default dimming), ``targets[g]`` its own target
+    (lux; default the settings'), ``bands[g]`` its dead band (fraction of the target;
+    default 0) and ``starts`` (T,) True at each hour that begins a day (the hours in
+    order; None: one day)."""
+    modes, targets, bands = dict(modes or {}), dict(targets or {}), dict(bands or {})
+    given_all = (("--sensor", sensors), ("a control mode", modes), ("a target", targets))
+    for what, given in (*given_all, ("a dead band", bands)):
         unknown = sorted(set(given) - set(electric))
         if unknown:
             raise LightInvError(
@@ -101,7 +109,11 @@ def group_dimming(
         day = daylight[mask].mean(axis=0)
         mode = control_mode(modes.get(name, DIMMING))
         target = float(targets.get(name, settings.target_lux))
-        levels = mode.levels(day, full, target, settings.min_level)
+        band = float(bands.get(name, 0.0))
+        try:
+            levels = mode_levels(mode, day, full, target, settings.min_level, band, starts)
+        except LightInvError as e:
+            raise LightInvError(f"control group {name!r}: {e}") from None
         kwh = float(lighting_kwh(watts[name], levels.sum(), 0.0, hours_per_year))
         groups.append(
             GroupDimming(
@@ -115,6 +127,7 @@ def group_dimming(
                 kwh / floor_m2,
                 mode.name,
                 target,
+                band,
             )
         )
     standby = float(lighting_kwh(0.0, 0.0, settings.standby_w, hours_per_year))

@@ -129,6 +129,7 @@ class SimulationSpec:
     sensors: dict[str, tuple[float, float, float, float]] = field(default_factory=dict)
     group_modes: dict[str, str] = field(default_factory=dict)
     group_targets: dict[str, float] = field(default_factory=dict)
+    group_bands: dict[str, float] = field(default_factory=dict)
     ground_reflectance: float = 0.2
     workplane: WorkPlane | None = None
     edition: str = Edition.EN12464_2011
@@ -388,6 +389,8 @@ def _control_groups(spec, result: SimulationResult, scene, year, days, floor: fl
         days.every.shape[1],
         modes=dict(spec.group_modes),
         targets=dict(spec.group_targets),
+        bands=dict(spec.group_bands),
+        starts=days.day_starts,
     )
     result.control_groups, result.control_total = groups, total
 

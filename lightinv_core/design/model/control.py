@@ -9,7 +9,8 @@ to its ``target_lux`` (default ``daylight.target_lux``) with its own luminaires'
 there at full output, as its ``mode`` says (``climate.control_modes``: ``dimming``,
 continuously down to ``min_level`` at most, the ballast's floor, default
 ``daylight.min_level``; or ``switching``, off while the daylight alone meets the
-target and full output otherwise). A design
+target and full output otherwise, with a ``dead_band``: off once it reaches the target
+x (1 + band), back on below the target). A design
 that declares no group and names none keeps the one group of all its luminaires read on
 the whole control plane: its results are bit for bit those before groups existed.
 """
@@ -18,7 +19,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 
-from lightinv_core.climate.control_modes import DIMMING, control_mode_names
+from lightinv_core.climate.control_modes import DIMMING, control_mode, control_mode_names
 from lightinv_core.errors import DesignError
 from lightinv_core.fields import Choice, Number, Numbers, ObjectSpec, String, declare
 
@@ -32,7 +33,8 @@ class ControlGroup:
     rectangle (x0, y0, x1, y1, m, plan; None: the whole work plane) on ``workplane``
     (None: the control plane), its lowest dimming level ``min_level`` (None: the
     daylight's), its control ``mode`` (a ``climate.control_modes`` name) and the
-    illuminance ``target_lux`` its sensor is kept at (lux; None: the daylight's)."""
+    illuminance ``target_lux`` its sensor is kept at (lux; None: the daylight's), and
+    for switching its ``dead_band`` (fraction of the target)."""
 
     name: str = field(metadata=declare(String(), "unique among the control groups"))
     sensor: tuple[float, float, float, float] | None = field(
@@ -79,6 +81,15 @@ class ControlGroup:
             nullable=True,
         ),
     )
+    dead_band: float = field(
+        default=0.0,
+        metadata=declare(
+            Number(lo=0.0, hi=2.0),
+            "`switching` only: its photocell's dead band, a fraction of the target: off "
+            "once the daylight reaches target x (1 + band), back on when it falls below "
+            "the target, else as the hour before (0, the default: off at the target)",
+        ),
+    )
 
     def __post_init__(self) -> None:
         where = f"control group {self.name!r}" if isinstance(self.name, str) else "a group"
@@ -90,6 +101,11 @@ class ControlGroup:
                     f"{where}: its sensor rectangle {list(self.sensor)} has no area; give "
                     "two diagonal corners [x0, y0, x1, y1]"
                 )
+        if self.dead_band > 0 and control_mode(self.mode).banded is None:
+            raise DesignError(
+                f"{where}: a dead band ({self.dead_band:g}) applies to switching; mode "
+                f"{self.mode!r} takes none (set dead_band to 0)"
+            )
 
 
 CONTROL_GROUP_FIELDS = ObjectSpec.of(ControlGroup, "control_group")

@@ -8,10 +8,13 @@ from lightinv_core.errors import DesignError
 from lightinv_core.fields import (
     Boolean,
     Choice,
+    Custom,
     Number,
     Numbers,
     ObjectSpec,
     String,
+    _describe,
+    _fail,
     choice_of,
     declare,
 )
@@ -19,6 +22,20 @@ from lightinv_core.kinds import MAX_LUX, Edition
 
 MAX_WATTS = 1e9
 """W: the largest electric power a project may name."""
+
+SKY_SUBDIVISIONS = (1, 2, 4)
+"""Reinhart subdivisions of the sky a project's clear glazing may use (1: Tregenza's
+145 patches, 2: 577, 4: 2,305), as ``lightinv-cli simulate --sky-subdivision``."""
+
+
+def _sky_subdivision(v, path: str) -> int:
+    if type(v) is int and v in SKY_SUBDIVISIONS:
+        return v
+    _fail(path, f"expected one of 1, 2, 4 (Reinhart's MF), got {_describe(v)}")
+
+
+SKY_SUBDIVISION = Custom(_sky_subdivision, "`1`, `2` or `4`", {"enum": list(SKY_SUBDIVISIONS)})
+"""The check of ``Daylight.sky_subdivision``."""
 
 
 @dataclass(frozen=True)
@@ -76,7 +93,8 @@ class Daylight:
     weekdays only unless ``weekdays`` is False, ``ground_reflectance``, ``overcast_lux``
     (horizontal lux of the design overcast sky), daylight-linked dimming to
     ``target_lux`` on the work plane ``workplane`` (default: the first) between
-    ``min_level`` and full output, with ``standby_w`` drawn all year.
+    ``min_level`` and full output, with ``standby_w`` drawn all year; fixed clear
+    glazing sees the sky in Reinhart ``sky_subdivision`` patches (1: Tregenza's 145).
     """
 
     exterior_lux: float = field(
@@ -187,6 +205,14 @@ class Daylight:
             Number(gt=0.184, hi=1.0),
             "simplified DGP at observers (`dgp` intentions): the limit whose exceedance "
             "is counted, 0.40 (EN 17037's medium glare protection; 0.45 minimum, 0.35 high)",
+        ),
+    )
+    sky_subdivision: int = field(
+        default=1,
+        metadata=declare(
+            SKY_SUBDIVISION,
+            "clear glazing (fixed): the sky in Reinhart MF patches, 1 (Tregenza's 145, "
+            "the default), 2 (577) or 4 (2,305); the sun is traced by direction either way",
         ),
     )
 
