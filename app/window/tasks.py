@@ -69,12 +69,20 @@ class BackgroundTasks(QtCore.QObject):
         )
         worker.succeeded.connect(self._precomputed)
         worker.failed.connect(lambda msg: ask.error(self.win, "precompute failed", msg))
-        worker.cancelled.connect(
-            lambda: self._say("Precompute cancelled: lighting unavailable until it runs", 6000)
-        )
+        worker.cancelled.connect(lambda: self._precompute_cancelled(worker))
         worker.progress.connect(lambda: self._laying_out(worker))
         self.win.statusBar().showMessage("Precomputing the radiosity operator...")
         self._start(worker)
+
+    def _precompute_cancelled(self, worker: PrecomputeWorker) -> None:
+        if worker.phase == "layout":  # the operator is in the cache: Precompute is quick
+            self._say(
+                "Layout cancelled: lighting unavailable until Compute > Precompute "
+                "(the operator is kept in the cache)",
+                8000,
+            )
+        else:
+            self._say("Precompute cancelled: lighting unavailable until it runs", 6000)
 
     def _laying_out(self, worker: PrecomputeWorker) -> None:
         """Say once that the operator is there and the light is being laid out."""
