@@ -169,9 +169,7 @@ def main() -> None:
     path = Path(args.project)
     if args.open_without_clear:
         data = json.loads(path.read_text(encoding="utf-8"))
-        data["design"]["sources"] = [
-            s for s in data["design"].get("sources", []) if s.get("glazing") != "clear"
-        ]
+        data["sources"] = [s for s in data.get("sources", []) if s.get("glazing") != "clear"]
         path = Path(tempfile.mkdtemp()) / f"{path.stem}-without-clear.json"
         path.write_text(json.dumps(data), encoding="utf-8")
     project = load_project(path)

@@ -143,3 +143,46 @@ def test_open_lays_out_in_a_worker_and_cancel_stops_the_reflections(qtbot, windo
     assert "trace was cancelled" in window.statusBar().currentMessage()
     assert QtWidgets.QApplication.activeModalWidget() is None
     u.screenshot(window, SHOTS, "cancelled")
+
+
+def test_the_light_laid_out_in_a_worker_is_the_light_the_document_makes(tmp_path):
+    """``lay_out`` (the worker's) handed to ``set_operator`` gives the light the document
+    makes itself, and its light in every scenario is kept; a layout made on another
+    operator is not taken. The flagship's arrays and intentions without its clear
+    windows (so the light in every scenario is made on opening)."""
+    import copy
+
+    import numpy as np
+
+    from app.window.workers import lay_out
+    from lightinv_core.editing import DocumentModel
+    from lightinv_core.operator.build import build_operator
+    from lightinv_core.operator.settings import OperatorSettings
+
+    data = json.loads(coarse_flagship(tmp_path).read_text(encoding="utf-8"))
+    data["sources"] = []
+    path = tmp_path / "arrays-only.json"
+    path.write_text(json.dumps(data), encoding="utf-8")
+    docs = []
+    for _ in range(2):
+        doc = DocumentModel()
+        doc.clear_elsewhere = True  # as the window
+        doc.open(path)
+        docs.append(doc)
+    laid, itself = docs
+    op = build_operator(laid.patches, OperatorSettings(rank=120, rays=128, seed=0))
+    steps: list[float] = []
+    shown, daylight = lay_out(laid.scene, laid.patches, op, laid.design, steps.append)
+    assert daylight is not None and steps == sorted(steps) and steps[-1] == 1.0
+    laid.set_operator(op, shown=shown, daylight=daylight)
+    assert laid.light is shown.model and laid.layout_daylight() is daylight
+    itself.set_operator(op)
+    assert itself.light is not shown.model
+    np.testing.assert_allclose(laid.lighting(), itself.lighting(), rtol=1e-12, atol=1e-9)
+    for name, stats in itself.grid_stats().items():
+        assert laid.grid_stats()[name] == pytest.approx(stats, rel=1e-12)
+    assert laid.grid_stats()["work plane"]["Em"] > 100.0
+    # Made on another operator (another object, the same matrices): not taken.
+    other = copy.copy(op)
+    itself.set_operator(other, shown=shown, daylight=daylight)
+    assert itself.light is not shown.model and itself.light.op is other
