@@ -459,7 +459,7 @@ def layout_daylight(
     eyes = [it for it in design.intentions if it.observers is not None]
     if any(quantity_spec(it.quantity).from_glare for it in eyes):
         try:
-            observed = layout_glare(light, design, sources, arrays, cancel=asking(0.8))
+            observed = layout_glare(light, design, sources, arrays)
         except DesignError as exc:  # the rest of the light stands; the glare says why
             observed_error = str(exc)
     step(0.95)

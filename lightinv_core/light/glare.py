@@ -269,14 +269,11 @@ class Glare:
         return spec.from_glare(total[idx], lb[idx])
 
 
-def layout_glare(
-    light: LightModel, design: Design, sources, arrays, cancel=None
-) -> dict[str, float]:
+def layout_glare(light: LightModel, design: Design, sources, arrays) -> dict[str, float]:
     """UGR at every observer of one layout (``arrays`` as written, each luminaire placed
     exactly): {observer name: UGR}. The background from the patches' light of the
-    arrays (``arrays_field``, no maintenance factor; ``cancel`` as its), the glare sums
-    from ``ugr.glare_terms``. ``sources``: the zone sources as lit (electric ones
-    refused)."""
+    arrays (``arrays_field``, no maintenance factor), the glare sums from
+    ``ugr.glare_terms``. ``sources``: the zone sources as lit (electric ones refused)."""
     if not design.observers:
         return {}
     zoned = [s.name for s in sources if source_type(s.kind).electric]
@@ -287,7 +284,7 @@ def layout_glare(
     spec = quantity_spec(Quantity.UGR)
     if not arrays:
         return {n: float(spec.from_glare(0.0, 1.0)) for n in eyes.names}
-    H = arrays_field(light.patches, light.op, arrays, maintained=False, cancel=cancel)[0]
+    H = arrays_field(light.patches, light.op, arrays, maintained=False)[0]
     placed = [p for _, _, ps in array_luminaires(light.patches, arrays) for p in ps]
     lb = np.asarray(taps @ H).reshape(-1) / np.pi
     total = [glare_terms(eyes.points[i], eyes.views[i], placed).total for i in range(len(lb))]
