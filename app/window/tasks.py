@@ -1,5 +1,7 @@
 """Background work of the window other than optimisation: building (or loading) the
-radiosity operator, tracing the clear glazing's light, and writing the PDF report.
+radiosity operator and laying out the design's light on it (work-plane grids, arrays,
+the light in every scenario: the window's thread only takes it), tracing the clear
+glazing's light, and writing the PDF report.
 
 One such worker at a time (``worker``), shown by the status bar's progress bar with
 Compute > Cancel; the optimisation has its own controller (run_control.py). Workers
