@@ -186,3 +186,32 @@ def test_the_light_laid_out_in_a_worker_is_the_light_the_document_makes(tmp_path
     other = copy.copy(op)
     itself.set_operator(other, shown=shown, daylight=daylight)
     assert itself.light is not shown.model and itself.light.op is other
+
+
+def test_a_layout_that_fails_is_said_in_the_status_bar(qtbot, window, tmp_path, monkeypatch):
+    """A layout that fails in the worker (here its grids, in the worker's thread only)
+    is said in the status bar, not in a dialog, and the window lights the design itself.
+    The flagship without its clear windows (no trace follows)."""
+    from lightinv_core.errors import LightInvError
+
+    data = json.loads(coarse_flagship(tmp_path).read_text(encoding="utf-8"))
+    data["sources"] = []
+    path = tmp_path / "arrays-only.json"
+    path.write_text(json.dumps(data), encoding="utf-8")
+    gui, receivers = threading.main_thread(), grids.design_receivers
+
+    def failing(light, design):
+        if threading.current_thread() is not gui:
+            raise LightInvError("the test's failure")
+        return receivers(light, design)
+
+    monkeypatch.setattr(grids, "design_receivers", failing)
+    window.resize(1366, 768)
+    u.answer(lambda: u.menu(window, "File", "Open project..."), u.file_name(path))
+    qtbot.waitUntil(
+        lambda: window.worker is None and window.doc.operator is not None, timeout=120_000
+    )
+    said = window.statusBar().currentMessage()
+    assert "could not be laid out in the background: the test's failure" in said, said
+    assert QtWidgets.QApplication.activeModalWidget() is None
+    assert window.doc.field is not None and window.doc.grid_stats()["work plane"]["Em"] > 100.0
