@@ -316,6 +316,10 @@ class MainWindow(QtWidgets.QMainWindow):
             )
         elif d.patches is None or d.operator is not None:
             text = None
+        elif isinstance(self.worker, PrecomputeWorker) and self.worker.phase == "layout":
+            text = f"Laying out the light (grids, arrays)... {self.progress.value() / 10:.0f}%"
+            if self.viewport.has_values:
+                text += "\nThe light shown is from before the change."
         elif isinstance(self.worker, PrecomputeWorker):
             again = self.viewport.has_values
             text = (

@@ -55,6 +55,7 @@ class RunController(QtCore.QObject):
         self.preview_at = 0.0
         self.preview_arrays: tuple = ()  # the luminaire arrays of the best drawn so far
         self.method = ""  # the running method's label ("NSGA-II")
+        self.refused = ""  # why Run was last refused, while the run panel shows it
         self.timer = QtCore.QTimer(self)
         self.timer.setInterval(REDRAW_MS)
         self.timer.timeout.connect(self.tick)
@@ -247,7 +248,17 @@ class RunController(QtCore.QObject):
         self.finished.emit(self.status)
 
     def _say(self, message: str) -> None:
-        ask.inform(self.win, message)
+        """Why a run cannot start: in the run panel and the status bar, never a modal
+        dialog (Run pressed while a project is laid out is no error to acknowledge)."""
+        self.refused = message
+        self.panel.state.setText(message)
+        self.win.statusBar().showMessage(message, 10_000)
+
+    def waited(self) -> None:
+        """The background work a refusal waited for has ended: its words go."""
+        if self.refused and self.panel.state.text() == self.refused:
+            self.panel.state.setText("")
+        self.refused = ""
 
 
 def _status(results) -> str:

@@ -1,5 +1,7 @@
 """Background work of the window other than optimisation: building (or loading) the
-radiosity operator, tracing the clear glazing's light, and writing the PDF report.
+radiosity operator and laying out the design's light on it (work-plane grids, arrays,
+the light in every scenario: the window's thread only takes it), tracing the clear
+glazing's light, and writing the PDF report.
 
 One such worker at a time (``worker``), shown by the status bar's progress bar with
 Compute > Cancel; the optimisation has its own controller (run_control.py). Workers
@@ -24,6 +26,7 @@ from app.dialogs import ask
 from app.window.workers import (
     ClearLightWorker,
     ExportWorker,
+    Precomputed,
     PrecomputeWorker,
     ReportWorker,
     Worker,
@@ -62,33 +65,67 @@ class BackgroundTasks(QtCore.QObject):
         if self.doc.patches is None or self.worker is not None:
             return
         self._declined = None  # asked for: a cancelled clear trace may run again
-        worker = PrecomputeWorker(self.doc.patches, self.doc.operator_settings, self)
+        d = self.doc
+        worker = PrecomputeWorker(
+            d.patches, d.operator_settings, self, scene=d.scene, design=d.design
+        )
         worker.succeeded.connect(self._precomputed)
         worker.failed.connect(lambda msg: ask.error(self.win, "precompute failed", msg))
-        worker.cancelled.connect(
-            lambda: self._say("Precompute cancelled: lighting unavailable until it runs", 6000)
-        )
+        worker.cancelled.connect(lambda: self._precompute_cancelled(worker))
+        worker.progress.connect(lambda: self._laying_out(worker))
         self.win.statusBar().showMessage("Precomputing the radiosity operator...")
         self._start(worker)
 
-    def _precomputed(self, got) -> None:
+    def _precompute_cancelled(self, worker: PrecomputeWorker) -> None:
+        if worker.phase == "layout":  # the operator is in the cache: Precompute is quick
+            self._say(
+                "Layout cancelled: lighting unavailable until Compute > Precompute "
+                "(the operator is kept in the cache)",
+                8000,
+            )
+        else:
+            self._say("Precompute cancelled: lighting unavailable until it runs", 6000)
+
+    def _laying_out(self, worker: PrecomputeWorker) -> None:
+        """Say once that the operator is there and the light is being laid out."""
+        if worker.phase == "layout" and not worker.announced:
+            worker.announced = True
+            self.win.statusBar().showMessage(
+                "Laying out the light: work-plane grids, luminaire arrays (the view shows "
+                "the model meanwhile; Run waits for it; Compute > Cancel stops it)"
+            )
+
+    def _precomputed(self, got: Precomputed) -> None:
         if got.operator.digest != self.doc.patches.digest():
             return  # the scene changed while the worker ran: _done builds for the new one
-        self.doc.set_operator(got.operator)
+        # The light laid out in the worker: the view relights at once (its grids and
+        # arrays found made; a design edited meanwhile relights what changed).
+        self.doc.set_operator(got.operator, shown=got.shown, daylight=got.daylight)
         info = got.operator.info
         # Without zones the error is estimated on light no source gives (cache.py).
         err = f"error {100 * info['estimated_rel_error']:.2f}%" if info.get("nz", 1) else "no zones"
         self.win.status_rank.setText(f"rank k = {got.operator.k} ({err})")
         how = "loaded from the cache" if got.from_cache else "built"
-        self._say(f"Operator {how} in {got.seconds:.1f} s", 6000)
+        said = f"Operator {how} in {got.seconds:.1f} s"
+        if got.shown is not None and got.layout_s >= 0.05:
+            said += f", the light laid out in {got.layout_s:.1f} s"
+        self._say(said, 6000)
         self.win.set_warnings("operator", self.worker.warnings)
         if self.worker.warnings:
             self._say(self.worker.warnings[0], 8000)
+        if got.layout_error:  # lit on this thread instead; the status bar says why
+            why = got.layout_error
+            self._say(f"The light could not be laid out in the background: {why}", 10000)
 
     def waited_for(self) -> str:
         """What work in the background the design's light waits for, in words."""
         if isinstance(self.worker, ClearLightWorker):
             return "the clear glazing's trace (the status bar shows how far)"
+        if isinstance(self.worker, PrecomputeWorker) and self.worker.phase == "layout":
+            return (
+                "the light being laid out: work-plane grids, luminaire arrays (the status "
+                "bar shows how far)"
+            )
         return "the radiosity operator (Compute > Precompute)"
 
     # -- the clear glazing's light ---------------------------------------------------------
@@ -210,6 +247,7 @@ class BackgroundTasks(QtCore.QObject):
         finished = self.worker
         self.worker.deleteLater()
         self.worker = None
+        win.runs.waited()  # "Wait for ... first" is over
         changed = (
             isinstance(finished, PrecomputeWorker)
             and self.doc.patches is not None

@@ -94,17 +94,61 @@ WINDOW_REMEDY = (
 """What a user of the window can do about a missed accuracy target (it has no --rank)."""
 
 
+@dataclass(frozen=True)
+class Precomputed:
+    """What a ``PrecomputeWorker`` hands the window: the operator (``CachedOperator``:
+    ``operator``, ``from_cache``, ``seconds``), the design's light laid out on it
+    (``shown``, a ``ShownLight``; None when it could not be, ``layout_error`` says why),
+    the design's light in every scenario (``daylight``; None when its clear glazing
+    still needs its trace, or without intentions) and the layout's seconds."""
+
+    cached: CachedOperator
+    shown: object | None = None
+    daylight: object | None = None
+    layout_s: float = 0.0
+    layout_error: str = ""
+
+    @property
+    def operator(self):
+        return self.cached.operator
+
+    @property
+    def from_cache(self) -> bool:
+        return self.cached.from_cache
+
+    @property
+    def seconds(self) -> float:
+        return self.cached.seconds
+
+
 class PrecomputeWorker(Worker):
-    """Builds (or loads from the cache) the radiosity operator of some patches."""
+    """Builds (or loads from the cache) the radiosity operator of some patches, then,
+    given the ``scene`` and ``design``, lays out the design's light on it
+    (``phase`` "layout": the work planes' grids, the arrays placed exactly, the light
+    in every scenario; 3.5 s on the GUI thread on the flagship office before issue #30).
+    ``progress`` restarts from 0 for the layout."""
 
     def __init__(
-        self, patches: Patches, settings: OperatorSettings, parent: QtCore.QObject | None = None
+        self,
+        patches: Patches,
+        settings: OperatorSettings,
+        parent: QtCore.QObject | None = None,
+        scene=None,
+        design=None,
     ):
         super().__init__(parent)
         self.patches, self.settings = patches, settings
+        self.scene, self.design = scene, design
         self.warnings: list[str] = []
+        self.phase = "operator"  # then "layout" (read by the GUI thread for its words)
+        self.announced = False  # the GUI thread said the layout began
 
-    def work(self) -> CachedOperator:
+    def _step(self, fraction: float) -> None:
+        if self.is_cancelled():
+            raise CancelledError("the layout of the light was cancelled")
+        self.progress.emit(fraction)
+
+    def work(self) -> Precomputed:
         got = get_operator(
             self.patches,
             self.settings,
@@ -114,7 +158,58 @@ class PrecomputeWorker(Worker):
             remedy=WINDOW_REMEDY,
         )
         self.progress.emit(1.0)
-        return got
+        if self.scene is None or self.design is None:
+            return Precomputed(got)
+        self.phase = "layout"
+        self._step(0.0)
+        t0 = time.perf_counter()
+        try:
+            shown, daylight = lay_out(
+                self.scene, self.patches, got.operator, self.design, self._step
+            )
+        except (CancelledError, MemoryError):
+            raise
+        except LightInvError as exc:  # the window lights it itself and says why
+            return Precomputed(got, layout_error=str(exc))
+        except Exception as exc:  # a bug: the window goes on without it; the traceback
+            traceback.print_exc()  # on stderr, the message in the status bar
+            return Precomputed(got, layout_error=f"{type(exc).__name__}: {exc}")
+        self.progress.emit(1.0)
+        return Precomputed(got, shown, daylight, time.perf_counter() - t0)
+
+
+def lay_out(scene, patches, operator, design, progress) -> tuple:
+    """(``ShownLight`` of ``design`` lit on ``operator``, its ``LayoutDaylight`` or None)
+    made off the GUI thread: the work planes' grids (kept per operator), the arrays'
+    light, then the light in every scenario unless the design's clear glazing waits for
+    its trace (``ClearLightWorker`` makes it then) or nothing reads it (no intention).
+    ``progress(fraction)`` between the steps (it raises CancelledError to stop)."""
+    from threadpoolctl import threadpool_limits
+
+    from lightinv_core.editing import ShownLight
+    from lightinv_core.light.clear_build import clear_light_ready
+    from lightinv_core.light.daylight import layout_daylight
+    from lightinv_core.light.grids import design_receivers
+    from lightinv_core.light.model import LightModel
+
+    # One BLAS thread: a second one spins against the GUI thread (see RunWorker).
+    with threadpool_limits(limits=1, user_api="blas"):
+        light = LightModel(scene, patches, operator)
+        design_receivers(light, design)  # the grids, remembered per operator
+        progress(0.3)
+        shown = ShownLight(light)
+        shown.defer_clear = True  # the window traces clear glazing in its own worker
+        shown.relight(design)  # the arrays placed exactly (kept while they stay)
+        progress(0.5)
+        daylight = None
+        if design.intentions and clear_light_ready(light, design):
+            try:
+                daylight = layout_daylight(
+                    light, design, progress=lambda f: progress(0.5 + 0.5 * f)
+                )
+            except LightInvError:  # no weather year, a bad sensor: the views say why
+                daylight = None
+    return shown, daylight
 
 
 class ReportWorker(Worker):
@@ -166,8 +261,10 @@ class ClearLightWorker(Worker):
     document finds it built. Then the design's light in every scenario
     (``layout_daylight``: its arrays placed exactly, its groups' and observers' light, as
     long again on the flagship), which the views would otherwise build on the GUI thread
-    next. Cancel stops it between the build's steps and leaves nothing built; succeeds
-    with (seconds, the ``LayoutDaylight`` or None when it could not be made here)."""
+    next. Cancel stops it at its next progress call (between blocks of the reflections'
+    columns and between luminaires: a fraction of a second, bench/open_cancel.py) and
+    leaves nothing built; succeeds with (seconds, the ``LayoutDaylight`` or None when it
+    could not be made here)."""
 
     def __init__(self, prepared, design, parent: QtCore.QObject | None = None):
         from lightinv_core.light.clear_build import clear_light_key
@@ -195,10 +292,13 @@ class ClearLightWorker(Worker):
             # One BLAS thread: a second one spins against the GUI thread (see RunWorker).
             with threadpool_limits(limits=1, user_api="blas"):
                 light = LightModel(p.scene, p.patches, p.operator)
-                clear_light(light, self.design, self._step)
-                self._step(0.97)
+                # The trace, then the light in every scenario: about as long again.
+                clear_light(light, self.design, lambda f: self._step(0.6 * f))
+                self._step(0.6)
                 try:
-                    ld = layout_daylight(light, self.design)
+                    ld = layout_daylight(
+                        light, self.design, progress=lambda f: self._step(0.6 + 0.4 * f)
+                    )
                 except LightInvError:
                     ld = None  # the views build it and say why
         except (LightInvError, MemoryError):

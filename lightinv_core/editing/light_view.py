@@ -67,12 +67,27 @@ class LightView(DocumentState):
             self._daylight.put(self.light, self.design, daylight)
         self._relight()
 
-    def set_operator(self, operator: RadiosityOperator) -> None:
+    def set_operator(
+        self,
+        operator: RadiosityOperator,
+        shown: ShownLight | None = None,
+        daylight: LayoutDaylight | None = None,
+    ) -> None:
         """Attach a built (or cached) operator of these patches; lighting becomes
-        available (DesignError if it was built for another scene)."""
-        self.light = LightModel(self.scene, self.patches, operator)
+        available (DesignError if it was built for another scene). ``shown``: its light
+        already laid out elsewhere (a worker's ``ShownLight`` on this operator: the
+        work planes' grids and the arrays' light, seconds on an office), and
+        ``daylight`` the design's light in every scenario made there; each is used only
+        if of this operator (and of the design as it is now)."""
+        if shown is not None and shown.model.op is operator and shown.model.patches is self.patches:
+            self.light, self._light_shown = shown.model, shown
+        else:
+            self.light = LightModel(self.scene, self.patches, operator)
+            self._light_shown = ShownLight(self.light)
         self.operator, self._problem = operator, None
-        self._light_shown = ShownLight(self.light)
+        self._daylight.clear()
+        if daylight is not None and daylight.design is self.design:
+            self._daylight.put(self.light, self.design, daylight)
         self.events.emit("operator", OperatorChanged(operator, self.light))
         self._relight()
 

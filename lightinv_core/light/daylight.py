@@ -16,6 +16,7 @@ of those (docs/daylight.md):
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass, field, replace
 from functools import cached_property
 
@@ -360,15 +361,33 @@ class LayoutDaylight:
         return float(np.clip((d.target_lux - day) / max(full, 1e-9), d.min_level, 1.0))
 
 
-def layout_daylight(light, design: Design, sources=None, arrays=None) -> LayoutDaylight:
+def layout_daylight(
+    light,
+    design: Design,
+    sources=None,
+    arrays=None,
+    progress: Callable[[float], None] | None = None,
+) -> LayoutDaylight:
     """The light of one layout of ``design`` (its sources as lit, tied rules applied;
     default: the design as written) in every scenario, on ``light``'s patches and the
-    design's work planes."""
+    design's work planes. ``progress(fraction)`` (0-1) is called between its steps and
+    between the luminaires of its arrays; an exception it raises (a ``CancelledError``)
+    stops it (the window's Cancel, as ``clear_build.clear_light``)."""
     from lightinv_core.light.arrays import arrays_field, resolve_product
     from lightinv_core.light.control_groups import control_plan, group_light
     from lightinv_core.light.daylight_year import sky_groups
     from lightinv_core.light.glare import layout_glare
     from lightinv_core.light.grids import design_receivers, grid_light
+
+    step = progress or (lambda f: None)
+
+    def asking(fraction: float) -> Callable[[], bool]:
+        # arrays_field's cancel(): asks ``progress``, which raises to stop.
+        def cancel() -> bool:
+            step(fraction)
+            return False
+
+        return cancel
 
     sources = light.layout(design) if sources is None else tuple(sources)
     arrays = design.arrays if arrays is None else tuple(arrays)
@@ -376,10 +395,19 @@ def layout_daylight(light, design: Design, sources=None, arrays=None) -> LayoutD
     lum = tuple(s for s in sources if not source_type(s.kind).daylit)
     unit = replace(design.daylight, exterior_lux=1.0)
     electric = light.field(lum, design.daylight).illuminance.copy()
+    step(0.02)
     grids = design_receivers(light, design)
+    step(0.1)
+    arrays_at_points = None
     if arrays:
-        Hp, _ = arrays_field(light.patches, light.op, arrays)
+        # Once for the patches and the grid points (grid_light would place them again:
+        # the same call, the same light), a luminaire at a time between cancel checks.
+        points = None if grids is None else grids.samples
+        Hp, arrays_at_points = arrays_field(
+            light.patches, light.op, arrays, points, cancel=asking(0.1)
+        )
         electric += Hp
+    step(0.35)
     sky = np.zeros((groups.count, light.n))
     per_group = []
     for g, zones in enumerate(groups.zones):
@@ -397,7 +425,9 @@ def layout_daylight(light, design: Design, sources=None, arrays=None) -> LayoutD
     )
     at_points = None
     if grids is not None:
-        e_pts = grid_light(light, grids, lum, arrays, design.daylight)
+        e_pts = grid_light(light, grids, lum, (), design.daylight)
+        if arrays_at_points is not None:
+            e_pts += arrays_at_points
         s_pts = np.zeros((groups.count, len(grids.points)))
         for g, grp in enumerate(per_group):
             s_pts[g] = grid_light(light, grids, grp, (), unit)
@@ -421,8 +451,10 @@ def layout_daylight(light, design: Design, sources=None, arrays=None) -> LayoutD
         plan = None if grids is None else control_plan(design, grids)
     except DesignError as exc:  # the rest of the light stands; the energy says why
         groups_error = str(exc)
+    step(0.4)
     if plan is not None:
         control_light = group_light(light, design, grids, plan, sources, arrays)
+    step(0.8)
     observed, observed_error, sunlit = None, "", None
     eyes = [it for it in design.intentions if it.observers is not None]
     if any(quantity_spec(it.quantity).from_glare for it in eyes):
@@ -430,6 +462,7 @@ def layout_daylight(light, design: Design, sources=None, arrays=None) -> LayoutD
             observed = layout_glare(light, design, sources, arrays)
         except DesignError as exc:  # the rest of the light stands; the glare says why
             observed_error = str(exc)
+    step(0.95)
     sunlit_error = ""
     specs = [quantity_spec(it.quantity) for it in eyes]
     if any(q.from_glare is None and q.from_eyes is None for q in specs):
@@ -437,6 +470,8 @@ def layout_daylight(light, design: Design, sources=None, arrays=None) -> LayoutD
             sunlit = observer_sunlight(light, as_laid)
         except LightInvError as exc:  # the rest of the light stands; the intention says why
             sunlit_error = str(exc)
+    eye_daylight = layout_eye_daylight(light, design, sources, specs)  # glared, its error, eyed
+    step(1.0)
     return LayoutDaylight(
         design,
         at_patches,
@@ -452,5 +487,5 @@ def layout_daylight(light, design: Design, sources=None, arrays=None) -> LayoutD
         groups_error,
         sunlit,
         sunlit_error,
-        *layout_eye_daylight(light, design, sources, specs),  # glared, its error, eyed
+        *eye_daylight,
     )
