@@ -176,7 +176,9 @@ class GroupLight:
     counts: np.ndarray
 
 
-def group_light(light, design: Design, grids, plan: ControlPlan, sources, arrays) -> GroupLight:
+def group_light(
+    light, design: Design, grids, plan: ControlPlan, sources, arrays, cancel=None
+) -> GroupLight:
     """The light of each group of a layout (its ``sources`` as lit and ``arrays``, in the
     design's order), its arrays placed exactly."""
     from lightinv_core.light.arrays import arrays_field, resolve_product
@@ -190,11 +192,11 @@ def group_light(light, design: Design, grids, plan: ControlPlan, sources, arrays
     for k in range(K):
         srcs = tuple(sources[j] for j in plan.sources[k])
         arrs = tuple(arrays[j] for j in plan.arrays[k])
-        at_points[k] = grid_light(light, grids, srcs, arrs, design.daylight)
+        at_points[k] = grid_light(light, grids, srcs, arrs, design.daylight, cancel)
         if srcs:
             at_patches[k] = light.field(srcs, design.daylight).illuminance
         if arrs:
-            at_patches[k] += arrays_field(light.patches, light.op, arrs)[0]
+            at_patches[k] += arrays_field(light.patches, light.op, arrs, cancel=cancel)[0]
         watts[k] = sum(source_electric_power(s) for s in srcs) + sum(
             a.count * resolve_product(a.product, a.watts).watts * a.dimming for a in arrs
         )

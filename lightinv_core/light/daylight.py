@@ -453,13 +453,13 @@ def layout_daylight(
         groups_error = str(exc)
     step(0.4)
     if plan is not None:
-        control_light = group_light(light, design, grids, plan, sources, arrays)
+        control_light = group_light(light, design, grids, plan, sources, arrays, asking(0.4))
     step(0.8)
     observed, observed_error, sunlit = None, "", None
     eyes = [it for it in design.intentions if it.observers is not None]
     if any(quantity_spec(it.quantity).from_glare for it in eyes):
         try:
-            observed = layout_glare(light, design, sources, arrays)
+            observed = layout_glare(light, design, sources, arrays, asking(0.8))
         except DesignError as exc:  # the rest of the light stands; the glare says why
             observed_error = str(exc)
     step(0.95)

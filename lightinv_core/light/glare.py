@@ -30,7 +30,7 @@ maintenance factor MF would lower UGR by 8 log10(1 / MF) (0.78 at 0.8).
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 
 import numpy as np
@@ -269,7 +269,9 @@ class Glare:
         return spec.from_glare(total[idx], lb[idx])
 
 
-def layout_glare(light: LightModel, design: Design, sources, arrays) -> dict[str, float]:
+def layout_glare(
+    light: LightModel, design: Design, sources, arrays, cancel: Callable[[], bool] | None = None
+) -> dict[str, float]:
     """UGR at every observer of one layout (``arrays`` as written, each luminaire placed
     exactly): {observer name: UGR}. The background from the patches' light of the
     arrays (``arrays_field``, no maintenance factor), the glare sums from
@@ -284,7 +286,7 @@ def layout_glare(light: LightModel, design: Design, sources, arrays) -> dict[str
     spec = quantity_spec(Quantity.UGR)
     if not arrays:
         return {n: float(spec.from_glare(0.0, 1.0)) for n in eyes.names}
-    H = arrays_field(light.patches, light.op, arrays, maintained=False)[0]
+    H = arrays_field(light.patches, light.op, arrays, maintained=False, cancel=cancel)[0]
     placed = [p for _, _, ps in array_luminaires(light.patches, arrays) for p in ps]
     lb = np.asarray(taps @ H).reshape(-1) / np.pi
     total = [glare_terms(eyes.points[i], eyes.views[i], placed).total for i in range(len(lb))]

@@ -23,7 +23,7 @@ a 0.5 m border (7 x 5 m): p = 0.780 m, 2011 gives 9 x 7 points, 2021 9 x 6.
 from __future__ import annotations
 
 import weakref
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -191,15 +191,17 @@ def grid_light(
     sources: Sequence[Source],
     arrays: Sequence[LuminaireArray],
     daylight: Daylight,
+    cancel: Callable[[], bool] | None = None,
 ) -> np.ndarray:
     """Illuminance (lux, maintained) at every grid point of a layout: its zone sources
-    through the points' zone basis, its arrays placed exactly (no lattice)."""
+    through the points' zone basis, its arrays placed exactly (no lattice); ``cancel()``
+    asked between the arrays' luminaires (``arrays_field``)."""
     lux = np.zeros(len(grids.points))
     if sources:
         V = light.zone_emission(sources, *source_stack(sources), daylight)[:, 0]
         lux += grids.Phi.astype(float) @ V.astype(float)
     if arrays:
-        _, at_points = arrays_field(light.patches, light.op, arrays, grids.samples)
+        _, at_points = arrays_field(light.patches, light.op, arrays, grids.samples, cancel=cancel)
         lux += at_points
     return lux
 
