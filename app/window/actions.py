@@ -21,7 +21,7 @@ from lightinv_core.sources.types import source_types
 MODES = (
     ("navigate", "Navigate"),
     ("select", "Select patches"),
-    ("move", "Move source or observer"),
+    ("move", "Move source, observer or sensor"),
     ("zone", "Draw zone"),
     ("polygon", "Draw polygon zone"),
 )
