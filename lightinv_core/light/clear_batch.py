@@ -16,6 +16,7 @@ sun at the control work plane's points in the occupied hours, through
 
 from __future__ import annotations
 
+import math
 from types import SimpleNamespace
 
 import numpy as np
@@ -58,6 +59,41 @@ def cell_hours(cells: ClearCells, rec: np.ndarray, mask: np.ndarray, sun_only: b
     return out
 
 
+def _below32(x: float) -> np.float32:
+    """The largest float32 at most ``x``."""
+    t = np.float32(x)
+    return t if float(t) <= x else np.nextafter(t, np.float32(-np.inf))
+
+
+def hour_counts(lux: np.ndarray, lo: float, hi: float, above: bool) -> np.ndarray:
+    """(..., ) hours (last axis) with ``lo`` <= lux <= ``hi`` (``lo`` < lux with
+    ``above``) of a float32 ``lux``: the float32 bounds are chosen so that the count
+    is the one of the float64 comparison (``HourBand.of_hours``), exactly."""
+    lux = np.asarray(lux)
+    if lux.dtype != np.float32:
+        lux = lux.astype(np.float32)
+    if above:
+        hit = lux > _below32(lo)
+    else:
+        low = _below32(lo)
+        low = low if float(low) == lo else np.nextafter(low, np.float32(np.inf))
+        hit = lux >= low
+    if hi != np.inf:
+        hit &= lux <= _below32(hi)
+    # bool viewed as bytes, summed in int32: several times faster than bool.sum()
+    return hit.view(np.uint8).sum(axis=-1, dtype=np.int32)
+
+
+def band_of_counts(band, counts: np.ndarray, hours: int) -> np.ndarray:
+    """``band.of_hours``'s value from the hours counted (``hour_counts``) of ``hours``."""
+    if band.point_hours is not None:
+        return (counts > band.point_hours).astype(float)
+    if band.point_share is None:
+        return counts / max(hours, 1)
+    need = math.ceil(band.point_share * hours - 1e-9)
+    return (counts >= need).astype(float)
+
+
 class ClearBatch:
     """The clear light of m candidates (``shares`` (m, C)) at a level's receivers:
     ``pos`` maps each level receiver to the cells' receivers of ``over``, ``year_pos``
@@ -77,6 +113,7 @@ class ClearBatch:
         self.control = control
         self.columns = SimpleNamespace(outward=cells.outward)
         self._memo: dict = {}
+        self._counts: dict = {}
         self._closed = None
 
     @property
@@ -91,11 +128,16 @@ class ClearBatch:
             yield g, mine, self.shares[:, mine]
 
     def _sum(self, blocks, mine, s, R: int, T: int) -> np.ndarray:
-        """(m, R, T) the candidates' sum of the cells' ``blocks`` (C, R, T), or of a
-        sparse (C, R T) (the direct sun)."""
+        """(m, R, T) float32 the candidates' sum of the cells' ``blocks`` (C, R, T), or
+        of a sparse (C, R T) (the direct sun). A source's cells are consecutive, so its
+        block is a view (no copy of the (C, R, T) block)."""
         if sp.issparse(blocks):
             return np.asarray(s @ blocks[mine], dtype=np.float32).reshape(-1, R, T)
-        return (s @ blocks[mine].reshape(len(mine), R * T)).reshape(-1, R, T)
+        if len(mine) and mine[-1] - mine[0] + 1 == len(mine):
+            part = blocks[mine[0] : mine[-1] + 1]
+        else:
+            part = blocks[mine]
+        return (s @ part.reshape(len(mine), R * T)).reshape(-1, R, T)
 
     @property
     def closed(self) -> np.ndarray:
@@ -119,7 +161,8 @@ class ClearBatch:
                 rec = len(c.year_rows) + np.arange(c.points)[self.control]
                 if c.sources == 1:  # the whole batch at once; shared with ASE's sun
                     sun = self._light_rec(rec, occ, False, True)  # (m, q, T)
-                    closed[:, 0, occ] = (sun >= BLINDS_LUX).mean(axis=1) > BLINDS_SHARE
+                    hit = hour_counts(np.moveaxis(sun, 1, 2), BLINDS_LUX, np.inf, False)
+                    closed[:, 0, occ] = hit / sun.shape[1] > BLINDS_SHARE
                 else:
                     blocks, T = cell_hours(c, rec, occ, True), int(occ.sum())
                     per = [
@@ -141,15 +184,16 @@ class ClearBatch:
         return self.cells.over[:, self.pos[idx]].T.astype(float) @ self.shares.T.astype(float)
 
     def _light(self, idx, mask, blinds: bool, sun_only: bool = False) -> np.ndarray:
-        """(R', m, T) the candidates' clear light at receivers idx in ``mask``'s hours."""
+        """(m, R', T) float32 the candidates' clear light at receivers idx in ``mask``'s
+        hours."""
         rec = self.year_pos[idx]
         if np.any(rec < 0):
             raise ValueError("the year's clear light is read at patches it was not traced at")
         return self._light_rec(rec, mask, blinds, sun_only)
 
     def _light_rec(self, rec, mask, blinds: bool, sun_only: bool) -> np.ndarray:
-        """``_light`` at the cells' receivers ``rec``: (R', m, T) float64, or with
-        ``sun_only`` (m, R', T) float32 (the direct sun, read as such)."""
+        """``_light`` at the cells' receivers ``rec``: (m, R', T) float32, candidates
+        first (the product's own layout: no copy; every reader takes float32)."""
         rec = np.asarray(rec, dtype=np.int64)
         mask = np.asarray(mask, bool)
         key = (rec.tobytes(), mask.tobytes(), blinds, sun_only)
@@ -167,33 +211,38 @@ class ClearBatch:
                 for j in np.flatnonzero(shut.any(axis=1)):
                     cols = np.flatnonzero(shut[j])
                     part[j][:, cols] = np.outer(glow[j], outside[cols])
-            out = part if out is None else out + part
-        # float64 once here, not in each band's count (``HourBand.of_hours`` casts).
-        got = out if sun_only else np.array(np.moveaxis(out, 0, 1), dtype=float, order="C")
-        if len(self._memo) >= 4:
+            if out is None:
+                out = part
+            else:
+                out += part
+        if len(self._memo) >= 6:
             self._memo.clear()
-        self._memo[key] = got
-        return got
+        self._memo[key] = out
+        return out
 
     def hours(self, idx, mask: np.ndarray, sun_only: bool = False) -> np.ndarray:
-        """(R', m, T) lux at receivers idx in the hours of ``mask``, with the LM-83
-        blinds (the direct sun alone, blinds open, with ``sun_only``)."""
-        got = self._light(idx, mask, not sun_only, sun_only)
-        return np.moveaxis(got, 0, 1) if sun_only else got
+        """(R', m, T) float32 lux at receivers idx in the hours of ``mask``, with the
+        LM-83 blinds (the direct sun alone, blinds open, with ``sun_only``): a view of
+        the (m, R', T) block."""
+        return np.moveaxis(self._light(idx, mask, not sun_only, sun_only), 0, 1)
 
     def open_hours(self, idx, mask: np.ndarray) -> np.ndarray:
-        """(R', m, T) lux at receivers idx in ``mask``'s hours with every blind open."""
-        return self._light(idx, mask, False)
+        """(R', m, T) float32 lux at receivers idx in ``mask``'s hours with every blind
+        open."""
+        return np.moveaxis(self._light(idx, mask, False), 0, 1)
 
     def band(self, band, idx, mask: np.ndarray) -> np.ndarray:
-        """(R', m) an annual metric (``quantities.HourBand``) of this light alone."""
-        if band.direct_sun:  # (m, R', T)
-            sun = self._light(idx, mask, False, True)
-            m, R, T = sun.shape
-            return band.of_hours(sun.reshape(m * R, T)).reshape(m, R).T
-        lux = self.hours(idx, mask)
-        R, m, T = lux.shape
-        return band.of_hours(lux.reshape(R * m, T)).reshape(R, m)
+        """(R', m) an annual metric (``quantities.HourBand``) of this light alone,
+        counted on the float32 light (thresholds as the float32 bounds that give
+        ``band.of_hours``'s float64 answer) and remembered per threshold pair: DA and
+        sDA share one count."""
+        lux = self._light(idx, mask, not band.direct_sun, band.direct_sun)
+        key = (id(lux), band.lo, band.hi, band.above)
+        counts = self._counts.get(key)
+        if counts is None or counts[0] is not lux:
+            counts = (lux, hour_counts(lux, band.lo, band.hi, band.above))
+            self._counts[key] = counts
+        return band_of_counts(band, counts[1], lux.shape[2]).T
 
     def lux(self, idx=slice(None), hours=slice(None)) -> np.ndarray:
         """(R', m, h) the clear light (lux) in ``hours`` (indices or a slice of the
