@@ -207,10 +207,11 @@ class ClearBatch:
             if blinds and not sun_only:  # closed hours: the source's glow instead
                 shut = self.closed[:, g][:, mask]  # (m, T)
                 glow = s @ self.cells.glow[mine][:, rec]  # (m, R')
-                outside = self.cells.outside[g][mask]
+                outside = self.cells.outside[g][mask].astype(np.float32)
                 for j in np.flatnonzero(shut.any(axis=1)):
                     cols = np.flatnonzero(shut[j])
-                    part[j][:, cols] = np.outer(glow[j], outside[cols])
+                    # float32 outer product: half the bytes of float64, one rounding
+                    part[j][:, cols] = np.multiply.outer(glow[j], outside[cols])
             if out is None:
                 out = part
             else:
