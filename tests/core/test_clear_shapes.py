@@ -406,3 +406,25 @@ def test_float32_counts_are_the_float64_definitions():
         want = band.of_hours(lux.astype(float))
         assert np.array_equal(band_of_counts(band, counts, lux.shape[1]), want), band
     assert hour_counts(lux, 300.0, np.inf, False).sum() > 0
+
+
+def test_the_sun_read_on_its_support_is_the_dense_sun(room):
+    """ASE and the one-source blinds read the candidates' direct sun only where some
+    cell has any (``clear_batch.SunSupport``): the same marks and blinds as the dense
+    sun of each candidate through ``HourBand.of_hours`` and ``blinds_closed``."""
+    from lightinv_core.climate.sun_metrics import blinds_closed
+
+    p = DesignProblem(design(room), room)
+    level = p.level(1)
+    X = np.array([[0.0, 0.0], [0.4, 0.7], [0.9, 0.2], [1.3, 1.3]])
+    clear = p.lighting.of(*p.vars.decode(X), level, None).parts.clear
+    idx = slice(len(level.rows), None)
+    ase = quantity_spec("ase").hours
+    got = clear.band(ase, idx, clear.occupied)  # (R, m)
+    sun = clear.hours(idx, clear.occupied, sun_only=True)  # (R, m, T) dense
+    on = clear.control  # the control plane's span of the grid points
+    for j in range(len(X)):
+        assert np.array_equal(got[:, j], ase.of_hours(sun[:, j].astype(float)))
+        want = blinds_closed(sun[on, j].astype(float))
+        assert np.array_equal(clear.closed[j, 0, clear.occupied], want)
+    assert 0 < got.mean() < 1 and clear.closed.any() and not clear.closed.all()
