@@ -90,6 +90,11 @@ class SunSupport:
     R: int
     T: int
 
+    @property
+    def nbytes(self) -> int:
+        """Memory of the support and its values (bytes)."""
+        return self.at.nbytes + self.values.nbytes
+
     def onto(self, axis: int) -> sp.csr_matrix:
         """(n, R') or (n, T) sparse: which receiver (axis 0) or hour (axis 1) each
         value is at (a sum over the other axis is a product with it)."""
