@@ -18,9 +18,17 @@ sDA300/50% >= 50% and ASE1000,250 <= 10% (LEED v4):
 - ``validation``: per rectangle, the cells' sum against a fresh fixed build traced at
   that rectangle (``layout_daylight`` of a fixed design): the per-point annual mean
   (mean and largest relative difference) and DA300, sDA300/50%, ASE1000,250 both ways;
+- ``hour_reduction``: the experiment of replacing the occupied hours by K representative
+  hours for the search (k-means on the log of every cell's hourly light at the points,
+  each cluster's hour nearest its centre weighted by its size), over ``--rectangles``
+  random rectangles: the largest error of DA, UDI, sDA, ASE (points) and of the dimming
+  sum (%) against every hour (docs/daylight.md: not adopted);
 - ``optimisation``: CMA-ES (``--evals``) from the whole rooflight: the chosen size, its
   figures as the optimiser judged them, and the forward study (``study.simulate``) of a
   room whose rooflight is the chosen one.
+
+The CPU figures are measured with BLAS on one thread (``threadpool_limits``): on the
+shared 2-core machine a second BLAS thread spins and doubles the CPU counted.
 
 ``--flagship`` instead frees one clear window of the flagship office
 (resources/projects/office-flagship.json, its own resolution) and reports the build's
@@ -38,6 +46,7 @@ from dataclasses import replace
 from pathlib import Path
 
 import numpy as np
+from threadpoolctl import threadpool_limits
 
 from lightinv_core.design.model import Daylight, Design, Goal, Intention, Rule, Source, Workplane
 from lightinv_core.light.clear_build import clear_light
@@ -116,6 +125,11 @@ def grid_figures(parts, idx) -> dict:
 
 
 def cost(light, args) -> dict:
+    with threadpool_limits(limits=1, user_api="blas"):
+        return _cost(light, args)
+
+
+def _cost(light, args) -> dict:
     d = design(light)
     clear = DesignProblem(d, light)
     over = replace(
@@ -269,6 +283,79 @@ def optimisation(light, args) -> dict:
     }
 
 
+def _kmeans(X: np.ndarray, k: int, seed: int = 1, iters: int = 25):
+    """(representative rows, cluster sizes): k-means++ then Lloyd; each cluster's
+    representative is its member nearest the centre (a real hour)."""
+    rng = np.random.default_rng(seed)
+    pick = [int(rng.integers(len(X)))]
+    d2 = ((X - X[pick[0]]) ** 2).sum(1)
+    for _ in range(k - 1):
+        pick.append(int(rng.choice(len(X), p=d2 / d2.sum())))
+        d2 = np.minimum(d2, ((X - X[pick[-1]]) ** 2).sum(1))
+    centre = X[pick].copy()
+    for _ in range(iters + 1):
+        lab = (-2 * X @ centre.T + (centre**2).sum(1)).argmin(1)
+        for j in range(k):
+            if (lab == j).any():
+                centre[j] = X[lab == j].mean(0)
+    reps, size = [], []
+    for j in range(k):
+        on = np.flatnonzero(lab == j)
+        if len(on):
+            reps.append(on[((X[on] - centre[j]) ** 2).sum(1).argmin()])
+            size.append(len(on))
+    return np.array(reps), np.array(size, float)
+
+
+def _year_figures(L, S, w, full) -> dict:
+    """DA, UDI, sDA, ASE (grid means, m,) and the dimming sum of m candidates' light
+    ``L`` (with blinds) and direct sun ``S`` (m, R, T) over hours weighted ``w``."""
+    from lightinv_core.climate.metrics import dimming_level
+
+    da = ((L >= 300) * w).sum(-1) / w.sum()
+    return {
+        "da": da.mean(1),
+        "udi": (((L >= 100) & (L <= 3000)) * w).sum(-1).mean(1) / w.sum(),
+        "sda": (da >= 0.5).mean(1),
+        "ase": (((S > 1000) * w).sum(-1) > 250).mean(1),
+        "dimming": (dimming_level(L.mean(1).astype(float), full[:, None], 300.0, 0.0) * w).sum(-1),
+    }
+
+
+def hour_reduction(light, args) -> dict:
+    """K representative hours for the search against every occupied hour (see the
+    module): each candidate's own blinds and sun at the representative hours."""
+    from lightinv_core.light.clear_batch import cell_hours
+
+    p = DesignProblem(design(light, free=("u0", "v0", "u1", "v1")), light)
+    level = p.level(1)
+    X = np.random.default_rng(2).uniform(0, p.vars.hi, (args.rectangles, 4))
+    parts = p.lighting.of(*p.vars.decode(X), level, None).parts
+    cb, idx = parts.clear, slice(len(level.rows), None)
+    occ = cb.occupied
+    L, S = cb._light(idx, occ, True), cb._light(idx, occ, False, True)
+    full = parts.electric[idx].mean(axis=0)
+    T = L.shape[2]
+    exact = _year_figures(L, S, np.ones(T), full)
+    blocks = cell_hours(p.clear_cells, cb.year_pos[idx], occ, False)  # (C, R, T)
+    F = np.log1p(blocks.reshape(-1, T).T.astype(float))
+    U, sv, _ = np.linalg.svd(F - F.mean(0), full_matrices=False)
+    out = {"rectangles": args.rectangles, "hours": T, "by_k": []}
+    for k in (100, 200, 400, 800):
+        t0 = time.process_time()
+        reps, size = _kmeans(U[:, :48] * sv[:48], k)
+        cpu = time.process_time() - t0
+        got = _year_figures(L[:, :, reps], S[:, :, reps], size, full)
+        row = {"k": k, "clustering_cpu_s": round(cpu, 2), "hours_share": round(k / T, 3)}
+        for q in ("da", "udi", "sda", "ase"):
+            row[f"{q}_max_error_points"] = round(100 * float(np.abs(got[q] - exact[q]).max()), 2)
+        rel = np.abs(got["dimming"] / np.maximum(exact["dimming"], 1e-9) - 1)
+        row["dimming_max_error_pct"] = round(100 * float(rel.max()), 2)
+        row["dimming_mean_error_pct"] = round(100 * float(rel.mean()), 2)
+        out["by_k"].append(row)
+    return out
+
+
 def _whole(p):
     level = p.level(1)
     lit = p.lighting.of(*p.vars.decode(np.zeros((1, 2))), level, None)
@@ -331,14 +418,17 @@ def main() -> None:
     ap.add_argument("--repeats", type=int, default=5)
     ap.add_argument("--rounds", type=int, default=5)
     ap.add_argument("--evals", type=int, default=150)
+    ap.add_argument("--rectangles", type=int, default=200)
     ap.add_argument("--flagship", action="store_true")
     args = ap.parse_args()
     if args.flagship:
-        print(json.dumps({"flagship": flagship(args)}, indent=1))
+        with threadpool_limits(limits=1, user_api="blas"):
+            print(json.dumps({"flagship": flagship(args)}, indent=1))
         return
     light = model(roof_room())
     out = {"build": build(light)}
     out["cost"] = cost(light, args)
+    out["hour_reduction"] = hour_reduction(light, args)
     out["validation"] = validation(light)
     out["optimisation"] = optimisation(light, args)
     print(json.dumps(out, indent=1))

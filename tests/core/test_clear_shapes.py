@@ -380,3 +380,51 @@ def test_two_control_groups_dim_to_each_candidates_clear_light(room):
         assert len(lay.energy().groups) == 2
         assert lay.energy().energy_kwh == pytest.approx(kwh[j], rel=1e-6)
     assert kwh[0] < kwh[2]  # more daylight, less energy
+
+
+def test_float32_counts_are_the_float64_definitions():
+    """The batch counts its bands on float32 light (``clear_batch.hour_counts``): the
+    float32 bounds it picks give exactly ``HourBand.of_hours``'s float64 answer, on
+    values at and beside each bound (thresholds a float32 holds and ones it does not)."""
+    from lightinv_core.light.clear_batch import band_of_counts, hour_counts
+    from lightinv_core.quantities import HourBand
+
+    rng = np.random.default_rng(3)
+    bounds = [100.0, 300.0, 1000.0, 3000.0, 0.1, 250.3, 2999.9999]
+    near = np.array(bounds, np.float32)
+    edge = np.concatenate(
+        [near, np.nextafter(near, np.float32(0)), np.nextafter(near, np.float32(1e9))]
+    )
+    lux = rng.choice(np.concatenate([edge, rng.uniform(0, 4000, 200).astype(np.float32)]),
+                     (30, 500)).astype(np.float32)  # fmt: skip
+    bands = [quantity_spec(q).hours for q in ("da", "sda", "udi", "ase")]
+    bands += [HourBand(lo, hi, above=a) for lo in bounds for hi in (np.inf, 2999.9999) for a in
+              (False, True)]  # fmt: skip
+    bands += [HourBand(250.3, point_share=0.5), HourBand(0.1, point_hours=120, above=True)]
+    for band in bands:
+        counts = hour_counts(lux, band.lo, band.hi, band.above)
+        want = band.of_hours(lux.astype(float))
+        assert np.array_equal(band_of_counts(band, counts, lux.shape[1]), want), band
+    assert hour_counts(lux, 300.0, np.inf, False).sum() > 0
+
+
+def test_the_sun_read_on_its_support_is_the_dense_sun(room):
+    """ASE and the one-source blinds read the candidates' direct sun only where some
+    cell has any (``clear_batch.SunSupport``): the same marks and blinds as the dense
+    sun of each candidate through ``HourBand.of_hours`` and ``blinds_closed``."""
+    from lightinv_core.climate.sun_metrics import blinds_closed
+
+    p = DesignProblem(design(room), room)
+    level = p.level(1)
+    X = np.array([[0.0, 0.0], [0.4, 0.7], [0.9, 0.2], [1.3, 1.3]])
+    clear = p.lighting.of(*p.vars.decode(X), level, None).parts.clear
+    idx = slice(len(level.rows), None)
+    ase = quantity_spec("ase").hours
+    got = clear.band(ase, idx, clear.occupied)  # (R, m)
+    sun = clear.hours(idx, clear.occupied, sun_only=True)  # (R, m, T) dense
+    on = clear.control  # the control plane's span of the grid points
+    for j in range(len(X)):
+        assert np.array_equal(got[:, j], ase.of_hours(sun[:, j].astype(float)))
+        want = blinds_closed(sun[on, j].astype(float))
+        assert np.array_equal(clear.closed[j, 0, clear.occupied], want)
+    assert 0 < got.mean() < 1 and clear.closed.any() and not clear.closed.all()
