@@ -10,8 +10,8 @@ once, as ``light.clear_build`` traces a fixed source (the same rays, seeds and
 reflections; one glazing group per cell), and keeps per cell:
 
 - ``coef`` (C, R, B) float32: lux per unit of each column at the receivers (the patches
-  of intentions measured over the year, then the work-plane points), B = the 145 Tregenza patches
-  and the ground, the sun's reflections on the MF:2 sun bins, the sun's direct light
+  of intentions measured over the year, then the work-plane points), B = the sky
+  patches (Tregenza's 145, or Reinhart's at ``daylight.sky_subdivision``) and the ground, the sun's reflections on the MF:2 sun bins, the sun's direct light
   on the same bins (0 at the points, whose direct sun is traced hour by hour);
 - ``direct`` per cell a sparse (q, H) float32: the direct sun at each work-plane point
   in each hour (lux), traced at the hour's own sun; sparse because a cell puts sun on
@@ -277,7 +277,7 @@ def _sun_on_room(lit, glass, caster, dirs) -> np.ndarray:
 
 def _build(light, design: Design, sources, rows: np.ndarray, year: np.ndarray) -> ClearCells:
     from lightinv_core.climate.sky_luminance import cie_overcast, scaled_sky
-    from lightinv_core.climate.skydome import tregenza
+    from lightinv_core.climate.skydome import reinhart
 
     t0 = time.process_time()
     d = design.daylight
@@ -288,7 +288,7 @@ def _build(light, design: Design, sources, rows: np.ndarray, year: np.ndarray) -
     rho[glass.idx] = 0.0  # a clear zone is black inside (see the module)
     lit = replace(patches, rho=rho)
     caster = caster_for(patches)
-    dome = tregenza()
+    dome = reinhart(d.sky_subdivision)  # Tregenza's 145 patches at MF:1, as the fixed build
     K0, north = len(dome.solid_angles), d.north_deg
 
     def bins(dirs):

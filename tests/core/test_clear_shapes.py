@@ -115,13 +115,16 @@ def figures(parts, idx) -> dict:
     return out
 
 
-def test_the_whole_zone_from_its_cells_is_the_fixed_build(room):
+@pytest.mark.parametrize("mf", [1, 2])
+def test_the_whole_zone_from_its_cells_is_the_fixed_build(room, mf):
     """Every cell glazed: the same panes, rays and seeds as a fixed build of the whole
-    zone, so the same light to float rounding, and the same figures."""
-    p = DesignProblem(design(room, free=("u0", "v0", "u1", "v1")), room)
+    zone, so the same light to float rounding, and the same figures; on Tregenza's sky
+    and on Reinhart's MF:2 (``daylight.sky_subdivision``: the cells read it too)."""
+    sky = Daylight(transmittance=TAU, target_lux=300.0, sky_subdivision=mf)
+    p = DesignProblem(design(room, free=("u0", "v0", "u1", "v1"), daylight=sky), room)
     w, h = room.zone_size("roof")
     parts, idx = candidate(p, [0.0, 0.0, w, h])
-    fixed = layout_daylight(room, design(room, free=()))
+    fixed = layout_daylight(room, design(room, free=(), daylight=sky))
     span = fixed.grids.span("wp")
     got, want = parts.clear_hours(idx)[:, 0], fixed.points.clear_hours(span)
     assert np.abs(got - want).max() <= 1e-5 * want.max()
