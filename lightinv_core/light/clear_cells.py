@@ -11,8 +11,9 @@ reflections; one glazing group per cell), and keeps per cell:
 
 - ``coef`` (C, R, B) float32: lux per unit of each column at the receivers (the patches
   of intentions measured over the year, then the work-plane points), B = the sky
-  patches (Tregenza's 145, or Reinhart's at ``daylight.sky_subdivision``) and the ground, the sun's reflections on the MF:2 sun bins, the sun's direct light
-  on the same bins (0 at the points, whose direct sun is traced hour by hour);
+  patches (Tregenza's 145, or Reinhart's at ``daylight.sky_subdivision``) and the
+  ground, the sun's reflections on the MF:2 sun bins, the sun's direct light on the
+  same bins (0 at the points, whose direct sun is traced hour by hour);
 - ``direct`` per cell a sparse (q, H) float32: the direct sun at each work-plane point
   in each hour (lux), traced at the hour's own sun; sparse because a cell puts sun on
   a point in few hours;
