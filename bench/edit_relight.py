@@ -14,31 +14,20 @@ import argparse
 import json
 import statistics
 import time
-from dataclasses import replace
 from pathlib import Path
+
+import dgp_view  # bench/, beside this script
 
 import lightinv_core.light.arrays as arrays_mod
 from lightinv_core.editing import DocumentModel
-from lightinv_core.operator.build import build_operator
-from lightinv_core.operator.settings import OperatorSettings
-from lightinv_core.project import load_project
 
-ROOT = Path(__file__).resolve().parent.parent
-FLAGSHIP = ROOT / "resources" / "projects" / "office-flagship.json"
+FLAGSHIP = dgp_view.FLAGSHIP
 
 
 def flagship(resolution: float) -> DocumentModel:
-    """The flagship office meshed at ``resolution`` m, operator rank 120 (as the GUI
-    tests open it), its clear glazing traced."""
-    p = load_project(FLAGSHIP)
-    p = replace(
-        p,
-        scene=replace(p.scene, resolution=resolution),
-        operator=OperatorSettings(rank=120, rays=128),
-    )
-    doc = DocumentModel()
-    doc.set_project(p)
-    doc.set_operator(build_operator(doc.patches, p.operator))
+    """The flagship office as ``bench/dgp_view.py`` opens it (meshed at ``resolution``
+    m, operator rank 120), its design's light in every scenario made once."""
+    doc = dgp_view.flagship(resolution)
     doc.layout_daylight()
     return doc
 
