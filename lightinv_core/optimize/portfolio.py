@@ -6,7 +6,7 @@ By the problem's shape (decided from bench/optimizers.py, table in the README):
   reaches the sweeps' hypervolume with a sixth of their evaluations;
 - any other design gets one best layout from two searches run interleaved, batch by
   batch, on one budget: CMA-ES with IPOP restarts (the fastest to a target on the
-  paper's patio experiments) and VNS restarted from diverse layouts (the fastest in
+  paper's patio experiments) and VNS restarted from random layouts (the fastest in
   CPU time at the office's scale, and the explorer: on deceptive matches every CMA-ES
   restart ends on one local optimum).
 
