@@ -6,7 +6,7 @@ By the problem's shape (decided from bench/optimizers.py, table in the README):
   reaches the sweeps' hypervolume with a sixth of their evaluations;
 - any other design gets one best layout from two searches run interleaved, batch by
   batch, on one budget: CMA-ES with IPOP restarts (the fastest to a target on the
-  paper's patio experiments) and VNS restarted from diverse layouts (the fastest in
+  paper's patio experiments) and VNS restarted from random layouts (the fastest in
   CPU time at the office's scale, and the explorer: on deceptive matches every CMA-ES
   restart ends on one local optimum).
 
@@ -33,7 +33,22 @@ The rule (a bandit over the two searches, by recent gain per unit of work):
 - its **weight** is its rate over the best rate, at least ``FLOOR`` (so a search that
   is behind keeps a sixth of the work and can overtake); both weigh 1 until each has
   done ``PROBE`` of work (a cheap first phase that measures both);
-- the next batch goes to the search with the least work per weight;
+- **head starts by the scale**: ``HEAD`` = 2,560 of work is done alone first, split by
+  s = min(1, SMALL / patches)^2: VNS first for s HEAD, CMA-ES not even made (its
+  start-up, a random layout evaluated and ``cma``'s set-up, not paid), then CMA-ES
+  for (1 - s) HEAD. On the office-scale problems (s = 1) VNS has it all: there
+  ``cma``'s own Python makes a CMA-ES candidate about twelve times a VNS candidate's
+  CPU, and VNS's first two sweeps reach the target in most seeds of the bench's
+  matches (medians 1,000-2,000 evaluations), so CMA-ES's share doubled the CPU of the
+  runs VNS wins alone. On the patio (s = 0.05) VNS does three batches and CMA-ES,
+  which needs far fewer evaluations there (the bench: 216-1,343 against VNS's
+  568-36,856), about 300 evaluations. The head starts are not counted in the shares
+  that follow;
+- the next batch goes to the search with the least work per weight, each batch's work
+  divided by the weight it was chosen under (stride scheduling): a change of weights
+  moves the shares from then on. Before, the least total work over the current
+  weight chose, so a search floored for long then weighted 1 took every batch until
+  its total caught up (a debt repaid, whatever the rates said then);
 - a search whose best has not improved by ``GAIN`` for ``patience`` of its own
   evaluations is stagnating and weighs ``FLOOR`` (CMA-ES's restarts ending in one
   basin; a VNS run in a local optimum), whatever its rate (its small gains there lead
@@ -48,8 +63,13 @@ The rule (a bandit over the two searches, by recent gain per unit of work):
   favoured: on experiment 1 a CMA-ES run stuck early at e = 0.36, far behind VNS, then
   found the target, which that rule had delayed from 0.6 to 1.35 CPU s;
 - VNS restarts when a whole sweep of its neighbourhoods finds nothing better, or when
-  it stagnates, from the random valid layout farthest from where its earlier runs
-  ended.
+  it has not gained in ``patience(2 nvar)`` of its evaluations, from a random valid
+  layout (its own generator, ``RESTART_SEED``). The layout farthest from where its
+  earlier runs ended (of 64 drawn) was the rule before: measured on the three built
+  matches, 20 seeds each, it reached the target in 17 of 20 on ``three-luminaires``
+  (ERT 9,367 evaluations) where a plain random layout reaches it in 20 of 20 (4,769):
+  the farthest layouts are extreme ones (luminaires in corners, very long or small),
+  poor starts.
 
 The answer is the best of both (search.better). Each search's own moves are those of
 the seed (it draws from its own generator, as it would alone).
@@ -99,6 +119,12 @@ demo's count); above, ``ASK_TELL`` falls as (SMALL / patches)^2, as a candidate'
 grows dearer (about 750 µs on the patio's 24,569 patches)."""
 
 
+HEAD = 2560
+"""Work done alone first, split between VNS (first) and CMA-ES by the scale: all VNS's
+where a candidate's light is cheap (two sweeps of its 40 neighbourhoods of 32
+candidates at 4 or more variables), nearly all CMA-ES's on the patio (module
+docstring)."""
+
 PROBE = 300
 """Work (evaluations) each search does before the rates move the shares (the first
 phase: a few CMA-ES generations, a few VNS batches)."""
@@ -108,8 +134,6 @@ RESTART_SEED = 104_729
 """Added to the run's seed for the VNS restarts' layouts. Each search draws from the
 run's seed as it would alone, so until VNS first restarts each is step for step the
 method run alone: ``auto`` reaches a target wherever either does within its share."""
-DIVERSE_DRAWS = 64
-"""Random valid layouts drawn for a VNS restart; the farthest from earlier ends wins."""
 
 
 def wants_front(design: Design) -> bool:
@@ -127,6 +151,13 @@ def batch_cost(name: str, patches: int, asked: int = 0, new_run: bool = False) -
     start, generation, candidate = ASK_TELL[name]
     python = generation + candidate * asked + (start if new_run else 0.0)
     return COST[name] + python * min(1.0, SMALL / max(patches, 1)) ** 2
+
+
+def head_start(patches: int) -> tuple[float, float]:
+    """Work (VNS, CMA-ES) each does alone first, in that order (module docstring):
+    ``HEAD`` split by the scale s = min(1, SMALL / patches)^2, VNS s and CMA-ES 1 - s."""
+    s = min(1.0, SMALL / max(patches, 1)) ** 2
+    return HEAD * s, HEAD * (1.0 - s)
 
 
 def patience(nvar: int) -> int:
@@ -156,21 +187,38 @@ class _Arm:
     its last real improvement."""
 
     def __init__(self, name: str, run, patches: int):
-        self.name, self.run, self.patches = name, run, patches
+        self.name, self.patches = name, patches
         self.work = 0.0  # its evaluations plus ``batch_cost`` per batch
         self.last = batch_cost(name, patches, new_run=True)  # its last batch's cost
-        self.trace: list[tuple[float, float, float]] = [(0.0, *run.budget.best[:2])]
+        self.turn = 0.0  # its work, each batch's divided by its weight then (the shares)
         self.mark = (np.inf, np.inf)  # (value, penalty) at the last real gain
         self.mark_evals = 0
-        self.ends: list[np.ndarray] = []  # VNS: where each run ended (unit cube)
+        # ``run`` is the search, or a function making it at its first step (CMA-ES:
+        # not begun, not paid for, while VNS has its head start).
+        self.run, self.make = (None, run) if callable(run) else (run, None)
+        self.trace: list[tuple[float, float, float]] = []
+        self.times: list[float] = []  # the trace's work column, for the rate's bisection
+        if self.run is not None:
+            self._record()
 
     @property
     def evals(self) -> int:
-        return self.run.budget.evals
+        return 0 if self.run is None else self.run.budget.evals
+
+    def _record(self) -> None:
+        value, pen = self.run.budget.best[:2]
+        self.trace.append((self.work, value, pen))
+        self.times.append(self.work)
+        if real_gain(value, pen, *self.mark):
+            self.mark, self.mark_evals = (value, pen), self.evals
 
     def step(self, before=None) -> None:
-        """One batch of the search (``before()`` first: a VNS restart's draws)."""
+        """One batch of the search (``before()`` first: a VNS restart's draws); the
+        search is made first if it has not begun (its start evaluated with the batch)."""
         e0 = self.evals
+        if self.run is None:
+            self.run = self.make()  # its start is evaluated and counted with this batch
+            self._record()
         if before is not None:
             before()
         es = getattr(self.run, "es", None)  # CMA-ES's current run
@@ -179,10 +227,7 @@ class _Arm:
         new_run = es is not getattr(self.run, "es", None)
         self.last = batch_cost(self.name, self.patches, asked, new_run)
         self.work += self.evals - e0 + self.last  # a VNS restart's start evaluated too
-        value, pen = self.run.budget.best[:2]
-        self.trace.append((self.work, value, pen))
-        if real_gain(value, pen, *self.mark):
-            self.mark, self.mark_evals = (value, pen), self.evals
+        self._record()
 
     def stagnating(self, nvar: int) -> bool:
         return self.evals - self.mark_evals >= patience(nvar)
@@ -192,8 +237,7 @@ class _Arm:
         span = WINDOW * self.work
         if span <= 0.0:
             return 0.0
-        times = [t for t, _, _ in self.trace]
-        i = max(bisect.bisect_right(times, self.work - span) - 1, 0)
+        i = max(bisect.bisect_right(self.times, self.work - span) - 1, 0)
         _, v0, p0 = self.trace[i]
         _, v1, p1 = self.trace[-1]
         return relative_gain(v1, p1, v0, p0) / span
@@ -227,15 +271,8 @@ def _by_lead(arms: list[_Arm]) -> list[float]:
 
 
 def _restart_vns(problem: DesignProblem, arm: _Arm, rng: np.random.Generator) -> None:
-    """Restart the VNS arm from the random valid layout farthest (unit cube) from the
-    ends of its earlier runs."""
-    lo, hi = problem.vars.lo, problem.vars.hi
-    span = np.where(hi > lo, hi - lo, 1.0)
-    arm.ends.append((arm.run.x - lo) / span)
-    X = random_layouts(problem, rng, DIVERSE_DRAWS)
-    Z = (X - lo) / span
-    gap = np.min(np.linalg.norm(Z[:, None] - np.asarray(arm.ends)[None], axis=2), axis=1)
-    arm.run.restart(X[int(np.argmax(gap))])
+    """Restart the VNS arm from a random valid layout (module docstring)."""
+    arm.run.restart(random_layouts(problem, rng, 1)[0])
     arm.mark, arm.mark_evals = (np.inf, np.inf), arm.evals
 
 
@@ -243,7 +280,7 @@ def _stalled(arms: list[_Arm], stall: int | None) -> str | None:
     """ "stall" when no search has improved its best in ``stall`` of its evaluations."""
     if stall is None:
         return None
-    done = all(a.evals - a.run.budget.last_gain >= stall for a in arms)
+    done = all(a.run is not None and a.evals - a.run.budget.last_gain >= stall for a in arms)
     return "stall" if done else None
 
 
@@ -258,7 +295,7 @@ def interleaved(
     quiet = RunContext(stop=StopRule(max_evals=None), seed=context.seed)
     n = problem.patches.n
     arms = [
-        _Arm("cmaes", CMAESRun(problem, quiet), n),
+        _Arm("cmaes", lambda: CMAESRun(problem, quiet), n),
         _Arm("vns", VNSRun(problem, quiet, trials=trials), n),
     ]
     rng = np.random.default_rng(context.seed + RESTART_SEED)
@@ -267,13 +304,15 @@ def interleaved(
     # run's evaluations grow twice as fast as either search's).
     stall = context.stop.stall
     total = Budget(problem, replace(context.stop, stall=None), context.cancel)
-    best_x = arms[0].run.best_x
+    best_x = arms[1].run.best_x
     iterations = 0
 
     def absorb() -> None:
         nonlocal best_x
         total.evals = sum(a.evals for a in arms)
         for a in arms:
+            if a.run is None:
+                continue
             b = a.run.budget.best
             if better(b[0], b[1], *total.best[:2]):
                 total.best = b
@@ -282,15 +321,28 @@ def interleaved(
                 best_x = a.run.best_x
 
     absorb()
+    head = head_start(n)
     while (why := total.why() or _stalled(arms, stall)) is None:
         w = weights(arms, nvar)
-        # The least work per weight; on a tie (the first batch) the cheaper batch.
-        k = min(range(len(arms)), key=lambda i: (arms[i].work / w[i], arms[i].last))
+        # The head starts (VNS's, CMA-ES not begun; then CMA-ES's), then the least
+        # work per weight, each
+        # batch's work divided by the weight it was chosen under (stride scheduling:
+        # a change of weights moves the shares from then on, with no debt to repay);
+        # on a tie (the first batch) the cheaper batch.
+        vns_first = arms[1].work < head[0] and arms[0].run is None
+        heading = vns_first or arms[0].work < head[1]
+        if heading:
+            k = 1 if vns_first else 0
+        else:
+            k = min(range(2), key=lambda i: (arms[i].turn, arms[i].last))
         arm = arms[k]
+        work0 = arm.work
         before = None
         if arm.name == "vns" and (arm.run.stuck or arm.stagnating(2 * nvar)):
             before = lambda arm=arm: _restart_vns(problem, arm, rng)  # noqa: E731
         arm.step(before)
+        if not heading:  # the head start is not counted in the shares
+            arm.turn += (arm.work - work0) / w[k]
         if log is not None:
             log.append(
                 (arm.name, tuple(a.work for a in arms), tuple(w), tuple(a.evals for a in arms))

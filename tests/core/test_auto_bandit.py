@@ -19,6 +19,7 @@ from lightinv_core.optimize.method import RunContext
 from lightinv_core.optimize.portfolio import FLOOR, LEAD, PROBE, _Arm, interleaved, weights
 from lightinv_core.optimize.problem import DesignProblem
 from lightinv_core.optimize.termination import StopRule
+from lightinv_core.optimize.vns import vns
 from lightinv_core.scene.builtin import builtin_scene
 from lightinv_core.scene.patches import mesh_patches
 
@@ -28,6 +29,7 @@ def arm(trace: list[tuple[float, float]], evals: int = 100, mark_evals: int = 10
     run = SimpleNamespace(budget=SimpleNamespace(best=(trace[0][1], 0.0, 0.0), evals=evals))
     a = _Arm("vns", run, patches=1000)
     a.trace = [(t, v, 0.0) for t, v in trace]
+    a.times = [t for t, _ in trace]
     a.work = trace[-1][0]
     a.mark_evals = mark_evals
     return a
@@ -162,3 +164,50 @@ def test_each_batch_adds_its_evaluations_and_its_searchs_batch_cost(light):
     assert set(costs["vns"]) == {portfolio.batch_cost("vns", n)}
     # Seven times a VNS batch's cost here: cma's Python is dear beside this light.
     assert costs["cmaes"][1] > 7 * costs["vns"][0]
+
+
+def test_vns_works_alone_first_where_light_is_cheap_and_cmaes_where_it_is_dear(light, monkeypatch):
+    """On a small problem VNS does its head start alone and CMA-ES is not even made: a
+    seed VNS solves within it costs no CMA-ES evaluation and is VNS's run alone. Where
+    light is dear VNS's head start shrinks as (SMALL / patches)^2 and CMA-ES's grows
+    to the rest of HEAD."""
+    problem = deceptive(light)
+    n = problem.patches.n
+    head = portfolio.HEAD
+    assert n <= portfolio.SMALL and portfolio.head_start(n) == (head, 0.0)
+    assert portfolio.head_start(4 * portfolio.SMALL) == pytest.approx((head / 16, head * 15 / 16))
+    stop = StopRule(max_evals=6000, target=0.03)
+    log: list = []
+    res, used = interleaved(problem, RunContext(seed=1, stop=stop), log=log)
+    alone = vns(problem, seed=1, stop=stop)
+    assert res.status == alone.status == "target" and alone.evaluations < head
+    assert used == {"cmaes": 0, "vns": alone.evaluations} and res.goal == alone.goal
+    # A seed that outlasts it: every batch is VNS's until its work reaches HEAD.
+    log = []
+    interleaved(problem, RunContext(seed=0, stop=StopRule(max_evals=4000)), log=log)
+    first = next(i for i, row in enumerate(log) if row[0] == "cmaes")
+    assert head <= log[first][1][1] <= head + 2 * 40  # VNS's work then: two batches more
+    assert all(row[3][0] == 0 for row in log[:first])  # CMA-ES not begun, nothing spent
+    # Where light is dear (SMALL a quarter of these patches) VNS's head start is
+    # HEAD / 16 of its work (a few batches), then CMA-ES works alone for 15 HEAD / 16.
+    monkeypatch.setattr(portfolio, "SMALL", n // 4)
+    vns_head, cma_head = portfolio.head_start(n)
+    log = []
+    interleaved(problem, RunContext(seed=0, stop=StopRule(max_evals=3000)), log=log)
+    first = next(i for i, row in enumerate(log) if row[0] == "cmaes")
+    assert vns_head <= log[first][1][1] and first <= 6
+    back = next(i for i, row in enumerate(log) if i > first and row[0] == "vns")
+    assert all(row[0] == "cmaes" for row in log[first:back])
+    assert log[back - 1][1][0] >= cma_head > log[back - 2][1][0]
+
+
+def test_vns_restarts_from_random_layouts_reach_the_deceptive_match(light):
+    """Seeds 4 and 7 of the deceptive match: VNS alone does not reach e < 0.03 in
+    20,000 evaluations, nor did ``auto`` in 12,000 when VNS restarted from the layout
+    farthest from its earlier ends (measured); restarting from random valid layouts it
+    does within 12,000."""
+    stop = StopRule(max_evals=12_000, target=0.03)
+    for seed in (4, 7):
+        res, used = interleaved(deceptive(light), RunContext(seed=seed, stop=stop))
+        assert res.status == "target" and res.goal < 0.03
+        assert used["vns"] > 4 * used["cmaes"]  # VNS's restarts found it
