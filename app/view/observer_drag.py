@@ -19,6 +19,8 @@ from collections.abc import Callable
 import numpy as np
 from PySide6 import QtCore
 
+from app.view.picking import plan_point
+
 PICK_PX = 14
 """How near (pixels) to an eye drawn a press picks its observer."""
 
@@ -57,12 +59,7 @@ class ObserverDrag(QtCore.QObject):
 
     def _plan_point(self, pos: QtCore.QPoint) -> np.ndarray | None:
         """(x, y) m where the cursor's ray meets the plane z = the dragged eye's."""
-        near, far = self.viewport.ray(*self.viewport.display(pos))
-        dz = far[2] - near[2]
-        if abs(dz) < 1e-12:
-            return None
-        t = (self._z - near[2]) / dz
-        return None if t < 0 else (near + t * (far - near))[:2]
+        return plan_point(self.viewport, pos, self._z)
 
     def eventFilter(self, obj, event) -> bool:
         vp = self.viewport

@@ -41,3 +41,15 @@ def camera_ray(renderer, x: int, y: int) -> tuple[np.ndarray, np.ndarray]:
         w = np.array(renderer.GetWorldPoint())
         out.append(w[:3] / w[3])
     return out[0], out[1]
+
+
+def plan_point(viewport, pos, z: float) -> np.ndarray | None:
+    """(x, y) m where the ray under the cursor ``pos`` (a widget point) meets the plane at
+    height ``z`` m; None when the ray runs parallel to it or the plane is behind the eye
+    (dragging observers and sensor regions in plan)."""
+    near, far = viewport.ray(*viewport.display(pos))
+    dz = far[2] - near[2]
+    if abs(dz) < 1e-12:
+        return None
+    t = (z - near[2]) / dz
+    return None if t < 0 else (near + t * (far - near))[:2]

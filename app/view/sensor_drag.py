@@ -21,6 +21,7 @@ from collections.abc import Callable
 import numpy as np
 from PySide6 import QtCore
 
+from app.view.picking import plan_point
 from app.view.sensor_overlay import LIFT
 from lightinv_core.errors import LightInvError
 
@@ -113,12 +114,7 @@ class SensorDrag(QtCore.QObject):
 
     def _plan_point(self, pos: QtCore.QPoint) -> np.ndarray | None:
         """(x, y) m where the cursor's ray meets the outline's plane."""
-        near, far = self.viewport.ray(*self.viewport.display(pos))
-        dz = far[2] - near[2]
-        if abs(dz) < 1e-12:
-            return None
-        t = (self._z - near[2]) / dz
-        return None if t < 0 else (near + t * (far - near))[:2]
+        return plan_point(self.viewport, pos, self._z)
 
     def current(self) -> tuple[float, ...] | None:
         """The region as dragged so far (None: no drag)."""
