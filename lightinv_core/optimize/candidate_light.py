@@ -27,6 +27,7 @@ from lightinv_core.light.daylight import ScenarioLight
 from lightinv_core.light.grids import DesignGrids
 from lightinv_core.light.model import LightModel
 from lightinv_core.optimize.levels import Level
+from lightinv_core.optimize.work_model import LightTally
 from lightinv_core.scene.patches import Patches
 from lightinv_core.sources.types import source_types
 
@@ -92,6 +93,7 @@ class CandidateLight:
         self._electric = tuple(str(t.kind) for t in types if t.electric)
         self._daylit = tuple(str(t.kind) for t in types if t.daylit)
         self._weights: tuple = (None, None)  # (layout, its lattice weights): the last made
+        self.tally = LightTally()  # the light's work, for ``auto``'s shares (work_model)
 
     def of(
         self,
@@ -143,10 +145,12 @@ class CandidateLight:
         blend = level.arrays_R is not None and arrays_H is None and lay is not None
         if len(cols) or not (blend or arrays_H is not None):
             H = self.problem.light.illuminance(V, level.receivers, cols)
+            self.tally.field(H.shape[0], V.shape[0], len(cols), V.shape[1])
         if blend:
             W = self.problem.arrays.weights(lay)
             self._weights = (lay, W)
             lit = level.arrays_R @ W
+            self.tally.product(*level.arrays_R.shape, W.shape[1])
             H = lit if H is None else H + lit
         elif arrays_H is not None:
             H = arrays_H if H is None else H + arrays_H
@@ -193,6 +197,7 @@ class CandidateLight:
                 Vg = np.zeros_like(V_sky)
                 Vg[on] = V_sky[on]
             sky[g] = p.light.illuminance(Vg, level.receivers, on)
+            self.tally.field(lux.shape[0], nz, len(on), m)
         clear = self._clear(level, rect, filt)
         parts = ScenarioLight(d.daylight, p.sky, lux, sky, self._year_box, clear)
         W = self._weights_of(lay)

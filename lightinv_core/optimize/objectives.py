@@ -182,6 +182,7 @@ class DesignGoals:
         the lux at the level's representatives."""
         p = self.problem
         if level.divisor <= 1:
+            p.lighting.tally.gram(len(cols), V.shape[0], V.shape[1])
             return p.match.relative_error(p.light.op.zone_patches[cols], V[cols])
         rows = level.rows[level.match_pos]
         C = p.light.op.rho[rows, None] * H[level.match_pos]

@@ -12,37 +12,39 @@ By the problem's shape (decided from bench/optimizers.py, table in the README):
 
 The rule (a bandit over the two searches, by recent gain per unit of work):
 
-- each search's work is counted, not timed: its evaluations plus a cost per batch
-  (``batch_cost``), a model of its CPU. ``COST`` per batch: 8 for a VNS batch of 32
-  candidates around one incumbent, 50 for a CMA-ES generation (its candidates, spread
-  over the zones, light more of the operator's columns: on the patio a generation of 8
-  costs about 1.7 VNS batches). Plus CMA-ES's own Python (``ASK_TELL``, ``cma``'s ask
-  and tell, measured with one BLAS thread): 400 evaluations for a new run (IPOP
-  restart), 70 a generation and 4.5 a candidate asked, where a candidate's light is
-  cheap (``SMALL`` = 5,424 patches or fewer: about 7 µs an evaluation), falling as
-  (SMALL / patches)^2 above (a twentieth on the patio's 24,569 patches, where an
-  evaluation with a lux field costs about 750 µs). On the built matches of 1,424
-  patches a generation of 10-12 weighs 4.5 VNS batches (measured 3.7-4.1): before, it
-  weighed 1.5 at every scale, so CMA-ES got about three times its share of the CPU
-  there. On a tie (the first batch) the cheaper batch goes first. Counted, so the same
-  project and seed give the same run on any machine and under any load
-  (docs/project-file.md promises it);
+- each search's work is counted, not timed: the CPU seconds its batches would take by
+  ``work_model`` (its own Python per batch, a CMA-ES run's set-up, and the light its
+  candidates lit: the GEMMs' multiply-adds and the operator entries copied, tallied as
+  they are made). Counted, so the same project and seed give the same run on any
+  machine and under any load (docs/project-file.md promises it). The model before,
+  evaluations plus a fixed cost per batch scaled by the patches, missed the CPU by up
+  to 2.5x either way: on experiment 4 (a lux field on the patio) a VNS candidate costs
+  as much as a CMA-ES one and VNS got about five sixths of the CPU where the shares
+  were equal (``auto`` 2.6x CMA-ES's expected running time); on experiment 1 (the
+  match's Gram product) a VNS candidate costs a fifth of one and CMA-ES was
+  undercounted;
 - its **rate** is the relative fall of its best f + P (``relative_gain``; becoming
   feasible counts ``FEASIBLE_GAIN``) over the most recent ``WINDOW`` of its own work,
   divided by that work;
 - its **weight** is its rate over the best rate, at least ``FLOOR`` (so a search that
   is behind keeps a sixth of the work and can overtake); both weigh 1 until each has
-  done ``PROBE`` of work (a cheap first phase that measures both);
-- **head starts by the scale**: ``HEAD`` = 2,560 of work is done alone first, split by
-  s = min(1, SMALL / patches)^2: VNS first for s HEAD, CMA-ES not even made (its
-  start-up, a random layout evaluated and ``cma``'s set-up, not paid), then CMA-ES
-  for (1 - s) HEAD. On the office-scale problems (s = 1) VNS has it all: there
-  ``cma``'s own Python makes a CMA-ES candidate about twelve times a VNS candidate's
-  CPU, and VNS's first two sweeps reach the target in most seeds of the bench's
-  matches (medians 1,000-2,000 evaluations), so CMA-ES's share doubled the CPU of the
-  runs VNS wins alone. On the patio (s = 0.05) VNS does three batches and CMA-ES,
-  which needs far fewer evaluations there (the bench: 216-1,343 against VNS's
-  568-36,856), about 300 evaluations. The head starts are not counted in the shares
+  done ``PROBE`` evaluations (a cheap first phase that measures both);
+- **a search trailing the leader** (the one holding the best) by more than ``LEAD`` =
+  5% of its f + P weighs ``FLOOR`` and the leader 1, while the leader is not
+  stagnating, whatever their rates: one far behind gains fast from a poor start (on
+  experiment 4 VNS's best, far below CMA-ES's, rose by large shares and took the work
+  from the CMA-ES run about to reach the target);
+- **head starts by the scale**: each search first works alone for a number of its own
+  evaluations, split by s = min(1, SMALL / patches)^2: VNS first for s ``HEAD[0]``
+  (two sweeps at most), CMA-ES not even made (its start-up, a random layout evaluated
+  and ``cma``'s set-up, not paid), then CMA-ES for (1 - s) ``HEAD[1]``. On the
+  office-scale problems (s = 1) VNS has it all: there ``cma``'s own Python makes a
+  CMA-ES candidate many times a VNS candidate's CPU, and VNS's first two sweeps reach
+  the target in most seeds of the bench's matches (medians 1,000-2,000 evaluations).
+  On the patio (s = 0.05) VNS does three batches and CMA-ES about 950 evaluations: it
+  needs far fewer evaluations there (the bench: medians of 235-1,271 against VNS's
+  486-24,007), and a shorter head start (320) left experiment 1's CMA-ES behind a VNS
+  that led but did not reach the target. The head starts are not counted in the shares
   that follow;
 - the next batch goes to the search with the least work per weight, each batch's work
   divided by the weight it was chosen under (stride scheduling): a change of weights
@@ -56,12 +58,10 @@ The rule (a bandit over the two searches, by recent gain per unit of work):
   the three-luminaire match its success);
 - when both stagnate and the one holding the best still gains a little (its rate is
   above 0), it weighs 1 and the other ``FLOOR`` if its best f + P trails by more than
-  ``LEAD`` = 5% (else both weigh 1): the leader's small gains improve the answer, the
-  other's must first close the gap (on experiment 4 a CMA-ES run creeping to the
-  target 12% ahead of a VNS that kept restarting got half the work, and ``auto`` needed
-  three to four times CMA-ES's CPU on that seed). A leader that gains nothing is not
-  favoured: on experiment 1 a CMA-ES run stuck early at e = 0.36, far behind VNS, then
-  found the target, which that rule had delayed from 0.6 to 1.35 CPU s;
+  ``LEAD`` (else both weigh 1): the leader's small gains improve the answer, the
+  other's must first close the gap. A leader that gains nothing is not favoured: on
+  experiment 1 a CMA-ES run stuck early at e = 0.36, far behind VNS, then found the
+  target, which that rule had delayed from 0.6 to 1.35 CPU s;
 - VNS restarts when a whole sweep of its neighbourhoods finds nothing better, or when
   it has not gained in ``patience(2 nvar)`` of its evaluations, from a random valid
   layout (its own generator, ``RESTART_SEED``). The layout farthest from where its
@@ -92,6 +92,7 @@ from lightinv_core.optimize.result import OptimizationResult
 from lightinv_core.optimize.search import Budget, SearchResult, better, judged, random_layouts
 from lightinv_core.optimize.termination import StopRule
 from lightinv_core.optimize.vns import VNSRun
+from lightinv_core.optimize.work_model import LightTally, batch_seconds
 
 FRONT_GOALS = frozenset(OBJECTIVES)
 GAIN = 1e-3
@@ -99,35 +100,21 @@ GAIN = 1e-3
 FLOOR = 0.2
 """Least weight of a search (behind, or stagnating): it keeps a sixth of the work."""
 LEAD = 0.05
-"""When both searches stagnate, one whose best f + P trails the other's by more than this
-share weighs ``FLOOR`` (module docstring)."""
+"""A search whose best f + P trails the leader's by more than this share weighs ``FLOOR``
+while the leader improves, or still gains a little when both stagnate (module
+docstring)."""
 WINDOW = 0.25
 """A search's rate is measured over this share of its own work (the recent quarter)."""
-COST = {"cmaes": 50, "vns": 8}
-"""Work of one batch beside its evaluations, in evaluations, where a candidate's light is
-dear (module docstring; ``batch_cost`` adds CMA-ES's ``ASK_TELL`` where it is cheap)."""
-ASK_TELL = {"cmaes": (400.0, 70.0, 4.5), "vns": (0.0, 0.0, 0.0)}
-"""Each search's own Python beside the light, in evaluations at ``SMALL`` patches or
-fewer (an evaluation there costs about 7 µs of CPU): (a new run, a batch, a candidate
-asked). CMA-ES: a new run (IPOP restart) 400 (its ``CMAEvolutionStrategy``, 2.5-3 ms), a
-generation's ask and tell 70 (0.45 ms) plus 4.5 per candidate asked (25-35 µs each;
-``cma`` measured with one BLAS thread, n = 5 and 12, populations of 8 to 384). A VNS
-batch's own work is in ``COST``."""
 SMALL = 5424
-"""Patches up to which a candidate's light is cheap beside ``cma``'s overhead (the office
-demo's count); above, ``ASK_TELL`` falls as (SMALL / patches)^2, as a candidate's light
-grows dearer (about 750 µs on the patio's 24,569 patches)."""
-
-
-HEAD = 2560
-"""Work done alone first, split between VNS (first) and CMA-ES by the scale: all VNS's
-where a candidate's light is cheap (two sweeps of its 40 neighbourhoods of 32
-candidates at 4 or more variables), nearly all CMA-ES's on the patio (module
-docstring)."""
-
-PROBE = 300
-"""Work (evaluations) each search does before the rates move the shares (the first
-phase: a few CMA-ES generations, a few VNS batches)."""
+"""Patches up to which a candidate's light is cheap beside the searches' own Python (the
+office demo's count): there VNS does the whole head start (``head_start``)."""
+HEAD = (2048, 1000)
+"""Evaluations done alone first: VNS's where a candidate's light is cheap (64 batches of
+32 candidates), CMA-ES's where it is dear (about 120 generations of 8 on the patio);
+split by the scale (module docstring)."""
+PROBE = 64
+"""Evaluations each search does before the rates move the shares (the first phase: a
+few CMA-ES generations, two VNS batches)."""
 FEASIBLE_GAIN = 1.0
 """The relative gain of becoming feasible (as large as any fall of f + P)."""
 RESTART_SEED = 104_729
@@ -143,21 +130,11 @@ def wants_front(design: Design) -> bool:
     return {str(g.kind) for g in design.goals} >= FRONT_GOALS
 
 
-def batch_cost(name: str, patches: int, asked: int = 0, new_run: bool = False) -> float:
-    """Work of one batch of search ``name`` beside its evaluations, on a model of
-    ``patches`` patches: ``COST`` plus its own Python (``ASK_TELL``) for a batch of
-    ``asked`` candidates, and for a new run when the batch began one (module
-    docstring)."""
-    start, generation, candidate = ASK_TELL[name]
-    python = generation + candidate * asked + (start if new_run else 0.0)
-    return COST[name] + python * min(1.0, SMALL / max(patches, 1)) ** 2
-
-
 def head_start(patches: int) -> tuple[float, float]:
-    """Work (VNS, CMA-ES) each does alone first, in that order (module docstring):
-    ``HEAD`` split by the scale s = min(1, SMALL / patches)^2, VNS s and CMA-ES 1 - s."""
+    """Evaluations (VNS, CMA-ES) each does alone first, in that order (module
+    docstring): s HEAD[0] and (1 - s) HEAD[1], s = min(1, SMALL / patches)^2."""
     s = min(1.0, SMALL / max(patches, 1)) ** 2
-    return HEAD * s, HEAD * (1.0 - s)
+    return HEAD[0] * s, HEAD[1] * (1.0 - s)
 
 
 def patience(nvar: int) -> int:
@@ -183,13 +160,13 @@ def relative_gain(value: float, penalty: float, value0: float, penalty0: float) 
 
 
 class _Arm:
-    """One search of the portfolio: its work, its best after each of its steps and
-    its last real improvement."""
+    """One search of the portfolio: its work (modelled CPU seconds), its best after
+    each of its steps and its last real improvement."""
 
-    def __init__(self, name: str, run, patches: int):
-        self.name, self.patches = name, patches
-        self.work = 0.0  # its evaluations plus ``batch_cost`` per batch
-        self.last = batch_cost(name, patches, new_run=True)  # its last batch's cost
+    def __init__(self, name: str, run, tally: LightTally):
+        self.name, self.tally = name, tally
+        self.work = 0.0  # its modelled CPU seconds (``work_model.batch_seconds``)
+        self.last = batch_seconds(name, 0.0, new_run=name == "cmaes")  # its last batch's
         self.turn = 0.0  # its work, each batch's divided by its weight then (the shares)
         self.mark = (np.inf, np.inf)  # (value, penalty) at the last real gain
         self.mark_evals = 0
@@ -215,7 +192,7 @@ class _Arm:
     def step(self, before=None) -> None:
         """One batch of the search (``before()`` first: a VNS restart's draws); the
         search is made first if it has not begun (its start evaluated with the batch)."""
-        e0 = self.evals
+        light0 = self.tally.seconds()
         if self.run is None:
             self.run = self.make()  # its start is evaluated and counted with this batch
             self._record()
@@ -223,10 +200,10 @@ class _Arm:
             before()
         es = getattr(self.run, "es", None)  # CMA-ES's current run
         self.run.step()
-        asked = getattr(self.run, "lam", 0)
         new_run = es is not getattr(self.run, "es", None)
-        self.last = batch_cost(self.name, self.patches, asked, new_run)
-        self.work += self.evals - e0 + self.last  # a VNS restart's start evaluated too
+        # A VNS restart's start and CMA-ES's first point are evaluated in this batch.
+        self.last = batch_seconds(self.name, self.tally.seconds() - light0, new_run)
+        self.work += self.last
         self._record()
 
     def stagnating(self, nvar: int) -> bool:
@@ -243,13 +220,29 @@ class _Arm:
         return relative_gain(v1, p1, v0, p0) / span
 
 
+def _leader(arms: list[_Arm]) -> int:
+    """The index of the search holding the best (value, penalty)."""
+    lead = 0
+    for i, a in enumerate(arms):
+        if better(*a.run.budget.best[:2], *arms[lead].run.budget.best[:2]):
+            lead = i
+    return lead
+
+
 def weights(arms: list[_Arm], nvar: int) -> list[float]:
-    """Each search's weight (module docstring): 1 each while probing, else its rate
-    over the best rate, at least ``FLOOR``; ``FLOOR`` while it stagnates."""
-    if any(a.work < PROBE for a in arms):
+    """Each search's weight (module docstring): 1 each while probing; ``FLOOR`` for one
+    trailing a leader that still improves by more than ``LEAD`` (the leader 1); else
+    its rate over the best rate, at least ``FLOOR``, and ``FLOOR`` while it stagnates."""
+    if any(a.evals < PROBE for a in arms):
         return [1.0 for _ in arms]
     if all(a.stagnating(nvar) for a in arms):
         return _by_lead(arms)
+    lead = _leader(arms)
+    if not arms[lead].stagnating(nvar):
+        best = arms[lead].run.budget.best[:2]
+        trail = [relative_gain(*best, *a.run.budget.best[:2]) > LEAD for a in arms]
+        if any(trail):
+            return [FLOOR if t else 1.0 for t in trail]
     rates = [a.rate() for a in arms]
     top = max(rates)
     w = [max(FLOOR, r / top) if top > 0.0 else 1.0 for r in rates]
@@ -260,14 +253,11 @@ def _by_lead(arms: list[_Arm]) -> list[float]:
     """Weights when every search stagnates: while the one holding the best still gains
     (its rate is above 0), 1 for it and for any within ``LEAD`` of it, ``FLOOR`` for one
     trailing it by more; else ``FLOOR`` each, the same shares (module docstring)."""
-    bests = [a.run.budget.best[:2] for a in arms]
-    lead = 0
-    for i, b in enumerate(bests):
-        if better(*b, *bests[lead]):
-            lead = i
+    lead = _leader(arms)
     if arms[lead].rate() <= 0.0:  # the leader is stuck too: neither is favoured
         return [FLOOR for _ in arms]
-    return [FLOOR if relative_gain(*bests[lead], *b) > LEAD else 1.0 for b in bests]
+    best = arms[lead].run.budget.best[:2]
+    return [FLOOR if relative_gain(*best, *a.run.budget.best[:2]) > LEAD else 1.0 for a in arms]
 
 
 def _restart_vns(problem: DesignProblem, arm: _Arm, rng: np.random.Generator) -> None:
@@ -294,9 +284,10 @@ def interleaved(
     the weights that chose it, each search's evaluations so far)."""
     quiet = RunContext(stop=StopRule(max_evals=None), seed=context.seed)
     n = problem.patches.n
+    tally = problem.lighting.tally
     arms = [
-        _Arm("cmaes", lambda: CMAESRun(problem, quiet), n),
-        _Arm("vns", VNSRun(problem, quiet, trials=trials), n),
+        _Arm("cmaes", lambda: CMAESRun(problem, quiet), tally),
+        _Arm("vns", VNSRun(problem, quiet, trials=trials), tally),
     ]
     rng = np.random.default_rng(context.seed + RESTART_SEED)
     nvar = problem.vars.n
@@ -329,8 +320,8 @@ def interleaved(
         # batch's work divided by the weight it was chosen under (stride scheduling:
         # a change of weights moves the shares from then on, with no debt to repay);
         # on a tie (the first batch) the cheaper batch.
-        vns_first = arms[1].work < head[0] and arms[0].run is None
-        heading = vns_first or arms[0].work < head[1]
+        vns_first = arms[1].evals < head[0] and arms[0].run is None
+        heading = vns_first or arms[0].evals < head[1]
         if heading:
             k = 1 if vns_first else 0
         else:
