@@ -36,7 +36,7 @@ dimension longer than its block (``GEMM_Q``: 320 to 448 on x86-64 since Haswell,
 more on ARMv8) in parts cut one way on one thread and another on several, so the last
 bits of Y depended on the BLAS threads of whoever computed it (office at k = 587: 278,105
 of 1,706,996 entries differed between this process, two threads, and a Dask worker, one).
-Up to this length a product is summed whole whatever the threads."""
+Kept (the same cut on every machine) now that each block runs on one BLAS thread."""
 
 
 @dataclass(eq=False)
@@ -145,15 +145,36 @@ def cluster_piece(
 
 def times_inverse(W_rows: np.ndarray, Minv: np.ndarray) -> np.ndarray:
     """W_rows @ Minv (float32) by ``ASSEMBLE_BLOCK`` row blocks: rows of Y. Each block is
-    summed over ``INNER_BLOCK`` clusters at a time, the parts added in order, so its bits
-    do not depend on the BLAS threads (nor on where the piece runs); up to
-    ``INNER_BLOCK`` clusters this is the one product ``W_rows @ Minv``."""
+    summed over ``INNER_BLOCK`` clusters at a time, the parts added in order, on one
+    BLAS thread (the blocks run side by side on as many threads as the BLAS had), so its
+    bits do not depend on the BLAS threads nor on where the piece runs: OpenBLAS 0.3.31
+    rounds a row differently with the threads it is given and with the rows computed
+    beside it (on this machine's Haswell kernels 2-15% of the entries of a product
+    changed with the threads, even over 40 clusters), but one block on one thread is
+    the same product everywhere."""
+    from concurrent.futures import ThreadPoolExecutor
+
+    from threadpoolctl import threadpool_info, threadpool_limits
+
     k = Minv.shape[0]
     out = np.empty((W_rows.shape[0], Minv.shape[1]), np.float32)
-    for s, e in _blocks(0, W_rows.shape[0], ASSEMBLE_BLOCK):
+
+    def block(rows: tuple[int, int]) -> None:
+        s, e = rows
         np.matmul(W_rows[s:e, :INNER_BLOCK], Minv[:INNER_BLOCK], out=out[s:e])
         for a, b in _blocks(INNER_BLOCK, k, INNER_BLOCK):
             out[s:e] += W_rows[s:e, a:b] @ Minv[a:b]
+
+    rows = list(_blocks(0, W_rows.shape[0], ASSEMBLE_BLOCK))
+    blas = [i["num_threads"] for i in threadpool_info() if i["user_api"] == "blas"]
+    threads = max(blas, default=1)
+    with threadpool_limits(limits=1, user_api="blas"):
+        if threads > 1 and len(rows) > 1:
+            with ThreadPoolExecutor(min(threads, len(rows))) as pool:
+                list(pool.map(block, rows))  # numpy's products release the GIL
+        else:
+            for r in rows:
+                block(r)
     return out
 
 

@@ -169,17 +169,15 @@ def test_the_hour_slider_relights_the_view(qtbot, window):
     panel.set_hour(hour_index(12, 20, 8))
     assert np.allclose(_shown(window), ld.hour_lux(hour_index(12, 20, 8)), rtol=1e-5)
     window.viewport.screenshot("/tmp/climate_hour_winter_view.png")
-    # The light is built once per design, not once per hour: a day's moves reuse it.
-    # Timed in this process's CPU seconds (software GL renders in its threads), so a busy
-    # machine does not fail it; the wall clock only guards against a hang.
-    t0, c0 = time.perf_counter(), time.process_time()
+    # The light is built once per design, not once per hour: a day's moves reuse it (the
+    # same object after 24 moves). The move's CPU is printed, not bounded: a test must
+    # pass on a busy machine, and timings belong in bench/.
+    c0 = time.process_time()
     for h in range(noon - 12, noon + 12):
         panel.set_hour(h)
     per_move = (time.process_time() - c0) / 24
     print(f"hour slider: {1e3 * per_move:.1f} ms of CPU a move (a render included)")
     assert d.layout_daylight(shown=True) is ld
-    assert per_move < 0.25, per_move  # a render under software GL, mostly
-    assert time.perf_counter() - t0 < 24 * 2.0
     # Unticking returns the view to the design's illuminance.
     panel.show_hour.setChecked(False)
     assert window.view_options.colour_by.currentData() == "lux"

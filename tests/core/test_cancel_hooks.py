@@ -70,7 +70,10 @@ def test_the_reflections_in_blocks_are_the_light_in_one_go(flagship, monkeypatch
     stop = Stop()
     blocks = clear_build._reflections(light, rho, H, stop)
     assert stop.seen == pytest.approx([64 / 300, 128 / 300, 192 / 300, 256 / 300, 1.0])
-    np.testing.assert_allclose(blocks, whole, rtol=1e-10, atol=1e-10 * np.abs(whole).max())
+    # Each column reflects alone, but the operator's products are float32 and OpenBLAS
+    # 0.3.31 rounds a column differently with the columns computed beside it (2.8e-7
+    # relative at most here; older builds gave the same bits): float32 rounding.
+    np.testing.assert_allclose(blocks, whole, rtol=1e-6, atol=1e-6 * np.abs(whole).max())
     assert np.abs(whole).max() > 1.0  # light was reflected
 
 

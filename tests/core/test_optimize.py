@@ -71,7 +71,9 @@ def test_stop_rules_progress_and_cancel(office):
     res = vns(p, seed=0, stop=StopRule(max_evals=None, stall=300))
     assert res.status == "stall"
     res = vns(p, seed=0, stop=StopRule(max_evals=None, time_limit=0.2))
-    assert res.status == "time_limit" and res.seconds < 1.0
+    # The stop rule fires after the batch that passes 0.2 s (a few ms here): generous,
+    # so a loaded machine does not fail it.
+    assert res.status == "time_limit" and 0.2 <= res.seconds < 5.0
     snaps = []
     calls = iter(range(10**6))
     res = vns(

@@ -4,7 +4,6 @@ from __future__ import annotations
 
 import shutil
 import subprocess
-import time
 from dataclasses import replace
 from pathlib import Path
 
@@ -262,14 +261,13 @@ def test_source_outlines_follow_the_zone_axes(single):
     np.testing.assert_allclose(src.points, zone.points)
 
 
-def test_render_view_of_25k_patches_takes_seconds(tmp_path):
+def test_render_view_draws_25k_patches(tmp_path):
     patches = mesh_patches(builtin_scene("patio"))
     assert patches.n > 20_000
     values = patches.centroid[:, 2] * 50.0
-    t0 = time.perf_counter()
-    fig = render_view(patches, values, "iso")
+    fig = render_view(patches, values, "iso")  # its time: bench/report.py, not a test
     fig.savefig(tmp_path / "iso.png", dpi=100)
-    assert isinstance(fig, Figure) and time.perf_counter() - t0 < 10.0
+    assert isinstance(fig, Figure)
     img = imread(tmp_path / "iso.png")[..., :3]
     assert img.std() > 0.05
     with pytest.raises(LightInvError, match="unknown view"):
