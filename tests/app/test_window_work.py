@@ -22,6 +22,22 @@ PAPER_DEMO = DEMO.parent / "office-demo.json"  # power goals: the goal-editing t
 pytestmark = pytest.mark.slow
 
 
+def open_coarse(qtbot, window, path: Path) -> None:
+    """The project file ``path`` loaded meshed coarser (0.5 m patches, 256 rays), its
+    operator built: for the tests of the window's layout, rules and goals, which do not
+    depend on the light's resolution (a test's time)."""
+    from lightinv_core.project import OperatorSettings, load_project
+
+    project = load_project(path)
+    project = replace(
+        project,
+        scene=replace(project.scene, resolution=0.5),
+        operator=OperatorSettings(rays=256),
+    )
+    assert window.load_project(project)
+    wait_for_operator(qtbot, window)
+
+
 @pytest.fixture
 def saved(qtbot, window, tmp_path):
     """A project on the cornell box saved to a file, then edited (unsaved)."""
@@ -137,8 +153,7 @@ def test_file_names_get_their_suffix():
 def test_the_window_fits_a_laptop_screen(qtbot, window, tmp_path):
     """It used to demand 1393 px of height: Run, Cancel and the status bar were off a
     1000 px screen. On 1366 x 768 (less a taskbar) everything shows."""
-    assert window.open_path(DEMO)
-    wait_for_operator(qtbot, window)
+    open_coarse(qtbot, window, DEMO)
     hint = window.minimumSizeHint()
     assert hint.width() <= 1366 and hint.height() <= 740
     window.resize(1366, 740)
@@ -381,8 +396,7 @@ def test_rules_and_goals_are_seen_and_edited(qtbot, window):
     a second goal needed editing the file."""
     from app.dialogs.rule_dialog import RuleDialog
 
-    assert window.open_path(PAPER_DEMO)
-    wait_for_operator(qtbot, window)
+    open_coarse(qtbot, window, PAPER_DEMO)
     d, tree = window.doc, window.tree
     shown = [
         i.text(0)
