@@ -15,27 +15,11 @@ from PySide6 import QtCore, QtGui, QtTest, QtWidgets
 
 from app.__main__ import INTEGRATED as DEMO  # the window tests open the climate demo
 from app.dialogs import ask
-from tests.app.conftest import wait_for_operator
+from tests.app.conftest import open_coarse, wait_for_operator
 
 PAPER_DEMO = DEMO.parent / "office-demo.json"  # power goals: the goal-editing test's start
 
 pytestmark = pytest.mark.slow
-
-
-def open_coarse(qtbot, window, path: Path) -> None:
-    """The project file ``path`` loaded meshed coarser (0.5 m patches, 256 rays), its
-    operator built: for the tests of the window's layout, rules and goals, which do not
-    depend on the light's resolution (a test's time)."""
-    from lightinv_core.project import OperatorSettings, load_project
-
-    project = load_project(path)
-    project = replace(
-        project,
-        scene=replace(project.scene, resolution=0.5),
-        operator=OperatorSettings(rays=256),
-    )
-    assert window.load_project(project)
-    wait_for_operator(qtbot, window)
 
 
 @pytest.fixture
