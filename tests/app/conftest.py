@@ -45,25 +45,33 @@ def wait_for_operator(qtbot, win, timeout=60_000):
     qtbot.waitUntil(lambda: win.worker is None and win.doc.operator is not None, timeout=timeout)
 
 
-def open_coarse_office(qtbot, win):
-    """office-arrays.json loaded coarse (0.7 m patches, rank 200) at 1366 x 768, lit;
-    the project loaded."""
+def open_coarse(qtbot, win, path, resolution=0.5, rank=None, rays=256):
+    """The project file ``path`` loaded meshed coarser (``resolution`` m patches, an
+    operator of ``rank`` and ``rays``), its operator built; the project loaded. For the
+    tests whose checks do not depend on the light's resolution (a test's time)."""
     from dataclasses import replace
-    from pathlib import Path
 
     from lightinv_core.project import OperatorSettings, load_project
 
-    path = Path(__file__).resolve().parents[2] / "resources" / "projects" / "office-arrays.json"
     project = load_project(path)
     project = replace(
         project,
-        scene=replace(project.scene, resolution=0.7),
-        operator=OperatorSettings(rank=200, rays=256),
+        scene=replace(project.scene, resolution=resolution),
+        operator=OperatorSettings(rank=rank, rays=rays),
     )
-    win.resize(1366, 768)
     assert win.load_project(project)
     wait_for_operator(qtbot, win)
     return project
+
+
+def open_coarse_office(qtbot, win):
+    """office-arrays.json loaded coarse (0.7 m patches, rank 200) at 1366 x 768, lit;
+    the project loaded."""
+    from pathlib import Path
+
+    path = Path(__file__).resolve().parents[2] / "resources" / "projects" / "office-arrays.json"
+    win.resize(1366, 768)
+    return open_coarse(qtbot, win, path, resolution=0.7, rank=200)
 
 
 def open_by_menu(qtbot, win, path) -> None:

@@ -3,11 +3,12 @@ project"), by clicks at 1366 x 768: the integrated office opened by File > Open
 project..., its skylight S1 picked in the design tree, Properties > Source > Glazing
 set to clear (its rectangle stays free: the optimiser moves clear shapes too, its
 filter box greyed), then Edit > Undo by its keys. The light it gives is checked in
-tests/core/test_clear_design.py."""
+tests/core/test_clear_design.py; so the office is meshed coarser here (0.5 m patches,
+256 rays: a test's time), as in test_skyband_gui.py."""
 
 from __future__ import annotations
 
-import shutil
+import json
 from pathlib import Path
 
 from PySide6 import QtCore, QtWidgets
@@ -20,8 +21,11 @@ SHOTS = Path("/tmp/shots-cleardesign")
 
 
 def test_a_skylight_made_clear_by_clicks(qtbot, window, tmp_path):
+    data = json.loads(PROJECT.read_text(encoding="utf-8"))
+    data["scene"]["resolution"] = 0.5
+    data["operator"] = {"rays": 256}
     path = tmp_path / "office.json"
-    shutil.copy(PROJECT, path)
+    path.write_text(json.dumps(data), encoding="utf-8")
     open_by_menu(qtbot, window, path)
     window.activateWindow()
     QtWidgets.QApplication.processEvents()

@@ -15,7 +15,7 @@ from PySide6 import QtCore, QtGui, QtTest, QtWidgets
 
 from app.__main__ import INTEGRATED as DEMO  # the window tests open the climate demo
 from app.dialogs import ask
-from tests.app.conftest import wait_for_operator
+from tests.app.conftest import open_coarse, wait_for_operator
 
 PAPER_DEMO = DEMO.parent / "office-demo.json"  # power goals: the goal-editing test's start
 
@@ -137,8 +137,7 @@ def test_file_names_get_their_suffix():
 def test_the_window_fits_a_laptop_screen(qtbot, window, tmp_path):
     """It used to demand 1393 px of height: Run, Cancel and the status bar were off a
     1000 px screen. On 1366 x 768 (less a taskbar) everything shows."""
-    assert window.open_path(DEMO)
-    wait_for_operator(qtbot, window)
+    open_coarse(qtbot, window, DEMO)
     hint = window.minimumSizeHint()
     assert hint.width() <= 1366 and hint.height() <= 740
     window.resize(1366, 740)
@@ -381,8 +380,7 @@ def test_rules_and_goals_are_seen_and_edited(qtbot, window):
     a second goal needed editing the file."""
     from app.dialogs.rule_dialog import RuleDialog
 
-    assert window.open_path(PAPER_DEMO)
-    wait_for_operator(qtbot, window)
+    open_coarse(qtbot, window, PAPER_DEMO)
     d, tree = window.doc, window.tree
     shown = [
         i.text(0)
